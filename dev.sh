@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# One entry point for set-up, the main job and the tests.
+#   ./dev.sh demo     run the default workflow (embedded spur pair) -> results/
+#   ./dev.sh test     run the test suite (fast cases; add -m slow for FE cases)
+#   ./dev.sh bench    run the benchmark scripts in workflows/benchmarks
+# The first call creates .venv and installs the package and its dependencies.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+cd "$here"
+venv="$here/.venv"
+stamp="$venv/.installed-$(sha256sum pyproject.toml | cut -c1-16)"
+
+ensure_env() {
+    if [ ! -f "$stamp" ]; then
+        echo "[dev.sh] creating environment in .venv (first run only)" >&2
+        python3 -m venv "$venv"
+        "$venv/bin/python" -m pip install -q --upgrade pip
+        "$venv/bin/python" -m pip install -q -e ".[test]"
+        rm -f "$venv"/.installed-*
+        touch "$stamp"
+    fi
+    export PATH="$venv/bin:$PATH"
+    # Off-screen rendering for pyvista; one BLAS thread per process by default.
+    export PYVISTA_OFF_SCREEN=true MPLBACKEND=Agg
+    export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
+}
+
+cmd="${1:-help}"; shift || true
+case "$cmd" in
+    demo)  ensure_env; python workflows/default_case.py "$@" ;;
+    test)  ensure_env; python -m pytest "$@" ;;
+    bench) ensure_env; for f in workflows/benchmarks/bench_*.py; do python "$f" "$@"; done ;;
+    env)   ensure_env; echo "environment ready: $venv" ;;
+    *)     sed -n '2,7p' "$0"; exit 2 ;;
+esac

@@ -1,0 +1,74 @@
+"""Input validation at the point where values enter the pipeline.
+
+Every error names the field, the value and the allowed range, so that a user
+reading a traceback from a TOML file knows which line to change.
+"""
+
+from __future__ import annotations
+
+import math
+
+
+class InputError(ValueError):
+    """A user-supplied value is outside its allowed range or inconsistent."""
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.6g}" if isinstance(v, float) else repr(v)
+
+
+def check_range(
+    field: str,
+    value: float,
+    lo: float = -math.inf,
+    hi: float = math.inf,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> float:
+    """Return ``value`` if it lies in the interval, else raise :class:`InputError`.
+
+    Parameters
+    ----------
+    field : name of the input as the user knows it (e.g. ``"pinion.teeth"``).
+    value : the value given.
+    lo, hi : interval bounds; ``lo_open``/``hi_open`` exclude the bound.
+    unit : unit shown in the message (the unit of ``value`` as passed, SI inside).
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{field} = {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise InputError(f"{field} = {value!r} must be finite")
+    below = v <= lo if lo_open else v < lo
+    above = v >= hi if hi_open else v > hi
+    if below or above:
+        lb = "(" if lo_open else "["
+        rb = ")" if hi_open else "]"
+        u = f" {unit}" if unit else ""
+        raise InputError(
+            f"{field} = {_fmt(v)}{u} is outside the allowed range "
+            f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}{u}"
+        )
+    return value
+
+
+def check_positive(field: str, value: float, unit: str = "") -> float:
+    """Shorthand for a strictly positive finite value."""
+    return check_range(field, value, 0.0, math.inf, lo_open=True, unit=unit)
+
+
+def check_int_range(field: str, value: int, lo: int, hi: int | None = None) -> int:
+    """Check an integer count (e.g. number of teeth) lies in ``[lo, hi]``."""
+    if isinstance(value, bool) or int(value) != value:
+        raise InputError(f"{field} = {value!r} must be a whole number")
+    return int(check_range(field, int(value), lo, math.inf if hi is None else hi))
+
+
+def check_choice(field: str, value: str, allowed: tuple[str, ...]) -> str:
+    """Check a string option is one of ``allowed``."""
+    if value not in allowed:
+        raise InputError(f"{field} = {value!r} is not one of {', '.join(map(repr, allowed))}")
+    return value
