@@ -81,8 +81,10 @@ class GearSpec:
     profile_shift : x (-), ISO 21771 sign convention.
     addendum_coef : h_a* (-), tip height over m_n (reference profile), default 1.
     dedendum_coef : h_f* (-), root depth over m_n, default 1.25.
-    cutter_tip_radius_coef : rho_a0* (-), tip radius of the rack cutter over m_n
-        (ISO 53 profile A: 0.38). Determines the trochoidal fillet.
+    cutter_tip_radius_coef : rho_a0* (-), tip radius of the rack cutter over m_n.
+        Determines the trochoidal fillet. Default (``None``): ISO 53 profile A's
+        0.38, or the largest radius that fits the rack tooth space when that is
+        smaller (e.g. 0.318 at 25 deg with h_f* = 1.25).
     bore_radius : radius of the bore in m for an external gear (0 for a solid
         disc); for an internal gear the *outer* radius of the ring rim.
     internal : True for an internal (ring) gear.
@@ -103,7 +105,7 @@ class GearSpec:
     profile_shift: float = 0.0
     addendum_coef: float = 1.0
     dedendum_coef: float = 1.25
-    cutter_tip_radius_coef: float = 0.38
+    cutter_tip_radius_coef: float | None = None
     bore_radius: float = 0.0
     internal: bool = False
     herringbone: bool = False
@@ -130,6 +132,9 @@ class GearSpec:
         check_range(f"{p}.profile_shift", self.profile_shift, -1.5, 1.5)
         check_range(f"{p}.addendum_coef", self.addendum_coef, 0.3, 2.0)
         check_range(f"{p}.dedendum_coef", self.dedendum_coef, self.addendum_coef, 2.5)
+        if self.cutter_tip_radius_coef is None:
+            object.__setattr__(self, "cutter_tip_radius_coef",
+                               min(0.38, self.max_cutter_tip_radius_coef))
         check_range(f"{p}.cutter_tip_radius_coef", self.cutter_tip_radius_coef, 0.0,
                     self.max_cutter_tip_radius_coef)
         check_range(f"{p}.groove_width", self.groove_width, 0.0, 10.0, unit="m")

@@ -1,0 +1,101 @@
+"""Fillet-foundation (gear body) compliance of Sainsot, Velex & Duverger (2004).
+
+    lambda_f = cos^2(alpha_m) / (E L) * [ L* (u_f/S_f)^2 + M* (u_f/S_f) + P* (1 + Q* tan^2 alpha_m) ]
+
+(J. Mech. Des. 126, 748-752; seed 004 eq. 16), with the coefficients from the
+fitted polynomials (seed 004 eq. 17)
+
+    X*(h_f, theta_f) = A/theta_f^2 + B h_f^2 + C h_f/theta_f + D/theta_f + E h_f + F,
+
+``h_f = r_f / r_int`` (root radius over bore radius), ``theta_f`` the half angle
+of the tooth at the root circle, ``S_f = 2 r_f theta_f`` the tooth thickness at
+the root circle, ``u_f`` the distance along the centreline from the root circle
+to where the load line crosses it, and ``alpha_m`` the load angle.
+
+The extracted text of seed 004 Table 1 lost the minus signs; the signs below are
+those of the original paper (Table 1 of Sainsot et al. 2004). The fit was made
+for 1.4 <= h_f <= 7 and 0.01 <= theta_f <= 0.12 rad; outside that range the
+formula is extrapolated and :func:`foundation_coefficients` reports it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+# rows L*, M*, P*, Q*; columns A, B, C, D, E, F (Sainsot et al. 2004, Table 1)
+SAINSOT_TABLE = np.array(
+    [
+        [-5.574e-5, -1.9986e-3, -2.3015e-4, 4.7702e-3, 0.0271, 6.8045],
+        [60.111e-5, 28.100e-3, -83.431e-4, -9.9256e-3, 0.1624, 0.9086],
+        [-50.952e-5, 185.50e-3, 0.0538e-4, 53.300e-3, 0.2895, 0.9236],
+        [-6.2042e-5, 9.0889e-3, -4.0964e-4, 7.8297e-3, -0.1472, 0.6904],
+    ]
+)
+H_F_RANGE = (1.4, 7.0)
+THETA_F_RANGE = (0.01, 0.12)
+
+
+@dataclass(frozen=True)
+class FoundationCoefficients:
+    """Sainsot coefficients L*, M*, P*, Q* for one gear body (dimensionless).
+
+    ``in_fit_range`` is False when (h_f, theta_f) lies outside the fitted domain.
+    """
+
+    L: float
+    M: float
+    P: float
+    Q: float
+    h_f: float
+    theta_f: float
+    in_fit_range: bool
+
+
+def sainsot_polynomials(h_f: ArrayLike, theta_f: ArrayLike) -> np.ndarray:
+    """Evaluate L*, M*, P*, Q*; returns shape (4, ...) for broadcast inputs."""
+    h = np.asarray(h_f, dtype=float)
+    t = np.asarray(theta_f, dtype=float)
+    basis = np.stack(np.broadcast_arrays(1 / t**2, h**2, h / t, 1 / t, h, np.ones_like(h * t)))
+    return np.tensordot(SAINSOT_TABLE, basis, axes=(1, 0))
+
+
+def foundation_coefficients(root_radius: float, body_radius: float, theta_f: float
+                            ) -> FoundationCoefficients:
+    """Coefficients for a gear with root radius ``r_f`` and bore radius ``r_int`` (m).
+
+    For an internal (ring) gear pass the rim outer radius as ``body_radius``; the
+    ratio is then taken as ``r_rim / r_f`` (an approximation: Sainsot's fit is for
+    external gear bodies).
+    """
+    if body_radius <= 0:
+        h_f = H_F_RANGE[1]  # solid disc: the fit saturates; use its upper end
+    else:
+        h_f = max(root_radius, body_radius) / min(root_radius, body_radius)
+    L, M, P, Q = sainsot_polynomials(h_f, theta_f)
+    ok = H_F_RANGE[0] <= h_f <= H_F_RANGE[1] and THETA_F_RANGE[0] <= theta_f <= THETA_F_RANGE[1]
+    return FoundationCoefficients(float(L), float(M), float(P), float(Q), h_f, theta_f, ok)
+
+
+def foundation_compliance(
+    coef: FoundationCoefficients,
+    u_f: ArrayLike,
+    s_f: float,
+    load_angle: ArrayLike,
+    youngs_modulus: float,
+) -> np.ndarray:
+    """Body compliance per unit face width, m/N * m (divide by the face width in m).
+
+    Parameters
+    ----------
+    u_f : distance from the root circle to the load line's crossing of the centreline, m.
+    s_f : tooth thickness at the root circle, m.
+    load_angle : alpha_m, angle between the load and the normal to the centreline, rad.
+    youngs_modulus : E in Pa.
+    """
+    ratio = np.asarray(u_f, dtype=float) / s_f
+    a = np.asarray(load_angle, dtype=float)
+    bracket = coef.L * ratio**2 + coef.M * ratio + coef.P * (1.0 + coef.Q * np.tan(a) ** 2)
+    return np.cos(a) ** 2 / youngs_modulus * bracket

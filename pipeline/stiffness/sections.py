@@ -1,0 +1,132 @@
+"""Tooth cross-sections along the centreline, pre-integrated for the potential-energy method.
+
+The tooth is a cantilever along its centreline, clamped at ``eta = 0`` (the root
+circle for the exact profile; the base circle for the classical model) with
+half-thickness ``h(eta)`` at distance ``eta`` (m) along the centreline towards
+the tip. For a unit face width the section has area ``A = 2 h`` and second
+moment ``I = (2 h)^3 / 12``.
+
+The bending energy of a load at ``eta_c`` needs ``int_0^eta_c (eta_c - eta)^k / I``
+for k = 0, 1, 2. Expanding the binomial, these are combinations of the
+cumulative integrals ``J_k(eta) = int_0^eta eta'^k / I d eta'`` which are
+tabulated once per gear; any number of load positions then costs one
+interpolation each (fully vectorised). ``A0(eta) = int_0^eta 1/A`` serves the
+shear and axial-compression terms.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pipeline.geometry.gear import GearSpec
+
+
+@dataclass(frozen=True)
+class ToothSections:
+    """Tabulated tooth sections for a unit face width.
+
+    Attributes
+    ----------
+    eta : shape (n,), distance along the centreline from the clamped section, m.
+    half_thickness : shape (n,), h(eta) in m.
+    J0, J1, J2 : shape (n,), cumulative ``int eta^k / I`` in m^-3, m^-2, m^-1 (unit width).
+    A0 : shape (n,), cumulative ``int 1 / A`` (unit width), dimensionless.
+    clamp_radius : radius of the clamped section, m (root or base circle).
+    internal : True for an internal gear (the centreline points inwards).
+    """
+
+    eta: np.ndarray
+    half_thickness: np.ndarray
+    J0: np.ndarray
+    J1: np.ndarray
+    J2: np.ndarray
+    A0: np.ndarray
+    clamp_radius: float
+    internal: bool = False
+
+    @classmethod
+    def from_half_thickness(
+        cls, eta: np.ndarray, h: np.ndarray, clamp_radius: float, internal: bool = False
+    ) -> ToothSections:
+        """Integrate a tabulated ``h(eta)`` (cumulative trapezoid, both arrays shape (n,))."""
+        eta = np.asarray(eta, dtype=float)
+        h = np.asarray(h, dtype=float)
+        if np.any(np.diff(eta) <= 0) or eta[0] != 0.0:
+            raise ValueError("ToothSections: eta must start at 0 and increase strictly")
+        if np.any(h <= 0):
+            raise ValueError("ToothSections: half thickness must be positive on the tooth")
+        inv_i = 12.0 / (2.0 * h) ** 3
+        inv_a = 1.0 / (2.0 * h)
+
+        def cum(f: np.ndarray) -> np.ndarray:
+            return np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(eta))])
+
+        return cls(eta, h, cum(inv_i), cum(eta * inv_i), cum(eta**2 * inv_i), cum(inv_a),
+                   float(clamp_radius), internal)
+
+    def eta_of_radius(self, y: ArrayLike) -> np.ndarray:
+        """Centreline distance from the clamp for a centreline coordinate ``y`` (m from centre)."""
+        y = np.asarray(y, dtype=float)
+        return self.clamp_radius - y if self.internal else y - self.clamp_radius
+
+    def beam_integrals(self, eta_c: ArrayLike) -> tuple[np.ndarray, ...]:
+        """Integrals for a load at ``eta_c`` (any shape), unit face width.
+
+        Returns
+        -------
+        b2 : ``int_0^eta_c (eta_c - eta)^2 / I``, m^-1
+        b1 : ``int_0^eta_c (eta_c - eta) / I``, m^-2
+        b0 : ``int_0^eta_c 1 / I``, m^-3
+        a0 : ``int_0^eta_c 1 / A``, dimensionless
+        """
+        e = np.asarray(eta_c, dtype=float)
+        j0 = np.interp(e, self.eta, self.J0)
+        j1 = np.interp(e, self.eta, self.J1)
+        j2 = np.interp(e, self.eta, self.J2)
+        a0 = np.interp(e, self.eta, self.A0)
+        return e * e * j0 - 2.0 * e * j1 + j2, e * j0 - j1, j0, a0
+
+
+def _graded(n: int) -> np.ndarray:
+    """n points on [0, 1], clustered towards 0 where the section changes fastest."""
+    u = np.linspace(0.0, 1.0, n)
+    return u**1.5
+
+
+def involute_sections(gear: GearSpec, n: int = 4000) -> ToothSections:
+    """Sections of the classical model: pure involute, clamped at the base circle.
+
+    This is the textbook model behind the closed-form integrals of seed 004
+    (eqs. 11-13): the tooth is cut off at the base circle and its sections are
+    chords perpendicular to the centreline. Used as an exact reference for the
+    numerical integration; the pipeline's default uses the exact profile.
+    """
+    if gear.internal:
+        raise ValueError("involute_sections models external teeth only")
+    rb = gear.base_radius
+    psi_b = gear.half_tooth_angle(rb)  # half angle at the base circle (alpha_2 of seed 004)
+    ra = gear.tip_radius_
+    r = rb + (ra - rb) * _graded(n)
+    psi = _half_angles(gear, r)
+    x = r * np.sin(psi)
+    y = r * np.cos(psi)
+    y0 = rb * math.cos(psi_b)
+    # y(r) increases monotonically on the involute for tooth shapes of interest
+    order = np.argsort(y)
+    return ToothSections.from_half_thickness(y[order] - y0, x[order], clamp_radius=y0)
+
+
+def _half_angles(gear: GearSpec, r: np.ndarray) -> np.ndarray:
+    """Vectorised half tooth angle on the involute at radii ``r`` (rad)."""
+    from pipeline.geometry.involute import inv
+
+    at = gear.transverse_pressure_angle
+    a = np.arccos(np.clip(gear.base_radius / r, -1.0, 1.0))
+    psi_ref = gear.reference_tooth_thickness / (2.0 * gear.reference_radius)
+    if gear.internal:
+        return psi_ref - (inv(a) - inv(at))
+    return psi_ref + inv(at) - inv(a)

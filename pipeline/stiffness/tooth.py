@@ -1,0 +1,168 @@
+"""Single-tooth compliance by the potential-energy method, on the actual tooth profile.
+
+A normal load F at the flank point of radius R is split into a bending part
+F_b and a compressive part F_a along the tooth centreline (with friction, see
+:mod:`pipeline.stiffness.friction`). With the tooth a cantilever clamped at the
+root circle (sections from :mod:`pipeline.stiffness.sections`):
+
+    1/k_b = int [F_b (eta_c - eta) - F_a h_c]^2 / (E I) d eta / F^2
+    1/k_s = int 1.2 F_b^2 / (G A) d eta / F^2
+    1/k_a = int F_a^2 / (E A) d eta / F^2
+
+(seed 001; seed 004 eqs. 1-3 and 21-23), where ``eta_c`` is the load point's
+centreline distance from the clamp and ``h_c`` its half thickness. The body
+(fillet-foundation) term is Sainsot's (:mod:`pipeline.stiffness.foundation`),
+applied to the resultant of normal load and friction. All compliances here are
+*per unit face width* (m^2/N): divide by the face width (m) for m/N.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pipeline.geometry.gear import GearSpec
+from pipeline.stiffness.foundation import (
+    FoundationCoefficients,
+    foundation_coefficients,
+    foundation_compliance,
+)
+from pipeline.stiffness.friction import load_components
+from pipeline.stiffness.sections import ToothSections, _half_angles
+
+
+@dataclass(frozen=True)
+class ToothModel:
+    """Everything the potential-energy method needs about one gear's tooth.
+
+    Attributes
+    ----------
+    gear : the gear.
+    sections : tabulated sections from the clamp (root circle) to the tip.
+    foundation : Sainsot coefficients of the gear body.
+    root_thickness : S_f, tooth thickness at the root circle, m.
+    """
+
+    gear: GearSpec
+    sections: ToothSections
+    foundation: FoundationCoefficients
+    root_thickness: float
+
+
+@dataclass(frozen=True)
+class ToothCompliance:
+    """Compliance components per unit face width, m^2/N, each of the shape of the input radii."""
+
+    bending: np.ndarray
+    shear: np.ndarray
+    axial: np.ndarray
+    foundation: np.ndarray
+
+    @property
+    def tooth(self) -> np.ndarray:
+        """Bending + shear + axial compression."""
+        return self.bending + self.shear + self.axial
+
+
+def tooth_model(gear: GearSpec, n_sections: int = 3000) -> ToothModel:
+    """Tooth model on the exact profile (involute + trochoidal fillet), clamped at the root circle."""
+    from pipeline.geometry.profile import tooth_profile
+
+    prof = tooth_profile(gear)
+    rf = gear.root_radius
+    # centreline coordinates from the root circle to the tip, graded towards the root
+    y_tip = float(np.max(prof.y)) if not gear.internal else float(np.min(prof.y))
+    u = np.linspace(0.0, 1.0, n_sections) ** 1.5
+    y = rf + (y_tip - rf) * u
+    h = np.asarray(prof.half_thickness(y), dtype=float)
+    keep = h > 0
+    sections = ToothSections.from_half_thickness(
+        np.abs(y[keep] - rf), h[keep], clamp_radius=rf, internal=gear.internal
+    )
+    theta_f = _root_half_angle(prof.x, prof.y, rf, gear)
+    coef = foundation_coefficients(rf, gear.bore_radius, theta_f)
+    return ToothModel(gear, sections, coef, 2.0 * rf * theta_f)
+
+
+def _root_half_angle(x: np.ndarray, y: np.ndarray, rf: float, gear: GearSpec) -> float:
+    """theta_f: half angle of the tooth where its fillet leaves the root circle (rad)."""
+    r = np.hypot(x, y)
+    on_root = np.abs(r - rf) <= 1e-6 * rf
+    ang = np.arctan2(np.abs(x), np.abs(y))
+    if np.any(on_root):
+        # the fillet end on the root circle closest to the tooth
+        return float(np.min(ang[on_root]))
+    return float(math.pi / gear.teeth)
+
+
+def classical_tooth_model(gear: GearSpec, n_sections: int = 4000) -> ToothModel:
+    """The textbook model (pure involute clamped at the base circle, seed 004 eqs. 11-13).
+
+    Kept as an exact reference for the numerical integration; the foundation uses
+    ``theta_f`` = half tooth angle at the base circle and the root radius.
+    """
+    from pipeline.stiffness.sections import involute_sections
+
+    sections = involute_sections(gear, n_sections)
+    theta_f = float(gear.half_tooth_angle(gear.base_radius))
+    coef = foundation_coefficients(gear.root_radius, gear.bore_radius, theta_f)
+    return ToothModel(gear, sections, coef, 2.0 * gear.root_radius * theta_f)
+
+
+def load_geometry(gear: GearSpec, contact_radius: ArrayLike) -> tuple[np.ndarray, ...]:
+    """Load point geometry on the involute at radius ``R`` (m), any shape.
+
+    Returns
+    -------
+    load_angle : angle between the normal load and the normal to the centreline, rad.
+    h_c : half tooth thickness at the load point, m.
+    y_c : centreline coordinate of the load point (from the gear centre), m.
+    """
+    r = np.asarray(contact_radius, dtype=float)
+    psi = _half_angles(gear, r)
+    alpha = np.arccos(np.clip(gear.base_radius / r, -1.0, 1.0))
+    load_angle = alpha + psi if gear.internal else alpha - psi
+    return load_angle, r * np.sin(psi), r * np.cos(psi)
+
+
+def tooth_compliance(model: ToothModel, contact_radius: ArrayLike, mu: ArrayLike = 0.0,
+                     lam: ArrayLike = 0.0) -> ToothCompliance:
+    """Compliance components of one tooth loaded at radius ``R`` (m), per unit face width.
+
+    Parameters
+    ----------
+    model : from :func:`tooth_model`.
+    contact_radius : radius of the contact point on this gear, m, any shape.
+    mu : friction coefficient (-), broadcastable.
+    lam : friction direction (+1 approach, -1 recess, 0 none), broadcastable.
+    """
+    g = model.gear
+    mat = g.material
+    load_angle, h_c, y_c = load_geometry(g, contact_radius)
+    fb, fa = load_components(load_angle, mu, lam)
+    b2, b1, b0, a0 = model.sections.beam_integrals(model.sections.eta_of_radius(y_c))
+    bending = (fb * fb * b2 - 2.0 * fb * fa * h_c * b1 + fa * fa * h_c * h_c * b0)
+    bending = bending / mat.youngs_modulus
+    shear = 1.2 * fb * fb * a0 / mat.shear_modulus
+    axial = fa * fa * a0 / mat.youngs_modulus
+    # Body: the resultant of normal load and friction, at its own angle and line.
+    a_eff = np.arctan2(fa, fb)
+    cross = y_c + h_c * np.tan(a_eff) if g.internal else y_c - h_c * np.tan(a_eff)
+    u_f = np.abs(cross - g.root_radius)
+    found = (fa * fa + fb * fb) * foundation_compliance(
+        model.foundation, u_f, model.root_thickness, a_eff, mat.youngs_modulus
+    )
+    return ToothCompliance(bending, shear, axial, found)
+
+
+def hertz_compliance(pinion: GearSpec, gear: GearSpec) -> float:
+    """Constant Hertz compliance of a line contact per unit face width, m^2/N.
+
+    ``1/k_h = 4 (1 - nu^2) / (pi E L)`` for equal materials (seed 001, seed 004
+    eq. 7), generalised to ``2/(pi L) [(1-nu1^2)/E1 + (1-nu2^2)/E2]``.
+    """
+    m1, m2 = pinion.material, gear.material
+    return 2.0 / math.pi * (1.0 / m1.plane_strain_modulus + 1.0 / m2.plane_strain_modulus)
