@@ -261,22 +261,30 @@ class GearPair:
         return pinion_speed * rho1, pinion_speed / self.gear_ratio * np.abs(rho2)
 
     # ---- contacts over the mesh cycle ----------------------------------------------------
+    def pair_indices(self) -> np.ndarray:
+        """Indices k of the tooth pairs ``s0 + k p_bt`` that can touch somewhere on the face.
+
+        For helical gears pairs behind the leading one (k < 0) reach the path of
+        contact through the far end of the face, where ``s = s0 + k p_bt + b tan(beta_b)``.
+        """
+        reach = self.face_width * math.tan(self.pinion.base_helix_angle)
+        return np.arange(-int(math.ceil(reach / self.base_pitch)), self.max_pairs)
+
     def pair_positions(self, s0: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        """Roll coordinates of every tooth pair that may be in contact.
+        """Transverse (z = 0) roll coordinates of every tooth pair that may be in contact.
 
         Parameters
         ----------
-        s0 : shape (m,) roll coordinate of the *leading* pair, in
+        s0 : shape (m,) roll coordinate of the *leading* pair at z = 0, in
             ``[s_start, s_start + p_bt)`` for one mesh cycle.
 
         Returns
         -------
-        s : shape (m, K) roll coordinates ``s0 + k p_bt``, k = 0..K-1.
-        in_contact : shape (m, K) bool, ``s_start <= s <= s_end``.
+        s : shape (m, K) roll coordinates ``s0 + k p_bt`` for k in :meth:`pair_indices`.
+        in_contact : shape (m, K) bool, ``s_start <= s <= s_end`` (at z = 0).
         """
         s0 = np.asarray(s0, dtype=float)[:, None]
-        k = np.arange(self.max_pairs)[None, :]
-        s = s0 + k * self.base_pitch
+        s = s0 + self.pair_indices()[None, :] * self.base_pitch
         return s, (s >= self.s_start) & (s <= self.s_end)
 
     def mesh_cycle(self, n: int) -> np.ndarray:

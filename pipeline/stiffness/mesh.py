@@ -147,9 +147,8 @@ def slice_positions(pair: GearPair, s0: np.ndarray, n_slices: int) -> tuple[np.n
         z = (np.arange(n_slices) + 0.5) * dz
     else:
         n_slices, dz, z = 1, b, np.zeros(1)
-    tb = math.tan(pair.pinion.base_helix_angle)
-    k = np.arange(pair.max_pairs + int(math.ceil(b * tb / pair.base_pitch)))
-    s = s0[:, None, None] + k[None, :, None] * pair.base_pitch - z[None, None, :] * tb
+    s_pairs, _ = pair.pair_positions(s0)  # (m, K): the contact of each pair at z = 0
+    s = s_pairs[:, :, None] + z[None, None, :] * math.tan(pair.pinion.base_helix_angle)
     return s, dz
 
 

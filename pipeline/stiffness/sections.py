@@ -84,6 +84,12 @@ class ToothSections:
         a0 : ``int_0^eta_c 1 / A``, dimensionless
         """
         e = np.asarray(eta_c, dtype=float)
+        top = self.eta[-1] * (1 + 1e-9) + 1e-12
+        if np.any(e < -1e-12) or np.any(e > top):
+            raise ValueError(
+                f"load point outside the tooth: centreline distance {float(np.max(e)):.6g} m or "
+                f"{float(np.min(e)):.6g} m is outside [0, {self.eta[-1]:.6g}] m"
+            )
         j0 = np.interp(e, self.eta, self.J0)
         j1 = np.interp(e, self.eta, self.J1)
         j2 = np.interp(e, self.eta, self.J2)

@@ -1,0 +1,50 @@
+"""The ``gearpipe`` command line.
+
+Subcommands take a TOML file whose keys carry their units (mm, deg, N m, rpm);
+everything inside is SI. Each writes CSV/JSON data, PNG plots and a ``run.json``
+record (inputs, versions, configuration hash) to ``results/<config>/<command>/``
+unless ``--out`` says otherwise; ``--json`` prints the summary to stdout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from pipeline import __version__
+from pipeline.validation import InputError
+
+# name -> (module, add-arguments function, run function, help)
+SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
+    "geometry": ("pipeline.geometry.commands", "add_arguments", "run",
+                 "tooth profiles, contact ratios and line of action"),
+    "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",
+                  "analytical mesh stiffness over a mesh cycle"),
+}
+
+
+def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None
+                 ) -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gearpipe", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--version", action="version", version=f"gearpipe {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+    for name, (mod, add, run, help_) in (available or SUBCOMMANDS).items():
+        p = sub.add_parser(name, help=help_, description=help_)
+        module = importlib.import_module(mod)
+        getattr(module, add)(p)
+        p.set_defaults(_run=getattr(module, run))
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args._run(args) or 0)
+    except InputError as exc:
+        print(f"gearpipe {args.command}: input error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,41 @@
+"""Helpers shared by the command-line subcommands: options, output folder, JSON to stdout."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from pipeline.io import to_jsonable
+
+
+def add_common_arguments(parser: argparse.ArgumentParser) -> None:
+    """CONFIG, --out and --json, the same for every subcommand."""
+    parser.add_argument("config", type=Path, help="TOML file (units in the key names)")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="output folder (default: results/<config name>/<command>)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the result summary as JSON on stdout")
+
+
+def output_dir(args: argparse.Namespace, command: str) -> Path:
+    """The folder a command writes to (created)."""
+    out = args.out or Path("results") / Path(args.config).stem / command
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path) -> None:
+    """Print ``summary`` as JSON (``--json``) or a short human-readable report."""
+    if args.json:
+        json.dump(to_jsonable(summary), sys.stdout, indent=2)
+        sys.stdout.write("\n")
+        return
+    for key, value in summary.items():
+        if isinstance(value, float):
+            print(f"  {key:40s} {value:.6g}")
+        elif not isinstance(value, (list, dict)):
+            print(f"  {key:40s} {value}")
+    print(f"written to {out}/")

@@ -1,0 +1,102 @@
+"""Result objects of the dynamic solvers (named fields, SI units, shapes documented)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Response:
+    """A time history: transient (time integration) or one steady period.
+
+    Attributes
+    ----------
+    time : shape (N,), s.
+    q : shape (N, n_full), displacements of every named coordinate (m, rad), measured
+        from the rigid-body motion when the system has one.
+    qd : shape (N, n_full), velocities (m/s, rad/s).
+    dte : shape (n_mesh, N), dynamic transmission error delta = v . q along each
+        line of action, m.
+    mesh_force : shape (n_mesh, N), dynamic mesh force k (delta - e) + c (delta' - e'), N.
+    dof_names, mesh_names : labels of the columns of ``q`` and rows of ``dte``.
+    period : system period T, s.
+    steady_from : index of the first sample judged periodic (time integration), or 0.
+    method : "propagator", "floquet" or "harmonic-balance".
+    end_state : shape (2 n,), final state [q; q'] in the solver's independent
+        coordinates (to continue a sweep from it), or ``None``.
+    """
+
+    time: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    dte: np.ndarray
+    mesh_force: np.ndarray
+    dof_names: tuple[str, ...]
+    mesh_names: tuple[str, ...]
+    period: float
+    steady_from: int = 0
+    method: str = ""
+    end_state: np.ndarray | None = None
+
+    def mesh(self, name: str) -> int:
+        """Row of a mesh in ``dte`` / ``mesh_force``."""
+        return self.mesh_names.index(name)
+
+    def coordinate(self, name: str) -> np.ndarray:
+        """Time history (N,) of one named coordinate ``"body.dof"``."""
+        return self.q[:, self.dof_names.index(name)]
+
+    def rms_mesh_force(self) -> np.ndarray:
+        """RMS of each mesh force over the steady part, shape (n_mesh,), N."""
+        f = self.mesh_force[:, self.steady_from:]
+        return np.sqrt(np.mean(f**2, axis=1))
+
+    def peak_to_peak_dte(self) -> np.ndarray:
+        """Peak-to-peak DTE over the steady part, shape (n_mesh,), m."""
+        d = self.dte[:, self.steady_from:]
+        return d.max(axis=1) - d.min(axis=1)
+
+
+@dataclass(frozen=True)
+class HarmonicResponse:
+    """Steady periodic response from the harmonic balance.
+
+    Attributes
+    ----------
+    response : one period sampled uniformly (see :class:`Response`).
+    orders : shape (H+1,), harmonic orders 0..H of the fundamental 1/T.
+    dte_amplitude : shape (n_mesh, H+1), single-sided amplitude of each DTE harmonic, m
+        (order 0 is the mean).
+    dte_contribution : shape (n_mesh, H), share of each order 1..H in the sum of the
+        alternating amplitudes (seed 000 "contribution proportion"), -.
+    coefficients : shape (2H+1, n_full), complex Q_h of the full coordinates, h = -H..H.
+    """
+
+    response: Response
+    orders: np.ndarray
+    dte_amplitude: np.ndarray
+    dte_contribution: np.ndarray
+    coefficients: np.ndarray
+
+
+@dataclass(frozen=True)
+class ModalResult:
+    """Natural frequencies and modes.
+
+    Attributes
+    ----------
+    frequencies : shape (m,), Hz, ascending (rigid-body modes at 0).
+    shapes : shape (n_full, m), mass-normalised mode shapes of the named coordinates.
+    dof_names : labels of the rows of ``shapes``.
+    kinds : shape (m,) labels ("rigid", "rotational", "translational", "planet",
+        "axial", or "" when not classified).
+    multiplicity : shape (m,), number of modes sharing the frequency (rel. tol 1e-6).
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    dof_names: tuple[str, ...]
+    kinds: tuple[str, ...]
+    multiplicity: np.ndarray

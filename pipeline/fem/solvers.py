@@ -1,0 +1,154 @@
+"""Sparse symmetric positive definite solves: factorise once, solve many right-hand sides.
+
+Methods (DESIGN.md measured them side by side on this kind of machine):
+
+* ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
+  scikit-sparse; the default whenever it is installed. 3D P2 elasticity with
+  200k DOF factorises in about 20 s and each further right-hand side costs
+  milliseconds.
+* ``"splu"`` - scipy's SuperLU. Always available; fine for 2D and small 3D
+  models, unusable for large 3D ones (> 600 s at 200k DOF), so it is only the
+  fallback.
+* ``"amg-cg"`` - conjugate gradients preconditioned by pyamg smoothed
+  aggregation with the rigid-body modes as near-null space. Only for *one*
+  right-hand side on a large 3D model (less memory than a factor); with many
+  right-hand sides factorise instead. Offered by :func:`solve_spd`.
+
+Every result says which method ran, so reports can state it.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from importlib.util import find_spec
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from pipeline.validation import InputError, check_choice
+
+FACTOR_METHODS = ("auto", "cholmod", "splu")
+
+
+def cholmod_available() -> bool:
+    """True when scikit-sparse (CHOLMOD) can be imported."""
+    return find_spec("sksparse") is not None
+
+
+def pyamg_available() -> bool:
+    """True when pyamg can be imported."""
+    return find_spec("pyamg") is not None
+
+
+@dataclass(frozen=True, eq=False)
+class SPDFactor:
+    """A factorised SPD matrix A (n, n).
+
+    Attributes
+    ----------
+    method : "cholmod" or "splu".
+    n : matrix size.
+    factor_seconds : wall time of the factorisation, s.
+    """
+
+    method: str
+    n: int
+    factor_seconds: float
+    _solve: object
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """Solve A x = b for b of shape (n,) or (n, k); returns the same shape."""
+        b = np.asarray(b, dtype=float)
+        if b.shape[0] != self.n:
+            raise InputError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
+        return np.asarray(self._solve(b))
+
+
+def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
+    """Factorise a sparse SPD matrix once for many solves.
+
+    Parameters
+    ----------
+    A : (n, n) sparse symmetric positive definite matrix.
+    method : "auto" (CHOLMOD if installed, else SuperLU), "cholmod" or "splu".
+    """
+    check_choice("solver.method", method, FACTOR_METHODS)
+    if method == "auto":
+        method = "cholmod" if cholmod_available() else "splu"
+    if method == "cholmod" and not cholmod_available():
+        raise InputError("solver.method = 'cholmod' but scikit-sparse is not installed")
+    n = A.shape[0]
+    t0 = time.perf_counter()
+    if method == "cholmod":
+        from sksparse.cholmod import cholesky
+
+        factor = cholesky(sp.csc_matrix(A))
+        solve = factor
+    else:
+        lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A",
+                       options={"SymmetricMode": True})
+        solve = lu.solve
+    return SPDFactor(method=method, n=n, factor_seconds=time.perf_counter() - t0, _solve=solve)
+
+
+@dataclass(frozen=True, eq=False)
+class SolveResult:
+    """Solution of A x = b.
+
+    Attributes
+    ----------
+    x : (n,) or (n, k) solution.
+    method : "cholmod", "splu" or "amg-cg".
+    seconds : total wall time (set-up + solve), s.
+    iterations : CG iterations (0 for direct methods).
+    """
+
+    x: np.ndarray
+    method: str
+    seconds: float
+    iterations: int = 0
+
+
+def solve_spd(
+    A: sp.spmatrix, b: np.ndarray, method: str = "auto", near_nullspace: np.ndarray | None = None,
+    rtol: float = 1e-10,
+) -> SolveResult:
+    """Solve one SPD system (possibly with several right-hand sides).
+
+    Parameters
+    ----------
+    A : (n, n) sparse SPD matrix.
+    b : (n,) or (n, k) right-hand side(s).
+    method : "auto", "cholmod", "splu" or "amg-cg". "auto" factorises (the right
+        choice for several right-hand sides and for 2D); choose "amg-cg" for one
+        right-hand side on a large 3D model.
+    near_nullspace : (n, m) rigid-body modes for "amg-cg" (required there).
+    rtol : relative residual tolerance for "amg-cg".
+    """
+    check_choice("solver.method", method, FACTOR_METHODS + ("amg-cg",))
+    t0 = time.perf_counter()
+    if method != "amg-cg":
+        f = factorize_spd(A, method)
+        return SolveResult(f.solve(b), f.method, time.perf_counter() - t0)
+    if not pyamg_available():
+        raise InputError("solver.method = 'amg-cg' needs pyamg")
+    if near_nullspace is None:
+        raise InputError("solver.method = 'amg-cg' needs the rigid-body near_nullspace")
+    import pyamg
+
+    ml = pyamg.smoothed_aggregation_solver(sp.csr_matrix(A), B=near_nullspace, max_coarse=2000)
+    M = ml.aspreconditioner(cycle="V")
+    b2 = np.asarray(b, dtype=float).reshape(A.shape[0], -1)
+    xs, its = [], 0
+    for k in range(b2.shape[1]):
+        count = [0]
+        x, info = spla.cg(A, b2[:, k], rtol=rtol, M=M, maxiter=2000,
+                          callback=lambda _x: count.__setitem__(0, count[0] + 1))
+        if info != 0:
+            raise RuntimeError(f"amg-cg did not converge to rtol={rtol} in 2000 iterations")
+        xs.append(x)
+        its += count[0]
+    x = np.column_stack(xs).reshape(np.shape(b))
+    return SolveResult(x, "amg-cg", time.perf_counter() - t0, its)

@@ -1,0 +1,1 @@
+"""Plots, load maps and reports (matplotlib; pyvista imported lazily where used)."""

@@ -1,0 +1,33 @@
+"""Shared fixtures: the seed gear pairs used across the tests."""
+
+from __future__ import annotations
+
+import math
+import os
+
+import pytest
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
+
+from gearsets import STEEL, spur  # noqa: E402
+
+from pipeline.geometry import GearPair, GearSpec  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def seed001_pair() -> GearPair:
+    """Seed 001 base case: z 50/50, m 3 mm, 20 deg, b 20 mm, E 200 GPa."""
+    return GearPair(spur(50, "pinion"), spur(50, "gear"))
+
+
+@pytest.fixture(scope="session")
+def seed004_pair() -> GearPair:
+    """Seed 004 Table 2 traction pair (beta 4 deg, a 495 mm; face width assumed 130 mm)."""
+    kw = dict(module=7.35e-3, pressure_angle=math.radians(20), helix_angle=math.radians(4.0),
+              addendum_coef=1.2, dedendum_coef=1.55, face_width=0.13, material=STEEL)
+    p = GearSpec(teeth=31, hand="right", profile_shift=0.27807, bore_radius=0.045,
+                 name="pinion", **kw)
+    g = GearSpec(teeth=104, hand="left", profile_shift=-0.59026, bore_radius=0.15, name="gear",
+                 **kw)
+    return GearPair(p, g)
