@@ -173,12 +173,25 @@ def mesh_stiffness(
         pair is in contact (seed 001 uses 1.1; 1 leaves Sainsot's formula as is).
     """
     check_int_range("stiffness.positions", positions, 8, 10_000_000)
+    return stiffness_at(model, model.pair.mesh_cycle(positions), slices, friction, operating,
+                        foundation_correction)
+
+
+def stiffness_at(
+    model: PairModel,
+    s0: np.ndarray,
+    slices: int = 100,
+    friction: FrictionModel | None = None,
+    operating: OperatingPoint | None = None,
+    foundation_correction: float = 1.0,
+) -> MeshStiffness:
+    """Mesh stiffness at the leading-pair roll coordinates ``s0`` (m, shape (m,)); see above."""
     check_int_range("stiffness.slices", slices, 1, 100_000)
     check_range("stiffness.foundation_correction", foundation_correction, 0.5, 2.0)
     friction = friction or FrictionModel()
     operating = operating or OperatingPoint()
     pair = model.pair
-    s0 = pair.mesh_cycle(positions)
+    s0 = np.asarray(s0, dtype=float)
     s, dz = slice_positions(pair, s0, slices)
     inside = (s >= pair.s_start) & (s <= pair.s_end)
     sc = np.where(inside, s, pair.s_pitch)  # evaluate safely; masked afterwards
