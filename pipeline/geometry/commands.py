@@ -28,7 +28,9 @@ def geometry_summary(pair: GearPair) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pipeline.viz.pair_plots import plot_contact_lines, plot_line_of_action, save
+    from pipeline.geometry.profile import tooth_profile
+    from pipeline.viz.pair_plots import _plt, plot_contact_lines, plot_line_of_action, save
+    from pipeline.viz.profile_plot import plot_profile
 
     cfg = load_pair_config(args.config)
     out = output_dir(args, "geometry")
@@ -44,22 +46,15 @@ def run(args: argparse.Namespace) -> int:
                           out / "line_of_action_actual.png"))
     if pair.pinion.is_helical:
         files.append(save(plot_contact_lines(pair), out / "contact_lines.png"))
-    try:
-        from pipeline.geometry.profile import tooth_profile
-        from pipeline.viz.profile_plot import plot_profile
-    except ImportError:  # profile module not installed in this build
-        tooth_profile = None
-    if tooth_profile is not None:
-        import matplotlib.pyplot as plt
-
-        fig, axes = plt.subplots(1, 2, figsize=(10, 5))
-        for ax, g in zip(axes, (pair.pinion, pair.gear), strict=True):
-            prof = tooth_profile(g)
-            plot_profile(prof, ax=ax)
-            ax.set_title(f"{g.name}: z = {g.teeth}, undercut = {prof.undercut}")
-            summary[f"{g.name}_form_radius_m"] = prof.form_radius
-            summary[f"{g.name}_undercut"] = bool(prof.undercut)
-        files.append(save(fig, out / "tooth_profiles.png"))
+    fig, axes = _plt().subplots(1, 2, figsize=(10, 5))
+    for ax, g in zip(axes, (pair.pinion, pair.gear), strict=True):
+        prof = tooth_profile(g)
+        plot_profile(prof, ax=ax)
+        ax.set_title(f"{g.name}: z = {g.teeth}, undercut = {prof.undercut}")
+        summary[f"{g.name}_form_radius_m"] = prof.form_radius
+        summary[f"{g.name}_undercut"] = bool(prof.undercut)
+        summary[f"{g.name}_thin_tip"] = bool(prof.thin_tip)
+    files.append(save(fig, out / "tooth_profiles.png"))
     files.append(write_json(out / "geometry.json", summary))
     write_run_record(out, cfg, files, f"gearpipe geometry {args.config}")
     emit(args, summary, out)

@@ -237,7 +237,8 @@ class GearSpec:
         """Half the angular tooth thickness at radius ``r`` on the involute (rad).
 
         For an internal gear this is half the angular width of the *tooth* (the
-        metal between two spaces) as well.
+        metal between two spaces), which is the space of an external gear: it
+        grows with the radius (the ring tooth is widest at its root).
         """
         from pipeline.geometry.involute import inv
 
@@ -245,7 +246,7 @@ class GearSpec:
         a = math.acos(min(1.0, self.base_radius / r))
         psi_ref = self.reference_tooth_thickness / (2.0 * self.reference_radius)
         if self.internal:
-            return psi_ref - (inv(a) - inv(at))
+            return psi_ref + inv(a) - inv(at)
         return psi_ref + inv(at) - inv(a)
 
     @cached_property

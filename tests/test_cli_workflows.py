@@ -1,0 +1,70 @@
+"""The command line and the stiffness workflows run end to end and write what they promise."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+from pipeline.cli import main as cli
+
+ROOT = Path(__file__).resolve().parents[1]
+SEED001 = ROOT / "workflows" / "configs" / "seed001_spur.toml"
+
+
+def load_workflow(name: str):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "workflows" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_geometry_command(tmp_path):
+    assert cli(["geometry", str(SEED001), "--out", str(tmp_path)]) == 0
+    data = json.loads((tmp_path / "geometry.json").read_text())
+    assert data["transverse_contact_ratio"] == pytest.approx(1.754673, abs=1e-6)
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert len(run["config_hash"]) == 16 and "numpy" in run["versions"]
+    assert (tmp_path / "line_of_action.png").stat().st_size > 10_000
+    assert (tmp_path / "tooth_profiles.png").stat().st_size > 10_000
+
+
+def test_stiffness_command_json(tmp_path, capsys):
+    assert cli(["stiffness", str(SEED001), "--out", str(tmp_path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    pe = data["potential_energy"]
+    assert pe["min_N_per_m"] < pe["mean_N_per_m"] < pe["max_N_per_m"]
+    assert len(data["fourier_N_per_m"]["amplitude"]) == 10
+    header = (tmp_path / "mesh_stiffness.csv").read_text().splitlines()[0]
+    assert "mesh_stiffness [N/m]" in header
+
+
+def test_bad_config_is_reported(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(SEED001.read_text().replace("teeth = 50", "teeth = 2", 1))
+    assert cli(["stiffness", str(bad), "--out", str(tmp_path)]) == 2
+    assert "pinion.teeth = 2" in capsys.readouterr().err
+
+
+def test_seed001_workflow(tmp_path):
+    table = load_workflow("seed001_stiffness").main(["--out", str(tmp_path)])
+    ideal = table["mu = 0.0"]
+    assert table["condition 3 (100 um), mu = 0"]["transverse_contact_ratio"] < \
+        ideal["transverse_contact_ratio"]
+    assert (tmp_path / "friction.png").exists() and (tmp_path / "run.json").exists()
+
+
+def test_seed004_workflow(tmp_path):
+    table = load_workflow("seed004_stiffness").main(["--out", str(tmp_path)])
+    ratio = table["potential_energy_over_contact_line_mean"]["ratio"]
+    assert 0.5 < ratio < 1.5
+    assert (tmp_path / "single_pair.png").exists()
+
+
+def test_default_case(tmp_path):
+    assert load_workflow("default_case").main(["--out", str(tmp_path)]) == 0
+    assert (tmp_path / "stiffness" / "mesh_stiffness.png").exists()
