@@ -184,19 +184,58 @@ def stiffness_at(
     friction: FrictionModel | None = None,
     operating: OperatingPoint | None = None,
     foundation_correction: float = 1.0,
+    half_offset: float = 0.0,
 ) -> MeshStiffness:
-    """Mesh stiffness at the leading-pair roll coordinates ``s0`` (m, shape (m,)); see above."""
+    """Mesh stiffness at the leading-pair roll coordinates ``s0`` (m, shape (m,)).
+
+    For herringbone gears both helical halves are evaluated and summed; the right
+    half runs ``half_offset`` base pitches (fraction, [0, 1)) behind the left one
+    (0 for halves cut in line; see seed 002 for the phase a twisted sun adds).
+    ``pairs`` then holds the left half's pairs followed by the right half's.
+    """
     check_int_range("stiffness.slices", slices, 1, 100_000)
     check_range("stiffness.foundation_correction", foundation_correction, 0.5, 2.0)
+    check_range("stiffness.half_offset", half_offset, 0.0, 1.0, hi_open=True)
     friction = friction or FrictionModel()
     operating = operating or OperatingPoint()
     pair = model.pair
     s0 = np.asarray(s0, dtype=float)
+    if pair.pinion.herringbone:
+        halves = [_half(model, s0, slices, friction, operating, foundation_correction, 0.5),
+                  _half(model, s0 - half_offset * pair.base_pitch, slices, friction, operating,
+                        foundation_correction, 0.5)]
+    else:
+        halves = [_half(model, s0, slices, friction, operating, foundation_correction, 1.0)]
+    w1 = operating.speed if operating.driver == "pinion" else operating.speed * pair.gear_ratio
+
+    def total(key: str) -> np.ndarray:
+        return sum(h[key] for h in halves)
+
+    pairs = np.concatenate([h["pairs"] for h in halves], axis=1)
+    return MeshStiffness(
+        s0=s0,
+        pinion_angle=(s0 - s0[0]) / pair.pinion.base_radius,
+        total=pairs.sum(axis=1),
+        pairs=pairs,
+        friction_stiffness=total("kf"),
+        friction_torque_pinion=total("kt1"),
+        friction_torque_gear=total("kt2"),
+        mu=np.concatenate([h["mu"] for h in halves], axis=1),
+        contact_length=total("length"),
+        mesh_period=2.0 * math.pi / (w1 * pair.pinion.teeth),
+        pair=pair,
+    )
+
+
+def _half(model: PairModel, s0: np.ndarray, slices: int, friction: FrictionModel,
+          operating: OperatingPoint, foundation_correction: float, load_share: float) -> dict:
+    """Stiffness arrays of one helical half (or of a spur/helical pair), see :func:`stiffness_at`."""
+    pair = model.pair
     s, dz = slice_positions(pair, s0, slices)
     inside = (s >= pair.s_start) & (s <= pair.s_end)
     sc = np.where(inside, s, pair.s_pitch)  # evaluate safely; masked afterwards
     lam = friction_direction(sc, pair.s_pitch, operating.driver)
-    mu = _friction_coefficients(pair, sc, inside, friction, operating, dz)
+    mu = _friction_coefficients(pair, sc, inside, friction, operating, dz, load_share)
     r1, r2 = pair.contact_radii(sc)
     c1 = tooth_compliance(model.pinion, r1, mu, lam)
     c2 = tooth_compliance(model.gear, r2, mu, lam)
@@ -204,29 +243,21 @@ def stiffness_at(
     corr = np.where(n_pairs > 1, foundation_correction, 1.0)[:, None, None]
     compliance = c1.tooth + c2.tooth + (c1.foundation + c2.foundation) / corr + model.hertz
     k_slice = np.where(inside, dz / compliance, 0.0)
-    pairs = k_slice.sum(axis=2)
     rho1, rho2 = pair.curvature_radii(sc)
     fk = lam * mu * k_slice
-    w1 = operating.speed if operating.driver == "pinion" else operating.speed * pair.gear_ratio
-    period = 2.0 * math.pi / (w1 * pair.pinion.teeth)
-    lengths = inside.sum(axis=(1, 2)) * dz / math.cos(pair.pinion.base_helix_angle)
-    return MeshStiffness(
-        s0=s0,
-        pinion_angle=(s0 - s0[0]) / pair.pinion.base_radius,
-        total=pairs.sum(axis=1),
-        pairs=pairs,
-        friction_stiffness=fk.sum(axis=(1, 2)),
-        friction_torque_pinion=(fk * rho1).sum(axis=(1, 2)),
-        friction_torque_gear=(fk * np.abs(rho2)).sum(axis=(1, 2)),
-        mu=np.where(inside, mu, 0.0),
-        contact_length=lengths,
-        mesh_period=period,
-        pair=pair,
-    )
+    return {
+        "pairs": k_slice.sum(axis=2),
+        "kf": fk.sum(axis=(1, 2)),
+        "kt1": (fk * rho1).sum(axis=(1, 2)),
+        "kt2": (fk * np.abs(rho2)).sum(axis=(1, 2)),
+        "mu": np.where(inside, mu, 0.0),
+        "length": inside.sum(axis=(1, 2)) * dz / math.cos(pair.pinion.base_helix_angle),
+    }
 
 
 def _friction_coefficients(pair: GearPair, s: np.ndarray, inside: np.ndarray,
-                           friction: FrictionModel, op: OperatingPoint, dz: float) -> np.ndarray:
+                           friction: FrictionModel, op: OperatingPoint, dz: float,
+                           load_share: float = 1.0) -> np.ndarray:
     """Friction coefficient at every slice contact (same shape as ``s``)."""
     if friction.kind == "constant":
         return np.full(s.shape, friction.mu)
@@ -236,7 +267,7 @@ def _friction_coefficients(pair: GearPair, s: np.ndarray, inside: np.ndarray,
     r_eff = np.abs(rho1 * rho2 / (rho1 + rho2))
     # normal load shared evenly over the contact lines (the LTCA refines this)
     t1 = op.torque if op.driver == "pinion" else op.torque / pair.gear_ratio
-    f_normal = t1 / (pair.pinion.base_radius * math.cos(pair.pinion.base_helix_angle))
+    f_normal = load_share * t1 / (pair.pinion.base_radius * math.cos(pair.pinion.base_helix_angle))
     length = inside.sum(axis=(1, 2), keepdims=True) * dz / math.cos(pair.pinion.base_helix_angle)
     w = f_normal / np.maximum(length, 1e-12)
     e_prime = 2.0 / (1.0 / pair.pinion.material.plane_strain_modulus
