@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
                           out / "line_of_action_actual.png"))
     if pair.pinion.is_helical:
         files.append(save(plot_contact_lines(pair), out / "contact_lines.png"))
-    fig, axes = _plt().subplots(1, 2, figsize=(10, 5))
+    fig, axes = _plt().subplots(2, 1, figsize=(9, 8))
     for ax, g in zip(axes, (pair.pinion, pair.gear), strict=True):
         prof = tooth_profile(g)
         plot_profile(prof, ax=ax)
