@@ -21,6 +21,9 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
                  "tooth profiles, contact ratios and line of action"),
     "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",
                   "analytical mesh stiffness over a mesh cycle"),
+    "contact": ("pipeline.contact.commands", "add_arguments", "run",
+                "loaded tooth contact over a mesh cycle: load sharing, TE, mesh stiffness, "
+                "load maps"),
 }
 
 

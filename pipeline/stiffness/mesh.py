@@ -235,7 +235,7 @@ def _half(model: PairModel, s0: np.ndarray, slices: int, friction: FrictionModel
     inside = (s >= pair.s_start) & (s <= pair.s_end)
     sc = np.where(inside, s, pair.s_pitch)  # evaluate safely; masked afterwards
     lam = friction_direction(sc, pair.s_pitch, operating.driver)
-    mu = _friction_coefficients(pair, sc, inside, friction, operating, dz, load_share)
+    mu = friction_coefficients(pair, sc, inside, friction, operating, dz, load_share)
     r1, r2 = pair.contact_radii(sc)
     c1 = tooth_compliance(model.pinion, r1, mu, lam)
     c2 = tooth_compliance(model.gear, r2, mu, lam)
@@ -255,7 +255,7 @@ def _half(model: PairModel, s0: np.ndarray, slices: int, friction: FrictionModel
     }
 
 
-def _friction_coefficients(pair: GearPair, s: np.ndarray, inside: np.ndarray,
+def friction_coefficients(pair: GearPair, s: np.ndarray, inside: np.ndarray,
                            friction: FrictionModel, op: OperatingPoint, dz: float,
                            load_share: float = 1.0) -> np.ndarray:
     """Friction coefficient at every slice contact (same shape as ``s``)."""

@@ -1,0 +1,51 @@
+"""Loaded tooth contact analysis (LTCA): load sharing, transmission error, mesh stiffness.
+
+Arrays in, arrays out: for each mesh position the caller supplies the
+compliance matrix ``G`` (m/N) of the candidate contact points (analytical slice
+compliance or FE influence coefficients), their initial separations ``eps``
+(m) and, optionally, a local Hertz contact model; the solver returns the loads,
+the loaded approach and the mesh stiffness.
+
+- :func:`solve_contact` - one mesh position (:mod:`.complementarity`; its exact
+  inner QP solver is :mod:`.active_set`). The only solver: everything below calls it.
+- :func:`solve_positions` - a stack of given (G, eps) with a fixed point count (:mod:`.sweep`).
+- :class:`ComplianceSource`, :class:`ContactPoints`, :class:`SliceCompliance` -
+  candidate points and compliance G of a pair at a mesh position (:mod:`.source`).
+- :class:`FlankModifications`, :func:`initial_separations` - eps from tip relief,
+  crowning, slope deviation and pitch errors (:mod:`.separations`).
+- :func:`loaded_mesh_cycle` - a mesh cycle from a compliance source, warm-started:
+  loads, load sharing, transmission error, mesh stiffness, unit loads (:mod:`.ltca`).
+- Load maps over the flank (pyvista PNG, VTU) in :mod:`.loadmap`; the
+  ``gearpipe contact`` command in :mod:`.commands` (options: :mod:`.options`).
+- :class:`HertzLineContact` - Weber-Banaschek local approach, seed 004 eq. (24),
+  and Hertz half-width / maximum pressure (:mod:`.hertz`).
+- :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
+"""
+
+from pipeline.contact.complementarity import (
+    ContactConvergenceError,
+    complementarity_residual,
+    solve_contact,
+)
+from pipeline.contact.hertz import (
+    HertzLineContact,
+    LinearLocalCompliance,
+    LocalCompliance,
+    contact_modulus,
+    effective_radius,
+    hertz_half_width,
+    hertz_max_pressure,
+)
+from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCycle
+from pipeline.contact.separations import FlankModifications, initial_separations
+from pipeline.contact.source import ComplianceSource, ContactPoints, SliceCompliance
+from pipeline.contact.sweep import solve_positions
+
+__all__ = [
+    "ComplianceSource", "ContactConvergenceError", "ContactPoints", "ContactSolution",
+    "ContactSweep", "FlankModifications", "HertzLineContact", "LinearLocalCompliance",
+    "LoadedMeshCycle", "LocalCompliance", "SliceCompliance", "complementarity_residual",
+    "contact_modulus", "effective_radius", "hertz_half_width", "hertz_max_pressure",
+    "initial_separations", "loaded_mesh_cycle", "solve_contact", "solve_positions",
+]

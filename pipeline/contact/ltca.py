@@ -1,0 +1,182 @@
+"""Loaded tooth contact analysis over a mesh cycle from any :class:`ComplianceSource`.
+
+For each mesh position: the source gives the candidate points and their
+structural compliance ``G``; :mod:`pipeline.contact.separations` gives the
+initial gaps; a local contact model gives ``u_c(F)``; and
+:func:`pipeline.contact.complementarity.solve_contact` solves seed 004 eqs.
+(27)-(29) for the loads and the approach, checking its residual. Positions are
+solved in order, each warm-started from the loads of the previous position on
+the points they share (same tooth pair, same face position).
+
+Local contact models (``local``):
+
+* ``"weber"`` - the nonlinear local approach of seed 004 eq. (24)
+  (:class:`~pipeline.contact.hertz.HertzLineContact`), with the profile radii of
+  curvature and the distances ``h_1, h_2`` from the contact point along the load
+  line to each tooth's centreline. This is seed 004's optimised slice method.
+* ``"linear"`` - the constant Hertz compliance ``4 (1 - nu^2) / (pi E w)`` per
+  slice (seed 001 / seed 004 eq. 7), exactly what :mod:`pipeline.stiffness.mesh`
+  adds. With independent slices, no friction difference and ``eps = 0`` the
+  LTCA mesh stiffness then equals the analytical slice stiffness exactly (every
+  slice is loaded and ``k = 1^T G^-1 1 = sum_i 1 / G_ii``).
+* ``"none"`` - structural compliance only.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pipeline.contact.complementarity import solve_contact
+from pipeline.contact.hertz import HertzLineContact
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.contact.separations import FlankModifications, initial_separations
+from pipeline.contact.source import ComplianceSource, ContactPoints
+from pipeline.geometry.pair import GearPair
+from pipeline.progress import progress
+from pipeline.stiffness.tooth import hertz_compliance, load_geometry
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
+
+LOCAL_MODELS = ("weber", "linear", "none")
+
+
+def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
+    """Seed 004 eq. (24) local approach of the candidate points (n,).
+
+    ``h_k`` is the distance from the contact point along the load line (the
+    line of action) to the centreline of tooth ``k``: ``h_c / cos(load angle)``
+    with the half thickness ``h_c`` at the load point (the ``k_1, k_2`` of seed 004).
+    """
+    s = np.clip(points.s, pair.s_start, pair.s_end)
+    rho1, rho2 = pair.curvature_radii(s)
+    r1, r2 = pair.contact_radii(s)
+    depths = []
+    for gear, r in ((pair.pinion, r1), (pair.gear, r2)):
+        angle, h_c, _ = load_geometry(gear, r)
+        depths.append(np.abs(h_c / np.cos(angle)))
+    if pair.gear.internal:
+        # concave ring flank: only R = rho1 rho2 / (rho1 + rho2) enters the Hertz terms;
+        # pass the convex radius with the same effective radius
+        r_eff = rho1 * np.abs(rho2) / (np.abs(rho2) - rho1)
+        radius_2 = r_eff * rho1 / (rho1 - r_eff)
+    else:
+        radius_2 = rho2
+    return HertzLineContact(points.width, rho1, radius_2, depths[0], depths[1],
+                            pair.pinion.material, pair.gear.material)
+
+
+def _keys(points: ContactPoints) -> np.ndarray:
+    """Integer identity of each point: tooth pair and face position (to 1 nm)."""
+    return points.pair.astype(np.int64) * (1 << 32) + np.round(points.z * 1e9).astype(np.int64)
+
+
+def _warm_start(prev_keys: np.ndarray | None, prev_loads: np.ndarray | None,
+                keys: np.ndarray) -> np.ndarray | None:
+    if prev_keys is None or prev_loads is None or not prev_loads.any():
+        return None
+    _, i_new, i_old = np.intersect1d(keys, prev_keys, return_indices=True)
+    start = np.zeros(keys.size)
+    start[i_new] = prev_loads[i_old]
+    return start if start.any() else None
+
+
+def loaded_mesh_cycle(
+    source: ComplianceSource,
+    load: float,
+    modifications: FlankModifications | None = None,
+    local: str = "weber",
+    positions: int | ArrayLike = 60,
+    *,
+    tol: float = 1e-10,
+    max_iter: int = 100,
+    show_progress: bool = False,
+) -> LoadedMeshCycle:
+    """Loads, transmission error and mesh stiffness at every position of a mesh cycle.
+
+    Parameters
+    ----------
+    source : compliance source (:class:`~pipeline.contact.source.SliceCompliance` or FE).
+    load : P, total load along the transverse line of action, N (driving torque over
+        the driver's base radius), > 0.
+    modifications : flank modifications and errors (default none).
+    local : local contact model, one of "weber", "linear", "none" (module docstring).
+    positions : number of equally spaced positions over one mesh cycle (>= 1), or the
+        roll coordinates s0 (m) themselves.
+    tol, max_iter : passed to :func:`~pipeline.contact.complementarity.solve_contact`.
+    show_progress : progress bar on stderr.
+
+    Returns
+    -------
+    LoadedMeshCycle
+
+    Raises
+    ------
+    InputError for invalid inputs; ContactConvergenceError naming the position.
+    """
+    check_range("contact.load", load, 0.0, math.inf, lo_open=True, unit="N")
+    check_choice("contact.local_contact", local, LOCAL_MODELS)
+    mods = modifications or FlankModifications()
+    pair = source.pair
+    if np.ndim(positions) == 0:
+        check_int_range("contact.positions", int(positions), 1, 1_000_000)
+        s0 = pair.mesh_cycle(int(positions))
+    else:
+        s0 = np.asarray(positions, dtype=float).reshape(-1)
+        if s0.size == 0 or not np.all(np.isfinite(s0)):
+            raise InputError("contact positions must be a non-empty array of finite roll "
+                             "coordinates (m)")
+    k_all = pair.pair_indices()
+    c_hertz = hertz_compliance(pair.pinion, pair.gear)  # m^2/N, per unit width
+    m = s0.size
+    per_pos = {name: np.zeros(m) for name in (
+        "x", "k_t", "k_s", "k_m", "res", "tol", "newton", "pmax")}
+    pair_loads = np.zeros((m, k_all.size))
+    rows = []
+    prev_keys = prev_loads = None
+    for i in progress(range(m), "contact", total=m, enabled=show_progress):
+        label = f"mesh position {i} (s0 = {s0[i] * 1e3:.6g} mm)"
+        pts = source.points(float(s0[i]))
+        if len(pts) == 0:
+            raise InputError(f"{label}: the compliance source gives no candidate points")
+        if not np.isin(pts.pair, k_all).all():
+            raise InputError(f"{label}: tooth-pair indices {np.setdiff1d(pts.pair, k_all)} of "
+                             f"the candidate points are not among pair.pair_indices() {k_all}")
+        G = np.asarray(source.matrix(float(s0[i])), dtype=float)
+        eps = initial_separations(pair, pts, mods)
+        hertz = None
+        c_lin = None
+        if local == "weber":
+            hertz = weber_model(pair, pts)
+        elif local == "linear":
+            c_lin = c_hertz / pts.width
+            G = G + np.diag(c_lin)
+        keys = _keys(pts)
+        sol = solve_contact(G, eps, load, hertz, tol=tol, max_iter=max_iter,
+                            start=_warm_start(prev_keys, prev_loads, keys), label=label)
+        prev_keys, prev_loads = keys, sol.loads
+        u = sol.contact_deformation if c_lin is None else c_lin * sol.loads
+        p = sol.loads / pts.width
+        for name, v in (("x", sol.approach), ("k_t", sol.mesh_stiffness_tangent),
+                        ("k_s", sol.mesh_stiffness_secant),
+                        ("k_m", sol.mesh_stiffness_pointwise), ("res", sol.residual),
+                        ("tol", sol.tolerance), ("newton", sol.newton_iterations),
+                        ("pmax", p.max())):
+            per_pos[name][i] = v
+        np.add.at(pair_loads[i], np.searchsorted(k_all, pts.pair), sol.loads)
+        rows.append((np.full(len(pts), i), pts.s, pts.z, pts.pair, pts.width, sol.loads, p,
+                     eps, u))
+    cols = [np.concatenate(c) for c in zip(*rows, strict=True)]
+    return LoadedMeshCycle(
+        s0=s0, pinion_angle=(s0 - s0[0]) / pair.pinion.base_radius,
+        transmission_error=per_pos["x"], mesh_stiffness=per_pos["k_t"],
+        mesh_stiffness_secant=per_pos["k_s"], mesh_stiffness_pointwise=per_pos["k_m"],
+        residual=per_pos["res"], tolerance=per_pos["tol"],
+        newton_iterations=per_pos["newton"].astype(int), max_unit_load=per_pos["pmax"],
+        pair_index=k_all, pair_loads=pair_loads,
+        point_position=cols[0].astype(int), point_s=cols[1], point_z=cols[2],
+        point_pair=cols[3].astype(int), point_width=cols[4], point_load=cols[5],
+        point_unit_load=cols[6], point_separation=cols[7], point_contact_deformation=cols[8],
+        load=float(load), local_contact=local,
+    )

@@ -1,0 +1,110 @@
+"""The ``[contact]`` table of a pair TOML file -> :class:`ContactOptions` (SI inside).
+
+Keys (units in the names; all optional)::
+
+    [contact]
+    positions = 60                 # mesh positions over one cycle
+    slices = 30                    # slices across the face (helical gears)
+    local_contact = "weber"        # "weber" (seed 004 eq. 24), "linear" (constant Hertz), "none"
+    slice_coupling = 0.0           # kappa in [0, 0.25): 0 = independent slices (seed 004)
+    tip_relief_pinion_um = 0.0     # C_a at the pinion tip, along the line of action
+    tip_relief_length_pinion_mm = 0.0   # roll length L_a of the pinion relief along the path
+    tip_relief_gear_um = 0.0
+    tip_relief_length_gear_mm = 0.0
+    relief_shape = "linear"        # or "parabolic"
+    crowning_um = 0.0              # lead crowning C_b (both gears together)
+    slope_deviation_um = 0.0       # helix slope deviation / misalignment f_Hb over the face
+    pitch_errors_um = []           # offsets of tooth pairs k = 0, 1, 2, ...
+    load_map_profile_points = 80   # grid points along the path in the load map
+    render = true                  # pyvista PNG of the load map
+
+Friction, the foundation correction and the load come from the ``[stiffness]``
+and ``[operation]`` tables, as for ``gearpipe stiffness``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from pipeline.contact.ltca import LOCAL_MODELS
+from pipeline.contact.separations import FlankModifications
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
+
+UM, MM = 1e-6, 1e-3
+
+
+@dataclass(frozen=True)
+class ContactOptions:
+    """Options of ``gearpipe contact`` (SI).
+
+    Attributes
+    ----------
+    positions : mesh positions per cycle (>= 2).
+    slices : slices across the face of a helical gear (>= 1).
+    local_contact : "weber", "linear" or "none".
+    slice_coupling : kappa in [0, 0.25).
+    modifications : flank modifications and errors (m).
+    load_map_profile_points : grid points along the path for the load map (>= 2).
+    render : write the pyvista PNG of the load map.
+    """
+
+    positions: int = 60
+    slices: int = 30
+    local_contact: str = "weber"
+    slice_coupling: float = 0.0
+    modifications: FlankModifications = field(default_factory=FlankModifications)
+    load_map_profile_points: int = 80
+    render: bool = True
+
+    def __post_init__(self) -> None:
+        check_int_range("contact.positions", self.positions, 2, 100_000)
+        check_int_range("contact.slices", self.slices, 1, 10_000)
+        check_choice("contact.local_contact", self.local_contact, LOCAL_MODELS)
+        check_range("contact.slice_coupling", self.slice_coupling, 0.0, 0.25, hi_open=True)
+        check_int_range("contact.load_map_profile_points", self.load_map_profile_points, 2,
+                        100_000)
+
+
+_SCALAR = {
+    "positions": ("positions", None),
+    "slices": ("slices", None),
+    "local_contact": ("local_contact", None),
+    "slice_coupling": ("slice_coupling", None),
+    "load_map_profile_points": ("load_map_profile_points", None),
+    "render": ("render", None),
+}
+_MODS = {
+    "tip_relief_pinion_um": ("tip_relief_pinion", UM),
+    "tip_relief_length_pinion_mm": ("relief_length_pinion", MM),
+    "tip_relief_gear_um": ("tip_relief_gear", UM),
+    "tip_relief_length_gear_mm": ("relief_length_gear", MM),
+    "relief_shape": ("relief_shape", None),
+    "crowning_um": ("crowning", UM),
+    "slope_deviation_um": ("slope_deviation", UM),
+    "pitch_errors_um": ("pitch_errors", UM),
+}
+
+
+def _value(key: str, v: Any, scale: float | None) -> Any:
+    if scale is None:
+        return v
+    if isinstance(v, list):
+        return tuple(_value(f"{key}[{i}]", x, scale) for i, x in enumerate(v))
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise InputError(f"contact.{key} = {v!r} is not a number")
+    return float(v) * scale
+
+
+def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOptions:
+    """Build :class:`ContactOptions` from the parsed ``[contact]`` table (or None)."""
+    table = dict(table or {})
+    allowed = set(_SCALAR) | set(_MODS)
+    for k in table:
+        if k not in allowed:
+            raise InputError(f"[contact] has unknown key {k!r}; allowed: "
+                             f"{', '.join(sorted(allowed))}")
+    mods = {name: _value(k, table[k], sc) for k, (name, sc) in _MODS.items() if k in table}
+    opts = {name: _value(k, table[k], sc) for k, (name, sc) in _SCALAR.items() if k in table}
+    return ContactOptions(modifications=FlankModifications(**mods), **opts)

@@ -1,0 +1,243 @@
+"""Results of the loaded tooth contact solve: one mesh position, or a sweep of positions.
+
+Mesh stiffness definitions (all in N/m, force along the line of action over
+approach along it):
+
+* ``mesh_stiffness_secant`` ``k_s = P / (x_s - x_0)`` with ``x_0 = min_i eps_i``,
+  the approach at which the first point touches (the unloaded transmission
+  error along the line of action). With ``eps = 0`` this is ``P / x_s``.
+* ``mesh_stiffness_tangent`` ``k_t = dP/dx_s``, exact, from differentiating the
+  compatibility equations on the loaded set ``A``:
+  ``(G_AA + diag(du_c/dF)_A) dF_A = 1 dx_s`` and ``1^T dF_A = dP``, so
+  ``k_t = 1^T (G_AA + D_A)^{-1} 1``. It holds the loaded set fixed, so it is the
+  derivative wherever a small load change does not bring a point into or out of
+  contact (everywhere except isolated loads). This is the stiffness a
+  lumped-parameter dynamic model linearised about this load needs.
+* ``mesh_stiffness_pointwise`` ``k_m = sum_{i in A} F_i / (x_s - eps_i)``, the
+  sum of the secant stiffnesses of the loaded points (seed 004, section 2.3).
+  It equals ``k_s`` when ``eps = 0``, and ``k_t`` for a linear diagonal ``G``.
+
+At zero load the three are the limits ``P -> 0+``: ``1^T G_AA^{-1} 1`` over the
+first-touching points for a linear problem, and 0 with the Hertz approach
+(whose compliance is infinite at zero load).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+
+def _readonly(a: np.ndarray, dtype: type = float) -> np.ndarray:
+    out = np.array(a, dtype=dtype, copy=True)
+    out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True)
+class ContactSolution:
+    """Loaded contact state of one mesh position with ``n`` candidate points.
+
+    Attributes
+    ----------
+    loads : (n,) normal loads F at the contact points, N; exactly 0 off contact.
+    approach : x_s, loaded approach (static transmission error) along the line
+        of action, m, in the reference of the initial separations ``eps``.
+    active : (n,) bool, True where the point carries load (F > 0).
+    gap : (n,) loaded separation ``G F + u_c(F) + eps - x_s``, m: ~0 on loaded
+        points, >= 0 elsewhere, +inf for points out of mesh (``eps = inf``).
+    contact_deformation : (n,) local contact approach u_c(F), m (0 if linear).
+    total_load : P, N.
+    residual : max violation of the complementarity conditions, m (see
+        :func:`pipeline.contact.complementarity.complementarity_residual`).
+    tolerance : the residual bound the solve was accepted against, m.
+    iterations : total number of face (KKT) linear solves.
+    newton_iterations : number of linearisations of u_c (0 for a linear problem).
+    mesh_stiffness_secant : k_s, N/m (module docstring).
+    mesh_stiffness_tangent : k_t = dP/dx_s, N/m (module docstring).
+    mesh_stiffness_pointwise : k_m, N/m, seed 004 (module docstring).
+    label : mesh-position label used in messages, or None.
+    """
+
+    loads: np.ndarray
+    approach: float
+    active: np.ndarray
+    gap: np.ndarray
+    contact_deformation: np.ndarray
+    total_load: float
+    residual: float
+    tolerance: float
+    iterations: int
+    newton_iterations: int
+    mesh_stiffness_secant: float
+    mesh_stiffness_tangent: float
+    mesh_stiffness_pointwise: float
+    label: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "loads", _readonly(self.loads))
+        object.__setattr__(self, "active", _readonly(self.active, bool))
+        object.__setattr__(self, "gap", _readonly(self.gap))
+        object.__setattr__(self, "contact_deformation", _readonly(self.contact_deformation))
+
+    @property
+    def n_active(self) -> int:
+        """Number of loaded points."""
+        return int(self.active.sum())
+
+    @property
+    def load_share(self) -> np.ndarray:
+        """(n,) fraction of the total load on each point (-); zeros at zero load."""
+        if self.total_load == 0.0:
+            return np.zeros_like(self.loads)
+        return self.loads / self.total_load
+
+
+_STACKED = (
+    "loads", "approach", "active", "gap", "contact_deformation", "total_load", "residual",
+    "tolerance", "iterations", "newton_iterations", "mesh_stiffness_secant",
+    "mesh_stiffness_tangent", "mesh_stiffness_pointwise",
+)
+
+
+@dataclass(frozen=True)
+class ContactSweep:
+    """Contact states of ``m`` mesh positions with ``n`` candidate points each.
+
+    Attributes are the :class:`ContactSolution` fields stacked over positions:
+    ``loads``, ``active``, ``gap``, ``contact_deformation`` have shape (m, n);
+    ``approach``, ``total_load``, ``residual``, ``tolerance``, ``iterations``,
+    ``newton_iterations`` and the three ``mesh_stiffness_*`` have shape (m,).
+    Units as in :class:`ContactSolution`. ``labels`` holds the m labels.
+    Index with ``sweep[k]`` to get position ``k`` as a :class:`ContactSolution`.
+    """
+
+    loads: np.ndarray
+    approach: np.ndarray
+    active: np.ndarray
+    gap: np.ndarray
+    contact_deformation: np.ndarray
+    total_load: np.ndarray
+    residual: np.ndarray
+    tolerance: np.ndarray
+    iterations: np.ndarray
+    newton_iterations: np.ndarray
+    mesh_stiffness_secant: np.ndarray
+    mesh_stiffness_tangent: np.ndarray
+    mesh_stiffness_pointwise: np.ndarray
+    labels: tuple[str | None, ...] = ()
+
+    @classmethod
+    def from_solutions(cls, solutions: Sequence[ContactSolution]) -> ContactSweep:
+        """Stack per-position solutions (all with the same ``n``)."""
+        data = {}
+        for name in _STACKED:
+            dtype = bool if name == "active" else int if "iterations" in name else float
+            data[name] = _readonly(np.array([getattr(s, name) for s in solutions]), dtype)
+        return cls(**data, labels=tuple(s.label for s in solutions))
+
+    def __len__(self) -> int:
+        return int(self.approach.shape[0])
+
+    def __getitem__(self, k: int) -> ContactSolution:
+        kw = {f.name: getattr(self, f.name)[k] for f in fields(ContactSolution)
+              if f.name in _STACKED}
+        for name in ("approach", "total_load", "residual", "tolerance", "mesh_stiffness_secant",
+                     "mesh_stiffness_tangent", "mesh_stiffness_pointwise"):
+            kw[name] = float(kw[name])
+        kw["iterations"] = int(kw["iterations"])
+        kw["newton_iterations"] = int(kw["newton_iterations"])
+        return ContactSolution(**kw, label=self.labels[k] if self.labels else None)
+
+
+@dataclass(frozen=True)
+class LoadedMeshCycle:
+    """Loaded tooth contact over one mesh cycle (``m`` positions, ``K`` tooth pairs).
+
+    Per position (shape (m,)):
+
+    s0 : roll coordinate of the leading pair at z = 0, m (the mesh position).
+    pinion_angle : pinion rotation from the first position, rad.
+    transmission_error : loaded static transmission error x_s along the transverse
+        line of action, m, relative to the unmodified error-free flanks (eps = 0);
+        as a pinion angle: ``transmission_error / pair.pinion.base_radius`` (rad).
+    mesh_stiffness : tangent mesh stiffness k = dP/dx_s, N/m (exact, from the loaded
+        set; see :class:`ContactSolution`).
+    mesh_stiffness_secant : P / (x_s - min eps), N/m.
+    mesh_stiffness_pointwise : seed 004's k_m = sum F_i / (x_s - eps_i), N/m.
+    residual, tolerance : complementarity residual and its accepted bound, m.
+    newton_iterations : linearisations of the local contact approach.
+    max_unit_load : largest unit load along any contact line, N/m.
+
+    Per tooth pair (shape (m, K), columns ``pair_index``):
+
+    pair_loads : load carried by each tooth pair, N; ``load_share = pair_loads / P``.
+
+    Per candidate point (flat arrays of length ``n_total`` over all positions):
+
+    point_position : index of the mesh position.
+    point_s, point_z : roll coordinate and face position, m.
+    point_pair : tooth-pair index k.
+    point_width : face width the point stands for, m.
+    point_load : load F (transverse, along the line of action), N.
+    point_unit_load : p = F / width, load per unit length of contact line, N/m.
+    point_separation : initial separation eps, m.
+    point_contact_deformation : local contact approach u_c(F), m.
+
+    Scalars: ``load`` P (N), ``pair_index`` (K,), ``local_contact`` (model name).
+    """
+
+    s0: np.ndarray
+    pinion_angle: np.ndarray
+    transmission_error: np.ndarray
+    mesh_stiffness: np.ndarray
+    mesh_stiffness_secant: np.ndarray
+    mesh_stiffness_pointwise: np.ndarray
+    residual: np.ndarray
+    tolerance: np.ndarray
+    newton_iterations: np.ndarray
+    max_unit_load: np.ndarray
+    pair_index: np.ndarray
+    pair_loads: np.ndarray
+    point_position: np.ndarray
+    point_s: np.ndarray
+    point_z: np.ndarray
+    point_pair: np.ndarray
+    point_width: np.ndarray
+    point_load: np.ndarray
+    point_unit_load: np.ndarray
+    point_separation: np.ndarray
+    point_contact_deformation: np.ndarray
+    load: float
+    local_contact: str
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if isinstance(v, np.ndarray):
+                object.__setattr__(self, f.name, _readonly(v, v.dtype))
+
+    def __len__(self) -> int:
+        return int(self.s0.size)
+
+    @property
+    def load_share(self) -> np.ndarray:
+        """(m, K) fraction of the load on each tooth pair (-)."""
+        return self.pair_loads / self.load
+
+    def summary(self) -> dict[str, float]:
+        """Mean/max/min of the mesh stiffness and transmission error (SI; keys carry units)."""
+        k, te = self.mesh_stiffness, self.transmission_error
+        return {
+            "load_N": self.load,
+            "mesh_stiffness_mean_N_per_m": float(k.mean()),
+            "mesh_stiffness_max_N_per_m": float(k.max()),
+            "mesh_stiffness_min_N_per_m": float(k.min()),
+            "mesh_stiffness_secant_mean_N_per_m": float(self.mesh_stiffness_secant.mean()),
+            "transmission_error_mean_m": float(te.mean()),
+            "transmission_error_peak_to_peak_m": float(te.max() - te.min()),
+            "max_unit_load_N_per_m": float(self.max_unit_load.max()),
+            "max_residual_m": float(self.residual.max()),
+        }

@@ -1,0 +1,126 @@
+"""Initial separations ``eps`` of the candidate contact points from flank modifications and errors.
+
+``eps_i`` (m) is the gap at point ``i`` before load, measured along the
+transverse line of action (for an involute the normal to the transverse profile)
+and relative to the unmodified, error-free flanks, for which ``eps = 0``
+everywhere. Positive ``eps`` means material removed (the point touches later).
+Contributions add up:
+
+* **tip relief** of the pinion (at the end of the path, ``s_end``) and of the gear
+  (at its start, ``s_start``): amount ``C_a`` at the tip, falling to zero over
+  the roll length ``L_a`` along the path (``s``), linearly or parabolically:
+  ``C_a ((s - (s_end - L_a)) / L_a)^e`` with ``e = 1`` or 2 (pinion; mirrored for
+  the gear). Pinion driving or not, the pinion tip is at ``s_end``.
+* **lead crowning** ``C_b`` (sum of both gears): ``C_b (2 z / b - 1)^2``, zero at
+  mid face, ``C_b`` at both faces.
+* **helix slope deviation / misalignment** ``f_Hb`` over the face width:
+  ``f_Hb (z / b - 1/2)``, positive when the gap opens towards ``z = b``.
+* **pitch errors**: a constant offset per tooth pair, ``pitch_errors[j]`` for the
+  tooth pair with index ``k = j`` (``k = 0`` is the pair that enters contact at
+  the start of the analysed mesh cycle (pinion driving; with the gear driving it
+  is the pair about to leave), ``k = 1`` the one a base pitch further along ``s``;
+  see :meth:`GearPair.pair_indices`); pairs without an entry get 0. Positive: the
+  flank lies behind its nominal position.
+
+Centre-distance assembly errors do not appear here: an involute pair stays
+conjugate when its centres move in the plane, so they change the path of contact
+(use the actual pair of :class:`pipeline.geometry.assembly_errors.AssembledPair`
+for the compliance source) and shift the cycle's phase, not the gaps. Profile
+shift acts the same way, through the gear geometry.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pipeline.contact.source import ContactPoints
+from pipeline.geometry.pair import GearPair
+from pipeline.validation import InputError, check_choice, check_range
+
+_MAX_MOD = 1e-3  # m: modifications above 1 mm are input mistakes (units), not designs
+
+
+@dataclass(frozen=True)
+class FlankModifications:
+    """Flank modifications and errors that open initial gaps (all SI, m).
+
+    Attributes
+    ----------
+    tip_relief_pinion, tip_relief_gear : C_a at the tip, m, in [0, 1e-3].
+    relief_length_pinion, relief_length_gear : L_a, roll length along the path of
+        contact over which the relief acts, m; > 0 when the amount is > 0 and at
+        most the path length (checked against the pair in :func:`initial_separations`).
+    relief_shape : "linear" or "parabolic".
+    crowning : lead crowning C_b, m, in [0, 1e-3].
+    slope_deviation : helix slope deviation / misalignment f_Hb across the face, m,
+        in [-1e-3, 1e-3].
+    pitch_errors : offsets of tooth pairs k = 0, 1, 2, ..., m, each in [-1e-3, 1e-3].
+    """
+
+    tip_relief_pinion: float = 0.0
+    relief_length_pinion: float = 0.0
+    tip_relief_gear: float = 0.0
+    relief_length_gear: float = 0.0
+    relief_shape: str = "linear"
+    crowning: float = 0.0
+    slope_deviation: float = 0.0
+    pitch_errors: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        for who in ("pinion", "gear"):
+            amount = getattr(self, f"tip_relief_{who}")
+            length = getattr(self, f"relief_length_{who}")
+            check_range(f"contact.tip_relief_{who}", amount, 0.0, _MAX_MOD, unit="m")
+            check_range(f"contact.relief_length_{who}", length, 0.0, 1.0, unit="m")
+            if amount > 0.0 and length == 0.0:
+                raise InputError(f"contact.relief_length_{who} = 0 m: a tip relief of "
+                                 f"{amount:.3g} m needs a relief length > 0 m")
+        check_choice("contact.relief_shape", self.relief_shape, ("linear", "parabolic"))
+        check_range("contact.crowning", self.crowning, 0.0, _MAX_MOD, unit="m")
+        check_range("contact.slope_deviation", self.slope_deviation, -_MAX_MOD, _MAX_MOD, unit="m")
+        errs = tuple(float(e) for e in self.pitch_errors)
+        for j, e in enumerate(errs):
+            check_range(f"contact.pitch_errors[{j}]", e, -_MAX_MOD, _MAX_MOD, unit="m")
+        object.__setattr__(self, "pitch_errors", errs)
+
+    @property
+    def is_zero(self) -> bool:
+        return not (self.tip_relief_pinion or self.tip_relief_gear or self.crowning
+                    or self.slope_deviation or any(self.pitch_errors))
+
+
+def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarray:
+    """``amount (x / length)^power`` for ``x > 0`` (x: roll distance into the relief, m)."""
+    if amount == 0.0:
+        return np.zeros_like(x)
+    return amount * np.clip(x / length, 0.0, None) ** power
+
+
+def initial_separations(pair: GearPair, points: ContactPoints,
+                        mods: FlankModifications) -> np.ndarray:
+    """Initial gaps ``eps`` (m, shape (n,)) of the candidate points (module docstring).
+
+    Points outside the path of contact ``[s_start, s_end]`` get ``+inf`` (out of mesh).
+    """
+    for who, length in (("pinion", mods.relief_length_pinion), ("gear", mods.relief_length_gear)):
+        if length > pair.path_length:
+            raise InputError(f"contact.relief_length_{who} = {length:.6g} m is outside the "
+                             f"allowed range [0, {pair.path_length:.6g}] m (the path of contact)")
+    s, z = points.s, points.z
+    power = 1 if mods.relief_shape == "linear" else 2
+    eps = _relief(s - (pair.s_end - mods.relief_length_pinion), mods.tip_relief_pinion,
+                  mods.relief_length_pinion, power)
+    eps = eps + _relief((pair.s_start + mods.relief_length_gear) - s, mods.tip_relief_gear,
+                        mods.relief_length_gear, power)
+    b = pair.face_width
+    eps = eps + mods.crowning * (2.0 * z / b - 1.0) ** 2 + mods.slope_deviation * (z / b - 0.5)
+    if mods.pitch_errors:
+        table = np.asarray(mods.pitch_errors)
+        k = points.pair
+        ok = (k >= 0) & (k < table.size)
+        eps = eps + np.where(ok, table[np.clip(k, 0, table.size - 1)], 0.0)
+    tol = 1e-12 * max(abs(pair.s_end), 1.0)
+    inside = (s >= pair.s_start - tol) & (s <= pair.s_end + tol)
+    return np.where(inside, eps, np.inf)

@@ -1,0 +1,228 @@
+"""Compliance sources: where the loaded-contact solver gets its candidate points and ``G``.
+
+A compliance source describes one gear pair at any mesh position: which flank
+points may touch (the *candidate points*) and the structural compliance matrix
+``G`` (m/N) between them, without the local contact (Hertz) deformation, which
+the solver adds itself (:mod:`pipeline.contact.hertz`). Two sources implement
+the :class:`ComplianceSource` protocol:
+
+* :class:`SliceCompliance` (here): the analytical slice potential-energy method
+  of seed 004 (section 2.1-2.4) on the tooth models of :mod:`pipeline.stiffness`;
+* the FE influence coefficients of :mod:`pipeline.fem` (FE-enriched stiffness).
+
+Conventions (the same as :mod:`pipeline.stiffness.mesh`)
+--------------------------------------------------------
+* A *mesh position* is the roll coordinate ``s0`` (m) of the leading tooth pair
+  at face position ``z = 0``, in ``[s_start, s_start + p_bt)`` for one mesh cycle
+  (:meth:`GearPair.mesh_cycle`). Tooth pair ``k`` (``k`` from
+  :meth:`GearPair.pair_indices`) touches at ``s = s0 + k p_bt + z tan(beta_b)``.
+* Loads and approaches are along the transverse line of action: ``F_i`` is the
+  transverse component of the normal load carried by point ``i`` (N), and
+  ``G_ij`` the approach along the line of action at ``i`` per unit such load at
+  ``j`` (m/N). The normal load on the flank is ``F_i / cos(beta_b)`` and the
+  contact line through a point of face width ``w_i`` is ``w_i / cos(beta_b)``
+  long, so the unit load along the contact line is ``p_i = F_i / w_i`` (N/m).
+
+Slice coupling. Seed 004 treats the slices as independent cantilevers: its
+compliance matrix ``lambda_g`` (eq. 28) is diagonal, ``lambda_g,ii`` the
+bending + shear + axial compression + foundation compliance of both teeth of
+slice ``i`` (eq. 25 without the Hertz term). That is the default here
+(``coupling = 0``). As an option (not in seed 004) neighbouring slices of the
+same tooth can be coupled: ``G = D^{1/2} (I - kappa L) D^{1/2}``, with ``D`` the
+diagonal slice compliance and ``L`` the graph Laplacian of the chain of slices
+in contact on each tooth. Rows of ``I - kappa L`` sum to one, so a uniformly
+loaded tooth deflects as the independent slices do (the slice method's
+stiffness is kept) while a load on one slice also deflects its neighbours;
+``G`` is positive definite for ``0 <= kappa < 1/4`` (eigenvalues of ``L`` lie in
+[0, 4)). Like a plate, the coupled tooth resists *curved* deflection: under an
+imposed approach with a peak (crowning) or at a loaded face end (misalignment)
+it concentrates load slightly more than independent slices do. It does not
+model the softer free ends of a real tooth; kappa is not calibrated here (the
+FE influence coefficients are the way to get the real coupling).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+from pipeline.geometry.pair import GearPair
+from pipeline.stiffness.friction import friction_direction
+from pipeline.stiffness.mesh import (
+    FrictionModel,
+    OperatingPoint,
+    PairModel,
+    friction_coefficients,
+)
+from pipeline.stiffness.tooth import tooth_compliance
+from pipeline.validation import InputError, check_int_range, check_range
+
+
+@dataclass(frozen=True)
+class ContactPoints:
+    """Candidate contact points of one mesh position (``n`` points).
+
+    Attributes
+    ----------
+    s : (n,) roll coordinate on the transverse line of action, m (inside
+        ``[s_start, s_end]``; points outside are out of mesh and never loaded).
+    z : (n,) face position from the pinion's reference face, m, in ``[0, b]``.
+    pair : (n,) int, tooth-pair index ``k`` (see :meth:`GearPair.pair_indices`).
+    width : (n,) face width each point stands for (slice width), m, > 0.
+    """
+
+    s: np.ndarray
+    z: np.ndarray
+    pair: np.ndarray
+    width: np.ndarray
+
+    def __post_init__(self) -> None:
+        arrays = {}
+        for name, dtype in (("s", float), ("z", float), ("pair", int), ("width", float)):
+            a = np.array(getattr(self, name), dtype=dtype).reshape(-1)
+            a.setflags(write=False)
+            arrays[name] = a
+            object.__setattr__(self, name, a)
+        n = arrays["s"].size
+        for name, a in arrays.items():
+            if a.size != n:
+                raise InputError(f"contact points: {name} has {a.size} entries; expected {n}")
+        if n and (~np.isfinite(arrays["width"]) | (arrays["width"] <= 0.0)).any():
+            raise InputError("contact points: width must be finite and > 0 m")
+
+    def __len__(self) -> int:
+        return int(self.s.size)
+
+
+@runtime_checkable
+class ComplianceSource(Protocol):
+    """What the loaded-contact solver needs from a compliance model of a gear pair.
+
+    Attributes
+    ----------
+    pair : the (actual) gear pair; fixes the path of contact, curvature radii
+        and the mesh cycle.
+
+    Methods
+    -------
+    points(position) -> ContactPoints
+        candidate points at mesh position ``position`` (roll coordinate ``s0`` of
+        the leading pair at ``z = 0``, m). Their order is the order of ``G``.
+    matrix(position) -> (n, n) ndarray
+        structural compliance ``G`` (m/N) between those points, symmetric
+        positive (semi)definite, *without* the local contact (Hertz) approach.
+    """
+
+    pair: GearPair
+
+    def points(self, position: float) -> ContactPoints: ...
+
+    def matrix(self, position: float) -> np.ndarray: ...
+
+
+@dataclass(frozen=True)
+class SliceCompliance:
+    """Analytical slice compliance (seed 004 section 2.1-2.4) as a :class:`ComplianceSource`.
+
+    Attributes
+    ----------
+    model : tooth models of the pair (:class:`~pipeline.stiffness.mesh.PairModel`).
+    slices : slices across the face width of a helical gear (spur gears use one).
+    friction : friction model (sign convention of :mod:`pipeline.stiffness.friction`);
+        friction changes the bending/compression split of each slice (seed 004 eqs. 19-23).
+    operating : operating point (driver, and load/speed for the EHL friction coefficient).
+    foundation_correction : factor on the body stiffness while more than one tooth
+        pair is in contact, as in :func:`pipeline.stiffness.mesh.stiffness_at`.
+    coupling : kappa in [0, 0.25), coupling of neighbouring slices (module docstring);
+        0 is seed 004's independent slices.
+    """
+
+    model: PairModel
+    slices: int = 30
+    friction: FrictionModel = field(default_factory=FrictionModel)
+    operating: OperatingPoint = field(default_factory=OperatingPoint)
+    foundation_correction: float = 1.0
+    coupling: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_int_range("contact.slices", self.slices, 1, 10_000)
+        check_range("contact.foundation_correction", self.foundation_correction, 0.5, 2.0)
+        check_range("contact.slice_coupling", self.coupling, 0.0, 0.25, hi_open=True)
+        if self.model.pair.pinion.herringbone:
+            raise InputError("contact: herringbone pairs are not supported yet; analyse one "
+                             "helical half (herringbone = false, face width of one half)")
+
+    @property
+    def pair(self) -> GearPair:
+        return self.model.pair
+
+    def _grid(self, position: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """Roll coordinates (K, N), face positions (N,), pair indices (K,), slice width (m)."""
+        pair = self.pair
+        b = pair.face_width
+        n = self.slices if pair.pinion.is_helical else 1
+        dz = b / n
+        z = (np.arange(n) + 0.5) * dz
+        k = pair.pair_indices()
+        s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
+            pair.pinion.base_helix_angle)
+        return s, z, k, dz
+
+    def points(self, position: float) -> ContactPoints:
+        """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
+        s, z, k, dz = self._grid(position)
+        inside = (s >= self.pair.s_start) & (s <= self.pair.s_end)
+        kk, jj = np.nonzero(inside)
+        return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
+
+    def diagonal(self, position: float) -> np.ndarray:
+        """Independent-slice compliance of the candidate points, m/N, shape (n,).
+
+        Bending + shear + axial + foundation of both teeth (seed 004 eq. 25 without
+        the Hertz term), per slice: the per-unit-width compliance over the slice width.
+        """
+        pair = self.pair
+        s, _, _, dz = self._grid(position)
+        inside = (s >= pair.s_start) & (s <= pair.s_end)
+        sc = np.where(inside, s, pair.s_pitch)[None]  # (1, K, N)
+        lam = friction_direction(sc, pair.s_pitch, self.operating.driver)
+        mu = friction_coefficients(pair, sc, inside[None], self.friction, self.operating, dz)
+        r1, r2 = pair.contact_radii(sc)
+        c1 = tooth_compliance(self.model.pinion, r1, mu, lam)
+        c2 = tooth_compliance(self.model.gear, r2, mu, lam)
+        corr = self.foundation_correction if np.any(inside, axis=1).sum() > 1 else 1.0
+        per_width = c1.tooth + c2.tooth + (c1.foundation + c2.foundation) / corr
+        return per_width[0][inside] / dz
+
+    def matrix(self, position: float) -> np.ndarray:
+        """``G`` (m/N), (n, n): diagonal slice compliance, optionally slice-coupled."""
+        d = self.diagonal(position)
+        G = np.diag(d)
+        if self.coupling == 0.0 or d.size < 2:
+            return G
+        pts = self.points(position)
+        # neighbours: consecutive slices of the same tooth pair (points are ordered by pair, z)
+        nb = (pts.pair[1:] == pts.pair[:-1]) & np.isclose(
+            np.diff(pts.z), pts.width[1:], rtol=1e-9)
+        i = np.flatnonzero(nb)
+        lap = np.zeros(d.size)
+        np.add.at(lap, i, 1.0)
+        np.add.at(lap, i + 1, 1.0)
+        sq = np.sqrt(d)
+        G[np.diag_indices(d.size)] = d * (1.0 - self.coupling * lap)
+        off = self.coupling * sq[i] * sq[i + 1]
+        G[i, i + 1] = off
+        G[i + 1, i] = off
+        return G
+
+    def hertz_compliance(self, position: float) -> np.ndarray:
+        """Constant Hertz compliance of each slice, m/N, (n,): ``4 (1 - nu^2) / (pi E w)``.
+
+        The load-independent local contact term of the slice method (seed 004 eq. 7,
+        seed 001), the one :mod:`pipeline.stiffness.mesh` adds to every slice.
+        """
+        pts = self.points(position)
+        return self.model.hertz / pts.width

@@ -1,0 +1,158 @@
+"""Load maps (pipeline.contact.loadmap) and the ``gearpipe contact`` command."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+import meshio
+import numpy as np
+import pytest
+
+from pipeline.contact import commands
+from pipeline.contact.loadmap import flank_load_map, flank_surface, write_load_map_vtu
+from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.options import contact_options_from_table
+from pipeline.contact.separations import FlankModifications
+from pipeline.contact.source import SliceCompliance
+from pipeline.stiffness.mesh import PairModel
+from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
+from pipeline.validation import InputError
+
+
+@pytest.fixture(scope="module")
+def helical_cycle(seed004_pair):
+    pair = seed004_pair
+    model = PairModel(pair, classical_tooth_model(pair.pinion), classical_tooth_model(pair.gear),
+                      hertz_compliance(pair.pinion, pair.gear))
+    L = 0.25 * pair.path_length
+    mods = FlankModifications(15e-6, L, 15e-6, L, crowning=8e-6)
+    src = SliceCompliance(model, slices=12)
+    return loaded_mesh_cycle(src, 6031.0 / pair.pinion.base_radius, mods, positions=30)
+
+
+def test_load_map_of_spur_pair_single_contact_zone(seed001_pair):
+    """Spur pair, eps = 0, constant Hertz: in the single-tooth zone
+    (s_end - p_bt, s_start + p_bt), one sample spacing in from its ends, one pair carries
+    P over the face width, so the map shows p = P / b there exactly (1e-12), and less in
+    the double-tooth zones."""
+    pair = seed001_pair
+    model = PairModel(pair, classical_tooth_model(pair.pinion), classical_tooth_model(pair.gear),
+                      hertz_compliance(pair.pinion, pair.gear))
+    P = 340.0 / pair.pinion.base_radius
+    cyc = loaded_mesh_cycle(SliceCompliance(model), P, local="linear", positions=60)
+    lm = flank_load_map(cyc, pair, profile_points=200)
+    assert lm.z.tolist() == [0.0, pair.face_width / 2, pair.face_width]  # one slice
+    h = 1.01 * pair.base_pitch / 60  # sample spacing: interpolation across the zone edge
+    single = (lm.s > pair.s_end - pair.base_pitch + h) & (lm.s < pair.s_start
+                                                          + pair.base_pitch - h)
+    assert single.sum() > 20
+    assert lm.unit_load[single] == pytest.approx(P / pair.face_width, rel=1e-12)
+    double = (lm.s < pair.s_end - pair.base_pitch - h) | (lm.s > pair.s_start
+                                                          + pair.base_pitch + h)
+    assert lm.unit_load[double].max() < P / pair.face_width * (1 - 1e-3)
+
+
+def test_flank_surface_lies_on_the_involute(seed004_pair, helical_cycle):
+    """The 3D flank points lie at the pinion radius sqrt(s^2 + r_b1^2) of their roll
+    coordinate at every face position, and span the face width."""
+    pair = seed004_pair
+    lm = flank_load_map(helical_cycle, pair, profile_points=50)
+    assert lm.unit_load.shape == (50, 12 + 2)
+    xyz = flank_surface(pair, lm)
+    r = np.hypot(xyz[..., 0], xyz[..., 1])
+    assert r == pytest.approx(np.broadcast_to(lm.pinion_radius[:, None], r.shape), rel=1e-12)
+    assert xyz[0, -1, 2] == pytest.approx(pair.face_width)
+    assert xyz[0, 0, 2] == 0.0
+
+
+def test_vtu_round_trip(tmp_path, seed004_pair, helical_cycle):
+    """The VTU read back with meshio holds the grid (n_s x n_z points, mm) and the unit
+    load in N/mm equal to the map in N/m / 1000 (float64 round trip: 1e-12)."""
+    lm = flank_load_map(helical_cycle, seed004_pair, profile_points=20)
+    path = write_load_map_vtu(seed004_pair, lm, tmp_path / "map.vtu")
+    mesh = meshio.read(path)
+    assert mesh.points.shape[0] == lm.unit_load.size
+    got = np.sort(mesh.point_data["unit_load_N_per_mm"])
+    assert got == pytest.approx(np.sort(lm.unit_load.ravel() * 1e-3), rel=1e-12)
+    r = np.hypot(mesh.points[:, 0], mesh.points[:, 1]) * 1e-3
+    assert r.min() == pytest.approx(lm.pinion_radius.min(), rel=1e-9)
+
+
+def test_contact_options_table():
+    """[contact] keys in um/mm convert to SI; unknown keys and bad values are named."""
+    opts = contact_options_from_table({"tip_relief_pinion_um": 12,
+                                       "tip_relief_length_pinion_mm": 3,
+                                       "pitch_errors_um": [0, 4], "local_contact": "linear"})
+    assert opts.modifications.tip_relief_pinion == pytest.approx(12e-6)
+    assert opts.modifications.relief_length_pinion == pytest.approx(3e-3)
+    assert opts.modifications.pitch_errors == pytest.approx((0.0, 4e-6))
+    with pytest.raises(InputError, match="tip_relief_um"):
+        contact_options_from_table({"tip_relief_um": 3})
+    with pytest.raises(InputError, match="local_contact"):
+        contact_options_from_table({"local_contact": "hertz"})
+
+
+CONFIG = """
+name = "spur_contact"
+[pinion]
+teeth = 50
+module_mm = 3.0
+pressure_angle_deg = 20.0
+face_width_mm = 20.0
+bore_radius_mm = 21.0
+[gear]
+teeth = 50
+module_mm = 3.0
+pressure_angle_deg = 20.0
+face_width_mm = 20.0
+bore_radius_mm = 21.0
+[operation]
+torque_Nm = 340.0
+speed_rpm = 2340.0
+[stiffness]
+friction = 0.05
+[contact]
+positions = 24
+local_contact = "linear"
+tip_relief_pinion_um = 10
+tip_relief_length_pinion_mm = 2
+render = {render}
+"""
+
+
+def test_contact_command_writes_its_outputs(tmp_path, capsys):
+    """gearpipe contact on a seed-001-like spur pair (classical tooth model): all files
+    are written, the JSON load equals 340 N m / r_b1 and the LTCA/slice mean ratio is
+    below 1 (the relief unloads the pinion tip in double contact) but above 0.9."""
+    cfg = tmp_path / "spur.toml"
+    cfg.write_text(CONFIG.format(render="false"))  # the PNG render is tested above
+    parser = argparse.ArgumentParser()
+    commands.add_arguments(parser)
+    args = parser.parse_args([str(cfg), "--out", str(tmp_path / "out"), "--json",
+                              "--tooth-model", "classical"])
+    assert commands.run(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    out = tmp_path / "out"
+    for name in ("contact_cycle.csv", "contact_points.csv", "contact_cycle.png",
+                 "load_map_2d.png", "load_map.vtu", "contact.json", "run.json"):
+        assert (out / name).is_file(), name
+    rb = 0.5 * 50 * 3e-3 * math.cos(math.radians(20))
+    assert summary["load_N"] == pytest.approx(340.0 / rb, rel=1e-12)
+    assert 0.9 < summary["ltca_over_slice_method_mean"] <= 1.0
+
+
+def test_render_load_map_png(tmp_path, seed004_pair, helical_cycle):
+    """The off-screen pyvista render writes a PNG of the requested size that is not blank
+    (the coloured flank gives many distinct colours)."""
+    from PIL import Image
+
+    from pipeline.contact.loadmap import render_load_map
+
+    lm = flank_load_map(helical_cycle, seed004_pair, profile_points=30)
+    path = render_load_map(seed004_pair, lm, tmp_path / "map.png", "test",
+                           window_size=(600, 450))
+    img = np.asarray(Image.open(path).convert("RGB"))
+    assert img.shape == (450, 600, 3)
+    assert len(np.unique(img.reshape(-1, 3), axis=0)) > 200
