@@ -24,6 +24,12 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
     "contact": ("pipeline.contact.commands", "add_arguments", "run",
                 "loaded tooth contact over a mesh cycle: load sharing, TE, mesh stiffness, "
                 "load maps"),
+    "modes": ("pipeline.dynamics.commands", "add_modes_arguments", "run_modes",
+              "natural frequencies, mode types and mode shapes of a dynamics config"),
+    "response": ("pipeline.dynamics.commands", "add_response_arguments", "run_response",
+                 "steady dynamic response: DTE, mesh forces, spectrum"),
+    "sweep": ("pipeline.dynamics.commands", "add_sweep_arguments", "run_sweep",
+              "RMS dynamic mesh force against mesh frequency"),
 }
 
 

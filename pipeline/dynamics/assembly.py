@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
+import scipy.linalg as sla
 
 from pipeline.dynamics.bodies import Body
 from pipeline.dynamics.couplings import (
@@ -39,6 +40,9 @@ class Assembly:
     period : system period T in s (one mesh period for a single-stage set).
     carrier_speed : Omega in rad/s for bodies in the rotating (carrier) frame.
     name : label.
+    modal_damping_ratio : zeta (-) of a constant modal damping added to every elastic
+        mode of the mean stiffness, ``C += M Phi diag(2 zeta omega) Phi^T M`` (seed 002
+        sec. 2.3 "constant modal damping"); 0 adds none.
     """
 
     bodies: Sequence[Body]
@@ -47,6 +51,7 @@ class Assembly:
     period: float = 1.0
     carrier_speed: float = 0.0
     name: str = "assembly"
+    modal_damping_ratio: float = 0.0
     _index: dict = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -55,6 +60,7 @@ class Assembly:
         object.__setattr__(self, "loads", tuple(self.loads))
         check_positive("period", self.period, "s")
         check_range("carrier_speed", self.carrier_speed, -1e5, 1e5, unit="rad/s")
+        check_range("modal_damping_ratio", self.modal_damping_ratio, 0.0, 1.0)
         index: dict[tuple[str, str], int] = {}
         for b in self.bodies:
             for d in b.dofs:
@@ -94,7 +100,7 @@ class Assembly:
                 M[i, i] = b.mass_of(d)
             if b.rotating_frame and "x" in b.dofs and "y" in b.dofs:
                 ix, iy = self._index[(b.name, "x")], self._index[(b.name, "y")]
-                # Coriolis 2 m Omega (-y', x') and centripetal m Omega^2 (x, y) in the carrier frame.
+                # carrier frame: Coriolis 2 m Omega (-y', x'), centripetal m Omega^2 (x, y)
                 G[ix, iy] -= 2 * b.mass
                 G[iy, ix] += 2 * b.mass
                 Kw[ix, ix] += b.mass
@@ -130,24 +136,48 @@ class Assembly:
         for ld in self.loads:
             f0[self._coord((ld.body, ld.dof), "load")] += float(ld.value)
         B = self._tie_basis(ties)
-        red = (lambda A: B.T @ A @ B)
-        return LinearPeriodicSystem(
-            dof_names=self.dof_names, basis=B, M=red(M), C=red(C), K=red(K), G=red(G),
-            K_omega=red(Kw), f0=B.T @ f0,
-            terms=tuple(ParametricTerm(t.name, t.signal, B.T @ t.u, B.T @ t.v, t.phase, t.order)
-                        for t in terms),
-            forcing=tuple(ForcingTerm(f.signal, B.T @ f.vector, f.phase, f.order, f.derivative)
-                          for f in forcing),
-            meshes=tuple(MeshOutput(m.name, B.T @ m.v, m.term, m.damping, m.transmission_error)
-                         for m in meshes),
-            period=self.period, carrier_speed=self.carrier_speed, name=self.name,
+
+        def red(A: np.ndarray) -> np.ndarray:
+            return B.T @ A @ B
+
+        system = LinearPeriodicSystem(
+            dof_names=self.dof_names,
+            basis=B,
+            M=red(M),
+            C=red(C),
+            K=red(K),
+            G=red(G),
+            K_omega=red(Kw),
+            f0=B.T @ f0,
+            terms=tuple(
+                ParametricTerm(t.name, t.signal, B.T @ t.u, B.T @ t.v, t.phase, t.order)
+                for t in terms
+            ),
+            forcing=tuple(
+                ForcingTerm(f.signal, B.T @ f.vector, f.phase, f.order, f.derivative)
+                for f in forcing
+            ),
+            meshes=tuple(
+                MeshOutput(m.name, B.T @ m.v, m.term, m.damping, m.transmission_error)
+                for m in meshes
+            ),
+            period=self.period,
+            carrier_speed=self.carrier_speed,
+            name=self.name,
         )
+        if self.modal_damping_ratio > 0.0:
+            system = replace(
+                system, C=system.C + modal_damping_matrix(system, self.modal_damping_ratio)
+            )
+        return system
 
     def _coord(self, coord, what: str) -> int:
         try:
             return self._index[tuple(coord)]
         except KeyError:
-            raise InputError(f"{what}: no coordinate {coord[0]}.{coord[1]} in the assembly") from None
+            raise InputError(
+                f"{what}: no coordinate {coord[0]}.{coord[1]} in the assembly"
+            ) from None
 
     def _add_mesh(self, mesh: GearMesh, M, C, terms, forcing, meshes) -> None:
         v = self._vector(mesh.measure, mesh.name)
@@ -164,8 +194,11 @@ class Assembly:
         terms.append(ParametricTerm(mesh.name, mesh.stiffness, v, v, mesh.phase, mesh.order))
         for fr in mesh.friction:
             u = -self._vector(fr.pattern, f"{mesh.name}.friction")
-            terms.append(ParametricTerm(f"{mesh.name}.friction", fr.coefficient, u, v,
-                                        mesh.phase, mesh.order))
+            terms.append(
+                ParametricTerm(
+                    f"{mesh.name}.friction", fr.coefficient, u, v, mesh.phase, mesh.order
+                )
+            )
         if e is not None:
             for t in terms[k_index:]:
                 forcing.append(ForcingTerm(_product(t.signal, e), t.u, mesh.phase, mesh.order))
@@ -196,6 +229,25 @@ class Assembly:
         for i in range(n):
             B[i, col[find(i)]] = 1.0
         return B
+
+
+def modal_damping_matrix(system: LinearPeriodicSystem, ratio: float) -> np.ndarray:
+    """``M Phi diag(2 zeta omega_k) Phi^T M`` over the elastic modes of the mean stiffness, (n, n).
+
+    Parameters
+    ----------
+    system : assembled system (M in kg / kg m^2; mass-normalised modes Phi).
+    ratio : zeta (-), the same for every mode; rigid-body modes (omega = 0) get none.
+    """
+    K = system.K.copy()
+    for t in system.terms:
+        if np.array_equal(t.u, t.v):
+            K += t.signal.mean() * np.outer(t.u, t.v)
+    w2, phi = sla.eigh(0.5 * (K + K.T), system.M)
+    w = np.sqrt(np.clip(w2, 0.0, None))
+    w[w2 < 1e-9 * w2.max()] = 0.0
+    MP = system.M @ phi
+    return (MP * (2.0 * ratio * w)) @ MP.T
 
 
 def _product(a: PeriodicSignal, b: PeriodicSignal) -> PeriodicSignal:

@@ -64,10 +64,12 @@ class Body:
         if any(d in TRANSLATIONS for d in dofs):
             check_range(f"{self.name}.mass", self.mass, 0.0, 1e7, lo_open=True, unit="kg")
         if "theta" in dofs:
-            check_range(f"{self.name}.inertia", self.inertia, 0.0, 1e7, lo_open=True,
-                        unit="kg m^2")
-        check_range(f"{self.name}.frame_angle", self.frame_angle, -4 * math.pi, 4 * math.pi,
-                    unit="rad")
+            check_range(
+                f"{self.name}.inertia", self.inertia, 0.0, 1e7, lo_open=True, unit="kg m^2"
+            )
+        check_range(
+            f"{self.name}.frame_angle", self.frame_angle, -4 * math.pi, 4 * math.pi, unit="rad"
+        )
 
     def mass_of(self, dof: str) -> float:
         """Mass (kg) or inertia (kg m^2) on one DOF."""

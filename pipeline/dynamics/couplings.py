@@ -37,7 +37,9 @@ from pipeline.validation import InputError, check_range
 def _freeze_measure(measure: Mapping[Coordinate, float], what: str) -> tuple:
     items = tuple(sorted((tuple(k), float(v)) for k, v in measure.items() if v != 0.0))
     if not items:
-        raise InputError(f"{what}: the measure is empty (no coordinate with a non-zero coefficient)")
+        raise InputError(
+            f"{what}: the measure is empty (no coordinate with a non-zero coefficient)"
+        )
     for (body, dof), v in items:
         if not math.isfinite(v):
             raise InputError(f"{what}: coefficient on {body}.{dof} is not finite")
@@ -85,8 +87,12 @@ class Bearing:
     def springs(self) -> list[Spring]:
         dofs = sorted(set(self.stiffness) | set(self.damping))
         return [
-            Spring(f"{self.body}.bearing.{d}", {(self.body, d): 1.0},
-                   float(self.stiffness.get(d, 0.0)), float(self.damping.get(d, 0.0)))
+            Spring(
+                f"{self.body}.bearing.{d}",
+                {(self.body, d): 1.0},
+                float(self.stiffness.get(d, 0.0)),
+                float(self.damping.get(d, 0.0)),
+            )
             for d in dofs
         ]
 
@@ -108,9 +114,14 @@ class TorsionalShaft:
     damping: float = 0.0
 
     def springs(self) -> list[Spring]:
-        return [Spring(f"{self.body1}-{self.body2}.shaft",
-                       {(self.body1, "theta"): 1.0, (self.body2, "theta"): -1.0},
-                       self.stiffness, self.damping)]
+        return [
+            Spring(
+                f"{self.body1}-{self.body2}.shaft",
+                {(self.body1, "theta"): 1.0, (self.body2, "theta"): -1.0},
+                self.stiffness,
+                self.damping,
+            )
+        ]
 
 
 @dataclass(frozen=True)
@@ -166,17 +177,27 @@ class GearMesh:
     def __post_init__(self) -> None:
         object.__setattr__(self, "measure", _freeze_measure(self.measure, self.name))
         if not isinstance(self.stiffness, PeriodicSignal):
-            check_range(f"{self.name}.stiffness", self.stiffness, 0.0, 1e15, lo_open=True,
-                        unit="N/m")
-            object.__setattr__(self, "stiffness",
-                               PeriodicSignal(np.full(4, float(self.stiffness))))
+            check_range(
+                f"{self.name}.stiffness", self.stiffness, 0.0, 1e15, lo_open=True, unit="N/m"
+            )
+            object.__setattr__(
+                self, "stiffness", PeriodicSignal(np.full(4, float(self.stiffness)))
+            )
         elif self.stiffness.values.min() < 0:
-            raise InputError(f"{self.name}.stiffness has negative samples "
-                             f"(min {self.stiffness.values.min():.6g} N/m)")
+            raise InputError(
+                f"{self.name}.stiffness has negative samples "
+                f"(min {self.stiffness.values.min():.6g} N/m)"
+            )
         check_range(f"{self.name}.damping_ratio", self.damping_ratio, 0.0, 1.0)
         if self.equivalent_mass is not None:
-            check_range(f"{self.name}.equivalent_mass", self.equivalent_mass, 0.0, 1e7,
-                        lo_open=True, unit="kg")
+            check_range(
+                f"{self.name}.equivalent_mass",
+                self.equivalent_mass,
+                0.0,
+                1e7,
+                lo_open=True,
+                unit="kg",
+            )
         check_range(f"{self.name}.phase", self.phase, -1e6, 1e6)
         if int(self.order) != self.order or self.order < 1:
             raise InputError(f"{self.name}.order = {self.order!r} must be a whole number >= 1")

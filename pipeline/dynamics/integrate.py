@@ -18,7 +18,7 @@ Floquet fixed point ``x0 = (I - Phi_T)^-1 g_T`` directly.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -70,13 +70,17 @@ def build_propagator(system: LinearPeriodicSystem, segments: int | None = None) 
     system : a system without rigid-body modes (see :func:`reduce_rigid_body_modes`).
     segments : uniform segments per period (default :func:`default_segments`).
     """
-    m = default_segments(system) if segments is None else check_int_range(
-        "segments", segments, 4, 10_000_000)
+    m = (
+        default_segments(system)
+        if segments is None
+        else check_int_range("segments", segments, 4, 10_000_000)
+    )
     n = system.n
     edges = np.linspace(0.0, 1.0, m + 1)
     dt = system.period / m
-    coef = np.array([segment_means(t.signal, t.order, t.phase, edges) for t in system.terms]
-                    ).reshape(len(system.terms), m)
+    coef = np.array(
+        [segment_means(t.signal, t.order, t.phase, edges) for t in system.terms]
+    ).reshape(len(system.terms), m)
     force = np.repeat(system.f0[None, :], m, axis=0)
     for f in system.forcing:
         if f.derivative:
@@ -93,12 +97,12 @@ def build_propagator(system: LinearPeriodicSystem, segments: int | None = None) 
     else:
         Kseg = np.repeat(K0[None], m, axis=0)
     Z = np.zeros((m, 2 * n + 1, 2 * n + 1))
-    Z[:, :n, n:2 * n] = np.eye(n)
-    Z[:, n:2 * n, :n] = -Minv @ Kseg
-    Z[:, n:2 * n, n:2 * n] = -Minv @ system.damping_matrix()
-    Z[:, n:2 * n, -1] = force @ Minv.T
+    Z[:, :n, n : 2 * n] = np.eye(n)
+    Z[:, n : 2 * n, :n] = -Minv @ Kseg
+    Z[:, n : 2 * n, n : 2 * n] = -Minv @ system.damping_matrix()
+    Z[:, n : 2 * n, -1] = force @ Minv.T
     E = sla.expm(Z * dt)
-    Phi, g = E[:, :2 * n, :2 * n], E[:, :2 * n, -1]
+    Phi, g = E[:, : 2 * n, : 2 * n], E[:, : 2 * n, -1]
     P = np.empty((m + 1, 2 * n, 2 * n))
     h = np.empty((m + 1, 2 * n))
     P[0], h[0] = np.eye(2 * n), 0.0
@@ -117,8 +121,9 @@ def floquet_multipliers(system: LinearPeriodicSystem, segments: int | None = Non
     return np.linalg.eigvals(prop.monodromy)
 
 
-def _response(prop: Propagator, starts: np.ndarray, method: str, steady_from_period: int = 0
-              ) -> Response:
+def _response(
+    prop: Propagator, starts: np.ndarray, method: str, steady_from_period: int = 0
+) -> Response:
     """Assemble a Response from period-start states ``starts`` (k, 2n)."""
     sysm = prop.system
     n = sysm.n
@@ -128,7 +133,7 @@ def _response(prop: Propagator, starts: np.ndarray, method: str, steady_from_per
     last = prop.P[-1] @ starts[-1] + prop.h[-1]
     X = np.vstack([X, last])
     kper = starts.shape[0]
-    tau = (np.arange(kper * m + 1) / m)
+    tau = np.arange(kper * m + 1) / m
     q, qd = X[:, :n], X[:, n:]
     V = np.array([ms.v for ms in sysm.meshes]).reshape(len(sysm.meshes), n)
     dte = V @ q.T
@@ -141,14 +146,23 @@ def _response(prop: Propagator, starts: np.ndarray, method: str, steady_from_per
         if ms.transmission_error is not None:
             tm = sysm.terms[ms.term]
             e = ms.transmission_error(tm.order * tau - tm.phase)
-            ed = segment_slopes(ms.transmission_error, tm.order, tm.phase,
-                                prop.edges)[seg] / sysm.period
+            ed = (
+                segment_slopes(ms.transmission_error, tm.order, tm.phase, prop.edges)[seg]
+                / sysm.period
+            )
         force[i] = k * (dte[i] - e) + ms.damping * (dte_rate[i] - ed)
     return Response(
-        time=tau * sysm.period, q=sysm.expand(q), qd=sysm.expand(qd), dte=dte,
-        mesh_force=force, dof_names=sysm.dof_names,
-        mesh_names=tuple(ms.name for ms in sysm.meshes), period=sysm.period,
-        steady_from=steady_from_period * m, method=method, end_state=last,
+        time=tau * sysm.period,
+        q=sysm.expand(q),
+        qd=sysm.expand(qd),
+        dte=dte,
+        mesh_force=force,
+        dof_names=sysm.dof_names,
+        mesh_names=tuple(ms.name for ms in sysm.meshes),
+        period=sysm.period,
+        steady_from=steady_from_period * m,
+        method=method,
+        end_state=last,
     )
 
 
@@ -158,8 +172,9 @@ def static_state(system: LinearPeriodicSystem) -> np.ndarray:
     return np.concatenate([q, np.zeros_like(q)])
 
 
-def steady_state(system: LinearPeriodicSystem, segments: int | None = None,
-                 periods: int = 1) -> Response:
+def steady_state(
+    system: LinearPeriodicSystem, segments: int | None = None, periods: int = 1
+) -> Response:
     """Periodic steady state by the Floquet fixed point (exact for the segment model).
 
     Parameters
@@ -179,15 +194,24 @@ def steady_state(system: LinearPeriodicSystem, segments: int | None = None,
     try:
         x0 = np.linalg.solve(A, prop.h[-1])
     except np.linalg.LinAlgError:
-        raise InputError("no periodic steady state: a Floquet multiplier equals 1 "
-                         "(undamped resonance or unremoved rigid mode)") from None
+        raise InputError(
+            "no periodic steady state: a Floquet multiplier equals 1 "
+            "(undamped resonance or unremoved rigid mode)"
+        ) from None
     starts = np.repeat(x0[None], periods, axis=0)
     return _response(prop, starts, "floquet")
 
 
-def integrate(system: LinearPeriodicSystem, periods: int, x0: np.ndarray | None = None,
-              segments: int | None = None, tol: float = 1e-6, stop_when_steady: bool = False,
-              propagator: Propagator | None = None) -> Response:
+def integrate(
+    system: LinearPeriodicSystem,
+    periods: int,
+    x0: np.ndarray | None = None,
+    segments: int | None = None,
+    tol: float = 1e-6,
+    stop_when_steady: bool = False,
+    propagator: Propagator | None = None,
+    keep_last: int | None = None,
+) -> Response:
     """Transient response from an initial state, with steady-state detection.
 
     Parameters
@@ -201,6 +225,7 @@ def integrate(system: LinearPeriodicSystem, periods: int, x0: np.ndarray | None 
         relative to their largest values, is below ``tol``.
     stop_when_steady : stop at the first steady period (at least 2 periods).
     propagator : reuse maps built for this system (speeds up repeated calls).
+    keep_last : return only the last ``keep_last`` periods (memory for long runs).
 
     Returns
     -------
@@ -230,5 +255,16 @@ def integrate(system: LinearPeriodicSystem, periods: int, x0: np.ndarray | None 
             steady = k + 1
             if stop_when_steady:
                 break
-    return _response(prop, np.array(starts), "propagator",
-                     steady_from_period=len(starts) if steady is None else steady)
+    starts = np.array(starts)
+    first = (
+        0
+        if keep_last is None
+        else max(0, len(starts) - check_int_range("keep_last", keep_last, 1, 10_000_000))
+    )
+    steady_k = len(starts) if steady is None else steady
+    resp = _response(
+        prop, starts[first:], "propagator", steady_from_period=max(0, steady_k - first)
+    )
+    if first:
+        resp = replace(resp, time=resp.time + first * red.period)
+    return resp

@@ -66,13 +66,15 @@ def cylindrical_mesh_measure(
     return add_measures(*parts, rot, ax)
 
 
-def friction_direction_measure(gear1: Body, gear2: Body, line_angle: float
-                               ) -> dict[Coordinate, float]:
+def friction_direction_measure(
+    gear1: Body, gear2: Body, line_angle: float
+) -> dict[Coordinate, float]:
     """Unit friction-force pattern: +n on gear 1 and -n on gear 2.
 
     ``n`` is the in-plane normal to the line of action, ``n = d`` turned by +90 deg
     (the sliding direction along the profile). A friction stiffness K_f > 0 with
     this pattern pushes gear 1 along +n.
     """
-    return add_measures(gear1.in_plane(line_angle + math.pi / 2),
-                        gear2.in_plane(line_angle + math.pi / 2, -1.0))
+    return add_measures(
+        gear1.in_plane(line_angle + math.pi / 2), gear2.in_plane(line_angle + math.pi / 2, -1.0)
+    )

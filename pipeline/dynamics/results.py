@@ -48,14 +48,24 @@ class Response:
         """Time history (N,) of one named coordinate ``"body.dof"``."""
         return self.q[:, self.dof_names.index(name)]
 
+    def steady_slice(self) -> slice:
+        """Samples of whole steady periods: from ``steady_from`` to the end, without the
+        last sample (it repeats the first one of the period), so means are exact."""
+        end = self.time.size - 1 if self.time.size - self.steady_from > 1 else self.time.size
+        return slice(self.steady_from, end)
+
     def rms_mesh_force(self) -> np.ndarray:
         """RMS of each mesh force over the steady part, shape (n_mesh,), N."""
-        f = self.mesh_force[:, self.steady_from:]
+        f = self.mesh_force[:, self.steady_slice()]
         return np.sqrt(np.mean(f**2, axis=1))
+
+    def mean_mesh_force(self) -> np.ndarray:
+        """Mean of each mesh force over the steady part, shape (n_mesh,), N."""
+        return self.mesh_force[:, self.steady_slice()].mean(axis=1)
 
     def peak_to_peak_dte(self) -> np.ndarray:
         """Peak-to-peak DTE over the steady part, shape (n_mesh,), m."""
-        d = self.dte[:, self.steady_from:]
+        d = self.dte[:, self.steady_from :]
         return d.max(axis=1) - d.min(axis=1)
 
 
@@ -72,6 +82,8 @@ class HarmonicResponse:
     dte_contribution : shape (n_mesh, H), share of each order 1..H in the sum of the
         alternating amplitudes (seed 000 "contribution proportion"), -.
     coefficients : shape (2H+1, n_full), complex Q_h of the full coordinates, h = -H..H.
+    dte_coefficients : shape (2H+1, n_mesh), complex DTE coefficients D_h (m), h = -H..H:
+        ``dte(t) = sum_h D_h exp(i 2 pi h t / T)``.
     """
 
     response: Response
@@ -79,6 +91,7 @@ class HarmonicResponse:
     dte_amplitude: np.ndarray
     dte_contribution: np.ndarray
     coefficients: np.ndarray
+    dte_coefficients: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -93,6 +106,9 @@ class ModalResult:
     kinds : shape (m,) labels ("rigid", "rotational", "translational", "planet",
         "axial", or "" when not classified).
     multiplicity : shape (m,), number of modes sharing the frequency (rel. tol 1e-6).
+    weights : shape (n_full,), sqrt of the mass on each coordinate (kg^0.5 or
+        (kg m^2)^0.5); ``weights * shape`` is the kinetic-energy amplitude used for plots,
+        which puts rotations and translations on one scale.
     """
 
     frequencies: np.ndarray
@@ -100,3 +116,4 @@ class ModalResult:
     dof_names: tuple[str, ...]
     kinds: tuple[str, ...]
     multiplicity: np.ndarray
+    weights: np.ndarray | None = None

@@ -29,8 +29,9 @@ def _antiderivative(signal: PeriodicSignal, sigma: np.ndarray) -> np.ndarray:
     return p * cum[-1] + cum[k] + (v[k] * w + 0.5 * (v1[k] - v[k]) * w * w) / n
 
 
-def segment_means(signal: PeriodicSignal, order: int, phase: float, edges: np.ndarray
-                  ) -> np.ndarray:
+def segment_means(
+    signal: PeriodicSignal, order: int, phase: float, edges: np.ndarray
+) -> np.ndarray:
     """Mean of ``s(order tau - phase)`` over each segment ``[edges[i], edges[i+1]]``.
 
     Parameters
@@ -46,15 +47,17 @@ def segment_means(signal: PeriodicSignal, order: int, phase: float, edges: np.nd
     return np.diff(F) / np.diff(sig)
 
 
-def segment_slopes(signal: PeriodicSignal, order: int, phase: float, edges: np.ndarray
-                   ) -> np.ndarray:
+def segment_slopes(
+    signal: PeriodicSignal, order: int, phase: float, edges: np.ndarray
+) -> np.ndarray:
     """Mean of ``d/dtau s(order tau - phase)`` over each segment, shape (m,)."""
     e = np.asarray(edges, dtype=float)
     return np.diff(signal(order * e - phase)) / np.diff(e)
 
 
-def fourier_coefficients(signal: PeriodicSignal, order: int, phase: float, n_harmonics: int
-                         ) -> np.ndarray:
+def fourier_coefficients(
+    signal: PeriodicSignal, order: int, phase: float, n_harmonics: int
+) -> np.ndarray:
     """Complex coefficients of ``s(order tau - phase)`` for harmonics h = -H..H.
 
     Returns

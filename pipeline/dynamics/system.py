@@ -140,7 +140,8 @@ class LinearPeriodicSystem:
         """Periodic coefficients at system phases ``tau``: shape (n_terms, len(tau))."""
         tau = np.atleast_1d(np.asarray(tau, dtype=float))
         return np.array([t.signal(t.order * tau - t.phase) for t in self.terms]).reshape(
-            len(self.terms), tau.size)
+            len(self.terms), tau.size
+        )
 
     def stiffness(self, tau: float) -> np.ndarray:
         """Full stiffness K(tau), (n, n)."""
@@ -167,7 +168,9 @@ class LinearPeriodicSystem:
         period : new system period in s.
         """
         check_positive("period", period, "s")
-        return replace(self, period=period, carrier_speed=self.carrier_speed * self.period / period)
+        return replace(
+            self, period=period, carrier_speed=self.carrier_speed * self.period / period
+        )
 
     def with_mesh_frequency(self, frequency: float) -> LinearPeriodicSystem:
         """Shorthand for :meth:`with_period` with ``T = 1 / frequency`` (Hz)."""

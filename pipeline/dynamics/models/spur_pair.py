@@ -1,0 +1,128 @@
+"""Six-DOF lateral-torsional spur pair of seed 001.
+
+Coordinates ``pinion.x, pinion.y, pinion.theta, gear.x, gear.y, gear.theta``;
+x lies along the line of action, each gear's theta is positive in its own
+sense of rotation (the gear turns opposite to the pinion), so the dynamic
+transmission error is ``delta = x_p - x_g + r_bp theta_p - r_bg theta_g``
+(seed 001) and the mesh force ``F = k(t) (delta - e) + c delta'`` with
+``c = 2 zeta sqrt(k_mean m_e)``, ``m_e = 1 / (r_bp^2 / I_p + r_bg^2 / I_g)``.
+The pinion carries the input torque T_p, the gear the balancing load
+``T_g = T_p r_bg / r_bp``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from pipeline.dynamics.assembly import Assembly
+from pipeline.dynamics.bodies import Body
+from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
+from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
+from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.validation import check_int_range, check_positive, check_range
+
+
+@dataclass(frozen=True)
+class SpurPairModel:
+    """Inputs of the seed 001 spur pair (defaults: its Table of base parameters).
+
+    Attributes
+    ----------
+    mesh_stiffness : k(tau) over one mesh period, N/m.
+    pinion_teeth : z_p (sets the mesh frequency z_p n_p / 60).
+    base_radius_pinion, base_radius_gear : m.
+    mass_pinion, mass_gear : kg.
+    inertia_pinion, inertia_gear : kg m^2.
+    bearing_stiffness : N/m in x and y for both gears.
+    bearing_damping : N s/m in x and y.
+    damping_ratio : mesh damping ratio zeta.
+    torque : input torque on the pinion, N m.
+    speed : pinion speed, rad/s.
+    transmission_error : e(tau) in m, or ``None``.
+    friction_stiffness : K_f(tau) in N/m (seed 000 eq. 16), or ``None``.
+    friction_torque_pinion, friction_torque_gear : K_Tf(tau) in N m/m, or ``None``.
+    torsional_only : keep only the two rotations (2-inertia model).
+    """
+
+    mesh_stiffness: PeriodicSignal
+    pinion_teeth: int = 50
+    base_radius_pinion: float = 0.075 * math.cos(math.radians(20.0))
+    base_radius_gear: float = 0.075 * math.cos(math.radians(20.0))
+    mass_pinion: float = 2.52
+    mass_gear: float = 2.52
+    inertia_pinion: float = 7.4e-3
+    inertia_gear: float = 7.4e-3
+    bearing_stiffness: float = 1.0e8
+    bearing_damping: float = 100.0
+    damping_ratio: float = 0.07
+    torque: float = 340.0
+    speed: float = 2340.0 * 2 * math.pi / 60
+    transmission_error: PeriodicSignal | None = None
+    friction_stiffness: PeriodicSignal | None = None
+    friction_torque_pinion: PeriodicSignal | None = None
+    friction_torque_gear: PeriodicSignal | None = None
+    torsional_only: bool = False
+
+    def __post_init__(self) -> None:
+        check_int_range("pinion_teeth", self.pinion_teeth, 5, 10_000)
+        for f, u in (
+            ("base_radius_pinion", "m"),
+            ("base_radius_gear", "m"),
+            ("mass_pinion", "kg"),
+            ("mass_gear", "kg"),
+            ("inertia_pinion", "kg m^2"),
+            ("inertia_gear", "kg m^2"),
+            ("torque", "N m"),
+            ("speed", "rad/s"),
+        ):
+            check_positive(f, getattr(self, f), u)
+        check_range("bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
+        check_range("bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
+
+    @property
+    def mesh_period(self) -> float:
+        """T_m = 2 pi / (z_p Omega_p), s."""
+        return 2 * math.pi / (self.pinion_teeth * self.speed)
+
+    def assembly(self) -> Assembly:
+        """Bodies, bearings, mesh and torques of the pair."""
+        dofs = ("theta",) if self.torsional_only else ("x", "y", "theta")
+        p = Body("pinion", self.mass_pinion, self.inertia_pinion, dofs)
+        g = Body("gear", self.mass_gear, self.inertia_gear, dofs)
+        measure = cylindrical_mesh_measure(
+            p, g, 0.0, self.base_radius_pinion, self.base_radius_gear, spin1=1, spin2=-1
+        )
+        friction = []
+        if self.friction_stiffness is not None and not self.torsional_only:
+            friction.append(
+                FrictionLoad(self.friction_stiffness, friction_direction_measure(p, g, 0.0))
+            )
+        if self.friction_torque_pinion is not None:
+            friction.append(FrictionLoad(self.friction_torque_pinion, {("pinion", "theta"): 1.0}))
+        if self.friction_torque_gear is not None:
+            friction.append(FrictionLoad(self.friction_torque_gear, {("gear", "theta"): 1.0}))
+        couplings: list[object] = [
+            GearMesh(
+                "mesh",
+                measure,
+                self.mesh_stiffness,
+                self.damping_ratio,
+                transmission_error=self.transmission_error,
+                friction=tuple(friction),
+            ),
+        ]
+        if not self.torsional_only:
+            for b in ("pinion", "gear"):
+                couplings.append(
+                    Bearing(
+                        b,
+                        {"x": self.bearing_stiffness, "y": self.bearing_stiffness},
+                        {"x": self.bearing_damping, "y": self.bearing_damping},
+                    )
+                )
+        loads = [
+            Load("pinion", "theta", self.torque),
+            Load("gear", "theta", -self.torque * self.base_radius_gear / self.base_radius_pinion),
+        ]
+        return Assembly((p, g), couplings, loads, period=self.mesh_period, name="spur-pair")

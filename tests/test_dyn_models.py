@@ -1,0 +1,153 @@
+"""Split-torque model (seed 000), analytical mesh inputs, modal damping, groove input.
+
+Exact references: static (mean) equilibrium of every shaft - the period mean of the
+inertia and damping forces of a periodic response is zero, so the mean mesh forces
+balance the torques exactly; the damping ratio of a single elastic mode under
+constant modal damping; the sign conventions of
+:func:`pipeline.dynamics.excitation.constant_pair_excitation`.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from pipeline.dynamics.excitation import constant_pair_excitation
+from pipeline.dynamics.harmonic_balance import harmonic_balance
+from pipeline.dynamics.integrate import floquet_multipliers
+from pipeline.dynamics.mesh_input import analytical_excitation
+from pipeline.dynamics.modal import modal_analysis
+from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
+from pipeline.dynamics.models.planetary import PlanetaryModel
+from pipeline.dynamics.models.seed000_case import seed000_model
+from pipeline.dynamics.models.spur_pair import SpurPairModel
+from pipeline.dynamics.multirate import superpose_stages
+from pipeline.dynamics.reduction import reduce_rigid_body_modes
+from pipeline.fem.groove.result import GrooveStiffness
+from pipeline.geometry.gear import GearSpec
+from pipeline.geometry.pair import GearPair
+from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
+from pipeline.stiffness.periodic import PeriodicSignal
+
+
+@pytest.fixture(scope="module")
+def split_model():
+    return seed000_model(friction=False, positions=90, slices=12)
+
+
+def test_split_torque_has_40_dof_and_shafts_balance(split_model):
+    """40 DOF (seed 000 eq. 1); mean mesh forces balance every shaft's torque.
+
+    Exact in the harmonic balance; the sampled mean of k(t) dte(t) over 512 points
+    aliases the stiffness harmonics above 512 - H, hence rel. 1e-5.
+    """
+    m = split_model
+    s = m.stage_system("split")
+    assert s.n == 40
+    r = harmonic_balance(s, 6).response
+    F = dict(zip(r.mesh_names, r.mean_mesh_force(), strict=True))
+    assert all(f > 0 for f in F.values())
+    sp, cf = m.split_stage, m.confluence_stage
+    for b in "LR":
+        # bevel gear shaft -> split pinion: T_in r2 / r1 = (F_s1 + F_s2) r_b,sp
+        t_bg = m.input_torque * m.input_stage.base_radius_driven / m.input_stage.base_radius_driver
+        assert (F[f"split1{b}"] + F[f"split2{b}"]) * sp.base_radius_driver == pytest.approx(
+            t_bg, rel=1e-5
+        )
+        for j in (1, 2):  # each dual-gear shaft: split gear torque = confluence pinion torque
+            assert F[f"split{j}{b}"] * sp.base_radius_driven == pytest.approx(
+                F[f"conf{j}{b}"] * cf.base_radius_driver, rel=1e-5
+            )
+
+
+def test_superposition_reproduces_each_stage_solution(split_model):
+    """One stage alone: the superposed DTE equals that stage's harmonic-balance DTE."""
+    s = split_model.stage_system("confluence")
+    hr = harmonic_balance(s, 5)
+    T = s.period
+    mr = superpose_stages({"confluence": s}, 5, T, samples=65)
+    ref = np.array([np.interp(mr.time, hr.response.time, d) for d in hr.response.dte])
+    assert np.abs(mr.dte - ref).max() < 1e-3 * np.abs(ref).max()
+
+
+def test_analytical_friction_signs_match_dynamics_convention():
+    """K_f, KT_f1, KT_f2 from the stiffness stage follow the dynamics' sign convention.
+
+    Reference: constant_pair_excitation (constant pair stiffness, same contact path);
+    the analytical coefficients differ in magnitude (pair stiffness varies along the
+    path) but must correlate positively with it.
+    """
+    g = GearSpec(
+        teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02, bore_radius=0.021
+    )
+    pair = GearPair(g, g)
+    ex = analytical_excitation(pair, FrictionModel(0.05), OperatingPoint(340.0, 245.0), 360)
+    ref = constant_pair_excitation(
+        pair.s_start,
+        pair.s_end,
+        pair.s_pitch,
+        pair.base_pitch,
+        pair.t1t2,
+        ex.stiffness.mean() / 1.75,
+        0.05,
+        360,
+    )
+    for got, want in zip(
+        (ex.friction_torque_pinion, ex.friction_torque_gear), ref[2:], strict=True
+    ):
+        assert np.corrcoef(got.values, want.values)[0, 1] > 0.9
+    assert ex.mesh_period == pytest.approx(2 * math.pi / (50 * 245.0))
+
+
+def test_constant_modal_damping_gives_the_ratio():
+    """2-inertia pair, modal damping 0.03: the elastic mode's damping ratio is 0.03 exactly."""
+    m = SpurPairModel(PeriodicSignal(np.full(8, 3e8)), torsional_only=True, damping_ratio=0.0)
+    a = m.assembly()
+    from dataclasses import replace
+
+    s = reduce_rigid_body_modes(replace(a, modal_damping_ratio=0.03).assemble())
+    lam = np.linalg.eigvals(
+        np.block([[np.zeros((1, 1)), np.eye(1)], [-s.mean_stiffness() / s.M, -s.C / s.M]])
+    )
+    assert -lam[0].real / abs(lam[0]) == pytest.approx(0.03, rel=1e-9)
+
+
+def test_rigid_rotation_stays_free_with_carrier_speed():
+    """Lin-Parker set at 300 rad/s: the rigid rotation is removed and the damped set is stable."""
+    k = PeriodicSignal(np.r_[np.full(10, 5e8), np.full(10, 4e8)])
+    m = PlanetaryModel(
+        n_planets=4, carrier_speed=300.0, k_sun_mesh=k, k_ring_mesh=k, damping_ratio=0.05
+    )
+    s = m.assembly().assemble()
+    assert reduce_rigid_body_modes(s).n == s.n - 1
+    assert np.abs(floquet_multipliers(s, 40)).max() < 1.0
+
+
+def test_herringbone_accepts_groove_stiffness_result():
+    """A GrooveStiffness (issue 4 result) gives the same model as its 12 x 12 matrix."""
+    K = np.zeros((12, 12))
+    for i, k in ((0, 5e9), (1, 5e9), (2, 4e9), (3, 1e8), (4, 1e8), (5, 7e7)):
+        K[np.ix_([i, i + 6], [i, i + 6])] += k * np.array([[1, -1], [-1, 1]])
+    gs = GrooveStiffness(
+        torsional_stiffness=7e7,
+        equivalent_Kj=7e7 * 0.2,
+        l_LR=0.2,
+        coupling_matrix=K,
+        node_z=(-0.1, 0.1),
+        sun_teeth=21,
+        teeth_model="root_cylinder",
+        coupling="rigid",
+        n_dof=0,
+        solver="-",
+        mesh_size=0.01,
+    )
+    base = dict(n_planets=3, base_helix_angle=math.radians(8))
+    a = modal_analysis(HerringbonePlanetaryModel(groove=gs, **base).assembly().assemble())
+    b = modal_analysis(HerringbonePlanetaryModel(groove=K, **base).assembly().assemble())
+    np.testing.assert_allclose(a.frequencies, b.frequencies, rtol=1e-12)
+    c = modal_analysis(
+        HerringbonePlanetaryModel(groove=7e7, groove_translational=(5e9, 5e9, 4e9), **base)
+        .assembly()
+        .assemble()
+    )
+    np.testing.assert_allclose(a.frequencies, c.frequencies, rtol=1e-9, atol=1e-6)

@@ -1,0 +1,153 @@
+"""Planetary sets: Lin and Parker (1999) published free vibration, herringbone reductions.
+
+Published reference: J. Lin and R. G. Parker, "Analytical characterization of
+the unique properties of planetary gear free vibration", J. Vib. Acoust. 121
+(1999) 316-321, Table 1 (example system: m_s 0.4, m_r 2.35, m_c 5.43, m_p 0.66 kg;
+I/r^2 0.39, 3.00, 6.29, 0.61 kg; base diameters 77.4, 275.0, 100.3 mm, carrier
+176.8 mm; k_sp = k_rp = 5e8, bearings 1e8 N/m, k_ru = 1e9 N/m, k_su = k_cu = 0;
+pressure angle 24.6 deg) and Table 2 (natural frequencies in Hz for 3, 4, 5
+planets), as transcribed below. The PlanetaryModel defaults are that Table 1.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from pipeline.dynamics.modal import modal_analysis
+from pipeline.dynamics.models.herringbone_planetary import (
+    HerringbonePlanetaryModel,
+    condense_groove_matrix,
+)
+from pipeline.dynamics.models.planetary import PlanetaryModel
+
+ROT = [0.0, 1475.7, 1930.3, 2658.3, 7462.8, 11775.3]
+LIN_PARKER_1999 = {
+    3: dict(rot=ROT, trans=[743.2, 1102.4, 1896.0, 2276.4, 6986.3, 9647.9], planet=[]),
+    4: dict(
+        rot=[0.0, 1536.6, 1970.6, 2625.7, 7773.6, 13071.1],
+        trans=[727.0, 1091.0, 1892.8, 2342.5, 7189.9, 10437.6],
+        planet=[1808.2, 5963.8, 6981.7],
+    ),
+    5: dict(
+        rot=[0.0, 1567.4, 2006.1, 2614.8, 8065.4, 14253.1],
+        trans=[710.0, 1072.0, 1888.1, 2425.3, 7382.4, 11172.3],
+        planet=[1808.2, 5963.8, 6981.7],
+    ),
+}
+
+
+@pytest.mark.parametrize("n_planets", [3, 4, 5])
+def test_lin_parker_1999_frequencies_and_mode_types(n_planets):
+    """Every frequency within 0.05 % of Table 2, with its type and multiplicity.
+
+    Rotational modes are simple (one rigid-body mode at 0 Hz since k_su = k_cu = 0),
+    translational modes come in pairs, planet modes have multiplicity N - 3.
+    """
+    ref = LIN_PARKER_1999[n_planets]
+    m = PlanetaryModel(n_planets=n_planets)
+    res = m.classify(modal_analysis(m.assembly().assemble()))
+    f, kinds = res.frequencies, np.array(res.kinds)
+    for kind, values, mult in (
+        ("rotational", ref["rot"][1:], 1),
+        ("translational", ref["trans"], 2),
+        ("planet", ref["planet"], n_planets - 3),
+    ):
+        got = f[kinds == kind]
+        assert got.size == mult * len(values)
+        np.testing.assert_allclose(np.sort(got), np.sort(np.repeat(values, mult)), rtol=5e-4)
+        assert np.all(res.multiplicity[kinds == kind] == mult)
+    assert np.count_nonzero(kinds == "rigid") == 1 and f[0] == 0.0
+
+
+@pytest.mark.parametrize("n_planets", [3, 4, 5])
+def test_herringbone_without_helix_groove_or_axial_motion_is_planar(n_planets):
+    """No helix, rigid groove, no z: the two halves act as one planar gear."""
+    planar = modal_analysis(PlanetaryModel(n_planets=n_planets).assembly().assemble())
+    hb = HerringbonePlanetaryModel(n_planets=n_planets, axial=False).assembly().assemble()
+    assert len(hb.dof_names) == 6 * (n_planets + 3)
+    np.testing.assert_allclose(
+        modal_analysis(hb).frequencies, planar.frequencies, rtol=1e-10, atol=1e-6
+    )
+
+
+def test_herringbone_has_8_dof_per_member_and_planar_modes_with_axial_dofs():
+    """With z DOFs but no helix, the in-plane frequencies are still the planar ones."""
+    N = 4
+    planar = modal_analysis(PlanetaryModel(n_planets=N).assembly().assemble()).frequencies
+    s = (
+        HerringbonePlanetaryModel(
+            n_planets=N,
+            half_coupling=(1e12, 1e12, 1e12, 1e10),
+            groove=1e10,
+            groove_translational=(1e12, 1e12, 1e12),
+        )
+        .assembly()
+        .assemble()
+    )
+    assert len(s.dof_names) == s.n == 8 * (N + 3)
+    res = modal_analysis(s)
+    inplane = [
+        k
+        for k in range(res.frequencies.size)
+        if np.abs(
+            res.shapes[[i for i, d in enumerate(res.dof_names) if d.endswith(".z")], k]
+        ).max()
+        < 1e-8 * np.abs(res.shapes[:, k]).max()
+    ]
+    f = np.sort(res.frequencies[inplane])[: planar.size]
+    np.testing.assert_allclose(f, planar, rtol=2e-3, atol=1e-6)
+
+
+def test_groove_flexibility_lowers_frequencies_monotonically():
+    """Softer groove (torsion) never raises a natural frequency, and lowers some."""
+    base = dict(n_planets=4, base_helix_angle=math.radians(8))
+    fs = [
+        modal_analysis(
+            HerringbonePlanetaryModel(groove=k, **base).assembly().assemble()
+        ).frequencies
+        for k in (1e9, 1e7, 3e6, 1e6)
+    ]
+    for a, b in zip(fs, fs[1:], strict=False):
+        assert np.all(b <= a * (1 + 1e-9))
+    assert np.any(fs[-1] < 0.9 * fs[0])  # the sun L/R torsion mode drops
+
+
+def _beam12(E, G, A, I, J, L):
+    """Euler-Bernoulli 12 x 12 beam on [ux, uy, uz, rx, ry, rz] x 2, axis z."""
+    K = np.zeros((12, 12))
+    ax, tor = E * A / L, G * J / L
+    for i, k in ((2, ax), (5, tor)):
+        K[np.ix_([i, i + 6], [i, i + 6])] += k * np.array([[1, -1], [-1, 1]])
+    b = (
+        E
+        * I
+        / L**3
+        * np.array(
+            [
+                [12, 6 * L, -12, 6 * L],
+                [6 * L, 4 * L**2, -6 * L, 2 * L**2],
+                [-12, -6 * L, 12, -6 * L],
+                [6 * L, 2 * L**2, -6 * L, 4 * L**2],
+            ]
+        )
+    )
+    for u, r, sgn in ((0, 4, 1), (1, 3, -1)):  # ux with ry, uy with -rx
+        idx = [u, r, u + 6, r + 6]
+        s = np.diag([1, sgn, 1, sgn])
+        K[np.ix_(idx, idx)] += s @ b @ s
+    return K
+
+
+def test_groove_matrix_drop_and_condense_of_a_beam():
+    """Beam element: 'drop' keeps 12EI/L^3 laterally; 'condense' leaves no lateral stiffness."""
+    E, G, A, I, J, L = 2.06e11, 7.9e10, 0.02, 3e-5, 6e-5, 0.2
+    K12 = _beam12(E, G, A, I, J, L)
+    d = condense_groove_matrix(K12, "drop")
+    c = condense_groove_matrix(K12, "condense")
+    assert d[0, 0] == pytest.approx(12 * E * I / L**3) and d[3, 7] == pytest.approx(-G * J / L)
+    assert abs(c[0, 0]) < 1e-6 * d[0, 0] and c[3, 3] == pytest.approx(G * J / L)
+    assert c[2, 6] == pytest.approx(-E * A / L)
+    # a scalar torsional groove with tied translations equals the matrix with stiff translations
+    f_mat = modal_analysis(HerringbonePlanetaryModel(groove=K12 * 1.0).assembly().assemble())
+    assert np.all(np.isfinite(f_mat.frequencies))
