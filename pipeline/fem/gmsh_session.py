@@ -64,8 +64,9 @@ class TetMeshData:
     cells : (n_cell_nodes, n_cells) node indices; 4 rows (linear) or 10 rows
         (quadratic, scikit-fem MeshTet2 order: vertices then edges (0,1) (1,2)
         (0,2) (0,3) (1,3) (2,3)).
-    surfaces : name -> (3, n_faces) vertex indices of the boundary triangles of a
-        named surface group.
+    surfaces : name -> (3, n_faces) or, for quadratic meshes, (6, n_faces) node
+        indices of the boundary triangles of a named surface group (vertices, then
+        the mid-edge nodes of edges (0,1) (1,2) (2,0)).
     volumes : name -> (n,) indices into the columns of ``cells``.
     """
 
@@ -126,9 +127,9 @@ def extract_tet_mesh(
         for s in tags:
             _, nodes = gmsh.model.mesh.getElementsByType(tri_type, s)
             nn = 6 if order == 2 else 3
-            faces.append(renum[lookup[nodes.astype(np.int64)].reshape(-1, nn)[:, :3]])
-        surfaces[name] = np.ascontiguousarray(np.vstack(faces).T) if faces else np.zeros((3, 0),
-                                                                                        int)
+            faces.append(renum[lookup[nodes.astype(np.int64)].reshape(-1, nn)])
+        surfaces[name] = (np.ascontiguousarray(np.vstack(faces).T) if faces
+                          else np.zeros((6 if order == 2 else 3, 0), dtype=np.int64))
     volumes = {
         name: np.concatenate([tet_owner[v] for v in tags]) for name, tags in volume_groups.items()
     }

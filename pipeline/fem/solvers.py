@@ -132,10 +132,11 @@ def solve_spd(
     if method != "amg-cg":
         f = factorize_spd(A, method)
         return SolveResult(f.solve(b), f.method, time.perf_counter() - t0)
-    if not pyamg_available():
-        raise InputError("solver.method = 'amg-cg' needs pyamg")
+    # Argument errors first, so they are reported whether or not pyamg is installed.
     if near_nullspace is None:
         raise InputError("solver.method = 'amg-cg' needs the rigid-body near_nullspace")
+    if not pyamg_available():
+        raise InputError("solver.method = 'amg-cg' needs pyamg (not installed)")
     import pyamg
 
     ml = pyamg.smoothed_aggregation_solver(sp.csr_matrix(A), B=near_nullspace, max_coarse=2000)
@@ -145,7 +146,7 @@ def solve_spd(
     for k in range(b2.shape[1]):
         count = [0]
         x, info = spla.cg(A, b2[:, k], rtol=rtol, M=M, maxiter=2000,
-                          callback=lambda _x: count.__setitem__(0, count[0] + 1))
+                          callback=lambda _x, c=count: c.__setitem__(0, c[0] + 1))
         if info != 0:
             raise RuntimeError(f"amg-cg did not converge to rtol={rtol} in 2000 iterations")
         xs.append(x)

@@ -4,7 +4,6 @@ All lengths in m, angles in rad.
 """
 
 from pipeline.geometry.gear import GearSpec, Material
-
 from pipeline.geometry.pair import GearPair
 
 __all__ = ["GearSpec", "Material", "GearPair"]

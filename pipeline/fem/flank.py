@@ -1,0 +1,146 @@
+"""Points on the involute flanks of a sector: position, normal, roll/arc coordinate, depth.
+
+A flank point is given by its tooth ``k`` of the sector, its side (``"right"``:
+the clockwise flank, x >= 0 in the tooth frame; ``"left"``) and its radius ``r``
+(m) on the involute. In the tooth frame (centre line along +y) the right flank
+point is ``r (sin psi, cos psi)`` with ``psi = gear.half_tooth_angle(r)``; the
+outward normal (out of the tooth material) is perpendicular to the involute and
+tangent to the base circle. The *arc coordinate* along the involute from the
+base circle is ``t = (r^2 - r_b^2) / (2 r_b)`` (the roll length squared over
+``2 r_b``), the *depth* ``h`` is the distance from the point along the inward
+normal to the tooth centre line (h_k of seed 004 eq. 24, Weber-Banaschek).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pipeline.geometry.gear import GearSpec
+from pipeline.validation import InputError, check_choice
+
+SIDES = ("right", "left")
+
+
+@dataclass(frozen=True)
+class FlankPoints:
+    """``n`` candidate contact points on the flanks of a sector.
+
+    Attributes
+    ----------
+    tooth : (n,) int, sector tooth index.
+    side : (n,) int, +1 right flank, -1 left flank.
+    radius : (n,) radius on the involute, m.
+    position : (n, 2) global coordinates, m.
+    normal : (n, 2) outward unit normal (out of the tooth material).
+    tangent : (n, 2) unit tangent, pointing towards the tip.
+    arc : (n,) arc coordinate along the involute from the base circle, m.
+    depth : (n,) distance along the inward normal to the tooth centre line, m.
+    """
+
+    tooth: np.ndarray
+    side: np.ndarray
+    radius: np.ndarray
+    position: np.ndarray
+    normal: np.ndarray
+    tangent: np.ndarray
+    arc: np.ndarray
+    depth: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.radius.size)
+
+    def same_flank(self) -> np.ndarray:
+        """(n, n) bool: points i and j lie on the same flank (tooth and side)."""
+        return (self.tooth[:, None] == self.tooth[None, :]) & (self.side[:, None] == self.side)
+
+
+def roll_length(gear: GearSpec, radius: ArrayLike) -> np.ndarray:
+    """Roll length (curvature radius of the involute) ``sqrt(r^2 - r_b^2)`` at ``radius``, m."""
+    r = np.asarray(radius, dtype=float)
+    return np.sqrt(np.maximum(r * r - gear.base_radius**2, 0.0))
+
+
+def radius_of_roll(gear: GearSpec, roll: ArrayLike) -> np.ndarray:
+    """Radius (m) of the involute point with roll length ``roll`` (m)."""
+    return np.hypot(np.asarray(roll, dtype=float), gear.base_radius)
+
+
+def flank_points(gear: GearSpec, teeth: int, tooth: ArrayLike, radius: ArrayLike,
+                 side: str = "right") -> FlankPoints:
+    """Geometry of involute points of a ``teeth``-tooth sector (tooth angles as in sector2d).
+
+    Parameters
+    ----------
+    gear : the gear.
+    teeth : number of teeth of the sector.
+    tooth : (n,) sector tooth indices in ``[0, teeth)``.
+    radius : (n,) radii on the involute, m, between the base and tip circles.
+    side : "right" or "left" (all points).
+    """
+    check_choice("flank.side", side, SIDES)
+    k = np.asarray(tooth, dtype=int).reshape(-1)
+    r = np.asarray(radius, dtype=float).reshape(-1)
+    if k.size != r.size:
+        raise InputError(f"flank points: {k.size} tooth indices but {r.size} radii")
+    if np.any((k < 0) | (k >= teeth)):
+        raise InputError(f"flank points: tooth index outside [0, {teeth - 1}]")
+    rb, ra = gear.base_radius, gear.tip_radius_
+    lo, hi = (rb, ra) if not gear.internal else (max(rb, ra), gear.root_radius)
+    if np.any((r < lo * (1 - 1e-12)) | (r > hi * (1 + 1e-12))):
+        raise InputError(f"flank radius outside the involute [{lo:.6g}, {hi:.6g}] m: "
+                         f"{r.min():.6g} .. {r.max():.6g} m")
+    psi = np.array([gear.half_tooth_angle(float(v)) for v in r])
+    dpsi = np.sqrt(np.maximum(r * r - rb * rb, 0.0)) / (rb * r)  # tan(alpha)/r
+    dpsi = dpsi if gear.internal else -dpsi
+    x, y = r * np.sin(psi), r * np.cos(psi)
+    tx, ty = np.sin(psi) + r * np.cos(psi) * dpsi, np.cos(psi) - r * np.sin(psi) * dpsi
+    nrm = np.hypot(tx, ty)
+    tx, ty = tx / nrm, ty / nrm
+    if gear.internal:  # radius decreases towards the tip
+        tx, ty = -tx, -ty
+    nx, ny = ty, -tx
+    flip = nx < 0
+    nx, ny = np.where(flip, -nx, nx), np.where(flip, -ny, ny)
+    depth = x / nx
+    sgn = 1.0 if side == "right" else -1.0
+    loc_p = np.column_stack([sgn * x, y])
+    loc_n = np.column_stack([sgn * nx, ny])
+    loc_t = np.column_stack([sgn * tx, ty])
+    ang = (k - (teeth - 1) / 2.0) * 2.0 * math.pi / gear.teeth
+    c, s = np.cos(ang), np.sin(ang)
+
+    def rot(v: np.ndarray) -> np.ndarray:
+        return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
+
+    arc = (r * r - rb * rb) / (2.0 * rb)
+    return FlankPoints(k, np.full(k.size, int(sgn)), r, rot(loc_p), rot(loc_n), rot(loc_t),
+                       arc, depth)
+
+
+def active_radii(gear: GearSpec, n: int, lo: float | None = None, hi: float | None = None,
+                 margin: float | None = None) -> np.ndarray:
+    """``n`` radii (m) equally spaced in roll length between ``lo`` and ``hi``.
+
+    Defaults: ``lo`` the larger of the base radius and ``root + 1.1 m_n`` (external;
+    internal: the tip radius), ``hi`` the tip radius (internal: ``root - 1.1 m_n``);
+    the end points are kept ``margin`` (m of arc length, default 0.15 m_n, i.e.
+    1.5 load-patch half-widths) inside, so no load patch crosses the tip corner.
+    """
+    rb, ra = gear.base_radius, gear.tip_radius_
+    if gear.internal:
+        lo = lo if lo is not None else max(ra, rb)
+        hi = hi if hi is not None else gear.root_radius - 1.1 * gear.module
+    else:
+        lo = lo if lo is not None else max(rb, gear.root_radius + 1.1 * gear.module)
+        hi = hi if hi is not None else ra
+    margin = 0.15 * gear.module if margin is None else margin
+    a0 = (lo * lo - rb * rb) / (2 * rb) + margin
+    a1 = (hi * hi - rb * rb) / (2 * rb) - margin
+    if a1 <= a0:
+        raise InputError(f"no involute left between {lo:.6g} m and {hi:.6g} m after margins")
+    arcs = np.linspace(a0, a1, n)
+    return np.sqrt(2 * rb * arcs + rb * rb)

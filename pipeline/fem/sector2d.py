@@ -1,0 +1,285 @@
+"""2D gear sector meshes: several consecutive teeth with the exact profile, down to the bore.
+
+The sector is bounded by the tooth outline of ``teeth`` consecutive teeth
+(:func:`pipeline.geometry.profile.gear_outline`: involute, trochoidal fillet,
+root and tip circles), two radial *cut* lines through the middles of the outer
+tooth spaces, and the *bore* circle (external gear: ``gear.bore_radius``; a
+solid gear gets a hub circle, see :func:`inner_radius`; internal gear: the outer
+rim circle ``gear.bore_radius``). Quadratic (6-node) triangles, graded from
+``size_flank`` on the whole tooth outline to ``size_body`` a distance
+``grading`` away, so flanks and fillets are refined.
+
+Tooth ``k`` (``k = 0 .. teeth-1``) is centred on the polar angle
+``pi/2 + (k - (teeth-1)/2) 2 pi/z``: tooth 0 is the most clockwise. Its *right*
+flank is the clockwise side (x >= 0 in the tooth's own frame). Boundary groups
+(3-node edges): ``right{k}`` / ``left{k}`` (each from the middle of the tooth
+space over fillet and involute to the middle of the tip land), ``bore``,
+``cut_right`` (clockwise cut) and ``cut_left``.
+
+Meshes are cached in ``meshes/`` keyed by the gear and the mesh settings
+(:mod:`pipeline.fem.cache`); the 2D data travel in a ``TetMeshData`` container
+(points (2, n), cells (6, m), boundary edges (3, k) as its ``surfaces``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from skfem import MeshTri2
+
+from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
+from pipeline.geometry.gear import GearSpec
+from pipeline.validation import InputError, check_int_range, check_range
+
+CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
+
+
+@dataclass(frozen=True)
+class SectorMeshSettings:
+    """Mesh settings of a 2D sector.
+
+    Attributes
+    ----------
+    teeth : consecutive teeth in the sector (>= 1, < z/2).
+    size_flank : element size on the tooth outline, m.
+    size_body : element size in the rim and far from the outline, m.
+    grading : distance from the outline over which the size grows, m.
+    profile_points : involute points of the profile polyline (the fillet gets as many).
+    inner_radius : bore (hub) radius of the mesh, m; None uses :func:`inner_radius`.
+    """
+
+    teeth: int = 3
+    size_flank: float = 1e-4
+    size_body: float = 1e-3
+    grading: float = 3e-3
+    profile_points: int = 60
+    inner_radius: float | None = None
+
+    def __post_init__(self) -> None:
+        check_int_range("sector.teeth", self.teeth, 1, 1000)
+        check_range("sector.size_flank", self.size_flank, 1e-7, 1.0, unit="m")
+        check_range("sector.size_body", self.size_body, self.size_flank, 10.0, unit="m")
+        check_range("sector.grading", self.grading, 0.0, 10.0, unit="m")
+        check_int_range("sector.profile_points", self.profile_points, 8, 10000)
+
+    @classmethod
+    def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0
+                 ) -> SectorMeshSettings:
+        """Settings scaled by the module: flank size m_n / (12 refinement), body m_n / 2.5."""
+        check_range("sector.refinement", refinement, 0.05, 100.0)
+        m = gear.module
+        return cls(teeth=teeth, size_flank=m / (12.0 * refinement),
+                   size_body=max(m / 2.5 / math.sqrt(refinement), m / (12.0 * refinement)),
+                   grading=1.2 * m, profile_points=max(60, int(40 * refinement)))
+
+
+@dataclass(frozen=True, eq=False)
+class SectorMesh2D:
+    """A scikit-fem quadratic triangle mesh of a gear sector with named boundary edges.
+
+    Attributes
+    ----------
+    mesh : ``MeshTri2`` (curved quadratic triangles), lengths in m.
+    facets : name -> (n,) facet indices of ``mesh`` (groups of the module docstring).
+    gear : the gear.
+    settings : the mesh settings.
+    inner_radius : radius of the bore boundary, m.
+    """
+
+    mesh: MeshTri2
+    facets: dict
+    gear: GearSpec
+    settings: SectorMeshSettings
+    inner_radius: float
+
+    def tooth_angle(self, k: int) -> float:
+        """Polar angle of the centre line of tooth ``k``, rad."""
+        n = self.settings.teeth
+        return math.pi / 2 + (k - (n - 1) / 2.0) * 2.0 * math.pi / self.gear.teeth
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.mesh.doflocs.shape[1])
+
+
+def inner_radius(gear: GearSpec, settings: SectorMeshSettings) -> float:
+    """Radius of the sector's inner (external gear) or outer (internal gear) boundary, m.
+
+    ``settings.inner_radius`` if given, else ``gear.bore_radius`` if > 0, else (solid
+    external gear) a hub at ``max(0.25 r_f, r_f - 6 m_n)``: a solid gear has no
+    bore, and a sector cannot reach the centre.
+    """
+    if settings.inner_radius is not None:
+        r = settings.inner_radius
+    elif gear.bore_radius > 0:
+        r = gear.bore_radius
+    else:
+        r = max(0.25 * gear.root_radius, gear.root_radius - 6.0 * gear.module)
+    rf = gear.root_radius
+    if gear.internal and r <= rf * 1.001:
+        raise InputError(f"sector rim radius {r:.6g} m must exceed the root radius {rf:.6g} m")
+    if not gear.internal and r >= rf * 0.999:
+        raise InputError(f"sector bore radius {r:.6g} m must be below the root radius {rf:.6g} m")
+    return float(r)
+
+
+def _split_outline(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, np.ndarray]]:
+    """The outline as (group name, (m, 2) polyline) pieces, CCW, split at flank ends/corners."""
+    from pipeline.geometry.profile import gear_outline
+
+    pts = gear_outline(gear, teeth=teeth, points=points)
+    z = gear.teeth
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    cuts = [0]
+    names = []
+    for k in range(teeth):
+        centre = math.pi / 2 + (k - (teeth - 1) / 2.0) * 2.0 * math.pi / z
+        i_tip = int(np.argmin(np.abs(ang - centre)))
+        i_end = int(np.argmin(np.abs(ang - (centre + math.pi / z))))
+        cuts += [i_tip, i_end]
+        names += [f"right{k}", f"left{k}"]
+    pieces = []
+    for (a, b), name in zip(zip(cuts[:-1], cuts[1:], strict=True), names, strict=True):
+        seg = pts[a:b + 1]
+        # split further at sharp corners (tip corner) so splines do not overshoot
+        d = np.diff(seg, axis=0)
+        turn = np.abs(np.degrees(np.diff(np.unwrap(np.arctan2(d[:, 1], d[:, 0])))))
+        corners = [0, *(np.flatnonzero(turn > CORNER_DEG) + 1).tolist(), len(seg) - 1]
+        for c0, c1 in zip(corners[:-1], corners[1:], strict=True):
+            if c1 > c0:
+                pieces.append((name, seg[c0:c1 + 1]))
+    return pieces
+
+
+def build_sector_mesh(gear: GearSpec, settings: SectorMeshSettings) -> TetMeshData:
+    """Mesh the sector in Gmsh (quadratic triangles); returns 2D data (see module docstring)."""
+    full = settings.teeth == gear.teeth
+    if 2 * settings.teeth >= gear.teeth and not full:
+        raise InputError(f"sector.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
+                         f"or = z (whole gear)")
+    r_in = inner_radius(gear, settings)
+    pieces = _split_outline(gear, settings.teeth, settings.profile_points)
+    with gmsh_session() as gmsh:
+        geo = gmsh.model.geo
+        first = geo.addPoint(*pieces[0][1][0], 0.0)
+        prev = first
+        curves: dict[str, list[int]] = {}
+        loop = []
+        for i, (name, seg) in enumerate(pieces):
+            closing = full and i == len(pieces) - 1  # the whole gear: end on the first point
+            tags = [prev] + [geo.addPoint(x, y, 0.0) for x, y in seg[1:-1 if closing else None]]
+            tags += [first] if closing else []
+            prev = tags[-1]
+            c = geo.addSpline(tags) if len(tags) > 2 else geo.addLine(*tags)
+            curves.setdefault(name, []).append(c)
+            loop.append(c)
+        outline_curves = list(loop)
+        centre = geo.addPoint(0.0, 0.0, 0.0)
+        if full:
+            circle = [geo.addPoint(r_in * math.cos(a), r_in * math.sin(a), 0.0)
+                      for a in (0.0, 2 * math.pi / 3, 4 * math.pi / 3)]
+            bore_arcs = [geo.addCircleArc(circle[i], centre, circle[(i + 1) % 3])
+                         for i in range(3)]
+            surf = geo.addPlaneSurface([geo.addCurveLoop(loop), geo.addCurveLoop(bore_arcs)])
+            geo.synchronize()
+            curves["bore"] = bore_arcs
+            return _mesh_and_extract(gmsh, curves, surf, outline_curves, settings)
+        end = pieces[-1][1][-1]
+        a_end, a_start = math.atan2(end[1], end[0]), math.atan2(*pieces[0][1][0][::-1])
+        p_end = geo.addPoint(r_in * math.cos(a_end), r_in * math.sin(a_end), 0.0)
+        p_start = geo.addPoint(r_in * math.cos(a_start), r_in * math.sin(a_start), 0.0)
+        cut_left = geo.addLine(prev, p_end)
+        bore = geo.addCircleArc(p_end, centre, p_start)
+        cut_right = geo.addLine(p_start, first)
+        loop += [cut_left, bore, cut_right]
+        surf = geo.addPlaneSurface([geo.addCurveLoop(loop)])
+        geo.synchronize()
+        curves.update({"cut_left": [cut_left], "bore": [bore], "cut_right": [cut_right]})
+        return _mesh_and_extract(gmsh, curves, surf, outline_curves, settings)
+
+
+def _mesh_and_extract(gmsh, curves: dict[str, list[int]], surf: int, outline_curves: list[int],
+                      settings: SectorMeshSettings) -> TetMeshData:
+    """Physical groups, size field (fine on the outline), P2 mesh -> 2D data."""
+    for name, tags in curves.items():
+        gmsh.model.addPhysicalGroup(1, tags, name=name)
+    gmsh.model.addPhysicalGroup(2, [surf], name="sector")
+    fld = gmsh.model.mesh.field
+    dist = fld.add("Distance")
+    fld.setNumbers(dist, "CurvesList", outline_curves)
+    fld.setNumber(dist, "Sampling", 400)
+    thr = fld.add("Threshold")
+    fld.setNumber(thr, "InField", dist)
+    fld.setNumber(thr, "SizeMin", settings.size_flank)
+    fld.setNumber(thr, "SizeMax", settings.size_body)
+    fld.setNumber(thr, "DistMin", 0.5 * settings.size_flank)
+    fld.setNumber(thr, "DistMax", settings.grading)
+    fld.setAsBackgroundMesh(thr)
+    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{opt}", 0)
+    gmsh.option.setNumber("Mesh.Algorithm", 6)
+    gmsh.model.mesh.generate(2)
+    gmsh.model.mesh.setOrder(2)
+    return _extract_tri_mesh(gmsh, curves)
+
+
+def _extract_tri_mesh(gmsh, curves: dict[str, list[int]]) -> TetMeshData:
+    node_tags, coords, _ = gmsh.model.mesh.getNodes()
+    lookup = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
+    lookup[node_tags.astype(np.int64)] = np.arange(node_tags.size)
+    points = coords.reshape(-1, 3)[:, :2].T.copy()
+    _, nodes = gmsh.model.mesh.getElementsByType(9)  # 6-node triangles
+    cells = lookup[nodes.astype(np.int64)].reshape(-1, 6).T
+    used = np.unique(cells)
+    renum = -np.ones(points.shape[1], dtype=np.int64)
+    renum[used] = np.arange(used.size)
+    edges = {}
+    for name, tags in curves.items():
+        blocks = []
+        for c in tags:
+            _, en = gmsh.model.mesh.getElementsByType(8, c)  # 3-node lines: v0, v1, mid
+            blocks.append(renum[lookup[en.astype(np.int64)].reshape(-1, 3)])
+        edges[name] = np.ascontiguousarray(np.vstack(blocks).T)
+    return TetMeshData(np.ascontiguousarray(points[:, used]), np.ascontiguousarray(renum[cells]),
+                       edges, {})
+
+
+def to_skfem_tri(data: TetMeshData) -> tuple[MeshTri2, dict]:
+    """``MeshTri2`` of 2D sector data and its named boundary facets (name -> facet indices)."""
+    cells = data.cells
+    # Gmsh 6-node triangles: vertices, then edges (0,1) (1,2) (2,0) - scikit-fem's order.
+    mesh = MeshTri2(data.points, cells)
+    node_map = np.full(data.points.shape[1], -1, dtype=np.int64)
+    vertices = np.unique(cells[:3])
+    node_map[vertices] = np.arange(vertices.size)
+    n_v = mesh.nvertices
+    f_sorted = np.sort(mesh.facets, axis=0).astype(np.int64)
+    f_keys = f_sorted[0] * n_v + f_sorted[1]
+    order = np.argsort(f_keys)
+    facets = {}
+    for name, e in data.surfaces.items():
+        v = np.sort(node_map[e[:2]], axis=0)
+        if np.any(v < 0):
+            raise ValueError(f"boundary {name!r} has nodes that belong to no triangle")
+        keys = v[0] * n_v + v[1]
+        pos = np.clip(np.searchsorted(f_keys, keys, sorter=order), 0, order.size - 1)
+        idx = order[pos]
+        if keys.size and not np.array_equal(f_keys[idx], keys):
+            raise ValueError(f"boundary {name!r} has edges that are not mesh facets")
+        facets[name] = idx
+    return mesh, facets
+
+
+def sector_mesh(gear: GearSpec, settings: SectorMeshSettings | None = None, cache: bool = True,
+                cache_dir=None) -> SectorMesh2D:
+    """The (cached) 2D sector mesh of ``gear``; see the module docstring for the groups."""
+    settings = settings or SectorMeshSettings.for_gear(gear)
+    r_in = inner_radius(gear, settings)
+    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in}
+    data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh(gear, settings),
+                                 cache_dir=cache_dir, enabled=cache)
+    mesh, facets = to_skfem_tri(data)
+    return SectorMesh2D(mesh, facets, gear, settings, r_in)

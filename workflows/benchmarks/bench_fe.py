@@ -1,0 +1,92 @@
+"""Benchmark: FE influence matrices (targets from issue 3).
+
+2D sector, seed 001 gear (z 50, m 3 mm), 3 teeth, 40 flank points per tooth, the
+refinement at which the single-tooth compliance is converged (< 0.1 % change to
+the next refinement, tests/test_fem_influence.py): target < 30 s on 2 cores.
+Side by side: one factorisation + all 120 right-hand sides vs a separate
+factorise-and-solve per load (what solving each load on its own costs).
+``--full`` adds the 3D helical sector (3 teeth, 20 x 20 flank grid): DOFs, peak
+memory (resource.getrusage) and time; target < 10 min and < 16 GiB.
+Prints the figures and writes results/benchmarks/fe.json.
+"""
+
+from __future__ import annotations
+
+import math
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.fem.flank import active_radii, flank_points
+from pipeline.fem.influence import clamped_dofs, influence_matrix, patch_loads
+from pipeline.fem.linear_static import build_model
+from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
+from pipeline.fem.solvers import factorize_spd
+from pipeline.geometry import GearSpec, Material
+from pipeline.io import library_versions, write_json
+
+STEEL = Material(2.0e11, 0.3, 7850.0)
+
+
+def bench_2d(refinement: float = 2.0) -> dict:
+    gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
+                    bore_radius=0.021, material=STEEL)
+    t0 = time.perf_counter()
+    sec = sector_mesh(gear, SectorMeshSettings.for_gear(gear, 3, refinement), cache=False)
+    t_mesh = time.perf_counter() - t0
+    r = active_radii(gear, 40)
+    pts = flank_points(gear, 3, np.repeat(np.arange(3), 40), np.tile(r, 3))
+    t0 = time.perf_counter()
+    G = influence_matrix(sec, pts)
+    t_inf = time.perf_counter() - t0
+    # separate solves: factorise and solve each load on its own
+    model = build_model(sec.mesh, gear.material, kind="plane_strain")
+    F = patch_loads(sec, pts, G.patch_half_width).toarray()
+    fixed = np.zeros(model.n_dof, bool)
+    fixed[clamped_dofs(sec, model)] = True
+    free = np.flatnonzero(~fixed)
+    K = model.stiffness[free][:, free]
+    n_sep = 12  # time a subset, extrapolate to all loads
+    t0 = time.perf_counter()
+    for j in range(n_sep):
+        factorize_spd(K).solve(F[free, j])
+    t_sep = (time.perf_counter() - t0) / n_sep * F.shape[1]
+    t_fac = G.timings["factor"] + G.timings["solve"]
+    return {"case": "2D sector z50 m3 3 teeth x 40 points", "refinement": refinement,
+            "dof": G.n_dof, "points": len(pts), "mesh_s": t_mesh, "influence_total_s": t_inf,
+            "timings_s": G.timings, "solver": G.method,
+            "one_factorisation_all_rhs_s": t_fac, "separate_solves_s_extrapolated": t_sep,
+            "speedup": t_sep / t_fac, "symmetry_error": G.symmetry_error(),
+            "target_s": 30.0, "meets_target": t_mesh + t_inf < 30.0}
+
+
+def bench_3d() -> dict:
+    from pipeline.fem.sector3d import bench_helical_sector
+
+    t0 = time.perf_counter()
+    res = bench_helical_sector()
+    res["wall_s"] = time.perf_counter() - t0
+    res["peak_rss_GiB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
+    res["meets_target"] = res["wall_s"] < 600 and res["peak_rss_GiB"] < 16
+    return res
+
+
+def main(full: bool = False) -> dict:
+    out = {"fe_2d": bench_2d(), "versions": library_versions()}
+    if full:
+        out["fe_3d"] = bench_3d()
+    for name, res in out.items():
+        if name == "versions":
+            continue
+        print(name)
+        for k, v in res.items():
+            print(f"  {k:36s} {v:.4g}" if isinstance(v, float) else f"  {k:36s} {v}")
+    write_json(Path("results/benchmarks/fe.json"), out)
+    return out
+
+
+if __name__ == "__main__":
+    main("--full" in sys.argv[1:])

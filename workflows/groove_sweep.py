@@ -1,0 +1,109 @@
+"""Sweep the relief groove of the seed 002 sun gear: torsional stiffness vs width and depth.
+
+For every groove width and groove bottom diameter the 3D P2 model of the sun body
+(root-cylinder halves, distributed coupling unless the config says otherwise)
+gives k_t between O_L and O_R and K_j = k_t l_LR. Writes to results/groove_sweep/:
+``groove_sweep.csv``, ``groove_sweep.png`` (k_t and K_j against the groove width,
+one curve per bottom diameter, with the paper's 4.0e7 - 5.2e7 N m^2 band),
+``twist.png`` (the configured case under its sun torque) and ``run.json``.
+
+    python workflows/groove_sweep.py            # coarse: 3 x 3 cases, h = 40 mm
+    python workflows/groove_sweep.py --full     # 6 x 4 cases, h = 25 mm
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from pipeline.fem.groove.config import load_groove_config  # noqa: E402
+from pipeline.fem.groove.study import analyse_groove  # noqa: E402
+from pipeline.io import write_csv, write_run_record  # noqa: E402
+from pipeline.progress import progress  # noqa: E402
+
+CONFIG = ROOT / "workflows" / "configs" / "seed002_sun_groove.toml"
+
+
+def sweep(config: Path, widths_mm, diameters_mm, mesh_size_mm: float, show_progress=True):
+    """k_t (N m/rad) and K_j (N m^2) on the grid; arrays of shape (n_diameters, n_widths)."""
+    base = load_groove_config(config)
+    kt = np.zeros((len(diameters_mm), len(widths_mm)))
+    kj = np.zeros_like(kt)
+    dofs = np.zeros_like(kt, dtype=int)
+    cases = [(i, j) for i in range(len(diameters_mm)) for j in range(len(widths_mm))]
+    for i, j in progress(cases, "groove sweep", enabled=show_progress):
+        gear = dataclasses.replace(base.gear, groove_width=widths_mm[j] * 1e-3)
+        spec = dataclasses.replace(base, gear=gear, groove_bottom_diameter=diameters_mm[i] * 1e-3,
+                                   mesh_size=mesh_size_mm * 1e-3)
+        res = analyse_groove(spec).result
+        kt[i, j], kj[i, j], dofs[i, j] = res.torsional_stiffness, res.equivalent_Kj, res.n_dof
+    return base, kt, kj, dofs
+
+
+def plot(path: Path, widths_mm, diameters_mm, kt, kj, base) -> Path:
+    import matplotlib.pyplot as plt
+
+    from pipeline.io import atomic_write
+
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    for i, d in enumerate(diameters_mm):
+        a1.plot(widths_mm, kt[i] / 1e6, "o-", label=f"groove bottom {d:g} mm")
+        a2.plot(widths_mm, kj[i] / 1e7, "o-", label=f"groove bottom {d:g} mm")
+    a2.axhspan(4.0, 5.2, color="0.85", zorder=0, label="seed 002 range 4.0-5.2e7")
+    a1.set(xlabel="groove width g [mm]", ylabel="k_t between O_L and O_R [MN m/rad]",
+           title="torsional stiffness of the sun body")
+    a2.set(xlabel="groove width g [mm]", ylabel="K_j = k_t l_LR [1e7 N m^2]",
+           title="equivalent rigidity (l_LR = b/2 + g)")
+    for a in (a1, a2):
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    fig.suptitle(f"{base.gear.name}: z = {base.gear.teeth}, m_n = {base.gear.module * 1e3:g} mm, "
+                 f"halves {base.gear.half_width * 1e3:g} mm; {base.teeth_model}, "
+                 f"{base.coupling} coupling, P2 FE", fontsize=10)
+    atomic_write(path, lambda p: fig.savefig(p, dpi=120, format="png"))
+    plt.close(fig)
+    return path
+
+
+def main(argv: list[str] | None = None) -> dict:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--full", action="store_true", help="finer mesh, denser grid")
+    parser.add_argument("--config", type=Path, default=CONFIG)
+    parser.add_argument("--out", type=Path, default=ROOT / "results" / "groove_sweep")
+    parser.add_argument("--no-picture", action="store_true", help="skip the pyvista picture")
+    args = parser.parse_args(argv)
+    if args.full:
+        widths, diameters, h = [20, 30, 40, 50, 60, 80], [240, 255, 270, 280], 25.0
+    else:
+        widths, diameters, h = [20, 40, 60], [250, 270, 280], 40.0
+    base, kt, kj, dofs = sweep(args.config, widths, diameters, h)
+    out = args.out
+    W, D = np.meshgrid(widths, diameters)
+    files = [write_csv(out / "groove_sweep.csv", {
+        "groove width [mm]": W.ravel(), "groove bottom diameter [mm]": D.ravel(),
+        "k_t [N m/rad]": kt.ravel(), "K_j [N m^2]": kj.ravel(), "n_dof": dofs.ravel()}),
+        plot(out / "groove_sweep.png", widths, diameters, kt, kj, base)]
+    if not args.no_picture:
+        from pipeline.fem.groove.render import render_twisted_body
+
+        a = analyse_groove(dataclasses.replace(base, mesh_size=h * 1e-3))
+        files.append(render_twisted_body(a, out / "twist.png", base.sun_torque or 1e5))
+    write_run_record(out, {"config": dataclasses.asdict(base), "widths_mm": widths,
+                           "diameters_mm": diameters, "mesh_size_mm": h}, files,
+                     "workflows/groove_sweep.py" + (" --full" if args.full else ""))
+    i40 = widths.index(40) if 40 in widths else 0
+    i270 = diameters.index(270) if 270 in diameters else 0
+    print(f"k_t(g = {widths[i40]} mm, d = {diameters[i270]} mm) = {kt[i270, i40]:.4e} N m/rad, "
+          f"K_j = {kj[i270, i40]:.4e} N m^2; written to {out}")
+    return {"widths": widths, "diameters": diameters, "kt": kt, "kj": kj}
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,174 @@
+"""Analytical vs FE-enriched mesh stiffness over a mesh cycle (issue: FE validation).
+
+For the seed 001 spur pair (friction 0 / 0.05 / 0.1; assembly conditions 1-3)
+and the seed 004-like helical pair, three mesh stiffness curves are computed:
+
+* ``analytical`` - the slice potential-energy method of :mod:`pipeline.stiffness`
+  (exact profile, Sainsot foundation, constant Hertz term, friction);
+* ``optimised slice`` - the loaded tooth contact of :mod:`pipeline.contact` on the
+  same analytical slice compliance with seed 004's eq. 24 local contact
+  (seed 004's optimised slice method);
+* ``FE-enriched`` - the same loaded tooth contact on the 2D FE influence
+  coefficients of both gears (:mod:`pipeline.fem.fe_source`, rim coupling between
+  the tooth pairs in contact, Hertz near field removed), with eq. 24 local contact
+  and the analytical friction change added (:class:`FrictionCorrected`).
+
+The FE-enriched and the optimised slice curves differ only in the structural
+compliance, so their difference is the error of the analytical tooth + foundation
+model; the analytical curve additionally differs in the local contact model.
+
+Writes to results/validate_stiffness/: one overlay PNG per case, the curves
+(CSV), and a table of max/min/mean with differences in percent (CSV + JSON),
+plus run.json.
+
+    python workflows/validate_stiffness.py [--positions N] [--refinement R] [--out DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.config import AssemblyErrors, PairConfig, load_pair_config
+from pipeline.contact.commands import build_source, line_of_action_load
+from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.options import ContactOptions
+from pipeline.contact.source import FrictionCorrected
+from pipeline.fem.fe_source import FESectorCompliance, FESettings
+from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.progress import progress
+from pipeline.stiffness.mesh import stiffness_at
+from pipeline.viz.pair_plots import _plt, save
+
+HERE = Path(__file__).resolve().parent
+UM = 1e-6
+SEED001 = HERE / "configs" / "seed001_spur.toml"
+SEED004 = HERE / "configs" / "seed004_helical.toml"
+CONDITIONS = {  # seed 001 table: gear centre displaced by (e_x, e_y), um
+    "condition 2": (10.0, 10.0),
+    "condition 3": (100.0, 100.0),
+}
+
+
+def cases() -> list[tuple[str, PairConfig]]:
+    """(name, configuration) of every compared case."""
+    base = load_pair_config(SEED001)
+    out = []
+    for mu in (0.0, 0.05, 0.1):
+        out.append((f"seed001 mu={mu}", dataclasses.replace(
+            base, stiffness=dataclasses.replace(base.stiffness, friction=mu))))
+    for name, (ex, ey) in CONDITIONS.items():
+        errors = AssemblyErrors((0.0, 0.0), (ex * UM, ey * UM))
+        out.append((f"seed001 {name}", dataclasses.replace(base, assembly_errors=errors)))
+    out.append(("seed004 helical", load_pair_config(SEED004)))
+    return out
+
+
+def compare(cfg: PairConfig, positions: int, fe: FESettings, cache: dict) -> dict:
+    """Analytical, optimised-slice and FE-enriched curves of one case (N/m, shape (positions,))."""
+    opts = ContactOptions(slices=fe.slices)
+    src, actual, _ = build_source(cfg, opts)
+    s0 = actual.mesh_cycle(positions)
+    load = line_of_action_load(cfg, actual)
+    k_analytical = stiffness_at(src.model, s0, fe.slices, src.friction, src.operating,
+                                src.foundation_correction).total
+    slice_cycle = loaded_mesh_cycle(src, load, local="weber", positions=s0)
+    key = (actual.pinion, actual.gear, actual.operating_centre_distance, fe)
+    if key not in cache:
+        cache[key] = FESectorCompliance.build(actual, fe)
+    fe_cycle = loaded_mesh_cycle(FrictionCorrected(cache[key], src), load, local="weber",
+                                 positions=s0)
+    return {
+        "s0": s0,
+        "pinion_angle": (s0 - s0[0]) / actual.pinion.base_radius,
+        "analytical": k_analytical,
+        "optimised_slice": slice_cycle.mesh_stiffness,
+        "fe_enriched": fe_cycle.mesh_stiffness,
+        "fe_transmission_error": fe_cycle.transmission_error,
+        "slice_transmission_error": slice_cycle.transmission_error,
+        "load_N": load,
+    }
+
+
+def _stats(k: np.ndarray) -> dict:
+    return {"max": float(k.max()), "min": float(k.min()), "mean": float(k.mean())}
+
+
+def table_row(res: dict) -> dict:
+    """max/min/mean (N/m) of each curve and the FE-enriched differences in percent."""
+    row = {}
+    for name in ("analytical", "optimised_slice", "fe_enriched"):
+        for key, val in _stats(res[name]).items():
+            row[f"{name}_{key}_N_per_m"] = val
+    fe = _stats(res["fe_enriched"])
+    for ref in ("analytical", "optimised_slice"):
+        other = _stats(res[ref])
+        for key in ("max", "min", "mean"):
+            row[f"fe_vs_{ref}_{key}_percent"] = 100.0 * (fe[key] / other[key] - 1.0)
+    return row
+
+
+def plot_case(name: str, res: dict):
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8, 4))
+    deg = np.degrees(res["pinion_angle"])
+    ax.plot(deg, res["analytical"] * 1e-8, label="analytical (slice potential energy)")
+    ax.plot(deg, res["optimised_slice"] * 1e-8, "--", label="optimised slice (LTCA, eq. 24)")
+    ax.plot(deg, res["fe_enriched"] * 1e-8, "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
+    ax.set_xlabel("pinion rotation over one mesh cycle [deg]")
+    ax.set_ylabel("mesh stiffness [1e8 N/m]")
+    ax.set_title(f"{name}: analytical vs FE-enriched mesh stiffness")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def run(out: Path, positions: int, fe: FESettings) -> dict:
+    table, files, curves, cache = {}, [], {}, {}
+    for name, cfg in progress(cases(), "validation cases"):
+        res = compare(cfg, positions, fe, cache)
+        table[name] = table_row(res)
+        slug = name.replace(" ", "_").replace("=", "")
+        files.append(save(plot_case(name, res), out / f"{slug}.png"))
+        for key in ("pinion_angle", "analytical", "optimised_slice", "fe_enriched"):
+            unit = "rad" if key == "pinion_angle" else "N/m"
+            curves[f"{name}: {key} [{unit}]"] = res[key]
+    files.append(write_csv(out / "curves.csv", curves))
+    rows = {"case": list(table)}
+    for col in next(iter(table.values())):
+        rows[col] = [table[c][col] for c in table]
+    files.append(write_csv(out / "summary.csv", rows))
+    files.append(write_json(out / "summary.json", {"fe_settings": dataclasses.asdict(fe),
+                                                   "positions": positions, "cases": table}))
+    write_run_record(out, {"positions": positions, "fe": dataclasses.asdict(fe)}, files,
+                     "python workflows/validate_stiffness.py")
+    return table
+
+
+def main(argv: list[str] | None = None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--positions", type=int, default=36, help="mesh positions per cycle")
+    ap.add_argument("--refinement", type=float, default=1.0, help="FE mesh refinement factor")
+    ap.add_argument("--slices", type=int, default=20, help="slices of the helical pair")
+    ap.add_argument("--out", type=Path, default=HERE.parent / "results" / "validate_stiffness")
+    args = ap.parse_args(argv)
+    fe = FESettings(teeth=5, radii=30, refinement=args.refinement, slices=args.slices)
+    table = run(args.out, args.positions, fe)
+    for name, row in table.items():
+        print(f"{name:22s} mean: analytical {row['analytical_mean_N_per_m']:.4e}  "
+              f"optimised {row['optimised_slice_mean_N_per_m']:.4e}  "
+              f"FE {row['fe_enriched_mean_N_per_m']:.4e} N/m   FE vs analytical "
+              f"{row['fe_vs_analytical_mean_percent']:+.1f} %  (max "
+              f"{row['fe_vs_analytical_max_percent']:+.1f} %, min "
+              f"{row['fe_vs_analytical_min_percent']:+.1f} %)  FE vs optimised "
+              f"{row['fe_vs_optimised_slice_mean_percent']:+.1f} %")
+    print(f"written to {args.out}/")
+    return table
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
