@@ -21,6 +21,11 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
                  "tooth profiles, contact ratios and line of action"),
     "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",
                   "analytical mesh stiffness over a mesh cycle"),
+    "fe": ("pipeline.fem.commands", "add_arguments", "run",
+           "2D sector FE of both gears: mesh, flank influence matrix, FE vs analytical "
+           "tooth compliance"),
+    "groove": ("pipeline.fem.groove_command", "add_arguments", "run",
+               "herringbone sun relief groove: 3D FE torsional and coupling stiffness"),
     "contact": ("pipeline.contact.commands", "add_arguments", "run",
                 "loaded tooth contact over a mesh cycle: load sharing, TE, mesh stiffness, "
                 "load maps"),

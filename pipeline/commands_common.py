@@ -33,9 +33,17 @@ def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path) -> None:
         json.dump(to_jsonable(summary), sys.stdout, indent=2)
         sys.stdout.write("\n")
         return
-    for key, value in summary.items():
-        if isinstance(value, float):
-            print(f"  {key:40s} {value:.6g}")
-        elif not isinstance(value, (list, dict)):
-            print(f"  {key:40s} {value}")
+    _print_scalars(summary, "")
     print(f"written to {out}/")
+
+
+def _print_scalars(summary: dict[str, Any], prefix: str) -> None:
+    """Print the scalar entries of ``summary``, nested dictionaries as ``outer.inner``."""
+    for key, value in summary.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            _print_scalars(value, f"{name}.")
+        elif isinstance(value, float):
+            print(f"  {name:40s} {value:.6g}")
+        elif not isinstance(value, list):
+            print(f"  {name:40s} {value}")

@@ -80,9 +80,9 @@ def main(argv: list[str] | None = None) -> dict:
     parser.add_argument("--no-picture", action="store_true", help="skip the pyvista picture")
     args = parser.parse_args(argv)
     if args.full:
-        widths, diameters, h = [20, 30, 40, 50, 60, 80], [240, 255, 270, 280], 25.0
+        widths, diameters, h = [20, 30, 40, 50, 60, 80], [230, 240, 250, 260, 270], 25.0
     else:
-        widths, diameters, h = [20, 40, 60], [250, 270, 280], 40.0
+        widths, diameters, h = [20, 40, 60], [250, 260, 270], 40.0
     base, kt, kj, dofs = sweep(args.config, widths, diameters, h)
     out = args.out
     W, D = np.meshgrid(widths, diameters)
