@@ -22,6 +22,10 @@ ensure_env() {
     export PATH="$venv/bin:$PATH"
     # Off-screen rendering for pyvista; one BLAS thread per process by default.
     export PYVISTA_OFF_SCREEN=true MPLBACKEND=Agg
+    # Without a display, VTK's default X window warns before falling back to EGL: ask for EGL.
+    if [ -z "${DISPLAY:-}" ]; then
+        export VTK_DEFAULT_OPENGL_WINDOW="${VTK_DEFAULT_OPENGL_WINDOW:-vtkEGLRenderWindow}"
+    fi
     export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 }
 
