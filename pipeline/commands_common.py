@@ -8,6 +8,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from pipeline.io import to_jsonable
 
 
@@ -45,5 +47,5 @@ def _print_scalars(summary: dict[str, Any], prefix: str) -> None:
             _print_scalars(value, f"{name}.")
         elif isinstance(value, float):
             print(f"  {name:40s} {value:.6g}")
-        elif not isinstance(value, list):
+        elif not isinstance(value, (list, tuple, np.ndarray)):
             print(f"  {name:40s} {value}")
