@@ -147,6 +147,7 @@ class TwoLevelPreconditioner(spla.LinearOperator):
 def pmg_cg(
     A: sp.spmatrix, b: np.ndarray, P: sp.spmatrix, rtol: float = 1e-10, maxiter: int = 1000,
     degree: int = 3, x0: np.ndarray | None = None,
+    preconditioner: TwoLevelPreconditioner | None = None,
 ) -> PMGSolution:
     """Solve A x = b for every column of b by CG with the two-level preconditioner.
 
@@ -160,12 +161,15 @@ def pmg_cg(
     maxiter : iteration limit; not converging raises RuntimeError.
     degree : Chebyshev degree of the smoother.
     x0 : optional start, the shape of b.
+    preconditioner : a :class:`TwoLevelPreconditioner` of the same ``A`` from an earlier
+        call (its set-up, mostly the coarse factorisation, is then skipped: solve
+        blocks of right-hand sides one after another at the cost of one set-up).
     """
     check_range("pmg.rtol", rtol, 1e-16, 1e-1)
     check_int_range("pmg.maxiter", maxiter, 1, 100000)
     t0 = time.perf_counter()
     A = sp.csr_matrix(A)
-    M = TwoLevelPreconditioner(A, P, degree)
+    M = preconditioner if preconditioner is not None else TwoLevelPreconditioner(A, P, degree)
     t1 = time.perf_counter()
     B = np.asarray(b, dtype=float).reshape(A.shape[0], -1)
     X = np.zeros_like(B) if x0 is None else np.array(x0, dtype=float).reshape(B.shape)

@@ -1,0 +1,345 @@
+"""3D helical (or spur, or herringbone-half) gear sectors: quadratic tetrahedra, named flanks.
+
+Geometry. The transverse section is the 2D sector of :mod:`pipeline.fem.sector2d`
+(``teeth`` consecutive teeth with the exact involute and trochoidal fillet of
+:mod:`pipeline.geometry.profile`, two radial cut lines through the middles of
+the outer tooth spaces, the bore arc). The solid is that section swept along
+the helix over the face width: the section at axial position ``z`` is the
+section at mid-face turned about the gear axis by
+
+    theta(z) = s tan(beta) / r (z - b / 2),    s = +1 right hand, -1 left, 0 spur,
+
+(``r`` the reference radius, ``b`` the meshed width), so tooth ``k`` at mid-face
+sits exactly where the 2D sector puts it (centre line at polar angle
+``pi/2 + (k - (teeth-1)/2) 2 pi/z``). OpenCASCADE lofts B-spline surfaces
+through ``loft_sections`` rotated copies of the section (as
+:mod:`pipeline.fem.groove.mesh` does for whole gears). A herringbone gear is
+meshed one helical half at a time (``half`` 0 or 1, the second with the
+opposite hand), each ``face_width / 2`` wide; the halves and the groove between
+them are the groove package's business.
+
+Surface groups (boundary triangles, 6 nodes): ``right{k}`` / ``left{k}`` (the
+whole tooth side from the middle of the tooth space over fillet and involute to
+the middle of the tip land, as in 2D), ``bore``, ``cut_right``, ``cut_left``, and
+the end faces ``end0`` (z = 0) and ``end1`` (z = b). Each lofted face is named by
+mapping one of its interior points back to mid-face (turning it by ``-theta(z)``)
+and taking the nearest 2D boundary piece.
+
+Mesh. Curved quadratic tetrahedra (Gmsh places mid-edge nodes on the CAD
+surfaces), graded from ``size_flank`` on all tooth sides to ``size_body`` a
+distance ``grading`` away. Meshes are cached in ``meshes/`` by a hash of the
+gear and the settings (:mod:`pipeline.fem.cache`). Lengths in m.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from skfem import Basis, ElementTetP0
+
+from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
+from pipeline.fem.sector2d import SectorMeshSettings, _split_outline, inner_radius
+from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
+from pipeline.geometry.gear import GearSpec
+from pipeline.validation import InputError, check_int_range, check_range
+
+# Part of the cache key: bump when the same inputs would now give a different mesh.
+GEOMETRY_VERSION = 1
+
+
+@dataclass(frozen=True)
+class Sector3DSettings:
+    """Mesh settings of a 3D sector.
+
+    Attributes
+    ----------
+    teeth : consecutive teeth (1 <= teeth < z/2).
+    size_flank : element size on the tooth sides (flank, fillet, tip land), m.
+    size_body : element size in the rim and far from the teeth, m.
+    grading : distance from the tooth sides over which the size grows, m.
+    profile_points : involute points of the section polyline (the fillet gets as many).
+    loft_sections : transverse sections the helical solid is lofted through (>= 2;
+        a spur sector needs 2).
+    half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
+        second (opposite hand); each is ``face_width / 2`` wide.
+    inner_radius : bore radius of the mesh, m; None as in :func:`sector2d.inner_radius`.
+    """
+
+    teeth: int = 3
+    size_flank: float = 1e-3
+    size_body: float = 3e-3
+    grading: float = 3e-3
+    profile_points: int = 40
+    loft_sections: int = 7
+    half: int = 0
+    inner_radius: float | None = None
+
+    def __post_init__(self) -> None:
+        check_int_range("sector3d.teeth", self.teeth, 1, 1000)
+        check_range("sector3d.size_flank", self.size_flank, 1e-6, 1.0, unit="m")
+        check_range("sector3d.size_body", self.size_body, self.size_flank, 10.0, unit="m")
+        check_range("sector3d.grading", self.grading, 0.0, 10.0, unit="m")
+        check_int_range("sector3d.profile_points", self.profile_points, 8, 2000)
+        check_int_range("sector3d.loft_sections", self.loft_sections, 2, 100)
+        check_int_range("sector3d.half", self.half, 0, 1)
+
+    @classmethod
+    def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0, half: int = 0
+                 ) -> Sector3DSettings:
+        """Settings scaled by the module: tooth sides m_n / (3 refinement), body m_n.
+
+        Coarser than 2D (m_n / 12): a 3D P2 model at that size would have millions
+        of DOFs. ``refinement = 1`` gives ~10^4-10^5 DOF per tooth and 10 mm of width.
+        """
+        check_range("sector3d.refinement", refinement, 0.05, 20.0)
+        m = gear.module
+        sf = m / (3.0 * refinement)
+        beta = gear.helix_angle
+        # sections every ~ pitch/4 of helix turn keep the loft within ~1e-4 m_n of the helix
+        turn = math.tan(beta) * _width(gear) / gear.reference_radius * gear.teeth / (2 * math.pi)
+        return cls(teeth=teeth, size_flank=sf, size_body=max(m / math.sqrt(refinement), sf),
+                   grading=1.5 * m, profile_points=max(30, int(30 * refinement)),
+                   loft_sections=2 if beta == 0 else max(5, int(math.ceil(8 * turn)) + 1),
+                   half=half)
+
+
+def _width(gear: GearSpec) -> float:
+    return gear.face_width / 2 if gear.herringbone else gear.face_width
+
+
+def helix_sign(gear: GearSpec, half: int = 0) -> int:
+    """+1 (right hand), -1 (left hand) or 0 (spur) for ``half`` of ``gear``."""
+    s = {"right": 1, "left": -1, "none": 0}[gear.hand]
+    return -s if (gear.herringbone and half == 1) else s
+
+
+@dataclass(frozen=True, eq=False)
+class SectorMesh3D:
+    """A 3D gear sector: scikit-fem ``MeshTet2`` with named boundary surfaces.
+
+    Attributes
+    ----------
+    tets : the mesh and its surface groups (module docstring), lengths in m.
+    gear : the gear.
+    settings : the mesh settings.
+    inner_radius : bore radius, m.
+    width : meshed face width b, m (``face_width / 2`` for a herringbone half).
+    twist_rate : d theta / d z, rad/m (``s tan(beta) / r``).
+    """
+
+    tets: SkfemTetMesh
+    gear: GearSpec
+    settings: Sector3DSettings
+    inner_radius: float
+    width: float
+    twist_rate: float
+
+    @property
+    def mesh(self):
+        return self.tets.mesh
+
+    @property
+    def facets(self) -> dict:
+        return self.tets.facets
+
+    def twist(self, z: np.ndarray) -> np.ndarray:
+        """theta(z) (rad) of the section at axial position ``z`` (m), shape of ``z``."""
+        return self.twist_rate * (np.asarray(z, dtype=float) - 0.5 * self.width)
+
+    def volume(self) -> float:
+        """Volume of the (curved P2) mesh, m^3."""
+        basis = Basis(self.mesh, ElementTetP0(), intorder=4)
+        return float(basis.dx.sum())
+
+
+def section_area(gear: GearSpec, teeth: int, points: int, r_in: float) -> float:
+    """Exact area (m^2) of the transverse section bounded by the profile polyline of
+    ``points`` involute points, the two cut lines and the bore arc of radius ``r_in``."""
+    from pipeline.geometry.profile import gear_outline
+
+    pts = gear_outline(gear, teeth=teeth, points=points)
+    a0, a1 = math.atan2(pts[0, 1], pts[0, 0]), math.atan2(pts[-1, 1], pts[-1, 0])
+    poly = np.vstack([pts, r_in * np.array([[math.cos(a1), math.sin(a1)],
+                                            [math.cos(a0), math.sin(a0)]])])
+    x, y = poly[:, 0], poly[:, 1]
+    shoelace = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    th = a1 - a0
+    return shoelace - 0.5 * r_in**2 * (th - math.sin(th))  # the bore arc, not its chord
+
+
+def build_sector3d_mesh(gear: GearSpec, settings: Sector3DSettings) -> TetMeshData:
+    """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
+    if gear.internal:
+        raise InputError(f"{gear.name}: the 3D sector mesh supports external gears only")
+    if 2 * settings.teeth >= gear.teeth:
+        raise InputError(f"sector3d.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g}")
+    r_in = inner_radius(gear, _as_2d(settings))
+    b = _width(gear)
+    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
+    pieces = _split_outline(gear, settings.teeth, settings.profile_points)
+    names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        wires = [_section_wire(occ, pieces, r_in, rate * (z - 0.5 * b), z)
+                 for z in np.linspace(0.0, b, settings.loft_sections)]
+        vol = occ.addThruSections(wires, makeSolid=True, makeRuled=False)[0][1]
+        occ.synchronize()
+        groups = _classify_surfaces(gmsh, vol, pieces, r_in, b, rate)
+        missing = [n for n in names + ["end0", "end1"] if not groups.get(n)]
+        if missing:
+            raise RuntimeError(f"sector3d: surfaces not found after lofting: {missing}")
+        _size_field(gmsh, settings, [s for n, tags in groups.items()
+                                     if n.startswith(("right", "left")) for s in tags])
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)
+        gmsh.option.setNumber("Mesh.Algorithm3D", 1)
+        gmsh.option.setNumber("Mesh.Optimize", 1)
+        gmsh.model.mesh.generate(3)
+        return extract_tet_mesh(gmsh, 2, groups, {"sector": [vol]})
+
+
+def _as_2d(settings: Sector3DSettings) -> SectorMeshSettings:
+    return SectorMeshSettings(teeth=settings.teeth, inner_radius=settings.inner_radius)
+
+
+def _section_wire(occ, pieces, r_in: float, rot: float, z: float) -> int:
+    """Closed wire of the transverse section turned by ``rot`` (rad) at height ``z``."""
+    c, s = math.cos(rot), math.sin(rot)
+
+    def point(xy) -> int:
+        return occ.addPoint(c * xy[0] - s * xy[1], s * xy[0] + c * xy[1], z)
+
+    first = point(pieces[0][1][0])
+    prev, curves = first, []
+    for _, seg in pieces:
+        tags = [prev] + [point(p) for p in seg[1:]]
+        curves.append(occ.addSpline(tags) if len(tags) > 2 else occ.addLine(*tags))
+        prev = tags[-1]
+    end, start = pieces[-1][1][-1], pieces[0][1][0]
+    a_end, a_start = math.atan2(end[1], end[0]), math.atan2(start[1], start[0])
+    p_end = point((r_in * math.cos(a_end), r_in * math.sin(a_end)))
+    p_start = point((r_in * math.cos(a_start), r_in * math.sin(a_start)))
+    centre = occ.addPoint(0.0, 0.0, z)
+    curves += [occ.addLine(prev, p_end), occ.addCircleArc(p_end, centre, p_start),
+               occ.addLine(p_start, first)]
+    return occ.addWire(curves, checkClosed=True)
+
+
+def _reference_curves(pieces, r_in: float) -> tuple[np.ndarray, list[str]]:
+    """Dense samples (m, 2) of every named 2D boundary piece at mid-face and their names."""
+    pts, names = [], []
+    for name, seg in pieces:
+        pts.append(seg)
+        names += [name] * len(seg)
+    end, start = pieces[-1][1][-1], pieces[0][1][0]
+    a_end, a_start = math.atan2(end[1], end[0]), math.atan2(start[1], start[0])
+    t = np.linspace(0.0, 1.0, 50)[:, None]
+    for name, outer, a in (("cut_left", end, a_end), ("cut_right", start, a_start)):
+        inner = r_in * np.array([math.cos(a), math.sin(a)])
+        pts.append(inner + t * (np.asarray(outer) - inner))
+        names += [name] * t.size
+    ang = np.linspace(a_start, a_end, 200)
+    pts.append(r_in * np.column_stack([np.cos(ang), np.sin(ang)]))
+    names += ["bore"] * ang.size
+    return np.vstack(pts), names
+
+
+def _classify_surfaces(gmsh, vol: int, pieces, r_in: float, b: float, rate: float
+                       ) -> dict[str, list[int]]:
+    """Name the boundary surfaces of the lofted volume (module docstring)."""
+    ref, ref_names = _reference_curves(pieces, r_in)
+    groups: dict[str, list[int]] = {}
+    for _, s in gmsh.model.getBoundary([(3, vol)], oriented=False):
+        _, _, z0, _, _, z1 = gmsh.model.getBoundingBox(2, s)
+        if z1 - z0 < 0.5 * b:  # end caps are planes z = 0, b; lofted faces span the width
+            name = "end0" if z0 + z1 < b else "end1"
+        else:
+            lo, hi = gmsh.model.getParametrizationBounds(2, s)
+            x, y, z = gmsh.model.getValue(2, s, 0.5 * (np.asarray(lo) + np.asarray(hi)))
+            th = -rate * (z - 0.5 * b)
+            ct, st = math.cos(th), math.sin(th)
+            p = np.array([ct * x - st * y, st * x + ct * y])
+            name = ref_names[int(np.argmin(np.sum((ref - p) ** 2, axis=1)))]
+        groups.setdefault(name, []).append(s)
+    return groups
+
+
+def _size_field(gmsh, settings: Sector3DSettings, tooth_surfaces: list[int]) -> None:
+    fld = gmsh.model.mesh.field
+    dist = fld.add("Distance")
+    fld.setNumbers(dist, "SurfacesList", tooth_surfaces)
+    thr = fld.add("Threshold")
+    fld.setNumber(thr, "InField", dist)
+    fld.setNumber(thr, "SizeMin", settings.size_flank)
+    fld.setNumber(thr, "SizeMax", settings.size_body)
+    fld.setNumber(thr, "DistMin", 0.25 * settings.size_flank)
+    fld.setNumber(thr, "DistMax", settings.grading)
+    fld.setAsBackgroundMesh(thr)
+    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{opt}", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size_body)
+
+
+def sector3d_mesh(gear: GearSpec, settings: Sector3DSettings | None = None, cache: bool = True,
+                  cache_dir=None) -> SectorMesh3D:
+    """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
+    settings = settings or Sector3DSettings.for_gear(gear)
+    if settings.half == 1 and not gear.herringbone:
+        raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
+    r_in = inner_radius(gear, _as_2d(settings))
+    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in,
+              "version": GEOMETRY_VERSION}
+    data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build_sector3d_mesh(gear, settings),
+                                 cache_dir=cache_dir, enabled=cache)
+    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
+    return SectorMesh3D(to_skfem(data), gear, settings, r_in, _width(gear), rate)
+
+
+def bench_helical_sector(refinement: float = 1.0, n_profile: int = 20, n_face: int = 20,
+                         method: str = "auto", cache: bool = False) -> dict:
+    """Benchmark figures of the 3D helical sector influence matrix (issue 3).
+
+    Seed 001's gear (z 50, m_n 3 mm, alpha_n 20 deg, b 20 mm, bore 21 mm) made helical
+    (beta 15 deg, right hand, an assumption: seed 001 is spur), 3 teeth, the loaded
+    (right) flank of every tooth on an ``n_profile x n_face`` grid (active profile x
+    face width), default patch half-width. Returns a dict of figures: DOFs, points,
+    timings (s), solver, CG iterations, symmetry error, volume error, compliance
+    ranges (m/N) and the rim coupling ratio.
+    """
+    from pipeline.fem.flank import active_radii
+    from pipeline.fem.flank3d import face_positions, flank_grid
+    from pipeline.fem.influence3d import influence_matrix_3d
+    from pipeline.geometry.gear import Material
+
+    gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
+                    helix_angle=math.radians(15), hand="right", bore_radius=0.021,
+                    material=Material(2.0e11, 0.3, 7850.0), name="seed001-helical")
+    settings = Sector3DSettings.for_gear(gear, teeth=3, refinement=refinement)
+    t0 = time.perf_counter()
+    sector = sector3d_mesh(gear, settings, cache=cache)
+    t_mesh = time.perf_counter() - t0
+    c = 0.3 * gear.module
+    pts = flank_grid(sector, [0, 1, 2], active_radii(gear, n_profile, margin=1.5 * c),
+                     face_positions(sector.width, n_face, 1.5 * c))
+    res = influence_matrix_3d(sector, pts, method=method)
+    S = res.structural
+    n1 = n_profile * n_face
+    mid = n1 + (n_face // 2) * n_profile + n_profile - 1  # middle tooth, mid-face, tip
+    exact = section_area(gear, 3, settings.profile_points, sector.inner_radius) * sector.width
+    return {
+        "case": f"3D helical sector z50 m3 b20 beta15, 3 teeth x {n_profile} x {n_face} points",
+        "refinement": refinement, "dof": res.n_dof, "free_dof": res.n_free,
+        "elements": int(sector.mesh.t.shape[1]), "points": len(pts),
+        "mesh_s": t_mesh, "timings_s": res.timings, "solver": res.method,
+        "cg_iterations": res.iterations, "symmetry_error": res.symmetry_error(),
+        "volume_error": sector.volume() / exact - 1.0,
+        "fe_diag_range_m_per_N": [float(np.diag(res.fe).min()), float(np.diag(res.fe).max())],
+        "structural_diag_range_m_per_N": [float(np.diag(S).min()), float(np.diag(S).max())],
+        "rim_coupling_ratio": float(np.abs(S[mid, :n1]).max() / S[mid, mid]),
+        "patch_half_width_m": res.patch_half_width,
+    }
