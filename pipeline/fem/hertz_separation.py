@@ -43,10 +43,10 @@ Weber's ``2 (1 - nu^2)/(pi E) (ln(2 h / a) - nu / (2 (1 - nu)))`` to
 convolved with the autocorrelation of the patch, evaluated by product
 integration against the closed-form antiderivative of the kernel.
 
-For a 3D model (:mod:`pipeline.fem.sector3d`) the same 2D subtraction is applied
-per face-width strip: the contact solver's eq. (24) is a line contact per slice,
-so the 3D FE self term of a strip-shaped patch loses the plane-strain near field
-of a line load of that strip (an approximation at the strip ends, stated there).
+For a 3D model (:mod:`pipeline.fem.influence3d`) the analogue is the Boussinesq
+half-space near field of the same kind of patch
+(:mod:`pipeline.fem.halfspace_separation`); integrated along a line, its kernel is
+the plane-strain kernel below (tested).
 """
 
 from __future__ import annotations

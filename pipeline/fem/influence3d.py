@@ -23,6 +23,15 @@ are free (``ends = "free"``) or ``"sliding"`` (``u_z = 0``: a slice of a longer
 face; for a spur sector with a load uniform across the face this is exactly
 plane strain, which the tests use to compare with 2D).
 
+Resolution. The FE must resolve the patch for the subtraction to cancel the near
+field: with the default ``c = 0.3 m_n`` the flank elements should be ``m_n / 6``
+(:class:`~pipeline.fem.sector3d.Sector3DSettings` refinement 2). At refinement 1
+(``m_n / 3``) the structural self compliance at the pitch point is ~10 % below the
+refinement-2 value (z 30, m_n 3 mm, beta 15 deg: 3.74e-9 vs 4.16e-9 m/N), and the
+raw FE value ~6 % below; off-diagonal terms converge faster. The structural matrix
+is symmetric but, like the 2D one, positive definite only up to that discretisation
+error (smallest eigenvalue ~ -2 % of the largest on coarse meshes).
+
 Solvers: ``"auto"`` takes CHOLMOD when scikit-sparse is installed, else the
 two-level p-multigrid CG of :mod:`pipeline.fem.pmultigrid` (block right-hand
 sides, one set-up); ``"splu"`` (SuperLU) is fine for coarse models only

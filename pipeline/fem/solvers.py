@@ -15,6 +15,14 @@ Methods (DESIGN.md measured them side by side on this kind of machine):
   right-hand sides factorise instead. Offered by :func:`solve_spd`.
 
 Every result says which method ran, so reports can state it.
+
+MUMPS is not offered: DESIGN.md measured it through the ``python-mumps`` wheel, but
+the only binary wheel for CPython 3.11 (python-mumps 0.0.2, manylinux2010) is
+compiled against NumPy 1.x and fails on import under NumPy 2 ("numpy.core.multiarray
+failed to import"); later releases (0.0.3, 0.0.4) are source-only and need a system
+MUMPS to build (pip's build of 0.0.4 stops in meson). Without CHOLMOD, 3D models with
+many right-hand sides use the p-multigrid CG of :mod:`pipeline.fem.pmultigrid`
+(block right-hand sides, one set-up), as :mod:`pipeline.fem.influence3d` does.
 """
 
 from __future__ import annotations
