@@ -300,7 +300,7 @@ def sector3d_mesh(gear: GearSpec, settings: Sector3DSettings | None = None, cach
     return SectorMesh3D(to_skfem(data), gear, settings, r_in, _width(gear), rate)
 
 
-def bench_helical_sector(refinement: float = 1.0, n_profile: int = 20, n_face: int = 20,
+def bench_helical_sector(refinement: float = 1.5, n_profile: int = 20, n_face: int = 20,
                          method: str = "auto", cache: bool = False) -> dict:
     """Benchmark figures of the 3D helical sector influence matrix (issue 3).
 
