@@ -31,3 +31,20 @@ def seed004_pair() -> GearPair:
     g = GearSpec(teeth=104, hand="left", profile_shift=-0.59026, bore_radius=0.15, name="gear",
                  **kw)
     return GearPair(p, g)
+
+
+@pytest.fixture(autouse=True)
+def _one_blas_thread_in_dynamics_tests(request):
+    """Dynamics tests: one BLAS thread (their matrices are at most a few hundred rows).
+
+    With dev.sh's two BLAS threads on cores shared with other jobs, the spinning
+    threads made these small solves 5-20x slower (test_sweep_methods_agree: 15.4 s
+    against 0.82 s); the FE tests keep their threads.
+    """
+    if not request.module.__name__.startswith("test_dyn_"):
+        yield
+        return
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1):
+        yield

@@ -172,6 +172,8 @@ def plot_mode_shapes(
         a.set_xticks(np.arange(n))
         a.set_xticklabels(result.dof_names, rotation=90, fontsize=5 if n > 30 else 7)
         a.set_ylim(-1.05, 1.05)
+        if j % cols == 0:
+            a.set_ylabel("sqrt(m) phi, normalised [-]", fontsize=8)
         a.grid(alpha=0.3)
     for j in range(len(idx), rows * cols):
         ax[j // cols, j % cols].axis("off")
