@@ -85,6 +85,34 @@ class MeshOutput:
 
 
 @dataclass(frozen=True)
+class SystemMatrices:
+    """The equation-of-motion matrices at one phase, dense or sparse.
+
+    ``M q'' + (C + Omega G) q' + K q = F`` at phase ``tau``.
+
+    Attributes
+    ----------
+    tau : system phase t / T (-).
+    M : (n, n) mass, kg and kg m^2.
+    C : (n, n) damping, N s/m (without the gyroscopic part).
+    G : (n, n) gyroscopic matrix per unit carrier speed (multiply by Omega, rad/s).
+    K_omega : (n, n) centripetal matrix per unit Omega^2.
+    K : (n, n) full stiffness K(tau) = K - Omega^2 K_Omega + sum_j s_j u_j v_j^T, N/m.
+    F : shape (n,), generalized force F(tau), N and N m.
+    carrier_speed : Omega, rad/s.
+    """
+
+    tau: float
+    M: object
+    C: object
+    G: object
+    K_omega: object
+    K: object
+    F: np.ndarray
+    carrier_speed: float
+
+
+@dataclass(frozen=True)
 class LinearPeriodicSystem:
     """Matrices and periodic terms of one operating point.
 
@@ -159,6 +187,40 @@ class LinearPeriodicSystem:
         U = np.array([t.u for t in self.terms]).T
         V = np.array([t.v for t in self.terms]).T
         return (U * s) @ V.T
+
+    def force(self, tau: float) -> np.ndarray:
+        """Generalized force F(tau) = f0 + sum_i g_i(tau_i), shape (n,), N and N m.
+
+        A ``derivative`` forcing term uses the central difference of its sampled
+        signal over one sample (exact for the piecewise-linear interpolant away from
+        its nodes).
+        """
+        f = np.array(self.f0, dtype=float, copy=True)
+        for g in self.forcing:
+            x = g.order * tau - g.phase
+            if g.derivative:
+                h = 0.5 / g.signal.values.size
+                ds = (g.signal(x + h) - g.signal(x - h)) / (2 * h)  # per signal period
+                f = f + g.vector * float(np.squeeze(ds)) * g.order / self.period
+            else:
+                f = f + g.vector * float(np.squeeze(g.signal(x)))
+        return f
+
+    def matrices(self, tau: float = 0.0, sparse: bool = False) -> SystemMatrices:
+        """M, C, G, K_Omega, K(tau) and F(tau) as dense arrays or scipy CSR arrays.
+
+        Parameters
+        ----------
+        tau : system phase t / T (-).
+        sparse : return ``scipy.sparse.csr_array`` matrices (F stays dense).
+        """
+        mats = (self.M, self.C, self.G, self.K_omega, self.stiffness(tau))
+        if sparse:
+            from scipy.sparse import csr_array
+
+            mats = tuple(csr_array(m) for m in mats)
+        M, C, G, Kw, K = mats
+        return SystemMatrices(float(tau), M, C, G, Kw, K, self.force(tau), self.carrier_speed)
 
     def with_period(self, period: float) -> LinearPeriodicSystem:
         """The same machine at another speed: period T' and carrier speed scaled by T/T'.
