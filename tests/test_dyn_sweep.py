@@ -134,9 +134,9 @@ def test_herringbone_sweep_workflow_coarse(tmp_path):
     * Axial slide of the sun (0, +0.5, +1 mm at K_1) moves the left and right
       sun-planet mesh forces in opposite directions: peak and mean RMS force of
       s-p1L fall while those of s-p1R rise.
-    The sweep peak frequencies themselves do not resolve the groove-mode shift on
-    this grid (the groove mode is weakly excited by the sun-planet meshes); that is
-    stated in the report, not asserted.
+    Not reproduced, so not asserted: seed 002 Fig. 9 has the sweep peak frequencies
+    (1440, 2500 Hz) fall with K_j through the K_j-dependent mesh stiffness of its
+    eqs. 14-15, which this model does not include (see the workflow docstring).
     """
     sys.path.insert(0, str(ROOT / "workflows"))
     import dynamics_herringbone_sweep as wf

@@ -8,6 +8,22 @@ mesh force, seed 002 Figs. 9-10):
 * groove stiffness K_1..K_5 = 5.2e7..4.0e7 N m^2 at zero slide;
 * axial slide 0, +0.5, +1 mm at K_1, and +1 mm at K_5.
 
+Comparison with seed 002 sec. 4 (coarse run, 100 points, H = 10; a 10 Hz check
+over 1000-3600 Hz gave the same peaks):
+
+* axial slide 0 -> +1 mm at K_1: left peak RMS force falls (224.2 -> 221.2 kN),
+  right rises (261.9 -> 264.4 kN), peak frequencies unchanged (1421 Hz on this
+  grid, 1440 Hz at 10 Hz steps) - the paper's Fig. 10 trend, reproduced and tested;
+* K_1 -> K_5: the groove (sun-half twist) natural frequency falls 3043 -> 2823 Hz
+  (tested), and the left peak force falls (224.2 -> 222.0 kN), but the sweep peak
+  frequencies (1440 and 2520/2690 Hz) do not move and the right peak rises
+  (261.9 -> 266.0 kN). The paper (Fig. 9) reports both peak values and peak
+  frequencies of both sides falling. Its mechanism is the change of the left/right
+  mesh stiffness with K_j (seed 002 eqs. 14-15, Fig. 5: +9.8 % / -11.2 %); this model
+  carries the groove twist only as a left/right meshing phase and a dynamic
+  torsional joint, with the same mesh stiffness for every K_j, so that trend is
+  NOT reproduced here.
+
 Writes results/dynamics_herringbone_sweep/: sweep_groove.png, sweep_slide.png,
 sweep_*.csv, summary.csv (main peak frequency and peak RMS force per case), run.json.
 
