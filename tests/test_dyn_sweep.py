@@ -152,3 +152,23 @@ def test_herringbone_sweep_workflow_coarse(tmp_path):
         assert np.all(sign * np.diff(r[f"peak {key}"][slide]) > 0)
         assert np.all(sign * np.diff(r[f"mean {key}"][slide]) > 0)
     assert (tmp_path / "sweep_groove.png").is_file() and (tmp_path / "sweep_slide.png").is_file()
+
+
+def test_herringbone_hb_agrees_with_time_integration_at_the_main_peak():
+    """Seed 002 model (56 DOF), 1440 Hz main peak: HB (H = 20) vs time integration < 1 %.
+
+    Time integration: exact propagator on 360 segments per mesh period, run from the
+    static state until the period-to-period change is below 1e-6. Measured here:
+    2.5e-3 on the RMS force (the 360-segment h^2 error dominates; the benchmark's
+    ladder shows it falling to 2e-4 at 720 segments). 1 % is the issue's requirement.
+    """
+    from pipeline.dynamics.models.seed002_case import seed002_model
+
+    s = seed002_model(half_coupling=(5e10, 5e10, 5e10, 5e10)).assembly().assemble()
+    f = np.array([1440.0])
+    hb = mesh_force_sweep(s, f, n_harmonics=20, executor=None)
+    ti = mesh_force_sweep(
+        s, f, method="time", segments=360, tol=1e-6, max_periods=50000, executor=None
+    )
+    np.testing.assert_allclose(hb.rms_force, ti.rms_force, rtol=0.01)
+    np.testing.assert_allclose(hb.max_force, ti.max_force, rtol=0.01)
