@@ -172,3 +172,20 @@ def test_herringbone_hb_agrees_with_time_integration_at_the_main_peak():
     )
     np.testing.assert_allclose(hb.rms_force, ti.rms_force, rtol=0.01)
     np.testing.assert_allclose(hb.max_force, ti.max_force, rtol=0.01)
+
+
+def test_modes_command_on_the_herringbone_config(tmp_path, capsys):
+    """gearpipe modes on workflows/configs/herringbone_planetary.toml: 8(N+3) DOF, mode types.
+
+    Translational modes come in pairs and there is one rigid rotation. (Planet-type
+    modes here have multiplicity 1 and 3 = N - 1: the axial planet motions add the
+    N - 1 family; not asserted, the classification is the planar one.)
+    """
+    cfg = ROOT / "workflows/configs/herringbone_planetary.toml"
+    assert _run("modes", cfg, tmp_path, ["--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["dofs"] == 8 * (4 + 3)
+    kinds, mult = np.array(s["kinds"]), np.array(s["multiplicity"])
+    assert np.count_nonzero(kinds == "rigid") == 1
+    assert np.all(mult[kinds == "translational"] == 2)
+    assert (tmp_path / "mode_shapes.png").is_file()
