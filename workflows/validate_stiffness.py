@@ -39,7 +39,7 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.fem.fe_source import FESectorCompliance, FESettings
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz.pair_plots import _plt, save
@@ -112,6 +112,15 @@ def table_row(res: dict) -> dict:
     return row
 
 
+def write_summary_csv(path: Path, table: dict) -> Path:
+    """One row per case (name in the first column, quoted), the :func:`table_row` columns."""
+    cols = list(next(iter(table.values())))
+    lines = [",".join(["case"] + cols)]
+    lines += [",".join([f'"{name}"'] + [f"{row[c]:.9g}" for c in cols])
+              for name, row in table.items()]
+    return atomic_write(path, lambda p: Path(p).write_text("\n".join(lines) + "\n"))
+
+
 def plot_case(name: str, res: dict):
     plt = _plt()
     fig, ax = plt.subplots(figsize=(8, 4))
@@ -127,9 +136,13 @@ def plot_case(name: str, res: dict):
     return fig
 
 
-def run(out: Path, positions: int, fe: FESettings) -> dict:
+def run(out: Path, positions: int, fe: FESettings, only: str = "") -> dict:
+    """Compare every case whose name contains ``only``; write plots, curves and the table."""
     table, files, curves, cache = {}, [], {}, {}
-    for name, cfg in progress(cases(), "validation cases"):
+    selected = [(n, c) for n, c in cases() if only in n]
+    if not selected:
+        raise SystemExit(f"--only {only!r} matches no case of {[n for n, _ in cases()]}")
+    for name, cfg in progress(selected, "validation cases"):
         res = compare(cfg, positions, fe, cache)
         table[name] = table_row(res)
         slug = name.replace(" ", "_").replace("=", "")
@@ -138,13 +151,11 @@ def run(out: Path, positions: int, fe: FESettings) -> dict:
             unit = "rad" if key == "pinion_angle" else "N/m"
             curves[f"{name}: {key} [{unit}]"] = res[key]
     files.append(write_csv(out / "curves.csv", curves))
-    rows = {"case": list(table)}
-    for col in next(iter(table.values())):
-        rows[col] = [table[c][col] for c in table]
-    files.append(write_csv(out / "summary.csv", rows))
+    files.append(write_summary_csv(out / "summary.csv", table))
     files.append(write_json(out / "summary.json", {"fe_settings": dataclasses.asdict(fe),
                                                    "positions": positions, "cases": table}))
-    write_run_record(out, {"positions": positions, "fe": dataclasses.asdict(fe)}, files,
+    write_run_record(out, {"positions": positions, "fe": dataclasses.asdict(fe), "only": only},
+                     files,
                      "python workflows/validate_stiffness.py")
     return table
 
@@ -155,9 +166,11 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--refinement", type=float, default=1.0, help="FE mesh refinement factor")
     ap.add_argument("--slices", type=int, default=20, help="slices of the helical pair")
     ap.add_argument("--out", type=Path, default=HERE.parent / "results" / "validate_stiffness")
+    ap.add_argument("--only", default="", help="run only the cases whose name contains this")
     args = ap.parse_args(argv)
-    fe = FESettings(teeth=5, radii=30, refinement=args.refinement, slices=args.slices)
-    table = run(args.out, args.positions, fe)
+    # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe_source docs)
+    fe = FESettings(teeth=None, radii=30, refinement=args.refinement, slices=args.slices)
+    table = run(args.out, args.positions, fe, args.only)
     for name, row in table.items():
         print(f"{name:22s} mean: analytical {row['analytical_mean_N_per_m']:.4e}  "
               f"optimised {row['optimised_slice_mean_N_per_m']:.4e}  "
