@@ -124,6 +124,31 @@ class ComplianceSource(Protocol):
     def matrix(self, position: float) -> np.ndarray: ...
 
 
+def slice_grid(pair: GearPair, slices: int, position: float
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """Slice contact grid at mesh ``position`` (m of roll of the leading pair).
+
+    Returns roll coordinates (K, N) in m, slice centres z (N,) in m, tooth pair
+    indices (K,) and the slice width in m; ``slices`` applies to helical gears,
+    spur gears use one slice.
+    """
+    n = slices if pair.pinion.is_helical else 1
+    dz = pair.face_width / n
+    z = (np.arange(n) + 0.5) * dz
+    k = pair.pair_indices()
+    s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
+        pair.pinion.base_helix_angle)
+    return s, z, k, dz
+
+
+def slice_points(pair: GearPair, slices: int, position: float) -> ContactPoints:
+    """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
+    s, z, k, dz = slice_grid(pair, slices, position)
+    inside = (s >= pair.s_start) & (s <= pair.s_end)
+    kk, jj = np.nonzero(inside)
+    return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
+
+
 @dataclass(frozen=True)
 class SliceCompliance:
     """Analytical slice compliance (seed 004 section 2.1-2.4) as a :class:`ComplianceSource`.
@@ -162,22 +187,11 @@ class SliceCompliance:
 
     def _grid(self, position: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """Roll coordinates (K, N), face positions (N,), pair indices (K,), slice width (m)."""
-        pair = self.pair
-        b = pair.face_width
-        n = self.slices if pair.pinion.is_helical else 1
-        dz = b / n
-        z = (np.arange(n) + 0.5) * dz
-        k = pair.pair_indices()
-        s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
-            pair.pinion.base_helix_angle)
-        return s, z, k, dz
+        return slice_grid(self.pair, self.slices, position)
 
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
-        s, z, k, dz = self._grid(position)
-        inside = (s >= self.pair.s_start) & (s <= self.pair.s_end)
-        kk, jj = np.nonzero(inside)
-        return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
+        return slice_points(self.pair, self.slices, position)
 
     def diagonal(self, position: float) -> np.ndarray:
         """Independent-slice compliance of the candidate points, m/N, shape (n,).

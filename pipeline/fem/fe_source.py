@@ -24,12 +24,11 @@ from 2D sector influence matrices (:mod:`pipeline.fem.influence`) of both gears:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from pipeline.contact.source import ContactPoints
+from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
 from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
@@ -143,22 +142,9 @@ class FESectorCompliance:
         return cls(pair, settings, gear_table(pair.pinion, settings, np.sort(m1 - k)),
                    gear_table(pair.gear, settings, np.sort(m2 + k)))
 
-    def _grid(self, position: float):
-        pair = self.pair
-        n = self.settings.slices if pair.pinion.is_helical else 1
-        dz = pair.face_width / n
-        z = (np.arange(n) + 0.5) * dz
-        k = pair.pair_indices()
-        s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
-            pair.pinion.base_helix_angle)
-        return s, z, k, dz
-
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
-        s, z, k, dz = self._grid(position)
-        inside = (s >= self.pair.s_start) & (s <= self.pair.s_end)
-        kk, jj = np.nonzero(inside)
-        return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
+        return slice_points(self.pair, self.settings.slices, position)
 
     def matrix(self, position: float) -> np.ndarray:
         """``G`` (m/N), (n, n): pinion + gear structural compliance, same-section coupling."""
