@@ -234,14 +234,20 @@ def pair_config_from_dict(doc: Mapping[str, Any], name: str = "pair") -> PairCon
     pair_keys = {"centre_distance_mm", "assembly_error_pinion_um", "assembly_error_gear_um"}
     for k in p:
         if k not in pair_keys:
-            raise InputError(f"[pair] has unknown key {k!r}; allowed: {', '.join(sorted(pair_keys))}")
+            raise InputError(
+                f"[pair] has unknown key {k!r}; allowed: {', '.join(sorted(pair_keys))}"
+            )
     cd = p.get("centre_distance_mm")
     errors = AssemblyErrors(
         pinion=tuple(float(v) * UM for v in p.get("assembly_error_pinion_um", (0.0, 0.0))),
         gear=tuple(float(v) * UM for v in p.get("assembly_error_gear_um", (0.0, 0.0))),
     )
     o = _section(doc, "operation")
-    op_keys = {"torque_Nm": ("torque", 1.0), "speed_rpm": ("speed", RPM), "driver": ("driver", None)}
+    op_keys = {
+        "torque_Nm": ("torque", 1.0),
+        "speed_rpm": ("speed", RPM),
+        "driver": ("driver", None),
+    }
     op = Operation(**_convert(o, op_keys, "operation"))
     s = _section(doc, "stiffness")
     s_keys = {

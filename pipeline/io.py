@@ -16,7 +16,7 @@ import sys
 import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import asdict, is_dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from importlib import metadata
 from pathlib import Path
 from typing import Any
@@ -102,7 +102,7 @@ def write_run_record(
     """Write ``run.json`` with inputs, their hash, versions and the output files."""
     record = {
         "command": command,
-        "time_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "config_hash": content_hash(inputs),
         "inputs": to_jsonable(inputs),
         "versions": library_versions(),

@@ -9,7 +9,9 @@ from typing import TypeVar
 T = TypeVar("T")
 
 
-def progress(items: Iterable[T], desc: str, total: int | None = None, enabled: bool = True) -> Iterator[T]:
+def progress(
+    items: Iterable[T], desc: str, total: int | None = None, enabled: bool = True
+) -> Iterator[T]:
     """Iterate over ``items`` showing a progress bar on stderr.
 
     The bar appears only when ``enabled`` and stderr is a terminal, or when the

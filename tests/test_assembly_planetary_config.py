@@ -135,6 +135,7 @@ def test_config_units_and_errors(tmp_path):
 def test_shipped_configs_load():
     from pathlib import Path
 
-    for f in sorted((Path(__file__).parents[1] / "workflows" / "configs").glob("seed00[14]*.toml")):
+    configs = Path(__file__).parents[1] / "workflows" / "configs"
+    for f in sorted(configs.glob("seed00[14]*.toml")):
         cfg = load_pair_config(f)
         assert cfg.pinion.teeth > 0

@@ -15,7 +15,7 @@ def model(seed004_pair):
 
 
 def test_dry_source_plus_friction_change_equals_friction_source(model):
-    """Dry slices + (friction - dry) on the diagonal reproduces the slices with friction exactly."""
+    """Dry slices + (friction - dry) on the diagonal equal the slices with friction exactly."""
     dry = SliceCompliance(model, slices=12)
     wet = SliceCompliance(model, slices=12, friction=FrictionModel(mu=0.1))
     corrected = FrictionCorrected(dry, wet)

@@ -20,8 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from skfem import BilinearForm, Functional, FacetBasis, LinearForm, MeshTri
-from skfem.helpers import dot
+from skfem import FacetBasis, Functional, LinearForm, MeshTri
 
 from pipeline.fem.linear_static import build_model, solve_static
 from pipeline.geometry.gear import Material

@@ -6,12 +6,11 @@ import math
 
 import numpy as np
 import pytest
+from gearsets import spur
 
 from pipeline.geometry import GearPair, GearSpec
 from pipeline.geometry.involute import inv, inv_inverse
 from pipeline.validation import InputError
-
-from gearsets import spur
 
 D = math.radians
 
@@ -40,7 +39,10 @@ def test_radii_and_pitch(z, beta, x):
 
 @pytest.mark.parametrize("x", [-0.3, 0.0, 0.5])
 def test_reference_tooth_thickness(x):
-    """s = m_t (pi/2 + 2 x tan a_n) and the involute thickness law s_y = 2 r_y (s/2r + inv a - inv a_y)."""
+    """s = m_t (pi/2 + 2 x tan a_n) and the involute thickness law.
+
+    s_y = 2 r_y (s/2r + inv a - inv a_y).
+    """
     g = spur(30, "g", profile_shift=x)
     s = g.reference_tooth_thickness
     assert s == pytest.approx(3e-3 * (math.pi / 2 + 2 * x * math.tan(D(20))), rel=1e-14)
@@ -91,7 +93,7 @@ def test_internal_pair_contact_ratio():
 
 
 def test_helical_overlap_ratio_and_contact_lines(seed004_pair):
-    """eps_b = b sin(b) / (pi m_n); mean contact line length = eps_a b / cos(b_b) (exact average)."""
+    """eps_b = b sin(b) / (pi m_n); mean contact line length = eps_a b / cos(b_b) (exact)."""
     pair = seed004_pair
     assert pair.overlap_ratio == pytest.approx(0.13 * math.sin(D(4)) / (math.pi * 7.35e-3),
                                                rel=1e-13)

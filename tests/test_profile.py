@@ -86,9 +86,10 @@ def test_base_pitch_between_neighbouring_flanks(name):
     """Along the normal of a right flank, the neighbouring right flank's involute is p_bt away.
 
     Normals of the first tooth's involute (points whose roll length exceeds p_bt, so
-    the hit lies on the same side of the base-circle tangent point) are intersected with the involute part of
-    the second tooth's right flank in the 3-tooth outline (tests the involute and the
-    placement of the teeth together); every hit must be one transverse base pitch away.
+    the hit lies on the same side of the base-circle tangent point) are intersected with the
+    involute part of the second tooth's right flank in the 3-tooth outline (tests the
+    involute and the placement of the teeth together); every hit must be one transverse
+    base pitch away.
     """
     g = GEARS[name]()
     out = gear_outline(g, teeth=3, points=400)
@@ -111,7 +112,7 @@ def test_base_pitch_between_neighbouring_flanks(name):
 
 @pytest.mark.parametrize("name", ["spur25", "spur25_x05", "helical31", "ring80"])
 def test_fillet_meets_involute_tangentially(name):
-    """Direction of the fillet's last chord vs the involute tangent at the form radius (< 0.05 deg)."""
+    """Fillet's last chord direction vs the involute tangent at the form radius (< 0.05 deg)."""
     g = GEARS[name]()
     p = tooth_profile(g, points=4000)
     k = int(np.argmax(p.kind == INVOLUTE))  # first involute point after the junction
@@ -131,7 +132,7 @@ def test_fillet_meets_involute_tangentially(name):
 
 
 def _rack_height(g: GearSpec, u: np.ndarray) -> np.ndarray:
-    """Lower edge of the (periodic) transverse rack cutter at abscissa u (m): y of the rack profile."""
+    """Lower edge of the (periodic) transverse rack cutter at abscissa u (m): y of the profile."""
     line, rnd = rack_tip(g, 50, 2000)
     yn = np.linspace(rnd.y[-1], g.reference_radius + 3 * g.module, 400)
     fl = rack_flank(g, yn - (g.reference_radius + g.profile_shift * g.module))
@@ -145,7 +146,7 @@ def _rack_height(g: GearSpec, u: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("name", ["spur25", "spur12_undercut", "helical31"])
 def test_profile_is_the_envelope_of_the_swept_cutter(name):
-    """Independent check: roll the cutter past the profile; it never cuts in and touches every point.
+    """Independent check: roll the cutter past the profile; it never cuts in, touches every point.
 
     For 30,000 rack positions the profile points are moved into the rack frame; the
     largest penetration above the rack edge must be ~0 (touching, within 1e-4 m_n
@@ -156,7 +157,8 @@ def test_profile_is_the_envelope_of_the_swept_cutter(name):
     r = g.reference_radius
     fillet = p.kind != INVOLUTE
     pts = np.column_stack([p.x, p.y])
-    phi = np.linspace(-2.0, 1.0, 30000) * 2 * math.pi / g.teeth  # generation spans ~ -1.3..0.5 pitch
+    # generation spans ~ -1.3..0.5 pitch
+    phi = np.linspace(-2.0, 1.0, 30000) * 2 * math.pi / g.teeth
     worst = np.full(len(pts), -np.inf)
     for chunk in np.array_split(phi, 20):
         c, s = np.cos(chunk)[:, None], np.sin(chunk)[:, None]
@@ -174,7 +176,8 @@ def test_profile_is_the_envelope_of_the_swept_cutter(name):
 @pytest.mark.parametrize(("z", "x", "undercut"), [(18, 0.0, False), (17, 0.0, True),
                                                    (12, 0.35, False), (12, 0.25, True)])
 def test_undercut_limit(z, x, undercut):
-    """Undercut starts below z_min = 2 (h_a0* - x) / sin^2(a): 17.1 for x = 0, 11.1 / 12.8 for 12 teeth.
+    """Undercut starts below z_min = 2 (h_a0* - x) / sin^2(a):
+    17.1 for x = 0, 11.1 / 12.8 for 12 teeth.
 
     h_a0* is the height of the rack's straight flank, h_f* - rho (1 - sin a) = 1.0 here.
     """
@@ -229,11 +232,12 @@ def test_outline_sector_and_full_gear():
     g = spur(25, "p")
     sec = gear_outline(g, teeth=3)
     ang = np.arctan2(sec[[0, -1], 1], sec[[0, -1], 0])
-    np.testing.assert_allclose(ang, [math.pi / 2 - 3 * math.pi / 25, math.pi / 2 + 3 * math.pi / 25],
-                               atol=1e-12)
+    half = 3 * math.pi / 25
+    np.testing.assert_allclose(ang, [math.pi / 2 - half, math.pi / 2 + half], atol=1e-12)
     np.testing.assert_allclose(np.hypot(*sec[[0, -1]].T), g.root_radius, rtol=1e-12)
     full = gear_outline(g)
-    area = 0.5 * np.sum(full[:, 0] * np.roll(full[:, 1], -1) - np.roll(full[:, 0], -1) * full[:, 1])
+    x, y = full[:, 0], full[:, 1]
+    area = 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
     assert area == pytest.approx(math.pi * g.root_radius**2 + 25 * tooth_profile(g).area(),
                                  rel=1e-9)
     with pytest.raises(InputError, match="outline.teeth"):

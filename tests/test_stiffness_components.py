@@ -64,7 +64,8 @@ def test_section_integrals_exact_for_uniform_beam():
 @pytest.mark.parametrize("a1", [0.05, 0.15, 0.3, 0.42])
 @pytest.mark.parametrize("mu_lam", [0.0, 0.1, -0.1])
 def test_classical_tooth_matches_closed_form(a1, mu_lam):
-    """Base-circle-clamped involute tooth vs the closed-form integrals of seed 004 eqs. 11-13, 21-23.
+    """Base-circle-clamped involute tooth vs the closed-form integrals of seed 004
+    (eqs. 11-13, 21-23).
 
     The contact point with load angle a1 has tan(alpha_R) = a1 + a2 (a2: half base angle);
     friction enters as F_b = F(cos a1 - mu lam sin a1), F_a = F(sin a1 + mu lam cos a1).

@@ -70,7 +70,9 @@ class AssembledPair:
     @cached_property
     def actual(self) -> GearPair:
         """The pair at the actual centre distance (raises if the teeth lose contact)."""
-        return GearPair(self.nominal.pinion, self.nominal.gear, centre_distance=self.centre_distance)
+        return GearPair(
+            self.nominal.pinion, self.nominal.gear, centre_distance=self.centre_distance
+        )
 
     @cached_property
     def centre_line_rotation(self) -> float:

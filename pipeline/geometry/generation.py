@@ -73,7 +73,10 @@ def rack_tip(gear: GearSpec, n_line: int, n_round: int) -> tuple[RackPoints, Rac
 
 
 def rack_flank(gear: GearSpec, y_normal: np.ndarray) -> RackPoints:
-    """Points of the cutter's left straight flank at heights ``y_normal`` (m, from its reference line)."""
+    """Points of the cutter's left straight flank at heights ``y_normal``.
+
+    ``y_normal`` in m, measured from the cutter's reference line.
+    """
     m, a = gear.module, gear.pressure_angle
     y_normal = np.asarray(y_normal, dtype=float)
     un = -(math.pi * m / 4.0 + y_normal * math.tan(a))

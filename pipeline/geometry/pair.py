@@ -255,7 +255,9 @@ class GearPair:
         u1, u2 = self.rolling_velocities(s, pinion_speed)
         return u1 - u2
 
-    def rolling_velocities(self, s: ArrayLike, pinion_speed: float) -> tuple[np.ndarray, np.ndarray]:
+    def rolling_velocities(
+        self, s: ArrayLike, pinion_speed: float
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Tangential (rolling) surface velocities u1 = omega1 rho1 and u2 = omega2 |rho2|, m/s."""
         rho1, rho2 = self.curvature_radii(s)
         return pinion_speed * rho1, pinion_speed / self.gear_ratio * np.abs(rho2)

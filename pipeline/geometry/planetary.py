@@ -92,7 +92,8 @@ class PlanetarySet:
             chord = 2 * a_sp * math.sin(gaps.min() / 2)
             if chord <= 2 * self.planet.tip_radius_:
                 raise InputError(
-                    f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm apart, "
+                    f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm "
+                    "apart, "
                     f"less than the planet tip diameter {2e3 * self.planet.tip_radius_:.4g} mm "
                     f"(n_planets = {self.n_planets} is too many)"
                 )

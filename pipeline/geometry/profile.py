@@ -161,7 +161,9 @@ def _external_flank(gear: GearSpec, n: int):
 
 
 def _undercut_envelope(gear: GearSpec, cx: np.ndarray, cy: np.ndarray):
-    """Cut the fillet curve where it crosses the involute (undercut); return fillet and form radius.
+    """Cut the fillet curve where it crosses the involute (undercut).
+
+    Returns the fillet and the form radius.
 
     ``cx, cy`` is the trochoid followed by the secondary branch, shape (k,). The
     tooth keeps the fillet up to the crossing with the involute, found on the

@@ -1,4 +1,7 @@
-"""One call from a pair configuration to its analytical stiffness (what the CLI and workflows use)."""
+"""One call from a pair configuration to its analytical stiffness.
+
+This is what the CLI and the workflows use.
+"""
 
 from __future__ import annotations
 
@@ -55,7 +58,8 @@ def analyse_pair(cfg: PairConfig, model: PairModel | None = None) -> PairStiffne
     ``model`` may pass prebuilt tooth models of the *actual* pair to skip rebuilding them.
     """
     nominal = GearPair(cfg.pinion, cfg.gear, cfg.centre_distance)
-    assembled = None if cfg.assembly_errors.is_zero else AssembledPair(nominal, cfg.assembly_errors)
+    errors = cfg.assembly_errors
+    assembled = None if errors.is_zero else AssembledPair(nominal, errors)
     actual = nominal if assembled is None else assembled.actual
     model = model or PairModel.build(actual)
     op = OperatingPoint(cfg.operation.torque, cfg.operation.speed, cfg.operation.driver)

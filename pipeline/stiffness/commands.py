@@ -84,8 +84,12 @@ def run(args: argparse.Namespace) -> int:
     out = output_dir(args, "stiffness")
     res = analyse_pair(cfg)
     summary = stiffness_summary(res, args.harmonics)
-    title = f"{cfg.name}: z {cfg.pinion.teeth}/{cfg.gear.teeth}, m_n {cfg.pinion.module * 1e3:g} mm, "
-    title += f"beta {math.degrees(cfg.pinion.helix_angle):g} deg, friction {cfg.stiffness.friction}"
+    title = (
+        f"{cfg.name}: z {cfg.pinion.teeth}/{cfg.gear.teeth}, "
+        f"m_n {cfg.pinion.module * 1e3:g} mm, "
+        f"beta {math.degrees(cfg.pinion.helix_angle):g} deg, "
+        f"friction {cfg.stiffness.friction}"
+    )
     files = write_stiffness(res, out, title)
     files.append(write_json(out / "mesh_stiffness.json", summary))
     write_run_record(out, cfg, files, f"gearpipe stiffness {args.config}")

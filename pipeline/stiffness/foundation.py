@@ -1,6 +1,7 @@
 """Fillet-foundation (gear body) compliance of Sainsot, Velex & Duverger (2004).
 
-    lambda_f = cos^2(alpha_m) / (E L) * [ L* (u_f/S_f)^2 + M* (u_f/S_f) + P* (1 + Q* tan^2 alpha_m) ]
+    lambda_f = cos^2(alpha_m) / (E L)
+               * [ L* (u_f/S_f)^2 + M* (u_f/S_f) + P* (1 + Q* tan^2 alpha_m) ]
 
 (J. Mech. Des. 126, 748-752; seed 004 eq. 16), with the coefficients from the
 fitted polynomials (seed 004 eq. 17)

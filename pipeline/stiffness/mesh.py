@@ -229,7 +229,7 @@ def stiffness_at(
 
 def _half(model: PairModel, s0: np.ndarray, slices: int, friction: FrictionModel,
           operating: OperatingPoint, foundation_correction: float, load_share: float) -> dict:
-    """Stiffness arrays of one helical half (or of a spur/helical pair), see :func:`stiffness_at`."""
+    """Stiffness arrays of one helical half (or a spur/helical pair); see :func:`stiffness_at`."""
     pair = model.pair
     s, dz = slice_positions(pair, s0, slices)
     inside = (s >= pair.s_start) & (s <= pair.s_end)

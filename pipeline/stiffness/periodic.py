@@ -68,7 +68,9 @@ class PeriodicSignal:
     def __post_init__(self) -> None:
         v = np.asarray(self.values, dtype=float)
         if v.ndim != 1 or v.size < 4:
-            raise InputError(f"PeriodicSignal.values has shape {v.shape}; need 1-D with >= 4 samples")
+            raise InputError(
+                f"PeriodicSignal.values has shape {v.shape}; need 1-D with >= 4 samples"
+            )
         if not np.all(np.isfinite(v)):
             raise InputError("PeriodicSignal.values contains non-finite samples")
         object.__setattr__(self, "values", v)

@@ -68,7 +68,7 @@ class ToothCompliance:
 
 
 def tooth_model(gear: GearSpec, n_sections: int = 3000) -> ToothModel:
-    """Tooth model on the exact profile (involute + trochoidal fillet), clamped at the root circle."""
+    """Tooth model on the exact profile (involute + trochoidal fillet), clamped at the root."""
     from pipeline.geometry.profile import tooth_profile
 
     prof = tooth_profile(gear)

@@ -34,7 +34,7 @@ def save(fig, path: str | Path, dpi: int = 130) -> Path:
 
 
 def plot_line_of_action(pair: GearPair, title: str = ""):
-    """Path of contact on the line of action with single/double contact zones and the pitch point."""
+    """Path of contact on the line of action: single/double contact zones and the pitch point."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(8, 2.8))
     pb = pair.base_pitch
