@@ -107,9 +107,9 @@ def patch_loads(sector: SectorMesh2D, points: FlankPoints, half_width: float,
     for name in sorted(set(cols)):
         idx = [j for j, nm in enumerate(cols) if nm == name]
         fb = FacetBasis(mesh, ElementTriP2(), facets=sector.facets[name], intorder=intorder)
-        X = fb.global_coordinates().value  # (2, nf, nq)
+        X = np.asarray(fb.global_coordinates())  # (2, nf, nq)
         nrm = fb.normals  # outward (2, nf, nq)
-        phi = np.stack([fb.basis[a][0].value for a in range(fb.Nbfun)])  # (a, nf, nq)
+        phi = np.stack([np.asarray(fb.basis[a][0]) for a in range(fb.Nbfun)])  # (a, nf, nq)
         dofs = fb.element_dofs  # (a, nf)
         for j in idx:
             t = ((X[0] - points.position[j, 0]) * points.tangent[j, 0]
