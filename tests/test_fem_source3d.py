@@ -1,0 +1,255 @@
+"""The 3D FE compliance source (pipeline.fem.fe_source3d) for the loaded-contact solver.
+
+Ladder of checks:
+* inputs: settings and unsupported pairs are rejected with the field named;
+* mapping: the slice points of one tooth pair, mapped onto each gear's 3D sector,
+  lie on one contact line of that flank (their transverse projections are collinear
+  and share the transverse normal) - the helix-hand / face-direction convention;
+* interpolation: the weights reproduce the table at its nodes;
+* protocol: shapes, symmetry, positive diagonal, near positive definiteness;
+* physics: a spur sector with sliding end faces is plane strain, so the 3D source
+  must match the 2D plane-strain FE source (same teeth, clamped cuts) up to the 3D
+  mesh's known stiffening; sections of a helical face are coupled, positively and
+  decaying with distance;
+* LTCA: a coarse helical pair converges, carries P, and its mesh stiffness is
+  compared with the slice method's.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.source import ComplianceSource, SliceCompliance
+from pipeline.fem.fe_source3d import FE3DCompliance, FE3DSettings, touching_pairs
+from pipeline.fem.flank3d import flank_grid
+from pipeline.fem.sector3d import sector3d_mesh
+from pipeline.geometry import GearPair, GearSpec
+from pipeline.stiffness.mesh import PairModel
+from pipeline.validation import InputError
+
+KW = dict(teeth=30, module=3e-3, pressure_angle=math.radians(20), bore_radius=0.03)
+BETA = math.radians(15)
+PINION = GearSpec(face_width=12e-3, helix_angle=BETA, hand="right", name="p", **KW)
+GEAR = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", name="g", **KW)
+HELICAL_PAIR = GearPair(PINION, GEAR)
+# coarse: 10k DOF per gear; c = 0.6 m_n spans ~1 flank element (fe_source3d docstring)
+COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
+
+
+@pytest.fixture(scope="module")
+def cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("fe3d")
+
+
+@pytest.fixture(scope="module")
+def helical(cache):
+    return FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache)
+
+
+# ---- inputs ----------------------------------------------------------------------------
+@pytest.mark.parametrize("kw, field", [({"radii": 1}, "fe3d.radii"),
+                                       ({"patch": 5.0}, "fe3d.patch"),
+                                       ({"teeth": 2}, "fe3d.teeth"),
+                                       ({"ends": "glued"}, "fe3d.ends"),
+                                       ({"hub_depth": 0.5}, "fe3d.hub_depth")])
+def test_settings_are_validated(kw, field):
+    with pytest.raises(InputError, match=field):
+        FE3DSettings(**kw)
+
+
+def test_unsupported_pairs_and_small_sectors_are_rejected():
+    herring = GearSpec(face_width=12e-3, helix_angle=BETA, hand="right", herringbone=True,
+                       groove_width=3e-3, **KW)
+    other = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", herringbone=True,
+                     groove_width=3e-3, **KW)
+    with pytest.raises(InputError, match="herringbone"):
+        FE3DCompliance.build(GearPair(herring, other))
+    # k = -1..1 touch: a 3-tooth sector is the least; 2*1+1 = 3 is accepted, but the
+    # seed-004-like reach needs more
+    assert list(touching_pairs(HELICAL_PAIR)) == [-1, 0, 1]
+    wide = GearPair(GearSpec(face_width=60e-3, helix_angle=BETA, hand="right", **KW),
+                    GearSpec(face_width=60e-3, helix_angle=BETA, hand="left", **KW))
+    with pytest.raises(InputError, match="fe3d.teeth"):
+        FE3DCompliance.build(wide, FE3DSettings(teeth=3))
+
+
+# ---- mapping and interpolation -------------------------------------------------------------
+def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
+    """Points of one tooth pair (a straight contact line on the plane of action) mapped to
+    each sector: transverse positions collinear (1e-9 m) and one transverse normal
+    (1e-9). With the face direction reversed they are off the line by ~0.1 mm."""
+    s0 = HELICAL_PAIR.mesh_cycle(4)[2]
+    pts = helical.points(s0)
+    sel = pts.pair == 0
+    for gear, (tooth, arc, zs) in zip((PINION, GEAR), helical.flank_coordinates(pts),
+                                      strict=True):
+        sec = sector3d_mesh(gear, _sector_settings(gear, helical), cache_dir=cache)
+        rb = gear.base_radius
+        r = np.sqrt(2 * rb * arc[sel, 0] + rb * rb)
+        for z, tol in ((zs[sel, 0], 1e-9), (gear.face_width - zs[sel, 0], None)):
+            g = [flank_grid(sec, [t], [ri], [zi]) for t, ri, zi in
+                 zip(tooth[sel, 0], r, z, strict=True)]
+            xy = np.array([p.position[0, :2] for p in g])
+            d = xy - xy[0]
+            e = d[-1] / np.linalg.norm(d[-1])
+            off = np.abs(d[:, 0] * e[1] - d[:, 1] * e[0]).max()
+            nt = np.array([p.normal[0, :2] / np.linalg.norm(p.normal[0, :2]) for p in g])
+            if tol is not None:
+                assert off < tol and np.ptp(nt, axis=0).max() < 1e-9
+            else:
+                assert off > 1e-5
+
+
+def _sector_settings(gear, src):
+    from pipeline.fem.fe_source3d import _sector_settings
+
+    return _sector_settings(gear, src.sector_teeth, src.settings)
+
+
+def test_interpolation_reproduces_table_at_nodes(helical):
+    """Weights at grid nodes select the node (W S W^T = S exactly); half-way between two
+    face nodes they average them."""
+    t = helical.pinion_table
+    n_t, n_f, n_p = t.shape
+    tooth = np.repeat(t.teeth, n_f * n_p)
+    z = np.tile(np.repeat(t.z, n_p), n_t)
+    arc = np.tile(t.arc, n_t * n_f)
+    W = t.weights(tooth, arc, z)
+    assert np.allclose(W, np.eye(W.shape[0]), atol=1e-12)
+    assert np.allclose(W @ t.structural @ W.T, t.structural, rtol=0, atol=1e-15)
+    w = t.weights([t.teeth[1]], [t.arc[1]], [0.5 * (t.z[0] + t.z[1])])
+    i0 = (1 * n_f + 0) * n_p + 1
+    assert w[0, i0] == pytest.approx(0.5) and w[0, i0 + n_p] == pytest.approx(0.5)
+    with pytest.raises(InputError, match="not tabulated"):
+        t.weights([99], [t.arc[0]], [t.z[0]])
+
+
+# ---- protocol ------------------------------------------------------------------------------
+def test_protocol_symmetry_and_definiteness(helical):
+    """Every position: G symmetric, positive diagonal, smallest eigenvalue > -2 % of the
+    largest (the structural tables are positive definite only up to discretisation,
+    influence3d docstring; measured -0.4 %)."""
+    assert isinstance(helical, ComplianceSource)
+    for s0 in HELICAL_PAIR.mesh_cycle(5):
+        pts = helical.points(s0)
+        G = helical.matrix(s0)
+        assert G.shape == (len(pts), len(pts))
+        assert np.array_equal(G, G.T)
+        assert np.all(np.diag(G) > 0)
+        ev = np.linalg.eigvalsh(G)
+        assert ev.min() > -0.02 * ev.max()
+
+
+def test_sections_are_coupled_and_coupling_decays(helical):
+    """Row of the slice nearest mid-face (pair 0): positive coupling to every other slice
+    of the same tooth pair, falling with the distance across the face on both sides
+    (measured from the end slice: 0.80, 0.59, 0.37, 0.24, 0.16, 0.09, 0.03 of the diagonal
+    at 0.5 .. 3.5 m_n; from mid-face 0.97, 0.85, 0.71, 0.57 at 0.5 .. 2 m_n), down to
+    < 70 % of the diagonal 2 m_n away; the slice model has no coupling at all."""
+    s0 = HELICAL_PAIR.mesh_cycle(4)[1]
+    pts = helical.points(s0)
+    G = helical.matrix(s0)
+    k = np.bincount(pts.pair - pts.pair.min()).argmax() + pts.pair.min()  # widest contact
+    same = np.flatnonzero(pts.pair == k)
+    for i in (same[0], same[len(same) // 2]):
+        row = G[i, same] / G[i, i]
+        dz = pts.z[same] - pts.z[i]
+        print("pair", k, "dz/m_n", np.round(dz / PINION.module, 2), "G_ij/G_ii", np.round(row, 3))
+        assert np.all(row > 0)
+        for side in (dz < 0, dz > 0):
+            order = np.argsort(np.abs(dz[side]))
+            assert np.all(np.diff(row[side][order]) < 0.01)
+    far = np.abs(dz) >= 2 * PINION.module
+    assert row[far].max() < 0.7
+    analytical = SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices).matrix(s0)
+    assert np.count_nonzero(analytical - np.diag(np.diag(analytical))) == 0
+
+
+# ---- physics: spur, sliding ends = plane strain -----------------------------------------------
+def test_spur_sliding_ends_matches_2d_plane_strain(cache):
+    """Spur z 30/30, b 6 mm, 5-tooth sectors clamped at bore and cuts, end faces sliding:
+    the 3D problem under a load uniform across the face is plane strain, so the 3D source
+    (one slice, load spread over the face) must equal the 2D plane-strain FE source up to
+    the 3D mesh's stiffening. test_fem_sector3d measured that at 0.933 (refinement 0.6)
+    to 0.972 (refinement 1) for a line load at the pitch point; here at refinement 0.6
+    the ratio 3D / 2D is measured 0.949-0.970 on the diagonal (6 positions; lowest near
+    the tip, where the 3D table is extrapolated) and 0.994-0.996 for the rim coupling
+    between two tooth pairs (far-field terms converge faster). Bands: diagonal
+    [0.92, 1.005] (the known 3-7 % deficit plus 1.5 % for interpolation/extrapolation;
+    a displacement model may not be softer than the reference), coupling [0.95, 1.03]."""
+    from pipeline.fem.fe_source import FESectorCompliance, FESettings
+
+    spur = GearSpec(face_width=6e-3, name="s", **KW)
+    pair = GearPair(spur, spur)
+    fe3 = FE3DCompliance.build(pair, FE3DSettings(teeth=5, radii=5, refinement=0.6, ends="sliding",
+                                                  method="splu"), cache_dir=cache)
+    fe2 = FESectorCompliance.build(pair, FESettings(teeth=5, radii=12, refinement=1.0,
+                                                    kind="plane_strain"))
+    ratios, cross = [], []
+    for s0 in pair.mesh_cycle(6):
+        G3, G2 = fe3.matrix(s0), fe2.matrix(s0)
+        ratios.append(np.diag(G3) / np.diag(G2))
+        if G3.shape[0] > 1:
+            cross.append(G3[0, 1] / G2[0, 1])
+    ratios = np.concatenate(ratios)
+    print("3D/2D diagonal", ratios.min(), ratios.max(), "coupling", min(cross), max(cross))
+    assert np.all((ratios > 0.92) & (ratios < 1.005))
+    assert cross and np.all((np.array(cross) > 0.95) & (np.array(cross) < 1.03))
+
+
+# ---- LTCA ------------------------------------------------------------------------------------
+def test_ltca_with_3d_source(helical):
+    """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact): converged (residual
+    within tolerance, measured 5e-17 m), every position carries P, and the tangent mesh
+    stiffness lies within [-30 %, +40 %] of the slice method's on the same points.
+
+    Measured: 3D / slice = 1.15 .. 1.28 (mean 1.22; 305 vs 252 N/um). The 3D model is
+    stiffer for known reasons: a 3-tooth sector clamped at its cuts and bore (the 2D study
+    found a clamped 5-tooth sector +55 % stiffer than the slice model on seed 001, whose
+    foundation term assumes a whole gear body) and the coarse mesh (refinement 0.6: ~5 %
+    too stiff, test above); the free tooth ends and the face coupling make it softer where
+    a contact line reaches an end face."""
+    P = 4000.0
+    fe = loaded_mesh_cycle(helical, P, positions=8)
+    sl = loaded_mesh_cycle(SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices), P,
+                           positions=8)
+    assert np.all(fe.residual <= fe.tolerance)
+    assert np.allclose(fe.pair_loads.sum(axis=1), P, rtol=1e-9)
+    ratio = fe.mesh_stiffness / sl.mesh_stiffness
+    print("k_fe3d / k_slice", ratio.min(), ratio.mean(), ratio.max(), fe.mesh_stiffness.mean(),
+          sl.mesh_stiffness.mean(), fe.residual.max())
+    assert np.all((ratio > 0.7) & (ratio < 1.4))
+
+
+# ---- slow: the seed 004 workflow at its coarsest ---------------------------------------------
+@pytest.mark.slow
+def test_seed004_workflow_coarse(tmp_path):
+    """workflows/fe3d_helical_stiffness.py on seed 004's pair at refinement 0.4 (very coarse,
+    a few tens of thousands of DOF per gear), 4 positions: writes its files, both LTCA runs
+    converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6] (the
+    workflow's own run at refinement 0.7 is reported in its summary.json)."""
+    import importlib.util
+    import json
+    import sys
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "workflows" / "fe3d_helical_stiffness.py"
+    spec = importlib.util.spec_from_file_location("fe3d_helical_stiffness", path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["fe3d_helical_stiffness"] = mod
+    spec.loader.exec_module(mod)
+    out = tmp_path / "out"
+    s = mod.run(out, refinement=0.4, radii=4, slices=12, positions=4,
+                cache_dir=tmp_path / "cache")
+    for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
+        assert (out / name).is_file()
+    assert len(json.loads((out / "run.json").read_text())["config_hash"]) == 16
+    for src in ("slice", "fe3d"):
+        assert s["max_load_balance_error_N"][src] < 1e-6 * s["load_N"]
+        assert s["max_residual_m"][src] < 1e-9
+    print(s["fe3d_vs_slice_percent"], s["fe3d_model"]["pinion"]["dof"], s["fe3d_build_s"])
+    assert 0.8 < s["fe3d"]["mean_N_per_m"] / s["slice"]["mean_N_per_m"] < 1.6
