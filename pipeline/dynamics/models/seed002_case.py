@@ -10,6 +10,12 @@ Planet angles and meshing phases (eqs. 10a-c, 11) come from
 :class:`pipeline.geometry.planetary.PlanetarySet`. Damping: mesh damping ratio
 0.05 plus a constant modal damping of 0.02 (seed 002 sec. 2.3 uses a constant
 modal damping without giving its value).
+
+Groove stiffness and mesh stiffness (seed 002 eqs. 1, 11, 14-15): K_j sets the
+twist of the sun halves, hence the right meshes' phase lambda_LR, *and* the
+left/right sun-planet mesh stiffness (+9.79 % / -11.23 % from K_1 to K_5,
+:mod:`pipeline.dynamics.models.groove_mesh`); ring-planet meshes keep their
+stiffness (eq. 15). ``groove_mesh=None`` gives the earlier model with equal sides.
 """
 
 from __future__ import annotations
@@ -17,10 +23,16 @@ from __future__ import annotations
 import math
 
 from pipeline.dynamics.excitation import contact_line_stiffness
+from pipeline.dynamics.models.groove_mesh import (
+    SEED002_GROOVE_MESH,
+    GrooveMeshRelation,
+    side_factors,
+)
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.planetary import PlanetarySet, dec
+from pipeline.stiffness.periodic import PeriodicSignal
 
 Z_S, Z_P, Z_R = 21, 37, 95
 M_N = 15e-3
@@ -73,6 +85,7 @@ def seed002_model(
     stagger: float = 0.0,
     groove: GrooveStiffness | None = None,
     modal_damping_ratio: float = 0.02,
+    groove_mesh: GrooveMeshRelation | None = SEED002_GROOVE_MESH,
 ) -> HerringbonePlanetaryModel:
     """Seed 002 model at one mesh frequency.
 
@@ -91,6 +104,10 @@ def seed002_model(
         matrix joins the sun halves and its ``phase_shift`` gives lambda_LR; ``None`` uses
         the beam value ``groove_Kj / L_TORSION`` with stiff translations.
     modal_damping_ratio : constant modal damping (-) of seed 002 (sec. 2.3).
+    groove_mesh : left/right sun-planet mesh stiffness against K_j (seed 002 eq. 14,
+        Fig. 5; :func:`~pipeline.dynamics.models.groove_mesh.side_factors`), evaluated at
+        ``groove_Kj`` (or ``groove.equivalent_Kj``), which must then lie in [K_5, K_1];
+        ``None``: both sides keep the nominal stiffness at every K_j.
     """
     ps = planetary_set(4)
     mt = M_N / math.cos(BETA)
@@ -116,6 +133,14 @@ def seed002_model(
         lam_lr = float(dec(groove.phase_shift(t_s).lambda_LR))
         translational = None
     lam_lr = float(dec(stagger + lam_lr))
+    k_sun: object = k
+    if groove_mesh is not None:
+        kj = groove_Kj if groove is None else groove.equivalent_Kj
+        sf = side_factors(kj, groove_mesh)
+        k_sun = (
+            PeriodicSignal(k.values * sf.left, k.period),
+            PeriodicSignal(k.values * sf.right, k.period),
+        )
     return HerringbonePlanetaryModel(
         n_planets=4,
         mass_sun=ms,
@@ -133,7 +158,7 @@ def seed002_model(
         pressure_angle_sun=at,
         pressure_angle_ring=at,
         base_helix_angle=bb,
-        k_sun_mesh=k,
+        k_sun_mesh=k_sun,
         k_ring_mesh=k,
         k_sun=2e9,
         k_ring=5e9,
