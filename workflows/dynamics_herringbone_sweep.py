@@ -8,24 +8,46 @@ mesh force, seed 002 Figs. 9-10):
 * groove stiffness K_1..K_5 = 5.2e7..4.0e7 N m^2 at zero slide;
 * axial slide 0, +0.5, +1 mm at K_1, and +1 mm at K_5.
 
-Comparison with seed 002 sec. 4 (coarse run, 100 points, H = 10; a 10 Hz check
-over 1000-3600 Hz gave the same peaks):
+The groove stiffness enters twice (seed 002 eqs. 1, 11, 14-15): as the twist
+phase lambda_LR of the right sun meshes and through the left/right sun-planet
+mesh stiffness, which changes by +9.79 % / -11.23 % from K_1 to K_5 (sec. 3.1,
+Fig. 5; :mod:`pipeline.dynamics.models.groove_mesh`, linear in the twist
+1/K_j, equal sides at K_1). The groove study tracks the two peak regions of
+Fig. 9 on fine grids (2 Hz coarse, 0.5 Hz ``--full``; parabola-refined peaks),
+once with that relation and once with equal sides.
 
-* axial slide 0 -> +1 mm at K_1: left peak RMS force falls (224.2 -> 221.2 kN),
-  right rises (261.9 -> 264.4 kN), peak frequencies unchanged (1421 Hz on this
-  grid, 1440 Hz at 10 Hz steps) - the paper's Fig. 10 trend, reproduced and tested;
-* K_1 -> K_5: the groove (sun-half twist) natural frequency falls 3043 -> 2823 Hz
-  (tested), and the left peak force falls (224.2 -> 222.0 kN), but the sweep peak
-  frequencies (1440 and 2520/2690 Hz) do not move and the right peak rises
-  (261.9 -> 266.0 kN). The paper (Fig. 9) reports both peak values and peak
-  frequencies of both sides falling. Its mechanism is the change of the left/right
-  mesh stiffness with K_j (seed 002 eqs. 14-15, Fig. 5: +9.8 % / -11.2 %); this model
-  carries the groove twist only as a left/right meshing phase and a dynamic
-  torsional joint, with the same mesh stiffness for every K_j, so that trend is
-  NOT reproduced here.
+Comparison with seed 002 sec. 4 (coarse run: 100 points, H = 10, fine grids 2 Hz):
+
+* K_1 -> K_5, main peak (paper: "near 1440 Hz"): s-p1L 1436.4 -> 1430.0 Hz,
+  s-p1R 1440.4 -> 1436.4 Hz, falling monotonically - the paper's direction
+  (Fig. 9), tested. With equal sides the peaks stay put (L -0.5 Hz, R +0.3 Hz):
+  the shift comes from eq. 14's stiffness change, not from the groove spring.
+  The shift is small (-0.3 to -0.45 %) because the peak sits on the sun-mesh
+  translational mode pair (1489 Hz undamped; 80 % of its strain energy in the
+  sun meshes, none in the groove), and the paper's percentages change the summed
+  left + right sun-mesh stiffness by only -0.72 %, i.e. about -0.36 % in
+  frequency for a mode held equally by both sides' sun meshes (a mode held by
+  the right meshes alone could fall by up to 5.8 %, but the halves are
+  symmetric at K_1, so the peak modes are shared). The paper gives no peak
+  frequency per K_j, only that they "decrease very obviously".
+* K_1 -> K_5, peak values: s-p1L rises (227 -> 246 kN), s-p1R falls
+  (266 -> 254 kN); the paper has both falling - not reproduced.
+* Second region (paper: "near 2500 Hz"): s-p1L 2521.2 -> 2520.2 Hz (falls by
+  1 Hz), s-p1R 2692.3 -> 2694.2 Hz (rises) - not reproduced on the right side.
+* The groove (sun-half twist) mode falls 3043 -> 2827 Hz but gives no sweep
+  peak: it is a rotational mode, and with z_s / N = 21 / 4 the sequential
+  planet phasing lets only mesh harmonics h = 4, 8, ... excite rotational modes.
+* Axial slide 0 -> +1 mm at K_1: left peak RMS force falls (224.2 -> 221.2 kN),
+  right rises (261.9 -> 264.4 kN), peak frequencies unchanged - the paper's
+  Fig. 10 trend, reproduced and tested (K_1 has equal sides, so unchanged by
+  the groove relation).
 
 Writes results/dynamics_herringbone_sweep/: sweep_groove.png, sweep_slide.png,
-sweep_*.csv, summary.csv (main peak frequency and peak RMS force per case), run.json.
+sweep_*.csv, summary.csv (main peak frequency and peak RMS force per case on the
+sweep grid), groove_peaks.csv (per K_j: side factors, refined peak frequencies and
+forces of both regions, equal-sides peaks, mesh/groove mode frequencies and strain
+energy shares), sweep_groove_peak1.png / sweep_groove_peak2.png (RMS force vs mesh
+frequency per K_j around each peak region), run.json.
 
     python workflows/dynamics_herringbone_sweep.py [--full] [--out DIR]
 """
@@ -37,8 +59,10 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.dynamics.modal import modal_analysis
-from pipeline.dynamics.models.seed002_case import K_J, seed002_model
+from pipeline.dynamics.modal import conservative_mean_stiffness, modal_analysis
+from pipeline.dynamics.models.groove_mesh import side_factors
+from pipeline.dynamics.models.seed002_case import K_J, L_TORSION, seed002_model
+from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.plots import plot_sweep
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.io import write_csv, write_run_record
@@ -60,6 +84,81 @@ def groove_mode_frequency(system) -> float:
     a, b = res.dof_names.index("sL.theta"), res.dof_names.index("sR.theta")
     twist = np.abs(res.shapes[a] - res.shapes[b]) * np.sqrt(system.M.diagonal().max())
     return float(res.frequencies[np.argmax(twist)])
+
+
+def mode_energy_shares(system, kj: float, lo: float, hi: float) -> tuple[float, float, float]:
+    """Mode in ``[lo, hi]`` Hz with the largest sun-mesh strain energy, and its shares.
+
+    Returns
+    -------
+    (frequency Hz, sun-mesh share, groove share): strain energy in the mean sun-planet
+    mesh stiffnesses and in the groove spring ``K_j / L_TORSION`` as fractions of the
+    mode's total strain energy (mean, conservative stiffness).
+    """
+    res = modal_analysis(system)
+    phi = np.linalg.lstsq(system.basis, res.shapes, rcond=None)[0]  # reduced coordinates
+    K = conservative_mean_stiffness(system)
+    total = np.einsum("im,ij,jm->m", phi, K, phi)
+    sun = sum(t.signal.mean() * (t.v @ phi) ** 2 for t in system.terms if t.name.startswith("s-p"))
+    a, b = res.dof_names.index("sL.theta"), res.dof_names.index("sR.theta")
+    groove = kj / L_TORSION * (res.shapes[a] - res.shapes[b]) ** 2
+    ok = np.flatnonzero((res.frequencies >= lo) & (res.frequencies <= hi))
+    i = ok[np.argmax(sun[ok] / total[ok])]
+    return float(res.frequencies[i]), float(sun[i] / total[i]), float(groove[i] / total[i])
+
+
+def groove_peak_study(coarse: dict, full: bool, H: int, executor) -> tuple[dict, dict, dict]:
+    """Peak frequencies per K_j on fine grids around the two peak regions of seed 002 Fig. 9.
+
+    Peak 1 is the main peak (seed 002: near 1440 Hz), peak 2 the next region (near
+    2500 Hz). Each K_j is run with the K_j-dependent left/right mesh stiffness (the
+    model) and with equal sides (``groove_mesh=None``, the earlier model), to separate
+    the effect of eq. 14's stiffness change from that of the groove spring and phase.
+
+    Returns
+    -------
+    (table columns, fine sweeps of peak 1 per K, fine sweeps of peak 2 per K).
+    """
+    sw1 = coarse["K1 slide 0"]
+    p1 = [main_peak(sw1, m, 1000.0, 2000.0)[0] for m in MESHES]
+    p2 = [main_peak(sw1, m, 2200.0, 3000.0)[0] for m in MESHES]
+    step = 0.5 if full else 2.0
+    grid1 = np.arange(min(p1) - 50.0, max(p1) + 50.0 + step / 2, step)
+    grid2 = np.arange(min(p2) - 50.0, max(p2) + 50.0 + step / 2, 2 * step)
+    cols: dict[str, list] = {}
+    fine1, fine2 = {}, {}
+
+    def put(key, value):
+        cols.setdefault(key, []).append(value)
+
+    for j, kj in enumerate(K_J):
+        sf = side_factors(kj)
+        put("K_j [N m^2]", kj)
+        put("k factor L [-]", sf.left)
+        put("k factor R [-]", sf.right)
+        for tag, rel in (("", "default"), (" equal sides", None)):
+            kw = {} if rel == "default" else {"groove_mesh": None}
+            system = seed002_model(kj, **kw).assembly().assemble()
+            a = mesh_force_sweep(system, grid1, n_harmonics=H, executor=executor)
+            b = mesh_force_sweep(system, grid2, n_harmonics=H, executor=executor)
+            if not tag:
+                fine1[f"K{j + 1}"], fine2[f"K{j + 1}"] = a, b
+                fm, sun, gr = mode_energy_shares(system, kj, 1200.0, 1800.0)
+                put("mesh mode [Hz]", fm)
+                put("mesh mode sun-mesh energy [-]", sun)
+                put("mesh mode groove energy [-]", gr)
+                put("groove mode [Hz]", groove_mode_frequency(system))
+            for m in MESHES:
+                side = m[-1]
+                pk1 = refined_peak(a.frequencies, a.rms_force[a.mesh_names.index(m)])
+                put(f"peak1 {side}{tag} [Hz]", pk1.frequency)
+                if not tag:
+                    pk2 = refined_peak(b.frequencies, b.rms_force[b.mesh_names.index(m)])
+                    put(f"peak1 force {side} [N]", pk1.value)
+                    put(f"peak2 {side} [Hz]", pk2.frequency)
+                    put(f"peak2 force {side} [N]", pk2.value)
+                    put(f"peak at window edge {side} [-]", float(pk1.at_edge or pk2.at_edge))
+    return {k: np.array(v, dtype=float) for k, v in cols.items()}, fine1, fine2
 
 
 def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
@@ -134,13 +233,25 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     cols = {k: np.array(v, dtype=float) for k, v in summary.items() if k != "case"}
     cols = {"case index [-]": np.arange(len(summary["case"]), dtype=float), **cols}
     files.append(write_csv(out / "summary.csv", cols))
+    table, fine1, fine2 = groove_peak_study(sweeps, full, H, executor)
+    files.append(write_csv(out / "groove_peaks.csv", table))
+    for tag, fine in (("peak1", fine1), ("peak2", fine2)):
+        files.append(
+            plot_sweep(
+                list(fine.values()),
+                [f"{k}: K = {kj:.2g} N m^2" for k, kj in zip(fine, K_J, strict=True)],
+                MESHES,
+                out / f"sweep_groove_{tag}.png",
+                title=f"Seed 002: groove stiffness K1..K5, {tag} region (eq. 14 mesh stiffness)",
+            )
+        )
     write_run_record(
         out,
         {"full": full, "n_harmonics": H, "cases": list(cases), "points": int(freqs.size)},
         files,
         "workflows/dynamics_herringbone_sweep.py",
     )
-    return {"cases": summary["case"], **cols, "sweeps": sweeps}
+    return {"cases": summary["case"], **cols, "sweeps": sweeps, "groove_peaks": table}
 
 
 def main() -> None:
@@ -149,6 +260,16 @@ def main() -> None:
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     res = run(a.full, a.out)
+    t = res["groove_peaks"]
+    print("K_j [N m^2]  k L/R      peak1 L / R [Hz]   (equal sides)      peak2 L / R [Hz]")
+    for i, kj in enumerate(t["K_j [N m^2]"]):
+        print(
+            f"{kj:10.3g}  {t['k factor L [-]'][i]:.4f}/{t['k factor R [-]'][i]:.4f}"
+            f"  {t['peak1 L [Hz]'][i]:7.1f} / {t['peak1 R [Hz]'][i]:7.1f}"
+            f"  ({t['peak1 L equal sides [Hz]'][i]:7.1f} /"
+            f" {t['peak1 R equal sides [Hz]'][i]:7.1f})"
+            f"  {t['peak2 L [Hz]'][i]:7.1f} / {t['peak2 R [Hz]'][i]:7.1f}"
+        )
     for i, c in enumerate(res["cases"]):
         print(
             f"{c:18s} groove mode {res['groove mode [Hz]'][i]:7.1f} Hz, peak near it "
