@@ -1,0 +1,178 @@
+"""Seed 004 helical pair: LTCA mesh stiffness from the slice model vs the 3D FE influence matrix.
+
+The traction pair of seed 004 Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
+130 mm assumed; workflows/configs/seed004_helical.toml) at its rated load is run
+through the loaded tooth contact analysis (seed 004 eqs. 27-29, local approach
+eq. 24 "weber") twice, on the same slice contact points:
+
+* ``slice``: the analytical slice compliance (:class:`SliceCompliance`, independent
+  slices, seed 004 section 2.1-2.4);
+* ``fe3d``: the 3D FE structural compliance of both gears
+  (:class:`pipeline.fem.fe_source3d.FE3DCompliance`), which couples the slices
+  across the face width;
+
+and, to tell the 3D effect from the sector's boundary conditions, with two 2D FE
+references (:class:`~pipeline.fem.fe_source.FESectorCompliance`, same slices, no face
+coupling): ``fe2d_sector`` a 7-tooth sector clamped at the bore and its cuts, plane
+strain (the 3D model's sliding-ends limit), and ``fe2d_whole`` the whole gears,
+plane stress (what validate_stiffness uses for deep bodies).
+
+Both use the same friction-free normal loads (the config has mu = 0). The 3D sectors
+are clamped ``hub_depth = 6 m_n`` below the root (not at the 45/150 mm bores: the
+wheel's 220 mm deep web would triple the DOFs) and at their radial cuts.
+
+Writes to results/fe3d_helical_stiffness/: stiffness.csv (per position), summary.json
+(max/min/mean of both curves, % differences, DOFs, times, peak memory, residuals),
+stiffness.png and run.json (inputs and their hash).
+
+    python workflows/fe3d_helical_stiffness.py [--full] [--out DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.config import load_pair_config
+from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.source import SliceCompliance
+from pipeline.fem.fe_source import FESectorCompliance, FESettings
+from pipeline.fem.fe_source3d import FE3DCompliance, FE3DSettings
+from pipeline.geometry.pair import GearPair
+from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.stiffness.mesh import FrictionModel, OperatingPoint, PairModel
+
+HERE = Path(__file__).resolve().parent
+CONFIG = HERE / "configs" / "seed004_helical.toml"
+
+# 3D grid: 4 loaded teeth x radii x face points per gear = right-hand sides of one solve
+COARSE = {"refinement": 0.6, "radii": 6, "face": 24, "slices": 40, "positions": 24}
+FULL = {"refinement": 1.0, "radii": 8, "face": 34, "slices": 60, "positions": 60}
+
+
+def _stats(k: np.ndarray) -> dict:
+    return {"mean_N_per_m": float(k.mean()), "max_N_per_m": float(k.max()),
+            "min_N_per_m": float(k.min()),
+            "peak_to_peak_percent": float(100 * np.ptp(k) / k.mean())}
+
+
+def plot(deg: np.ndarray, curves: dict, title: str):
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    for name, cyc in curves.items():
+        ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, marker=".", label=name)
+        ax[1].plot(deg, cyc.transmission_error * 1e6, marker=".", label=name)
+    ax[0].set_ylabel("mesh stiffness dP/dx [N/um]")
+    ax[1].set_ylabel("loaded static TE [um]")
+    ax[1].set_xlabel("pinion angle [deg]")
+    ax[0].legend(fontsize=8)
+    ax[0].set_title(title, fontsize=9)
+    return fig
+
+
+def run(out: Path, refinement: float, radii: int, face: int | None, slices: int, positions: int,
+        cache_dir: Path | None = None) -> dict:
+    from pipeline.viz.pair_plots import save
+
+    cfg = load_pair_config(CONFIG)
+    pair = GearPair(cfg.pinion, cfg.gear, cfg.centre_distance)
+    load = cfg.operation.torque / pair.pinion.base_radius
+    op = OperatingPoint(cfg.operation.torque, cfg.operation.speed, cfg.operation.driver)
+    sources = {"slice": SliceCompliance(PairModel.build(pair), slices, FrictionModel(mu=0.0), op)}
+    settings = FE3DSettings(refinement=refinement, radii=radii, face=face, slices=slices,
+                            hub_depth=6.0)
+    t0 = time.perf_counter()
+    sources["fe3d"] = FE3DCompliance.build(pair, settings, cache_dir=cache_dir)
+    t_build = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    teeth_2d = 2 * int(np.abs(pair.pair_indices()).max()) + 1
+    sources["fe2d_sector"] = FESectorCompliance.build(pair, FESettings(
+        teeth=teeth_2d, radii=12, slices=slices, kind="plane_strain"))
+    sources["fe2d_whole"] = FESectorCompliance.build(pair, FESettings(
+        teeth=None, radii=12, slices=slices, kind="plane_stress"))
+    t_build_2d = time.perf_counter() - t0
+    cycles, t_ltca = {}, {}
+    s0 = pair.mesh_cycle(positions)
+    for name, src in sources.items():
+        t0 = time.perf_counter()
+        cycles[name] = loaded_mesh_cycle(src, load, local="weber", positions=s0,
+                                         show_progress=True)
+        t_ltca[name] = time.perf_counter() - t0
+    k_sl, k_fe = cycles["slice"].mesh_stiffness, cycles["fe3d"].mesh_stiffness
+    fe = sources["fe3d"]
+    summary = {
+        "load_N": load, "positions": positions, "slices": slices,
+        **{n: _stats(c.mesh_stiffness) for n, c in cycles.items()},
+        "mean_over_slice": {n: float(c.mesh_stiffness.mean() / k_sl.mean())
+                            for n, c in cycles.items()},
+        "fe3d_vs_slice_percent": {
+            "mean": float(100 * (k_fe.mean() / k_sl.mean() - 1)),
+            "max": float(100 * (k_fe.max() / k_sl.max() - 1)),
+            "min": float(100 * (k_fe.min() / k_sl.min() - 1)),
+            "pointwise_range": [float(100 * (k_fe / k_sl - 1).min()),
+                                float(100 * (k_fe / k_sl - 1).max())]},
+        "transmission_error_p2p_um": {n: float(np.ptp(c.transmission_error) * 1e6)
+                                      for n, c in cycles.items()},
+        "max_unit_load_N_per_mm": {n: float(c.max_unit_load.max() * 1e-3)
+                                   for n, c in cycles.items()},
+        "max_residual_m": {n: float(c.residual.max()) for n, c in cycles.items()},
+        "max_load_balance_error_N": {n: float(np.abs(c.pair_loads.sum(axis=1) - load).max())
+                                     for n, c in cycles.items()},
+        "fe3d_model": fe.summary(),
+        "fe3d_build_s": t_build,
+        "fe3d_cold_build_s": fe.pinion_table.info["seconds"] + fe.gear_table.info["seconds"],
+        "fe2d_build_s": t_build_2d, "fe2d_sector_teeth": teeth_2d, "ltca_s": t_ltca,
+        "peak_rss_GiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20,
+    }
+    deg = np.degrees(cycles["slice"].pinion_angle)
+    cols = {"pinion_angle [rad]": cycles["slice"].pinion_angle, "roll_coordinate_s0 [m]": s0}
+    for n, c in cycles.items():
+        cols[f"{n}_mesh_stiffness [N/m]"] = c.mesh_stiffness
+        cols[f"{n}_transmission_error [m]"] = c.transmission_error
+        cols[f"{n}_residual [m]"] = c.residual
+    files = [write_csv(out / "stiffness.csv", cols), write_json(out / "summary.json", summary)]
+    dof = fe.pinion_table.info["dof"], fe.gear_table.info["dof"]
+    title = (f"Seed 004 (z 31/104, beta 4 deg), P = {load / 1e3:.1f} kN, LTCA (weber): "
+             f"slice vs 3D FE ({dof[0]}/{dof[1]} DOF, refinement {refinement:g})")
+    labels = {"slice": "slice method (independent slices)",
+              "fe3d": f"3D FE, {fe.sector_teeth}-tooth sectors, face-coupled",
+              "fe2d_sector": f"2D FE, {teeth_2d}-tooth sectors, plane strain",
+              "fe2d_whole": "2D FE, whole gears, plane stress"}
+    files.append(save(plot(deg, {labels[n]: c for n, c in cycles.items()}, title),
+                      out / "stiffness.png"))
+    write_run_record(out, {"config": str(CONFIG), "pair": cfg, "fe3d": asdict(settings),
+                           "positions": positions, "local_contact": "weber"},
+                     files, "workflows/fe3d_helical_stiffness.py")
+    return summary
+
+
+def main(argv: list[str] | None = None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--full", action="store_true",
+                    help=f"{FULL} instead of {COARSE}")
+    ap.add_argument("--out", type=Path, default=Path("results/fe3d_helical_stiffness"))
+    args = ap.parse_args(argv)
+    args.out.mkdir(parents=True, exist_ok=True)
+    summary = run(args.out, **(FULL if args.full else COARSE))
+    for name in ("slice", "fe3d", "fe2d_sector", "fe2d_whole"):
+        row = summary[name]
+        print(f"{name:11s} " + "  ".join(f"{k} {v:.4g}" for k, v in row.items()))
+    print("fe3d vs slice [%]", summary["fe3d_vs_slice_percent"])
+    print(f"3D FE build {summary['fe3d_build_s']:.0f} s (cold: "
+          f"{summary['fe3d_cold_build_s']:.0f} s), peak RSS "
+          f"{summary['peak_rss_GiB']:.2f} GiB; written to {args.out}/")
+    return summary
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
