@@ -228,10 +228,11 @@ def test_ltca_with_3d_source(helical):
 # ---- slow: the seed 004 workflow at its coarsest ---------------------------------------------
 @pytest.mark.slow
 def test_seed004_workflow_coarse(tmp_path):
-    """workflows/fe3d_helical_stiffness.py on seed 004's pair at refinement 0.4 (very coarse,
-    a few tens of thousands of DOF per gear), 4 positions: writes its files, both LTCA runs
-    converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6] (the
-    workflow's own run at refinement 0.7 is reported in its summary.json)."""
+    """workflows/fe3d_helical_stiffness.py on seed 004's pair at refinement 0.4 (35k DOF per
+    gear, 3 x 6 grid), 4 positions, without the 2D references: writes its files, both LTCA
+    runs converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6]
+    (measured 1.42 with a 4 x 8 grid; the workflow's default at refinement 0.6 gives 1.38:
+    the clamped 5-tooth sectors, see the workflow's 2D references)."""
     import importlib.util
     import json
     import sys
@@ -243,8 +244,8 @@ def test_seed004_workflow_coarse(tmp_path):
     sys.modules["fe3d_helical_stiffness"] = mod
     spec.loader.exec_module(mod)
     out = tmp_path / "out"
-    s = mod.run(out, refinement=0.4, radii=4, face=8, slices=12, positions=4,
-                cache_dir=tmp_path / "cache")
+    s = mod.run(out, refinement=0.4, radii=3, face=6, slices=12, positions=4,
+                cache_dir=tmp_path / "cache", references=False)
     for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
         assert (out / name).is_file()
     assert len(json.loads((out / "run.json").read_text())["config_hash"]) == 16

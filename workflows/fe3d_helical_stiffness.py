@@ -81,7 +81,8 @@ def plot(deg: np.ndarray, curves: dict, title: str):
 
 
 def run(out: Path, refinement: float, radii: int, face: int | None, slices: int, positions: int,
-        cache_dir: Path | None = None) -> dict:
+        cache_dir: Path | None = None, references: bool = True) -> dict:
+    """Run the study into ``out``; ``references`` False skips the 2D FE references."""
     from pipeline.viz.pair_plots import save
 
     cfg = load_pair_config(CONFIG)
@@ -96,10 +97,11 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
     t_build = time.perf_counter() - t0
     t0 = time.perf_counter()
     teeth_2d = 2 * int(np.abs(pair.pair_indices()).max()) + 1
-    sources["fe2d_sector"] = FESectorCompliance.build(pair, FESettings(
-        teeth=teeth_2d, radii=12, slices=slices, kind="plane_strain"))
-    sources["fe2d_whole"] = FESectorCompliance.build(pair, FESettings(
-        teeth=None, radii=12, slices=slices, kind="plane_stress"))
+    if references:
+        sources["fe2d_sector"] = FESectorCompliance.build(pair, FESettings(
+            teeth=teeth_2d, radii=12, slices=slices, kind="plane_strain"))
+        sources["fe2d_whole"] = FESectorCompliance.build(pair, FESettings(
+            teeth=None, radii=12, slices=slices, kind="plane_stress"))
     t_build_2d = time.perf_counter() - t0
     cycles, t_ltca = {}, {}
     s0 = pair.mesh_cycle(positions)
@@ -164,7 +166,7 @@ def main(argv: list[str] | None = None) -> dict:
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     summary = run(args.out, **(FULL if args.full else COARSE))
-    for name in ("slice", "fe3d", "fe2d_sector", "fe2d_whole"):
+    for name in (n for n in ("slice", "fe3d", "fe2d_sector", "fe2d_whole") if n in summary):
         row = summary[name]
         print(f"{name:11s} " + "  ".join(f"{k} {v:.4g}" for k, v in row.items()))
     print("fe3d vs slice [%]", summary["fe3d_vs_slice_percent"])
