@@ -169,6 +169,20 @@ def test_sections_are_coupled_and_coupling_decays(helical):
     assert np.count_nonzero(analytical - np.diag(np.diag(analytical))) == 0
 
 
+def test_friction_correction_wraps_the_3d_source(helical):
+    """FrictionCorrected accepts the 3D source (same slice points as SliceCompliance) and
+    changes only the diagonal, by the slice model's friction effect."""
+    from pipeline.contact.source import FrictionCorrected
+    from pipeline.stiffness.mesh import FrictionModel
+
+    s0 = HELICAL_PAIR.mesh_cycle(4)[1]
+    sl = SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices, FrictionModel(mu=0.05))
+    src = FrictionCorrected(helical, sl)
+    d = src.matrix(s0) - helical.matrix(s0)
+    assert np.allclose(d - np.diag(np.diag(d)), 0.0)
+    assert np.allclose(np.diag(d), src.friction_change(s0)) and np.any(np.diag(d) != 0)
+
+
 # ---- physics: spur, sliding ends = plane strain -----------------------------------------------
 def test_spur_sliding_ends_matches_2d_plane_strain(cache):
     """Spur z 30/30, b 6 mm, 5-tooth sectors clamped at bore and cuts, end faces sliding:
