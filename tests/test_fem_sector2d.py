@@ -15,7 +15,12 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, Functional
 
-from pipeline.fem.sector2d import SectorMeshSettings, build_sector_mesh, sector_mesh
+from pipeline.fem.sector2d import (
+    SectorMeshSettings,
+    _split_outline,
+    build_sector_mesh,
+    sector_mesh,
+)
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
 from pipeline.validation import InputError
@@ -81,3 +86,29 @@ def test_rejects_too_many_teeth():
     """A sector must span less than half the gear."""
     with pytest.raises(InputError, match="sector.teeth"):
         build_sector_mesh(EXT, SectorMeshSettings(teeth=15))
+
+
+def test_whole_gear_with_full_round_root(seed004_pair, tmp_path):
+    """Seed 004's 31-tooth pinion as a whole gear (regression: Gmsh hung on it).
+
+    With h_f* = 1.55 the largest cutter tip radius fills the rack tooth space, so the
+    root circle land has zero length and the profile repeats its points there. The
+    outline given to Gmsh must have no curve shorter than the tip half-lands
+    (0.22 m_n here; the bound 0.1 m_n leaves room for other gears), four pieces per
+    tooth (flank with fillet, two tip halves, flank), and the mesh must reproduce the
+    exact area, z A_tooth + pi (r_f^2 - r_bore^2), within 5e-5 (as for the sectors).
+    """
+    gear = seed004_pair.pinion
+    assert np.all(np.hypot(*np.diff(tooth_profile(gear).outline()[:10], axis=0).T) == 0.0)
+    s = SectorMeshSettings.for_gear(gear, teeth=gear.teeth, refinement=0.3)
+    pieces = _split_outline(gear, gear.teeth, s.profile_points)
+    length = [np.hypot(*np.diff(seg, axis=0).T).sum() for _, seg in pieces]
+    assert min(length) > 0.1 * gear.module
+    assert len(pieces) == 4 * gear.teeth
+    sec = sector_mesh(gear, s, cache_dir=tmp_path)
+    exact = (gear.teeth * tooth_profile(gear).area()
+             + math.pi * (gear.root_radius**2 - gear.bore_radius**2))
+    assert _area(sec.mesh) == pytest.approx(exact, rel=5e-5)
+    assert {"right0", f"left{gear.teeth - 1}", "bore"} <= set(sec.facets)
+    # the 3-tooth sector of the same gear came back empty (no triangles) before the fix
+    assert build_sector_mesh(gear, SectorMeshSettings.for_gear(gear, 3, 0.3)).cells.shape[1] > 500

@@ -35,6 +35,8 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
 CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
+# outline points closer than this (times m_n) are one point: Gmsh cannot mesh a zero-length curve
+MERGE_TOL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -126,11 +128,26 @@ def inner_radius(gear: GearSpec, settings: SectorMeshSettings) -> float:
     return float(r)
 
 
+def _drop_repeated(pts: np.ndarray, tol: float) -> np.ndarray:
+    """``pts`` (m, 2) without the points closer than ``tol`` (m) to their predecessor.
+
+    The profile repeats points where a feature has zero length: when the cutter tip
+    round fills the whole rack tooth space (e.g. h_f* = 1.55 with the largest
+    rho_a0*), the root circle land shrinks to the middle of the tooth space, and its
+    ``max(4, n // 6)`` points (twice, from both flanks) coincide. Splines and lines
+    through such points have zero length, which Gmsh cannot mesh (it hangs on the
+    whole gear with "Impossible to recover edge", or returns no triangles).
+    """
+    step = np.hypot(*np.diff(pts, axis=0).T)
+    return pts[np.r_[True, step > tol]]
+
+
 def _split_outline(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, np.ndarray]]:
     """The outline as (group name, (m, 2) polyline) pieces, CCW, split at flank ends/corners."""
     from pipeline.geometry.profile import gear_outline
 
-    pts = gear_outline(gear, teeth=teeth, points=points)
+    pts = _drop_repeated(gear_outline(gear, teeth=teeth, points=points),
+                         MERGE_TOL * gear.module)
     z = gear.teeth
     ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
     cuts = [0]
@@ -227,11 +244,13 @@ def _mesh_and_extract(gmsh, curves: dict[str, list[int]], surf: int, outline_cur
 
 
 def _extract_tri_mesh(gmsh, curves: dict[str, list[int]]) -> TetMeshData:
+    _, nodes = gmsh.model.mesh.getElementsByType(9)  # 6-node triangles
+    if nodes.size == 0:
+        raise RuntimeError("sector2d: Gmsh produced no triangles (degenerate outline?)")
     node_tags, coords, _ = gmsh.model.mesh.getNodes()
     lookup = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
     lookup[node_tags.astype(np.int64)] = np.arange(node_tags.size)
     points = coords.reshape(-1, 3)[:, :2].T.copy()
-    _, nodes = gmsh.model.mesh.getElementsByType(9)  # 6-node triangles
     cells = lookup[nodes.astype(np.int64)].reshape(-1, 6).T
     used = np.unique(cells)
     renum = -np.ones(points.shape[1], dtype=np.int64)
