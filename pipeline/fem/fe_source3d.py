@@ -104,7 +104,6 @@ from pipeline.fem.sector2d import SectorMeshSettings, inner_radius
 from pipeline.fem.sector3d import (
     GEOMETRY_VERSION,
     Sector3DSettings,
-    SectorMesh3D,
     helix_sign,
     sector3d_mesh,
 )
@@ -114,7 +113,7 @@ from pipeline.io import atomic_write, content_hash
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 # Bump when the same inputs would give a different table.
-TABLE_FORMAT = 1
+TABLE_FORMAT = 2  # 2: tables on sector3d_mesh's own meshes (no cleaned-outline copy)
 
 
 @dataclass(frozen=True)
@@ -275,70 +274,6 @@ def _grid(gear: GearSpec, sector_width: float, settings: FE3DSettings
     return r, z, c
 
 
-def _clean_pieces(pieces: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
-    """Outline pieces without repeated consecutive points; pieces that collapse to a point go."""
-    out = []
-    for name, seg in pieces:
-        keep = np.r_[True, np.linalg.norm(np.diff(seg, axis=0), axis=1) > 1e-12]
-        if keep.sum() >= 2:
-            out.append((name, seg[keep]))
-    return out
-
-
-def _sector_mesh(gear: GearSpec, s3: Sector3DSettings, cache: bool,
-                 cache_dir: str | Path | None) -> SectorMesh3D:
-    """:func:`sector3d_mesh`, or the same loft from a cleaned outline when the 2D outline has
-    repeated points.
-
-    Gears whose fillets meet at the root (no root land, e.g. seed 004's pair with
-    ``h_f* = 1.55``) get an outline piece of coincident points from
-    :func:`pipeline.fem.sector2d._split_outline`, on which OpenCASCADE's spline fails.
-    Until the sector modules drop such pieces themselves, this builds the same solid
-    from the cleaned outline (cached under its own key; other gears are unaffected).
-    """
-    from pipeline.fem import sector3d as s3d
-    from pipeline.fem.cache import cached_tet_mesh
-    from pipeline.fem.gmsh_session import extract_tet_mesh, gmsh_session
-    from pipeline.fem.sector2d import _split_outline
-    from pipeline.fem.tetmesh import to_skfem
-
-    raw = _split_outline(gear, s3.teeth, s3.profile_points)
-    pieces = _clean_pieces(raw)
-    if len(pieces) == len(raw) and all(len(a[1]) == len(b[1]) for a, b in zip(
-            pieces, raw, strict=True)):
-        return sector3d_mesh(gear, s3, cache=cache, cache_dir=cache_dir)
-    r_in = inner_radius(gear, SectorMeshSettings(teeth=s3.teeth, inner_radius=s3.inner_radius))
-    b = gear.face_width
-    rate = helix_sign(gear) * math.tan(gear.helix_angle) / gear.reference_radius
-
-    def build():
-        names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
-        with gmsh_session() as gmsh:
-            occ = gmsh.model.occ
-            wires = [s3d._section_wire(occ, pieces, r_in, rate * (z - 0.5 * b), z)
-                     for z in np.linspace(0.0, b, s3.loft_sections)]
-            vol = occ.addThruSections(wires, makeSolid=True, makeRuled=False)[0][1]
-            occ.synchronize()
-            groups = s3d._classify_surfaces(gmsh, vol, pieces, r_in, b, rate)
-            missing = [n for n in names + ["end0", "end1"] if not groups.get(n)]
-            if missing:
-                raise RuntimeError(f"sector3d: surfaces not found after lofting: {missing}")
-            s3d._size_field(gmsh, s3, [s for n, tags in groups.items()
-                                       if n.startswith(("right", "left")) for s in tags])
-            gmsh.option.setNumber("Mesh.ElementOrder", 2)
-            gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-            gmsh.option.setNumber("Mesh.Algorithm", 6)
-            gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-            gmsh.option.setNumber("Mesh.Optimize", 1)
-            gmsh.model.mesh.generate(3)
-            return extract_tet_mesh(gmsh, 2, groups, {"sector": [vol]})
-
-    inputs = {"gear": asdict(gear), "settings": asdict(s3), "inner_radius": r_in,
-              "version": GEOMETRY_VERSION, "outline": "cleaned"}
-    data, _, _ = cached_tet_mesh("sector3d", inputs, build, cache_dir=cache_dir, enabled=cache)
-    return SectorMesh3D(to_skfem(data), gear, s3, r_in, b, rate)
-
-
 def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings: FE3DSettings,
                 cache: bool = True, cache_dir: str | Path | None = None) -> FlankTable3D:
     """The (cached) structural table of ``gear``'s right flanks on sector teeth ``loaded``.
@@ -375,7 +310,7 @@ def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings:
         except (OSError, ValueError, KeyError, zipfile.BadZipFile):
             pass  # unreadable: rebuild below
     t0 = time.perf_counter()
-    sector = _sector_mesh(gear, s3, cache, cache_dir)
+    sector = sector3d_mesh(gear, s3, cache=cache, cache_dir=cache_dir)
     pts = flank_grid(sector, loaded, r, z)
     res = influence_matrix_3d(sector, pts, patch_half_width=c, method=settings.method,
                               cuts=settings.cuts, ends=settings.ends)
