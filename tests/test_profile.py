@@ -98,7 +98,7 @@ def test_base_pitch_between_neighbouring_flanks(name):
     inv = np.nonzero(one.kind == INVOLUTE)[0]
     f0, f1 = out[:n_flank], out[per_tooth: per_tooth + n_flank][inv]
     hits = []
-    roll = np.sqrt(one.radius**2 - g.base_radius**2)
+    roll = np.sqrt(np.maximum(one.radius**2 - g.base_radius**2, 0.0))  # 0 in the fillet
     for i in inv[5:-5:20][roll[inv[5:-5:20]] > g.transverse_base_pitch]:  # same side of T
         t = f0[i + 1] - f0[i - 1]
         normal = np.array([t[1], -t[0]]) / np.hypot(*t)

@@ -43,7 +43,8 @@ def save_tet_mesh(path: str | Path, data: TetMeshData) -> Path:
 
 def load_tet_mesh(path: str | Path) -> TetMeshData:
     """Read a mesh written by :func:`save_tet_mesh`."""
-    with np.load(path) as z:
+    # our own file handle: np.load leaves its handle open when the archive is truncated
+    with open(path, "rb") as fh, np.load(fh) as z:
         surfaces = {k.split(":", 1)[1]: z[k] for k in z.files if k.startswith("surface:")}
         volumes = {k.split(":", 1)[1]: z[k] for k in z.files if k.startswith("volume:")}
         return TetMeshData(z["points"], z["cells"], surfaces, volumes)
