@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from skfem import MeshTet
 
 from pipeline.fem.linear_static import build_model, rigid_body_modes, solve_static
 from pipeline.fem.solvers import (
+    cholespy_available,
     cholmod_available,
     factorize_spd,
     pyamg_available,
     solve_spd,
+    sparse_cholesky,
 )
 from pipeline.geometry.gear import Material
 from pipeline.validation import InputError
@@ -37,13 +40,33 @@ def test_factor_once_many_rhs_and_methods_agree(bar):
     assert ref.method == "splu"
     # Equilibrium: reactions balance the applied load in every case.
     np.testing.assert_allclose(ref.reactions.sum(axis=0), -F.sum(axis=0), rtol=1e-9)
-    if cholmod_available():
-        ch = solve_static(model, F, clamp, method="cholmod")
-        assert ch.method == "cholmod"
-        np.testing.assert_allclose(ch.displacements, ref.displacements, rtol=0,
-                                   atol=1e-10 * np.abs(ref.displacements).max())
+    for method, available in (("cholmod", cholmod_available()),
+                              ("cholespy", cholespy_available())):
+        if available:
+            ch = solve_static(model, F, clamp, method=method)
+            assert ch.method == method
+            np.testing.assert_allclose(ch.displacements, ref.displacements, rtol=0,
+                                       atol=1e-10 * np.abs(ref.displacements).max())
     auto = solve_static(model, F, clamp)
-    assert auto.method == ("cholmod" if cholmod_available() else "splu")
+    assert auto.method == (sparse_cholesky() or "splu")
+
+
+def test_cholespy_is_installed_and_solves_many_rhs():
+    """cholespy is a dependency: "auto" must find a sparse Cholesky on every install.
+
+    A 1D Laplacian with a known inverse column checks (n, k) right-hand sides.
+    """
+    assert cholespy_available()
+    n = 50
+    A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
+    f = factorize_spd(A, "cholespy")
+    B = np.eye(n)[:, [0, n // 2, n - 1]]
+    X = f.solve(B)
+    i = np.arange(1, n + 1)[:, None]
+    j = np.array([1, n // 2 + 1, n])[None, :]
+    exact = np.minimum(i, j) * (n + 1 - np.maximum(i, j)) / (n + 1)  # (A^-1)_ij
+    np.testing.assert_allclose(X, exact, rtol=1e-12)
+    assert f.method == "cholespy" and X.shape == B.shape
 
 
 @pytest.mark.skipif(not pyamg_available(), reason="pyamg not installed")

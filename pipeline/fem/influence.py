@@ -156,7 +156,7 @@ def influence_matrix(
     points : flank points (:func:`pipeline.fem.flank.flank_points`, same ``teeth``).
     patch_half_width : c, m; default 0.1 m_n (mesh-independent, so the FE part converges).
     kind : "plane_strain" (default) or "plane_stress".
-    method : sparse solver ("auto", "cholmod", "splu").
+    method : sparse solver ("auto", "cholmod", "cholespy", "splu").
     model : a prebuilt model of ``sector`` (reuse across calls), else assembled here.
     cuts : "clamped" (default) or "free" cut faces (module docstring).
     """

@@ -32,10 +32,10 @@ raw FE value ~6 % below; off-diagonal terms converge faster. The structural matr
 is symmetric but, like the 2D one, positive definite only up to that discretisation
 error (smallest eigenvalue ~ -2 % of the largest on coarse meshes).
 
-Solvers: ``"auto"`` takes CHOLMOD when scikit-sparse is installed, else the
-two-level p-multigrid CG of :mod:`pipeline.fem.pmultigrid` (block right-hand
-sides, one set-up); ``"splu"`` (SuperLU) is fine for coarse models only
-(DESIGN.md: 36 s to factorise 42k DOF).
+Solvers: ``"auto"`` takes CHOLMOD (scikit-sparse if installed, else the cholespy
+wheel, see :mod:`pipeline.fem.solvers`), else the two-level p-multigrid CG of
+:mod:`pipeline.fem.pmultigrid` (block right-hand sides, one set-up); ``"splu"``
+(SuperLU) is fine for coarse models only (DESIGN.md: 36 s to factorise 42k DOF).
 """
 
 from __future__ import annotations
@@ -53,13 +53,13 @@ from pipeline.fem.halfspace_separation import patch_halfspace_compliance
 from pipeline.fem.linear_static import ElasticModel, build_model
 from pipeline.fem.pmultigrid import TwoLevelPreconditioner, p1_prolongation, pmg_cg
 from pipeline.fem.sector3d import SectorMesh3D
-from pipeline.fem.solvers import cholmod_available, factorize_spd
+from pipeline.fem.solvers import factorize_spd, sparse_cholesky
 from pipeline.fem.tetmesh import _tri_shape
 from pipeline.validation import InputError, check_choice, check_int_range, check_positive
 
 CUTS = ("clamped", "free")
 ENDS = ("free", "sliding")
-SOLVERS = ("auto", "cholmod", "splu", "pmg-cg")
+SOLVERS = ("auto", "cholmod", "cholespy", "splu", "pmg-cg")
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,7 +73,7 @@ class InfluenceMatrix3D:
     local : (n, n) Boussinesq near field removed from it, m/N (same-flank pairs).
     patch_half_width : c, m.
     n_dof : DOFs of the FE model; n_free : unknowns after the boundary conditions.
-    method : solver used ("cholmod", "splu" or "pmg-cg").
+    method : solver used ("cholmod", "cholespy", "splu" or "pmg-cg").
     iterations : CG iterations of the slowest block (0 for direct solvers).
     timings : wall times, s ("assembly", "loads", "factor" (set-up), "solve",
         "halfspace", "total").
@@ -177,7 +177,7 @@ def influence_matrix_3d(
     points : flank grid (:func:`pipeline.fem.flank3d.flank_grid` on the same sector).
     patch_half_width : c, m; default 0.3 m_n (the 3D meshes are coarser than 2D ones,
         m_n / 3 on the flanks at refinement 1: a patch must span a few elements).
-    method : "auto", "cholmod", "splu" or "pmg-cg" (module docstring).
+    method : "auto", "cholmod", "cholespy", "splu" or "pmg-cg" (module docstring).
     cuts : "clamped" (default) or "free" radial cut faces.
     ends : "free" (default) or "sliding" end faces.
     block : right-hand sides solved together. Default: as many as keep one block of
@@ -206,7 +206,7 @@ def influence_matrix_3d(
     check_int_range("influence3d.block", block, 1, 100000)
     Ff = F[free].tocsc()
     if method == "auto":
-        method = "cholmod" if cholmod_available() else "pmg-cg"
+        method = sparse_cholesky() or "pmg-cg"
     iterations = 0
     if method == "pmg-cg":
         P, _ = p1_prolongation(model.basis)

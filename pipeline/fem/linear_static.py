@@ -79,7 +79,7 @@ class StaticSolution:
     ----------
     displacements : (n_dof, n_cases) in m (zero on clamped DOFs).
     reactions : (n_dof, n_cases) K u - f in N, non-zero only on clamped DOFs.
-    method : solver used ("cholmod" or "splu").
+    method : solver used ("cholmod", "cholespy" or "splu").
     n_free : number of unknowns solved for.
     factor_seconds, solve_seconds : wall times, s.
     """
@@ -103,7 +103,7 @@ def solve_static(
     loads : (n_dof,) or (n_dof, n_cases) nodal forces in N.
     clamped_dofs : (m,) integer DOF indices held at zero (enough to remove all
         rigid-body motion, else the factorisation fails).
-    method : "auto", "cholmod" or "splu" (see :mod:`pipeline.fem.solvers`).
+    method : "auto", "cholmod", "cholespy" or "splu" (see :mod:`pipeline.fem.solvers`).
     """
     F = np.asarray(loads, dtype=float)
     F = F[:, None] if F.ndim == 1 else F

@@ -50,12 +50,12 @@ import scipy.sparse as sp
 
 from pipeline.fem.linear_static import ElasticModel, rigid_body_modes
 from pipeline.fem.pmultigrid import p1_prolongation, pmg_cg
-from pipeline.fem.solvers import cholmod_available, factorize_spd
+from pipeline.fem.solvers import factorize_spd, sparse_cholesky
 from pipeline.fem.tetmesh import surface_mass
 from pipeline.validation import InputError, check_choice
 
 COUPLINGS = ("distributed", "rigid", "tooth_forces")
-SOLVERS = ("auto", "cholmod", "splu", "pmg-cg")
+SOLVERS = ("auto", "cholmod", "cholespy", "splu", "pmg-cg")
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,8 +158,8 @@ def couple_two_surfaces(
         basis' node numbering (:attr:`pipeline.fem.tetmesh.SkfemTetMesh.triangles`).
     node_left, node_right : (3,) positions of O_L, O_R in m.
     coupling : "distributed", "rigid" or "tooth_forces" (module doc).
-    solver : "auto" (CHOLMOD if installed, else "pmg-cg"), "cholmod", "splu" or
-        "pmg-cg" (:mod:`pipeline.fem.pmultigrid`, P2 bases only).
+    solver : "auto" (CHOLMOD from scikit-sparse or cholespy, else "pmg-cg"), "cholmod",
+        "cholespy", "splu" or "pmg-cg" (:mod:`pipeline.fem.pmultigrid`, P2 bases only).
     left_loads : (n_dof,) nodal tooth-mesh forces on the left half in N, for
         "tooth_forces" only (their torque about z must be non-zero).
     """
@@ -185,7 +185,7 @@ def solve_free(model: ElasticModel, free: np.ndarray, F: np.ndarray, solver: str
     """
     check_choice("groove.solver", solver, SOLVERS)
     if solver == "auto":
-        solver = "cholmod" if cholmod_available() else "pmg-cg"
+        solver = sparse_cholesky() or "pmg-cg"
     A = model.stiffness[free][:, free]
     rhs = np.ascontiguousarray(F[free])
     if solver == "pmg-cg":
