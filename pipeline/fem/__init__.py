@@ -4,7 +4,8 @@
 * ``cache`` - meshes on disk keyed by a content hash, written atomically.
 * ``tetmesh`` - arrays -> scikit-fem meshes with named surfaces; surface integrals.
 * ``elasticity`` - 2D/3D linear elasticity stiffness (scikit-fem forms, fast batched path).
-* ``solvers`` - factorise once (CHOLMOD / SuperLU), solve many; AMG-CG for one big solve.
+* ``solvers`` - factorise once (CHOLMOD via scikit-sparse or cholespy, else SuperLU), solve
+  many; AMG-CG for one big solve.
 * ``linear_static`` - assemble + clamp + solve all load cases from one factorisation.
 * ``sector2d`` / ``flank`` / ``influence`` / ``hertz_separation`` - 2D tooth sectors,
   flank points, compliance matrices, half-plane near field.

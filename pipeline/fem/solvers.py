@@ -10,7 +10,7 @@ Methods (DESIGN.md measured them side by side on this kind of machine):
   wheel (a dependency, so always there when the package is installed; scikit-sparse
   has no wheels and needs a system SuiteSparse). Taken by ``"auto"`` when
   scikit-sparse is absent. 3D P2 sector, 23.8k DOF, 1200 right-hand sides: factor and
-  solves 5.2 s against 112 s for the p-multigrid CG (bench_fe).
+  solves 4.6 s against 62.6 s for the p-multigrid CG (bench_fe; 114k DOF: 85 s).
 * ``"splu"`` - scipy's SuperLU. Always available; fine for 2D and small 3D
   models, unusable for large 3D ones (> 600 s at 200k DOF), so it is only the
   fallback.

@@ -6,7 +6,8 @@ the next refinement, tests/test_fem_influence.py): target < 30 s on 2 cores.
 Side by side: one factorisation + all 120 right-hand sides vs a separate
 factorise-and-solve per load (what solving each load on its own costs).
 ``--full`` adds the 3D helical sector (3 teeth, 20 x 20 flank grid): DOFs, peak
-memory (resource.getrusage) and time; target < 10 min and < 16 GiB.
+memory (resource.getrusage) and time; target < 10 min and < 16 GiB; and, side by side on
+a coarser 3D sector, the sparse Cholesky against the p-multigrid CG (speed-up ratio).
 Prints the figures and writes results/benchmarks/fe.json.
 """
 
@@ -74,10 +75,32 @@ def bench_3d() -> dict:
     return res
 
 
+def bench_3d_solvers(refinement: float = 0.6) -> dict:
+    """Side by side on one coarser 3D sector: sparse Cholesky vs p-multigrid CG (a ratio)."""
+    from pipeline.fem.sector3d import bench_helical_sector
+    from pipeline.fem.solvers import sparse_cholesky
+
+    direct = sparse_cholesky()
+    if direct is None:
+        return {"skipped": "no sparse Cholesky installed"}
+    runs = {m: bench_helical_sector(refinement=refinement, method=m) for m in (direct, "pmg-cg")}
+    secs = {m: r["timings_s"]["factor"] + r["timings_s"]["solve"] for m, r in runs.items()}
+    a, b = runs[direct]["structural_diag_range_m_per_N"], runs["pmg-cg"][
+        "structural_diag_range_m_per_N"]
+    return {"case": runs[direct]["case"], "refinement": refinement,
+            "dof": runs[direct]["dof"], "points": runs[direct]["points"],
+            f"{direct}_factor_and_solve_s": secs[direct],
+            "pmg_cg_factor_and_solve_s": secs["pmg-cg"],
+            "speedup": secs["pmg-cg"] / secs[direct],
+            "max_rel_diff_structural_diag": float(max(abs(x / y - 1) for x, y in zip(a, b,
+                                                                                    strict=True)))}
+
+
 def main(full: bool = False) -> dict:
     out = {"fe_2d": bench_2d(), "versions": library_versions()}
     if full:
         out["fe_3d"] = bench_3d()
+        out["fe_3d_solvers"] = bench_3d_solvers()
     for name, res in out.items():
         if name == "versions":
             continue
