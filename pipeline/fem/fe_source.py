@@ -92,19 +92,23 @@ def gear_table(gear: GearSpec, settings: FESettings, teeth: np.ndarray) -> Influ
     return influence_matrix(sec, pts, kind=settings.kind, cuts=settings.cuts)
 
 
+def linear_weights(nodes: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Left node index and weight of the right node for linear interpolation (linear
+    extrapolation beyond the ends) of ``x`` on ascending ``nodes``."""
+    x = np.asarray(x, dtype=float)
+    if nodes.size == 1:
+        return np.zeros(x.shape, dtype=int), np.zeros(x.shape)
+    k = np.clip(np.searchsorted(nodes, x) - 1, 0, nodes.size - 2)
+    return k, (x - nodes[k]) / (nodes[k + 1] - nodes[k])
+
+
 def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarray,
                   tj: np.ndarray, aj: np.ndarray) -> np.ndarray:
     """Bilinear interpolation (linear extrapolation) of the structural table, m^2/N."""
     S = table.structural
     arc = table.points.arc[:n_r]
-
-    def weights(a):
-        k = np.clip(np.searchsorted(arc, a) - 1, 0, n_r - 2)
-        w = (a - arc[k]) / (arc[k + 1] - arc[k])
-        return k, w
-
-    ki, wi = weights(ai)
-    kj, wj = weights(aj)
+    ki, wi = linear_weights(arc, ai)
+    kj, wj = linear_weights(arc, aj)
     oi, oj = ti * n_r + ki, tj * n_r + kj
     return ((1 - wi) * (1 - wj) * S[oi, oj] + wi * (1 - wj) * S[oi + 1, oj]
             + (1 - wi) * wj * S[oi, oj + 1] + wi * wj * S[oi + 1, oj + 1])

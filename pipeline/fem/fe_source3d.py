@@ -89,14 +89,14 @@ from __future__ import annotations
 
 import math
 import time
-import zipfile
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from pipeline.contact.source import ContactPoints, slice_points
-from pipeline.fem.cache import default_cache_dir
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.fe_source import linear_weights
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank3d import face_positions, flank_grid
 from pipeline.fem.influence3d import CUTS, ENDS, SOLVERS, influence_matrix_3d
@@ -109,11 +109,11 @@ from pipeline.fem.sector3d import (
 )
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.io import atomic_write, content_hash
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 # Bump when the same inputs would give a different table.
 TABLE_FORMAT = 2  # 2: tables on sector3d_mesh's own meshes (no cleaned-outline copy)
+_STORED = ("structural", "dof", "free_dof", "solver", "seconds")  # arrays in the cache file
 
 
 @dataclass(frozen=True)
@@ -217,8 +217,8 @@ class FlankTable3D:
             raise InputError(f"fe3d table: teeth {np.setdiff1d(tooth, self.teeth)} are not "
                              f"tabulated (tabulated: {self.teeth})")
         n_t, n_f, n_p = self.shape
-        ka, wa = _linear(self.arc, arc)
-        kz, wz = _linear(self.z, z)
+        ka, wa = linear_weights(self.arc, arc)
+        kz, wz = linear_weights(self.z, z)
         W = np.zeros((tooth.size, n_t * n_f * n_p))
         rows = np.arange(tooth.size)
         for da, fa in ((0, 1 - wa), (1, wa)):
@@ -227,14 +227,6 @@ class FlankTable3D:
                     ka + da, n_p - 1)
                 np.add.at(W, (rows, cols), fa * fz)
         return W
-
-
-def _linear(nodes: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Left node index and weight of the right node for linear interpolation/extrapolation."""
-    if nodes.size == 1:
-        return np.zeros(x.size, dtype=int), np.zeros(x.size)
-    k = np.clip(np.searchsorted(nodes, x) - 1, 0, nodes.size - 2)
-    return k, (x - nodes[k]) / (nodes[k + 1] - nodes[k])
 
 
 def touching_pairs(pair: GearPair) -> np.ndarray:
@@ -297,32 +289,25 @@ def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings:
                teeth=sector_teeth, inner_radius=s3.inner_radius)),
            "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
            "ends": settings.ends}
-    folder = Path(cache_dir or default_cache_dir())
-    path = folder / f"fe3dtable-{content_hash(key)}.npz"
-    if cache and path.is_file():
-        try:
-            with np.load(path) as f:
-                info = {"dof": int(f["dof"]), "free_dof": int(f["free_dof"]),
-                        "solver": str(f["solver"]), "seconds": float(f["seconds"]),
-                        "cached": True}
-                S = f["structural"]
-            return _table(loaded, arc, z, S, width, info)
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile):
-            pass  # unreadable: rebuild below
-    t0 = time.perf_counter()
-    sector = sector3d_mesh(gear, s3, cache=cache, cache_dir=cache_dir)
-    pts = flank_grid(sector, loaded, r, z)
-    res = influence_matrix_3d(sector, pts, patch_half_width=c, method=settings.method,
-                              cuts=settings.cuts, ends=settings.ends)
-    S = res.structural
-    seconds = time.perf_counter() - t0
-    info = {"dof": res.n_dof, "free_dof": res.n_free, "solver": res.method,
-            "seconds": seconds, "cached": False, "timings_s": res.timings,
-            "symmetry_error": res.symmetry_error()}
-    if cache:
-        atomic_write(path, lambda tmp: np.savez(
-            tmp, structural=S, dof=res.n_dof, free_dof=res.n_free, solver=res.method,
-            seconds=seconds))
+
+    def build() -> dict:
+        t0 = time.perf_counter()
+        sector = sector3d_mesh(gear, s3, cache=cache, cache_dir=cache_dir)
+        pts = flank_grid(sector, loaded, r, z)
+        res = influence_matrix_3d(sector, pts, patch_half_width=c, method=settings.method,
+                                  cuts=settings.cuts, ends=settings.ends)
+        return {"structural": res.structural, "dof": res.n_dof, "free_dof": res.n_free,
+                "solver": res.method, "seconds": time.perf_counter() - t0,
+                "timings_s": res.timings, "symmetry_error": res.symmetry_error()}
+
+    def save(path: Path, v: dict) -> Path:
+        return save_arrays(path, {k: v[k] for k in _STORED})
+
+    v, _, hit = cached_file("fe3dtable", key, build, load_arrays, save, cache_dir, cache)
+    info = {"dof": int(v["dof"]), "free_dof": int(v["free_dof"]), "solver": str(v["solver"]),
+            "seconds": float(v["seconds"]), "cached": hit,
+            **{k: v[k] for k in ("timings_s", "symmetry_error") if k in v}}
+    S = v["structural"]
     return _table(loaded, arc, z, S, width, info)
 
 
