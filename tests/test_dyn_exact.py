@@ -23,7 +23,7 @@ from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models.planetary import PlanetaryModel
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.reduction import reduce_rigid_body_modes
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 
 
 def test_two_inertia_torsional_pair_frequency():

@@ -27,7 +27,7 @@ from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 
 
 @pytest.fixture(scope="module")
@@ -161,7 +161,7 @@ def test_matrices_sparse_equal_dense_and_force_carries_the_loads():
     rotation (a balanced load). K(tau) with constant meshes equals the mean stiffness.
     """
     from pipeline.dynamics.reduction import rigid_body_modes
-    from pipeline.stiffness.periodic import PeriodicSignal
+    from pipeline.signals import PeriodicSignal
 
     T = 200.0
     m = PlanetaryModel(

@@ -18,7 +18,7 @@ from pipeline.stiffness.friction import (
     load_components,
 )
 from pipeline.stiffness.iso6336 import contact_line_stiffness, iso_stiffness, q_prime
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.sections import ToothSections
 from pipeline.stiffness.tooth import classical_tooth_model, tooth_compliance
 from pipeline.validation import InputError

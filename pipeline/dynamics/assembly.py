@@ -24,7 +24,7 @@ from pipeline.dynamics.couplings import (
     TorsionalShaft,
 )
 from pipeline.dynamics.system import ForcingTerm, LinearPeriodicSystem, MeshOutput, ParametricTerm
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_positive, check_range
 
 

@@ -57,7 +57,7 @@ from pipeline.dynamics.excitation import (
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
 from pipeline.dynamics.models.planetary import PlanetaryModel
 from pipeline.dynamics.models.spur_pair import SpurPairModel
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_choice
 
 RPM = 2 * math.pi / 60

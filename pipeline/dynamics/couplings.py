@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from pipeline.dynamics.bodies import Coordinate
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_range
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_int_range, check_positive, check_range
 
 

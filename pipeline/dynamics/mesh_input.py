@@ -27,7 +27,7 @@ from pipeline.stiffness.mesh import (
     PairModel,
     mesh_stiffness,
 )
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
 from pipeline.validation import check_int_range
 

@@ -1,6 +1,6 @@
 """Exact averages and Fourier coefficients of the periodic coefficients of a system.
 
-A :class:`~pipeline.stiffness.periodic.PeriodicSignal` is the piecewise-linear
+A :class:`~pipeline.signals.PeriodicSignal` is the piecewise-linear
 periodic interpolant of its samples. Both solvers use that same function:
 
 * the time integrator holds each coefficient at its exact mean over a segment
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 
 
 def _antiderivative(signal: PeriodicSignal, sigma: np.ndarray) -> np.ndarray:

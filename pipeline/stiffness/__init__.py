@@ -12,7 +12,7 @@ from pipeline.stiffness.mesh import (
     PairModel,
     mesh_stiffness,
 )
-from pipeline.stiffness.periodic import FourierSeries, PeriodicSignal
+from pipeline.signals import FourierSeries, PeriodicSignal
 
 __all__ = [
     "FourierSeries",

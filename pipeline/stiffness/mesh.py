@@ -25,7 +25,7 @@ from pipeline.stiffness.friction import (
     friction_direction,
     hertz_line_pressure,
 )
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.tooth import ToothModel, hertz_compliance, tooth_compliance, tooth_model
 from pipeline.validation import InputError, check_int_range, check_range
 

@@ -46,7 +46,7 @@ from pipeline.dynamics.couplings import Bearing, GearMesh, Load, MatrixCoupling,
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
 from pipeline.dynamics.reduction import rigid_body_modes
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import (
     InputError,
     check_choice,

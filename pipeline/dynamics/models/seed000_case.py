@@ -32,7 +32,7 @@ from pipeline.dynamics.models.split_torque import SplitTorqueModel, StageMesh
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 
 POWER = 2.0e6  # W per engine
 INPUT_RPM = 20900.0

@@ -32,7 +32,7 @@ from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryM
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.planetary import PlanetarySet, dec
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 
 Z_S, Z_P, Z_R = 21, 37, 95
 M_N = 15e-3

@@ -47,7 +47,7 @@ from pipeline.dynamics.mesh_input import MeshExcitation
 from pipeline.dynamics.reduction import rigid_body_modes
 from pipeline.dynamics.system import LinearPeriodicSystem
 from pipeline.geometry.planetary import dec
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_choice, check_positive, check_range
 
 BRANCHES = ("L", "R")

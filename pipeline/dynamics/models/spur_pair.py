@@ -19,7 +19,7 @@ from pipeline.dynamics.assembly import Assembly
 from pipeline.dynamics.bodies import Body
 from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
-from pipeline.stiffness.periodic import PeriodicSignal
+from pipeline.signals import PeriodicSignal
 from pipeline.validation import check_int_range, check_positive, check_range
 
 

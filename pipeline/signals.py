@@ -1,4 +1,4 @@
-"""Periodic signals over one mesh cycle and their Fourier series (seed 000, eq. 7b).
+"""Periodic signals over one mesh cycle and their Fourier series (shared by every stage).
 
 A time-varying mesh stiffness, friction stiffness or transmission error is
 periodic in the mesh phase ``tau = t / T_m`` (one mesh period is ``tau`` in
