@@ -1,9 +1,11 @@
 """The ``gearpipe`` command line.
 
-Subcommands take a TOML file whose keys carry their units (mm, deg, N m, rpm);
-everything inside is SI. Each writes CSV/JSON data, PNG plots and a ``run.json``
-record (inputs, versions, configuration hash) to ``results/<config>/<command>/``
-unless ``--out`` says otherwise; ``--json`` prints the summary to stdout.
+Every subcommand takes a gearbox file (TOML, units in the key names;
+:mod:`pipeline.config`); everything inside is SI. Each writes CSV/JSON data, PNG
+plots and a ``run.json`` record (inputs, versions, configuration hash) to
+``results/<file stem>/<command>/`` unless ``--out`` says otherwise; ``--json``
+prints the summary to stdout. An input error is one line on stderr,
+``gearpipe <command>: error: ...``, with exit status 2.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
                 "loaded tooth contact over a mesh cycle: load sharing, TE, mesh stiffness, "
                 "load maps"),
     "modes": ("pipeline.dynamics.commands", "add_modes_arguments", "run_modes",
-              "natural frequencies, mode types and mode shapes of a dynamics config"),
+              "natural frequencies, mode types and mode shapes of the dynamic model"),
     "response": ("pipeline.dynamics.commands", "add_response_arguments", "run_response",
                  "steady dynamic response: DTE, mesh forces, spectrum"),
     "sweep": ("pipeline.dynamics.commands", "add_sweep_arguments", "run_sweep",
@@ -52,11 +54,12 @@ def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run one command; exit status 0 on success, 2 on an input error (one line on stderr)."""
     args = build_parser().parse_args(argv)
     try:
         return int(args._run(args) or 0)
     except InputError as exc:
-        print(f"gearpipe {args.command}: input error: {exc}", file=sys.stderr)
+        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
         return 2
 
 

@@ -1,4 +1,9 @@
-"""Helpers shared by the command-line subcommands: options, output folder, JSON to stdout."""
+"""What every ``gearpipe`` command shares: its arguments, its output folder, its summary.
+
+One rule for the output folder: ``results/<file stem>/<command>`` (the stem of the
+gearbox file, never a name written inside it), or ``--out DIR``. One summary
+format: a short table on stdout, or one JSON object with ``--json``.
+"""
 
 from __future__ import annotations
 
@@ -10,14 +15,15 @@ from typing import Any
 
 import numpy as np
 
+from pipeline.config import Gearbox, load_gearbox
 from pipeline.io import to_jsonable
 
 
 def add_common_arguments(parser: argparse.ArgumentParser) -> None:
     """CONFIG, --out and --json, the same for every subcommand."""
-    parser.add_argument("config", type=Path, help="TOML file (units in the key names)")
+    parser.add_argument("config", type=Path, help="gearbox file (TOML, units in the key names)")
     parser.add_argument("--out", type=Path, default=None,
-                        help="output folder (default: results/<config name>/<command>)")
+                        help="output folder (default: results/<file stem>/<command>)")
     parser.add_argument("--json", action="store_true",
                         help="print the result summary as JSON on stdout")
 
@@ -27,6 +33,11 @@ def output_dir(args: argparse.Namespace, command: str) -> Path:
     out = args.out or Path("results") / Path(args.config).stem / command
     out.mkdir(parents=True, exist_ok=True)
     return out
+
+
+def load(args: argparse.Namespace) -> Gearbox:
+    """The gearbox file named on the command line."""
+    return load_gearbox(args.config)
 
 
 def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path) -> None:

@@ -10,7 +10,20 @@ import math
 
 
 class InputError(ValueError):
-    """A user-supplied value is outside its allowed range or inconsistent."""
+    """A user-supplied value is outside its allowed range or inconsistent.
+
+    Range errors raised by :func:`check_range` also carry the checked ``field``
+    (as named by the input dataclass), the ``value`` and the bounds in the unit
+    of the check (SI), so that :mod:`pipeline.config` can restate them in the
+    key and unit the user wrote in the input file.
+    """
+
+    def __init__(self, message: str, *, field: str | None = None,
+                 value: float | None = None, bounds: tuple | None = None) -> None:
+        super().__init__(message)
+        self.field = field
+        self.value = value
+        self.bounds = bounds  # (lo, hi, lo_open, hi_open)
 
 
 def _fmt(v: float) -> str:
@@ -50,7 +63,8 @@ def check_range(
         u = f" {unit}" if unit else ""
         raise InputError(
             f"{field} = {_fmt(v)}{u} is outside the allowed range "
-            f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}{u}"
+            f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}{u}",
+            field=field, value=v, bounds=(lo, hi, lo_open, hi_open),
         )
     return value
 
@@ -62,7 +76,11 @@ def check_positive(field: str, value: float, unit: str = "") -> float:
 
 def check_int_range(field: str, value: int, lo: int, hi: int | None = None) -> int:
     """Check an integer count (e.g. number of teeth) lies in ``[lo, hi]``."""
-    if isinstance(value, bool) or int(value) != value:
+    try:
+        whole = not isinstance(value, bool) and int(value) == value
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if not whole:
         raise InputError(f"{field} = {value!r} must be a whole number")
     return int(check_range(field, int(value), lo, math.inf if hi is None else hi))
 

@@ -18,8 +18,8 @@ import pytest
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED001 = ROOT / "workflows" / "configs" / "seed001_spur.toml"
-GROOVE = ROOT / "workflows" / "configs" / "seed002_sun_groove.toml"
+SEED001 = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
+GROOVE = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
 def test_fe_command(tmp_path, capsys):

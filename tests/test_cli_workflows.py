@@ -12,7 +12,7 @@ import pytest
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED001 = ROOT / "workflows" / "configs" / "seed001_spur.toml"
+SEED001 = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
 
 
 def load_workflow(name: str):

@@ -1,6 +1,5 @@
 """Frequency sweeps, executors, load-sharing factor, commands and the coarse workflows."""
 
-import argparse
 import json
 import sys
 from pathlib import Path
@@ -8,7 +7,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.dynamics import commands
 from pipeline.dynamics.excitation import rectangular_mesh_stiffness
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.models.planetary import PlanetaryModel
@@ -64,18 +62,18 @@ def test_load_sharing_factor_is_one_for_in_phase_equal_planets():
 
 
 def _run(cmd, cfg, out, extra=()):
-    p = argparse.ArgumentParser()
-    getattr(commands, f"add_{cmd}_arguments")(p)
-    return getattr(commands, f"run_{cmd}")(p.parse_args([str(cfg), "--out", str(out), *extra]))
+    from pipeline.cli import main
+
+    return main([cmd, str(cfg), "--out", str(out), *extra])
 
 
 def test_commands_write_outputs(tmp_path, capsys):
-    cfg = ROOT / "workflows/configs/planetary_lin_parker.toml"
+    cfg = ROOT / "workflows/configs/lin_parker_planetary.toml"
     assert _run("modes", cfg, tmp_path / "m", ["--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["frequencies_Hz"][1] == pytest.approx(727.0, rel=1e-3)  # Lin & Parker 1999
     assert (tmp_path / "m/mode_shapes.png").is_file() and (tmp_path / "m/run.json").is_file()
-    spur = ROOT / "workflows/configs/spur_pair_seed001.toml"
+    spur = ROOT / "workflows/configs/spur_pair_assembly_errors.toml"
     assert _run("response", spur, tmp_path / "r") == 0
     for f in ("time_history.csv", "time_history.png", "dte_spectrum.png", "summary.json"):
         assert (tmp_path / "r" / f).is_file()
@@ -84,8 +82,8 @@ def test_commands_write_outputs(tmp_path, capsys):
 def test_command_reports_bad_config(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text(
-        'model = "spur_pair"\n[parameters]\nmass_pinion_kg = -1\n'
-        '[mesh_stiffness]\nkind = "constant"\nvalue_N_per_m = 1e8\n'
+        '[lumped_model]\nmodel = "spur_pair"\nmass_pinion_kg = -1\n'
+        '[lumped_model.mesh_stiffness]\nkind = "constant"\nvalue_N_per_m = 1e8\n'
     )
     assert _run("modes", bad, tmp_path / "o") == 2
     assert "mass_pinion" in capsys.readouterr().err
@@ -185,13 +183,13 @@ def test_herringbone_hb_agrees_with_time_integration_at_the_main_peak():
 
 
 def test_modes_command_on_the_herringbone_config(tmp_path, capsys):
-    """gearpipe modes on workflows/configs/herringbone_planetary.toml: 8(N+3) DOF, mode types.
+    """gearpipe modes on configs/herringbone_planetary_lumped.toml: 8(N+3) DOF, mode types.
 
     Translational modes come in pairs and there is one rigid rotation. (Planet-type
     modes here have multiplicity 1 and 3 = N - 1: the axial planet motions add the
     N - 1 family; not asserted, the classification is the planar one.)
     """
-    cfg = ROOT / "workflows/configs/herringbone_planetary.toml"
+    cfg = ROOT / "workflows/configs/herringbone_planetary_lumped.toml"
     assert _run("modes", cfg, tmp_path, ["--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert s["dofs"] == 8 * (4 + 3)

@@ -21,19 +21,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.fem.groove.config import load_groove_config
+from pipeline.config import load_gearbox
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.fem.groove.study import analyse_groove
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import rigid_body_modes
 
-CONFIG = Path(__file__).resolve().parents[1] / "workflows" / "configs" / "seed002_sun_groove.toml"
+CONFIG = Path(__file__).resolve().parents[1] / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 KJ_PAPER = 5.2e7  # N m^2, seed 002 (largest value studied)
 
 
 @pytest.fixture(scope="module")
 def seed():
-    return load_groove_config(CONFIG)
+    return load_gearbox(CONFIG).groove
 
 
 @pytest.fixture(scope="module")

@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 from gearsets import spur
 
-from pipeline.config import AssemblyErrors, load_pair_config
+from pipeline.config import load_gearbox
+from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.geometry import GearPair
-from pipeline.stiffness.analysis import analyse_pair
+from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.iso6336 import iso_stiffness
 from pipeline.stiffness.mesh import FrictionModel, PairModel, mesh_stiffness, stiffness_at
 
@@ -117,11 +118,12 @@ def test_seed001_assembly_conditions_trend():
     """Seed 001: conditions 2 and 3 shorten the double-contact zone; stiffness level drops."""
     from pathlib import Path
 
-    cfg = load_pair_config(Path(__file__).parents[1] / "workflows/configs/seed001_spur.toml")
+    box = load_gearbox(Path(__file__).parents[1] / "workflows/configs/spur_pair_assembly_errors.toml")
     res = []
     for e in (0.0, 10.0, 100.0):
-        c = dataclasses.replace(cfg, assembly_errors=AssemblyErrors((0, 0), (e * 1e-6, e * 1e-6)))
-        res.append(analyse_pair(c).mesh)
+        errors = AssemblyErrors((0, 0), (e * 1e-6, e * 1e-6))
+        res.append(analyse_stiffness(box.pair, box.operation, box.stiffness,
+                                     assembly_errors=errors).mesh)
     double = [np.mean((r.pairs > 0).sum(axis=1) == 2) for r in res]
     assert double[0] > double[1] > double[2]
     assert res[0].mean > res[1].mean > res[2].mean

@@ -1,7 +1,7 @@
 """Seed 001 DTE study: spur pair base case, three assembly-error conditions, friction 0/0.05/0.1.
 
 The 6-DOF lateral-torsional model of seed 001 (z 50/50, m 3 mm, 20 deg, b 20 mm,
-340 N m, 2340 rpm; gears and operation from workflows/configs/seed001_spur.toml)
+340 N m, 2340 rpm; gears and operation from workflows/configs/spur_pair_assembly_errors.toml)
 is solved for its steady periodic response by harmonic balance. The mesh
 excitation is the pipeline's analytical (potential-energy) mesh stiffness of the
 *actual* pair (centres displaced by the seed 001 assembly errors,
@@ -24,7 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.config import AssemblyErrors, load_pair_config
+from pipeline.config import load_gearbox
+from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
@@ -34,7 +35,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_run_record
 from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 
-CONFIG = Path(__file__).resolve().parent / "configs" / "seed001_spur.toml"
+CONFIG = Path(__file__).resolve().parent / "configs" / "spur_pair_assembly_errors.toml"
 # (e_xp, e_yp), (e_xg, e_yg) in um, seed 001 table of conditions
 CONDITIONS = {
     1: ((0.0, 0.0), (0.0, 0.0)),
@@ -46,7 +47,7 @@ FRICTIONS = (0.0, 0.05, 0.1)
 
 def actual_pair(condition: int) -> GearPair:
     """The seed 001 pair with the centres of one assembly condition."""
-    cfg = load_pair_config(CONFIG)
+    cfg = load_gearbox(CONFIG)
     nominal = GearPair(cfg.pinion, cfg.gear)
     ep, eg = CONDITIONS[condition]
     if not any(ep + eg):
@@ -58,9 +59,9 @@ def actual_pair(condition: int) -> GearPair:
 
 def model_for(condition: int, mu: float, positions: int = 360) -> tuple[SpurPairModel, GearPair]:
     """Seed 001 6-DOF model driven by the analytical stiffness of one case."""
-    cfg = load_pair_config(CONFIG)
+    cfg = load_gearbox(CONFIG)
     pair = actual_pair(condition)
-    op = OperatingPoint(cfg.operation.torque, cfg.operation.speed, cfg.operation.driver)
+    op = cfg.operation
     ex = analytical_excitation(pair, FrictionModel(mu), op, positions)
     fr = ex if mu else None
     model = SpurPairModel(

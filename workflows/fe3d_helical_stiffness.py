@@ -1,7 +1,7 @@
 """Seed 004 helical pair: LTCA mesh stiffness from the slice model vs the 3D FE influence matrix.
 
 The traction pair of seed 004 Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
-130 mm assumed; workflows/configs/seed004_helical.toml) at its rated load is run
+130 mm assumed; workflows/configs/traction_helical_pair.toml) at its rated load is run
 through the loaded tooth contact analysis (seed 004 eqs. 27-29, local approach
 eq. 24 "weber") twice, on the same slice contact points:
 
@@ -39,7 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.config import load_pair_config
+from pipeline.config import load_gearbox
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
 from pipeline.fem.fe_source import FESectorCompliance, FESettings
@@ -49,7 +49,7 @@ from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.mesh import FrictionModel, OperatingPoint, PairModel
 
 HERE = Path(__file__).resolve().parent
-CONFIG = HERE / "configs" / "seed004_helical.toml"
+CONFIG = HERE / "configs" / "traction_helical_pair.toml"
 
 # 3D grid: 4 loaded teeth x radii x face points per gear = right-hand sides of one solve
 COARSE = {"refinement": 0.6, "radii": 6, "face": 24, "slices": 40, "positions": 24}
@@ -85,10 +85,10 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
     """Run the study into ``out``; ``references`` False skips the 2D FE references."""
     from pipeline.viz.pair_plots import save
 
-    cfg = load_pair_config(CONFIG)
-    pair = GearPair(cfg.pinion, cfg.gear, cfg.centre_distance)
+    cfg = load_gearbox(CONFIG)
+    pair = cfg.pair
     load = cfg.operation.torque / pair.pinion.base_radius
-    op = OperatingPoint(cfg.operation.torque, cfg.operation.speed, cfg.operation.driver)
+    op = cfg.operation
     sources = {"slice": SliceCompliance(PairModel.build(pair), slices, FrictionModel(mu=0.0), op)}
     settings = FE3DSettings(refinement=refinement, radii=radii, face=face, slices=slices,
                             hub_depth=6.0)

@@ -23,17 +23,17 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from pipeline.fem.groove.config import load_groove_config  # noqa: E402
+from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
 from pipeline.io import write_csv, write_run_record  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
 
-CONFIG = ROOT / "workflows" / "configs" / "seed002_sun_groove.toml"
+CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
 def sweep(config: Path, widths_mm, diameters_mm, mesh_size_mm: float, show_progress=True):
     """k_t (N m/rad) and K_j (N m^2) on the grid; arrays of shape (n_diameters, n_widths)."""
-    base = load_groove_config(config)
+    base = load_gearbox(config).groove
     kt = np.zeros((len(diameters_mm), len(widths_mm)))
     kj = np.zeros_like(kt)
     dofs = np.zeros_like(kt, dtype=int)

@@ -16,14 +16,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.config import AssemblyErrors, load_pair_config
+from pipeline.config import load_gearbox
+from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
-from pipeline.stiffness.analysis import analyse_pair
+from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.viz.pair_plots import plot_stiffness_curves, save
 
 HERE = Path(__file__).resolve().parent
-CONFIG = HERE / "configs" / "seed001_spur.toml"
+CONFIG = HERE / "configs" / "spur_pair_assembly_errors.toml"
 UM = 1e-6
 CONDITIONS = {  # seed 001 table: (e_xp, e_yp), (e_xg, e_yg) in um
     "condition 1 (ideal)": ((0.0, 0.0), (0.0, 0.0)),
@@ -34,7 +35,7 @@ FRICTION = (0.0, 0.05, 0.1)
 
 
 def run(out: Path, positions: int) -> dict:
-    base = load_pair_config(CONFIG)
+    base = load_gearbox(CONFIG)
     base = dataclasses.replace(base, stiffness=dataclasses.replace(base.stiffness,
                                                                    positions=positions))
     cases = [(f"mu = {mu}", dataclasses.replace(
@@ -44,7 +45,7 @@ def run(out: Path, positions: int) -> dict:
         cases.append((f"{name}, mu = 0", dataclasses.replace(base, assembly_errors=errors)))
     results = {}
     for name, cfg in progress(cases, "seed 001 cases"):
-        results[name] = analyse_pair(cfg)
+        results[name] = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness, assembly_errors=cfg.assembly_errors)
     table = {}
     for name, r in results.items():
         s = r.mesh.summary()

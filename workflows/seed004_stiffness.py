@@ -18,15 +18,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.config import load_pair_config
+from pipeline.config import load_gearbox
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
-from pipeline.stiffness.analysis import analyse_pair
+from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.mesh import PairModel
 from pipeline.viz.pair_plots import plot_stiffness_curves, save
 
 HERE = Path(__file__).resolve().parent
-CONFIG = HERE / "configs" / "seed004_helical.toml"
+CONFIG = HERE / "configs" / "traction_helical_pair.toml"
 
 
 def single_pair_curve(res) -> tuple[np.ndarray, np.ndarray]:
@@ -50,7 +50,7 @@ def single_pair_curve(res) -> tuple[np.ndarray, np.ndarray]:
 
 
 def run(out: Path, positions: int, slices: int) -> dict:
-    base = load_pair_config(CONFIG)
+    base = load_gearbox(CONFIG)
     base = dataclasses.replace(base, stiffness=dataclasses.replace(
         base.stiffness, positions=positions, slices=slices))
     variants = {"mu = 0": 0.0, "mu = 0.05": 0.05, "EHL friction": "ehl"}
@@ -58,7 +58,7 @@ def run(out: Path, positions: int, slices: int) -> dict:
     results = {}
     for name, mu in progress(list(variants.items()), "seed 004 cases"):
         cfg = dataclasses.replace(base, stiffness=dataclasses.replace(base.stiffness, friction=mu))
-        r = analyse_pair(cfg, model)
+        r = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness, assembly_errors=cfg.assembly_errors, model=model)
         model = r.model if isinstance(r.model, PairModel) else None
         results[name] = r
     r0 = results["mu = 0"]

@@ -70,8 +70,9 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.config import AssemblyErrors, PairConfig, load_pair_config
-from pipeline.contact.commands import build_source, line_of_action_load
+from pipeline.config import Gearbox, load_gearbox
+from pipeline.geometry.assembly_errors import AssemblyErrors
+from pipeline.contact.analysis import analytical_compliance, line_of_action_load
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
@@ -83,17 +84,17 @@ from pipeline.viz.pair_plots import _plt, save
 
 HERE = Path(__file__).resolve().parent
 UM = 1e-6
-SEED001 = HERE / "configs" / "seed001_spur.toml"
-SEED004 = HERE / "configs" / "seed004_helical.toml"
+SEED001 = HERE / "configs" / "spur_pair_assembly_errors.toml"
+SEED004 = HERE / "configs" / "traction_helical_pair.toml"
 CONDITIONS = {  # seed 001 table: gear centre displaced by (e_x, e_y), um
     "condition 2": (10.0, 10.0),
     "condition 3": (100.0, 100.0),
 }
 
 
-def cases() -> list[tuple[str, PairConfig]]:
+def cases() -> list[tuple[str, Gearbox]]:
     """(name, configuration) of every compared case."""
-    base = load_pair_config(SEED001)
+    base = load_gearbox(SEED001)
     out = []
     for mu in (0.0, 0.05, 0.1):
         out.append((f"seed001 mu={mu}", dataclasses.replace(
@@ -101,16 +102,17 @@ def cases() -> list[tuple[str, PairConfig]]:
     for name, (ex, ey) in CONDITIONS.items():
         errors = AssemblyErrors((0.0, 0.0), (ex * UM, ey * UM))
         out.append((f"seed001 {name}", dataclasses.replace(base, assembly_errors=errors)))
-    out.append(("seed004 helical", load_pair_config(SEED004)))
+    out.append(("seed004 helical", load_gearbox(SEED004)))
     return out
 
 
-def compare(cfg: PairConfig, positions: int, fe: FESettings, cache: dict) -> dict:
+def compare(cfg: Gearbox, positions: int, fe: FESettings, cache: dict) -> dict:
     """Analytical, optimised-slice and FE-enriched curves of one case (N/m, shape (positions,))."""
     opts = ContactOptions(slices=fe.slices)
-    src, actual, _ = build_source(cfg, opts)
+    actual = cfg.actual_pair
+    src = analytical_compliance(actual, cfg.operation, opts, cfg.stiffness)
     s0 = actual.mesh_cycle(positions)
-    load = line_of_action_load(cfg, actual)
+    load = line_of_action_load(actual, cfg.operation)
     k_analytical = stiffness_at(src.model, s0, fe.slices, src.friction, src.operating,
                                 src.foundation_correction).total
     slice_cycle = loaded_mesh_cycle(src, load, local="weber", positions=s0)

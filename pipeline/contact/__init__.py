@@ -6,6 +6,9 @@ compliance or FE influence coefficients), their initial separations ``eps``
 (m) and, optionally, a local Hertz contact model; the solver returns the loads,
 the loaded approach and the mesh stiffness.
 
+- :func:`analytical_compliance` -> :func:`analyse_contact` - the stage's entry points:
+  a pair's compliance source and its loaded mesh cycle at the operating torque
+  (:mod:`.analysis`; options :class:`ContactOptions`).
 - :func:`solve_contact` - one mesh position (:mod:`.complementarity`; its exact
   inner QP solver is :mod:`.active_set`). The only solver: everything below calls it.
 - :func:`solve_positions` - a stack of given (G, eps) with a fixed point count (:mod:`.sweep`).
@@ -22,6 +25,7 @@ the loaded approach and the mesh stiffness.
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
 """
 
+from pipeline.contact.analysis import analyse_contact, analytical_compliance, line_of_action_load
 from pipeline.contact.complementarity import (
     ContactConvergenceError,
     complementarity_residual,
@@ -38,11 +42,13 @@ from pipeline.contact.hertz import (
 )
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCycle
+from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints, SliceCompliance
 from pipeline.contact.sweep import solve_positions
 
 __all__ = [
+    "ContactOptions", "analyse_contact", "analytical_compliance", "line_of_action_load",
     "ComplianceSource", "ContactConvergenceError", "ContactPoints", "ContactSolution",
     "ContactSweep", "FlankModifications", "HertzLineContact", "LinearLocalCompliance",
     "LoadedMeshCycle", "LocalCompliance", "SliceCompliance", "complementarity_residual",

@@ -1,6 +1,5 @@
-"""The ``[contact]`` table of a pair TOML file -> :class:`ContactOptions` (SI inside).
-
-Keys (units in the names; all optional)::
+"""Options of the loaded tooth contact stage (SI). In a gearbox file they are the
+``[contact]`` table (read by :mod:`pipeline.config`); its keys, units in the names::
 
     [contact]
     positions = 60                 # mesh positions over one cycle
@@ -24,15 +23,11 @@ and ``[operation]`` tables, as for ``gearpipe stiffness``.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 from pipeline.contact.ltca import LOCAL_MODELS
 from pipeline.contact.separations import FlankModifications
-from pipeline.validation import InputError, check_choice, check_int_range, check_range
-
-UM, MM = 1e-6, 1e-3
+from pipeline.validation import check_choice, check_int_range, check_range
 
 
 @dataclass(frozen=True)
@@ -65,46 +60,3 @@ class ContactOptions:
         check_range("contact.slice_coupling", self.slice_coupling, 0.0, 0.25, hi_open=True)
         check_int_range("contact.load_map_profile_points", self.load_map_profile_points, 2,
                         100_000)
-
-
-_SCALAR = {
-    "positions": ("positions", None),
-    "slices": ("slices", None),
-    "local_contact": ("local_contact", None),
-    "slice_coupling": ("slice_coupling", None),
-    "load_map_profile_points": ("load_map_profile_points", None),
-    "render": ("render", None),
-}
-_MODS = {
-    "tip_relief_pinion_um": ("tip_relief_pinion", UM),
-    "tip_relief_length_pinion_mm": ("relief_length_pinion", MM),
-    "tip_relief_gear_um": ("tip_relief_gear", UM),
-    "tip_relief_length_gear_mm": ("relief_length_gear", MM),
-    "relief_shape": ("relief_shape", None),
-    "crowning_um": ("crowning", UM),
-    "slope_deviation_um": ("slope_deviation", UM),
-    "pitch_errors_um": ("pitch_errors", UM),
-}
-
-
-def _value(key: str, v: Any, scale: float | None) -> Any:
-    if scale is None:
-        return v
-    if isinstance(v, list):
-        return tuple(_value(f"{key}[{i}]", x, scale) for i, x in enumerate(v))
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise InputError(f"contact.{key} = {v!r} is not a number")
-    return float(v) * scale
-
-
-def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOptions:
-    """Build :class:`ContactOptions` from the parsed ``[contact]`` table (or None)."""
-    table = dict(table or {})
-    allowed = set(_SCALAR) | set(_MODS)
-    for k in table:
-        if k not in allowed:
-            raise InputError(f"[contact] has unknown key {k!r}; allowed: "
-                             f"{', '.join(sorted(allowed))}")
-    mods = {name: _value(k, table[k], sc) for k, (name, sc) in _MODS.items() if k in table}
-    opts = {name: _value(k, table[k], sc) for k, (name, sc) in _SCALAR.items() if k in table}
-    return ContactOptions(modifications=FlankModifications(**mods), **opts)

@@ -166,7 +166,8 @@ class LoadedMeshCycle:
     mesh_stiffness : tangent mesh stiffness k = dP/dx_s, N/m (exact, from the loaded
         set; see :class:`ContactSolution`).
     mesh_stiffness_secant : P / (x_s - min eps), N/m.
-    mesh_stiffness_pointwise : seed 004's k_m = sum F_i / (x_s - eps_i), N/m.
+    mesh_stiffness_pointwise : k_m = sum F_i / (x_s - eps_i), N/m, the pointwise mesh
+        stiffness of Yang et al. (2026).
     residual, tolerance : complementarity residual and its accepted bound, m.
     newton_iterations : linearisations of the local contact approach.
     max_unit_load : largest unit load along any contact line, N/m.
@@ -240,4 +241,34 @@ class LoadedMeshCycle:
             "transmission_error_peak_to_peak_m": float(te.max() - te.min()),
             "max_unit_load_N_per_m": float(self.max_unit_load.max()),
             "max_residual_m": float(self.residual.max()),
+        }
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Per-position columns over the cycle (shape (m,) each), named with their units."""
+        cols = {
+            "pinion_angle [rad]": self.pinion_angle,
+            "roll_coordinate_s0 [m]": self.s0,
+            "transmission_error [m]": self.transmission_error,
+            "mesh_stiffness_tangent [N/m]": self.mesh_stiffness,
+            "mesh_stiffness_secant [N/m]": self.mesh_stiffness_secant,
+            "mesh_stiffness_pointwise [N/m]": self.mesh_stiffness_pointwise,
+            "max_unit_load [N/mm]": self.max_unit_load * 1e-3,
+            "residual [m]": self.residual,
+        }
+        for j, k in enumerate(self.pair_index):
+            cols[f"load_share_pair_{k} [-]"] = self.load_share[:, j]
+        return cols
+
+    def point_columns(self) -> dict[str, np.ndarray]:
+        """Per-candidate-point columns over all positions (shape (n_total,) each)."""
+        return {
+            "position [-]": self.point_position,
+            "roll_coordinate_s [m]": self.point_s,
+            "face_position_z [m]": self.point_z,
+            "tooth_pair [-]": self.point_pair,
+            "slice_width [m]": self.point_width,
+            "load [N]": self.point_load,
+            "unit_load [N/mm]": self.point_unit_load * 1e-3,
+            "initial_separation [m]": self.point_separation,
+            "contact_deformation [m]": self.point_contact_deformation,
         }

@@ -1,30 +1,31 @@
-"""CLI entry points: ``gearpipe modes|response|sweep CONFIG [--out DIR] [--json] [--full]``.
+"""``gearpipe modes|response|sweep CONFIG [--out DIR] [--json] [--full]``: the dynamics.
 
-Each ``run_*`` reads a dynamics TOML (:mod:`pipeline.dynamics.config`), writes
-CSV/PNG/JSON plus ``run.json`` to ``--out`` (default ``results/<name>/<command>``)
-and prints a short table, or one JSON object with ``--json``. ``--full`` uses the
-fine settings (more harmonics/segments, all sweep points); the default is coarse.
-Exit code 0 on success, 2 on an input error (the message names the field).
+The model comes from the gearbox file: a pair's lateral-torsional model with its
+masses, inertias and base radii derived from the geometry and its mesh
+excitation from the analytical stiffness at the operating point (``[dynamics]``
+holds bearings, damping, an optional explicit ``[dynamics.mesh_stiffness]``,
+``[dynamics.response]`` and ``[dynamics.sweep]``), or a ``[lumped_model]``.
+Writes CSV/PNG/JSON plus ``run.json`` to ``results/<file stem>/<command>``;
+``--full`` uses the fine settings (more harmonics/segments, all sweep points).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import sys
-from pathlib import Path
 
-import numpy as np
-
-from pipeline.dynamics.config import DynamicsConfig, load_dynamics_config
+from pipeline.commands_common import load, output_dir
+from pipeline.config import Gearbox
+from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
+from pipeline.dynamics.options import PairDynamicsOptions
 from pipeline.io import to_jsonable, write_csv, write_json, write_run_record
 from pipeline.validation import InputError
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("config", help="dynamics study TOML file")
-    parser.add_argument("--out", default=None, help="output folder (default results/<name>/<cmd>)")
-    parser.add_argument("--json", action="store_true", help="print one JSON summary on stdout")
+    from pipeline.commands_common import add_common_arguments
+
+    add_common_arguments(parser)
     parser.add_argument("--full", action="store_true", help="fine settings instead of coarse")
 
 
@@ -33,11 +34,41 @@ add_response_arguments = _common
 add_sweep_arguments = _common
 
 
-def _setup(args, command: str) -> tuple[DynamicsConfig, Path]:
-    cfg = load_dynamics_config(args.config)
-    out = Path(args.out) if args.out else Path("results") / cfg.name / command
-    out.mkdir(parents=True, exist_ok=True)
-    return cfg, out
+def dynamics_options(box: Gearbox) -> PairDynamicsOptions:
+    """The ``[dynamics]`` options of a gearbox (defaults when the table is absent)."""
+    return box.dynamics or PairDynamicsOptions()
+
+
+def dynamic_model(box: Gearbox):
+    """The dynamic model a gearbox file describes (composition of geometry, stiffness, dynamics).
+
+    A pair: :func:`~pipeline.dynamics.models.spur_pair.spur_pair_model` excited by the
+    analytical stiffness of the installed pair; a ``[lumped_model]``: that model.
+    """
+    from pipeline.dynamics.mesh_input import excitation_from_stiffness
+    from pipeline.dynamics.models.spur_pair import spur_pair_model
+    from pipeline.stiffness.analysis import analyse_stiffness
+
+    if box.kind == "lumped":
+        return box.lumped
+    if box.kind != "pair":
+        raise InputError(f"{box.name}: dynamic models are built from a gear pair or a "
+                         "[lumped_model]; a planetary set's model from its gears is not "
+                         "available yet")
+    opts = dynamics_options(box)
+    excitation = None
+    if opts.mesh_stiffness is None or opts.friction:
+        stiff = analyse_stiffness(box.pair, box.operation, box.stiffness,
+                                  assembly_errors=box.assembly_errors)
+        excitation = excitation_from_stiffness(stiff.mesh)
+    return spur_pair_model(box.actual_pair, (box.bodies["pinion"], box.bodies["gear"]),
+                           box.operation, opts, excitation)
+
+
+def _setup(args, command: str):
+    box = load(args)
+    model = dynamic_model(box)
+    return box, model, output_dir(args, command)
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
@@ -47,59 +78,18 @@ def _emit(args, summary: dict, lines: list[str]) -> None:
         print("\n".join(lines))
 
 
-def _guard(func):
-    def wrapper(args) -> int:
-        try:
-            return func(args)
-        except InputError as exc:
-            print(f"error: {exc}", file=sys.stderr)
-            return 2
-
-    wrapper.__name__ = func.__name__
-    wrapper.__doc__ = func.__doc__
-    return wrapper
-
-
-@_guard
 def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
-    from pipeline.dynamics.modal import modal_analysis
     from pipeline.dynamics.plots import plot_mode_shapes
 
-    cfg, out = _setup(args, "modes")
-    system = cfg.model.assembly().assemble()
-    res = modal_analysis(system, gyroscopic=system.carrier_speed != 0.0)
-    if hasattr(cfg.model, "classify"):
-        res = cfg.model.classify(res)
-    kinds = np.array(
-        [
-            {"": 0, "rigid": 1, "rotational": 2, "translational": 3, "planet": 4, "mixed": 5}[k]
-            for k in res.kinds
-        ]
-    )
-    files = [
-        write_csv(
-            out / "modes.csv",
-            {
-                "frequency [Hz]": res.frequencies,
-                "multiplicity [-]": res.multiplicity,
-                "kind [0 none,1 rigid,2 rot,3 trans,4 planet,5 mixed]": kinds,
-            },
-        ),
-        plot_mode_shapes(res, out / "mode_shapes.png", count=16 if args.full else 8),
-    ]
-    summary = {
-        "frequencies_Hz": res.frequencies,
-        "kinds": res.kinds,
-        "multiplicity": res.multiplicity,
-        "dofs": len(res.dof_names),
-        "out": str(out),
-    }
-    write_run_record(out, cfg.raw, files, f"gearpipe modes {args.config}")
-    lines = [
-        f"{len(res.dof_names)} DOF ({system.n} independent), results in {out}",
-        "  #   f [Hz]      kind           mult",
-    ]
+    box, model, out = _setup(args, "modes")
+    res = analyse_modes(model)
+    files = [write_csv(out / "modes.csv", res.columns()),
+             plot_mode_shapes(res, out / "mode_shapes.png", count=16 if args.full else 8)]
+    summary = {**res.summary(), "out": str(out)}
+    write_run_record(out, box.to_dict(), files, f"gearpipe modes {args.config}")
+    lines = [f"{len(res.dof_names)} DOF, results in {out}",
+             "  #   f [Hz]      kind           mult"]
     lines += [
         f"{k:3d} {f:10.2f}  {kd:14s} {m}"
         for k, (f, kd, m) in enumerate(
@@ -110,23 +100,6 @@ def run_modes(args) -> int:
     return 0
 
 
-def solve_response(cfg: DynamicsConfig, full: bool):
-    """Steady response by the configured method; returns (Response, HarmonicResponse | None)."""
-    from pipeline.dynamics.harmonic_balance import harmonic_balance
-    from pipeline.dynamics.integrate import integrate, steady_state
-
-    system = cfg.model.assembly().assemble()
-    s = cfg.solver
-    segments = None if s.segments is None else int(s.segments) * (4 if full else 1)
-    if s.method == "harmonic_balance":
-        hr = harmonic_balance(system, int(s.n_harmonics) * (2 if full else 1))
-        return hr.response, hr
-    if s.method == "floquet":
-        return steady_state(system, segments), None
-    return integrate(system, int(s.periods), segments=segments), None
-
-
-@_guard
 def run_response(args) -> int:
     """Steady dynamic response: DTE and mesh forces in time, DTE spectrum."""
     from pipeline.dynamics.plots import (
@@ -136,41 +109,27 @@ def run_response(args) -> int:
         plot_time_history,
     )
 
-    cfg, out = _setup(args, "response")
-    resp, hr = solve_response(cfg, args.full)
-    cols = {"time [s]": resp.time}
-    for i, m in enumerate(resp.mesh_names):
-        cols[f"dte {m} [m]"] = resp.dte[i]
-        cols[f"force {m} [N]"] = resp.mesh_force[i]
-    files = [write_csv(out / "time_history.csv", cols)]
+    box, model, out = _setup(args, "response")
+    result = analyse_response(model, dynamics_options(box).response,
+                              refine=2 if args.full else 1)
+    resp, hr = result.response, result.harmonic
+    files = [write_csv(out / "time_history.csv", result.columns())]
     f, a = dte_spectrum(resp, 0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
     files.append(
         plot_time_history(
-            [resp], [cfg.name], out / "time_history.png", title=f"{cfg.name}: {resp.mesh_names[0]}"
+            [resp], [box.name], out / "time_history.png", title=f"{box.name}: {resp.mesh_names[0]}"
         )
     )
-    files.append(plot_spectrum([resp], [cfg.name], out / "dte_spectrum.png"))
+    files.append(plot_spectrum([resp], [box.name], out / "dte_spectrum.png"))
     if hr is not None:
-        files.append(plot_harmonic_contributions([hr], [cfg.name], out / "harmonics.png"))
-    summary = {
-        "method": resp.method,
-        "period_s": resp.period,
-        "meshes": {
-            m: {
-                "rms_force_N": resp.rms_mesh_force()[i],
-                "dte_peak_to_peak_m": resp.peak_to_peak_dte()[i],
-                "dte_mean_m": float(resp.dte[i, resp.steady_slice()].mean()),
-            }
-            for i, m in enumerate(resp.mesh_names)
-        },
-        "out": str(out),
-    }
+        files.append(plot_harmonic_contributions([hr], [box.name], out / "harmonics.png"))
+    summary = {**result.summary(), "out": str(out)}
     write_json(out / "summary.json", summary)
     files.append(out / "summary.json")
-    write_run_record(out, cfg.raw, files, f"gearpipe response {args.config}")
+    write_run_record(out, box.to_dict(), files, f"gearpipe response {args.config}")
     lines = [
-        f"{cfg.name}: {resp.method}, mesh period {resp.period * 1e3:.4f} ms, results in {out}",
+        f"{box.name}: {resp.method}, mesh period {resp.period * 1e3:.4f} ms, results in {out}",
         "mesh            RMS force [N]   DTE p-p [um]",
     ]
     lines += [
@@ -181,38 +140,24 @@ def run_response(args) -> int:
     return 0
 
 
-@_guard
 def run_sweep(args) -> int:
     """RMS dynamic mesh force against mesh frequency."""
     from pipeline.dynamics.plots import plot_sweep
-    from pipeline.dynamics.sweep import mesh_force_sweep
 
-    cfg, out = _setup(args, "sweep")
-    system = cfg.model.assembly().assemble()
-    sw = cfg.sweep
-    freqs = sw.frequencies(args.full)
-    res = mesh_force_sweep(
-        system,
-        freqs,
-        sw.method,
-        int(sw.n_harmonics),
-        executor="local" if freqs.size >= 50 else None,
-        show_progress=not args.json,
-    )
-    cols = {"mesh frequency [Hz]": res.frequencies}
-    for i, m in enumerate(res.mesh_names):
-        cols[f"rms force {m} [N]"] = res.rms_force[i]
-        cols[f"max force {m} [N]"] = res.max_force[i]
-    files = [write_csv(out / "sweep.csv", cols)]
+    box, model, out = _setup(args, "sweep")
+    res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
+                        show_progress=not args.json)
+    freqs = res.frequencies
+    files = [write_csv(out / "sweep.csv", res.columns())]
     shown = [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
         res.mesh_names[:2]
     )
-    files.append(plot_sweep([res], [cfg.name], shown, out / "sweep.png", title=cfg.name))
+    files.append(plot_sweep([res], [box.name], shown, out / "sweep.png", title=box.name))
     peaks = {m: res.peaks(m) for m in shown}
-    write_run_record(out, cfg.raw, files, f"gearpipe sweep {args.config}")
+    write_run_record(out, box.to_dict(), files, f"gearpipe sweep {args.config}")
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}
     lines = [
-        f"{cfg.name}: {freqs.size} points {freqs[0]:.0f}-{freqs[-1]:.0f} Hz, results in {out}"
+        f"{box.name}: {freqs.size} points {freqs[0]:.0f}-{freqs[-1]:.0f} Hz, results in {out}"
     ]
     lines += [f"  {m}: peaks at {', '.join(f'{p:.0f}' for p in v)} Hz" for m, v in peaks.items()]
     _emit(args, summary, lines)

@@ -6,6 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+MODE_KINDS = ("", "rigid", "rotational", "translational", "planet", "mixed", "axial")
+"""Mode kinds in the order of their codes in ``modes.csv``."""
+
 
 @dataclass(frozen=True)
 class Response:
@@ -68,6 +71,26 @@ class Response:
         d = self.dte[:, self.steady_from :]
         return d.max(axis=1) - d.min(axis=1)
 
+    def summary(self) -> dict:
+        """Per mesh: RMS and mean force (N), DTE peak-to-peak and mean (m); the period (s)."""
+        rms, mean, ptp = self.rms_mesh_force(), self.mean_mesh_force(), self.peak_to_peak_dte()
+        return {
+            "method": self.method,
+            "period_s": self.period,
+            "meshes": {m: {"rms_force_N": float(rms[i]), "mean_force_N": float(mean[i]),
+                           "dte_peak_to_peak_m": float(ptp[i]),
+                           "dte_mean_m": float(self.dte[i, self.steady_slice()].mean())}
+                       for i, m in enumerate(self.mesh_names)},
+        }
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Time history columns: time (s), then DTE (m) and force (N) of every mesh."""
+        cols = {"time [s]": self.time}
+        for i, m in enumerate(self.mesh_names):
+            cols[f"dte {m} [m]"] = self.dte[i]
+            cols[f"force {m} [N]"] = self.mesh_force[i]
+        return cols
+
 
 @dataclass(frozen=True)
 class HarmonicResponse:
@@ -117,3 +140,14 @@ class ModalResult:
     kinds: tuple[str, ...]
     multiplicity: np.ndarray
     weights: np.ndarray | None = None
+
+    def summary(self) -> dict:
+        """Frequencies (Hz), mode kinds and multiplicities, and the DOF count."""
+        return {"frequencies_Hz": self.frequencies, "kinds": list(self.kinds),
+                "multiplicity": self.multiplicity, "dofs": len(self.dof_names)}
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """One row per mode: frequency (Hz), multiplicity, kind code."""
+        codes = np.array([MODE_KINDS.index(k) if k in MODE_KINDS else 5 for k in self.kinds])
+        return {"frequency [Hz]": self.frequencies, "multiplicity [-]": self.multiplicity,
+                "kind [0 none,1 rigid,2 rot,3 trans,4 planet,5 mixed,6 axial]": codes}

@@ -142,6 +142,24 @@ class SweepResult:
         """max F / mean F per mesh and frequency, shape (n_mesh, F)."""
         return self.max_force / self.mean_force
 
+    def summary(self) -> dict:
+        """Points, frequency range (Hz) and the main peaks (Hz) of every mesh."""
+        return {"points": int(self.frequencies.size),
+                "f_min_Hz": float(self.frequencies[0]), "f_max_Hz": float(self.frequencies[-1]),
+                "peaks_Hz": {m: self.peaks(m) for m in self.mesh_names}}
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Mesh frequency (Hz), then per mesh: RMS, alternating RMS, mean, max force (N) and
+        dynamic factor (-)."""
+        cols = {"mesh frequency [Hz]": self.frequencies}
+        for i, m in enumerate(self.mesh_names):
+            cols[f"rms force {m} [N]"] = self.rms_force[i]
+            cols[f"max force {m} [N]"] = self.max_force[i]
+            cols[f"mean force {m} [N]"] = self.mean_force[i]
+            cols[f"alternating rms force {m} [N]"] = self.rms_alternating[i]
+            cols[f"dynamic factor {m} [-]"] = self.dynamic_factor[i]
+        return cols
+
     def peaks(self, mesh: str, count: int = 3) -> np.ndarray:
         """Frequencies (Hz) of the ``count`` largest local maxima of the RMS force of a mesh."""
         y = self.rms_force[self.mesh_names.index(mesh)]

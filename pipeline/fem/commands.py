@@ -12,32 +12,35 @@ and ``run.json`` to ``results/<config>/fe/``.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, output_dir
-from pipeline.config import load_pair_config
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import clamped_dofs, influence_matrix, patch_loads
 from pipeline.fem.linear_static import build_model, solve_static
+from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
 from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
 from pipeline.geometry.gear import GearSpec
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
-from pipeline.validation import check_int_range, check_range
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
-    parser.add_argument("--teeth", type=int, default=5, help="teeth in the sector (default 5)")
-    parser.add_argument("--points", type=int, default=40, help="points per flank (default 40)")
-    parser.add_argument("--refinement", type=float, default=2.0,
-                        help="mesh refinement (flank size m_n / (12 refinement); default 2)")
-    parser.add_argument("--kind", choices=("plane_strain", "plane_stress"),
-                        default="plane_strain", help="2D model (default plane_strain)")
+    parser.add_argument("--teeth", type=int, default=None,
+                        help="teeth in the sector (default: [fe] teeth, else 5)")
+    parser.add_argument("--points", type=int, default=None,
+                        help="points per flank (default: [fe] points, else 40)")
+    parser.add_argument("--refinement", type=float, default=None,
+                        help="mesh refinement, flank size m_n / (12 refinement) "
+                             "(default: [fe] refinement, else 2)")
+    parser.add_argument("--kind", choices=PLANE_KINDS, default=None,
+                        help="2D model (default: [fe] kind, else plane_strain)")
 
 
-def analyse_gear(gear: GearSpec, args: argparse.Namespace, out: Path, tag: str) -> tuple[dict,
+def analyse_gear(gear: GearSpec, args: SectorFEOptions, out: Path, tag: str) -> tuple[dict,
                                                                                        list]:
     """Mesh, influence matrix and single-tooth comparison of one gear; returns summary, files."""
     from pipeline.fem.sector_plots import plot_compliance, plot_deformed, plot_sector_mesh
@@ -85,18 +88,25 @@ def analyse_gear(gear: GearSpec, args: argparse.Namespace, out: Path, tag: str) 
     return summary, files
 
 
+def options(box_fe: SectorFEOptions, args: argparse.Namespace) -> SectorFEOptions:
+    """The ``[fe]`` table with the command-line options that were given on top."""
+    given = {k: getattr(args, k) for k in ("teeth", "points", "refinement", "kind")
+             if getattr(args, k) is not None}
+    return dataclasses.replace(box_fe, **given)
+
+
 def run(args: argparse.Namespace) -> int:
-    check_int_range("fe.teeth", args.teeth, 1, 99)
-    check_int_range("fe.points", args.points, 1, 1000)
-    check_range("fe.refinement", args.refinement, 0.1, 20.0)
-    cfg = load_pair_config(args.config)
+    box = load(args)
+    pair = box.require_pair()
+    opts = options(box.fe, args)
     out = output_dir(args, "fe")
     summary, files = {}, []
-    for tag, gear in (("pinion", cfg.pinion), ("gear", cfg.gear)):
-        s, f = analyse_gear(gear, args, out, tag)
+    for tag, gear in (("pinion", pair.pinion), ("gear", pair.gear)):
+        s, f = analyse_gear(gear, opts, out, tag)
         summary[tag] = s
         files += f
     files.append(write_json(out / "fe_summary.json", summary))
-    write_run_record(out, cfg, files, f"gearpipe fe {args.config}")
+    write_run_record(out, {"gearbox": box.to_dict(), "fe": opts}, files,
+                     f"gearpipe fe {args.config}")
     emit(args, summary, out)
     return 0

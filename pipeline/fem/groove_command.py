@@ -13,12 +13,10 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
-import sys
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, output_dir
-from pipeline.fem.groove.config import load_groove_config
+from pipeline.commands_common import add_common_arguments, load, output_dir
 from pipeline.fem.groove.coupling import COUPLINGS
 from pipeline.fem.groove.result import DOF_NAMES
 from pipeline.fem.groove.spec import TEETH_MODELS, GrooveSpec
@@ -58,11 +56,11 @@ def _summary(spec: GrooveSpec, res, shift) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run the command; returns the process exit code."""
-    try:
-        spec = load_groove_config(args.config)
-    except InputError as exc:
-        print(f"gearpipe groove: {exc}", file=sys.stderr)
-        return 2
+    box = load(args)
+    if box.groove is None:
+        raise InputError(f"{args.config}: a relief-groove analysis needs a [groove] table "
+                         "(bottom_diameter_mm, ...) and a herringbone gear")
+    spec = box.groove
     out = output_dir(args, "groove")
     analysis = analyse_groove(spec)
     res = analysis.result
@@ -93,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
             "K_j [N m^2]": np.array([r.equivalent_Kj for r in rows]),
             "n_dof": np.array([r.n_dof for r in rows]),
         }))
-    write_run_record(out, dataclasses.asdict(spec), files, "gearpipe groove " + str(args.config))
+    write_run_record(out, box.to_dict(), files, "gearpipe groove " + str(args.config))
     if args.json:
         payload = {"result": res.to_dict(), "phase_shift": dataclasses.asdict(shift),
                    "variants": [r.to_dict() for r in rows[1:]], "outdir": str(out)}
@@ -108,12 +106,3 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Stand-alone entry (the package CLI wires :func:`add_arguments` / :func:`run`)."""
-    parser = argparse.ArgumentParser(prog="gearpipe groove", description=__doc__.splitlines()[0])
-    add_arguments(parser)
-    return run(parser.parse_args(argv))
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -30,9 +30,36 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from pipeline.config import AssemblyErrors
 from pipeline.geometry.pair import GearPair
-from pipeline.validation import InputError
+from pipeline.validation import InputError, check_range
+
+
+@dataclass(frozen=True)
+class AssemblyErrors:
+    """Centre displacements of the two gears (m), in the frame of the assembly-error model:
+    y along the nominal line of action.
+
+    Attributes
+    ----------
+    pinion : (e_x, e_y) of the pinion centre, m, each in [-5, 5] mm.
+    gear : (e_x, e_y) of the gear centre, m, each in [-5, 5] mm.
+    """
+
+    pinion: tuple[float, float] = (0.0, 0.0)
+    gear: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        for who in ("pinion", "gear"):
+            e = tuple(float(v) for v in getattr(self, who))
+            if len(e) != 2:
+                raise InputError(f"assembly_error_{who} needs 2 values (e_x, e_y)")
+            for i, v in enumerate(e):
+                check_range(f"assembly_error_{who}[{i}]", v, -5e-3, 5e-3, unit="m")
+            object.__setattr__(self, who, e)
+
+    @property
+    def is_zero(self) -> bool:
+        return not any(self.pinion) and not any(self.gear)
 
 
 @dataclass(frozen=True)

@@ -3,16 +3,17 @@ friction (constant or EHL), slicing for helical gears, ISO 6336 and the contact-
 friction stiffness/torque coefficients and Fourier series. Stiffness in N/m, compliance in m/N.
 """
 
-from pipeline.stiffness.analysis import PairStiffness, analyse_pair
+from pipeline.operation import OperatingPoint
+from pipeline.signals import FourierSeries, PeriodicSignal
+from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
 from pipeline.stiffness.iso6336 import contact_line_stiffness, iso_stiffness
 from pipeline.stiffness.mesh import (
     FrictionModel,
     MeshStiffness,
-    OperatingPoint,
     PairModel,
     mesh_stiffness,
 )
-from pipeline.signals import FourierSeries, PeriodicSignal
+from pipeline.stiffness.options import StiffnessOptions
 
 __all__ = [
     "FourierSeries",
@@ -20,9 +21,10 @@ __all__ = [
     "MeshStiffness",
     "OperatingPoint",
     "PairModel",
-    "PairStiffness",
+    "StiffnessOptions",
+    "StiffnessResult",
     "PeriodicSignal",
-    "analyse_pair",
+    "analyse_stiffness",
     "contact_line_stiffness",
     "iso_stiffness",
     "mesh_stiffness",

@@ -20,12 +20,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.friction import (
     ehl_friction_coefficient,
     friction_direction,
     hertz_line_pressure,
 )
-from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.tooth import ToothModel, hertz_compliance, tooth_compliance, tooth_model
 from pipeline.validation import InputError, check_int_range, check_range
 
@@ -51,22 +52,6 @@ class FrictionModel:
         check_range("friction.mu", self.mu, 0.0, 0.5)
         if self.kind not in ("constant", "ehl"):
             raise InputError(f"friction.kind = {self.kind!r} is not one of 'constant', 'ehl'")
-
-
-@dataclass(frozen=True)
-class OperatingPoint:
-    """Load and speed of the driving gear.
-
-    Attributes
-    ----------
-    torque : N m on the driving gear (> 0).
-    speed : rad/s of the driving gear (> 0).
-    driver : "pinion" or "gear".
-    """
-
-    torque: float = 100.0
-    speed: float = 100.0
-    driver: str = "pinion"
 
 
 @dataclass(frozen=True)

@@ -32,16 +32,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-CONFIG = ROOT / "workflows" / "configs" / "seed002_sun_groove.toml"
+CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
 def _case(args: tuple[str, float, str, str], queue) -> None:
     teeth_model, h, coupling, solver = args
     os.environ.setdefault("OMP_NUM_THREADS", "2")
-    from pipeline.fem.groove.config import load_groove_config
+    from pipeline.config import load_gearbox
     from pipeline.fem.groove.study import analyse_groove
 
-    spec = dataclasses.replace(load_groove_config(CONFIG), mesh_size=h, teeth_model=teeth_model,
+    spec = dataclasses.replace(load_gearbox(CONFIG).groove, mesh_size=h, teeth_model=teeth_model,
                                coupling=coupling)
     t0 = time.perf_counter()
     a = analyse_groove(spec, use_cache=False, solver=solver)

@@ -16,11 +16,16 @@ import math
 from dataclasses import dataclass
 
 from pipeline.dynamics.assembly import Assembly
+from pipeline.dynamics.mesh_input import MeshExcitation
+from pipeline.dynamics.options import PairDynamicsOptions
+from pipeline.geometry.body import GearBody
+from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
 from pipeline.dynamics.bodies import Body
 from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
 from pipeline.signals import PeriodicSignal
-from pipeline.validation import check_int_range, check_positive, check_range
+from pipeline.validation import InputError, check_int_range, check_positive, check_range
 
 
 @dataclass(frozen=True)
@@ -126,3 +131,55 @@ class SpurPairModel:
             Load("gear", "theta", -self.torque * self.base_radius_gear / self.base_radius_pinion),
         ]
         return Assembly((p, g), couplings, loads, period=self.mesh_period, name="spur-pair")
+
+
+def spur_pair_model(
+    pair: GearPair,
+    bodies: tuple[GearBody, GearBody],
+    operation: OperatingPoint,
+    options: PairDynamicsOptions,
+    excitation: MeshExcitation | None = None,
+) -> SpurPairModel:
+    """The lateral-torsional (or torsional) model of a pair, everything derived from geometry.
+
+    Parameters
+    ----------
+    pair : the actual pair (its base radii and the pinion's tooth count are used).
+    bodies : pinion and gear bodies (mass in kg, polar moment in kg m^2, derived from the
+        geometry unless overridden).
+    operation : pinion torque (N m) and speed (rad/s); the pinion must drive.
+    options : bearings, damping, degrees of freedom, an optional explicit k(tau).
+    excitation : k(tau) and the friction terms of the mesh (from the stiffness stage,
+        :func:`pipeline.dynamics.mesh_input.excitation_from_stiffness`); needed unless
+        ``options.mesh_stiffness`` is given.
+    """
+    if operation.driver != "pinion":
+        raise InputError("operation.driver = 'gear': the pair dynamic model drives the pinion; "
+                         "set [operation] driver = \"pinion\"")
+    k = options.mesh_stiffness
+    if k is None:
+        if excitation is None:
+            raise InputError("the pair dynamic model needs a mesh excitation or an explicit "
+                             "[dynamics.mesh_stiffness]")
+        k = excitation.stiffness
+    friction = options.friction and excitation is not None and excitation.has_friction
+    pb, gb = bodies
+    return SpurPairModel(
+        mesh_stiffness=k,
+        pinion_teeth=pair.pinion.teeth,
+        base_radius_pinion=pair.pinion.base_radius,
+        base_radius_gear=pair.gear.base_radius,
+        mass_pinion=pb.mass_,
+        mass_gear=gb.mass_,
+        inertia_pinion=pb.inertia_,
+        inertia_gear=gb.inertia_,
+        bearing_stiffness=options.bearing_stiffness,
+        bearing_damping=options.bearing_damping,
+        damping_ratio=options.damping_ratio,
+        torque=operation.torque,
+        speed=operation.speed,
+        friction_stiffness=excitation.friction_stiffness if friction else None,
+        friction_torque_pinion=excitation.friction_torque_pinion if friction else None,
+        friction_torque_gear=excitation.friction_torque_gear if friction else None,
+        torsional_only=options.dofs == "torsional",
+    )

@@ -1,0 +1,354 @@
+"""One gearbox file -> :class:`Gearbox`: every stage's frozen inputs, in SI.
+
+A gearbox file describes its gears, the meshes between them, the operating
+point and optional tables per stage. Which gear tables it has says what it is:
+
+* a **pair**: ``[pinion]`` and ``[gear]`` (``gear`` may be internal), with an optional
+  ``[pair]`` (centre distance, assembly errors); one mesh;
+* a **planetary set**: ``[sun]``, ``[planet]``, ``[ring]`` (internal), ``[carrier]``
+  and ``[planetary]`` (number of planets, optional planet angles); the sun-planet and
+  planet-ring meshes follow from the set, with the assembly checks of
+  :class:`~pipeline.geometry.planetary.PlanetarySet`;
+* a **single gear**: ``[gear]`` alone (FE of one gear, the relief groove);
+* a **lumped model** from a publication that gives masses and stiffnesses but no
+  tooth geometry: ``[lumped_model]`` (:mod:`pipeline.config.lumped`).
+
+Stage tables: ``[operation]``, ``[stiffness]``, ``[contact]``, ``[fe]``,
+``[groove]``, ``[dynamics]`` (with ``[dynamics.response]``, ``[dynamics.sweep]``
+and an optional ``[dynamics.mesh_stiffness]``). Keys carry their unit in their
+name; see :mod:`pipeline.config.tables` for every key. What follows from the
+geometry is derived, never typed: base radii, operating pressure angles,
+contact ratios and mesh period (:class:`GearPair`), masses and inertias of the
+gear bodies (:class:`GearBody`; override with ``mass_kg``, ``inertia_kgm2`` in
+the gear's table), planet positions and meshing phases (:class:`PlanetarySet`;
+override the positions with ``planet_angles_deg``), the mesh stiffness of the
+dynamics (override with ``[dynamics.mesh_stiffness]``).
+
+Unknown tables and keys, wrong types and out-of-range values are refused with
+one line naming the key as written, the value in the file's unit and the
+allowed range in that unit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pipeline.config import tables as T
+from pipeline.config.schema import build, read_table, restated, unknown, where_text
+from pipeline.config.signals import signal_from_table
+from pipeline.config.toml_file import InputFile, parse_toml, read_input_file
+from pipeline.contact.options import ContactOptions
+from pipeline.contact.separations import FlankModifications
+from pipeline.dynamics.options import PairDynamicsOptions, ResponseOptions, SweepOptions
+from pipeline.fem.groove.spec import GrooveSpec
+from pipeline.fem.options import SectorFEOptions
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
+from pipeline.geometry.body import GearBody
+from pipeline.geometry.gear import GearSpec, Material
+from pipeline.geometry.pair import GearPair
+from pipeline.geometry.planetary import PlanetarySet
+from pipeline.operation import OperatingPoint
+from pipeline.stiffness.options import StiffnessOptions
+from pipeline.validation import InputError
+
+PAIR_ROLES = ("pinion", "gear")
+PLANETARY_ROLES = ("sun", "planet", "ring")
+STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "dynamics")
+TABLES = PAIR_ROLES + PLANETARY_ROLES + ("carrier", "pair", "planetary", "lumped_model") \
+    + STAGE_TABLES
+TOP_KEYS = ("name", "description")
+
+
+@dataclass(frozen=True)
+class Carrier:
+    """The planet carrier as a rigid body: mass (kg) and polar moment (kg m^2)."""
+
+    mass: float
+    inertia: float
+
+
+@dataclass(frozen=True)
+class Gearbox:
+    """A gearbox as described by one file: the frozen inputs of every stage (SI).
+
+    Attributes
+    ----------
+    name : label (the ``name`` key, else the file stem); outputs go by the file stem.
+    kind : "pair", "planetary", "gear" (one gear) or "lumped".
+    gears : the gears by their table name ("pinion", "gear", "sun", "planet", "ring").
+    bodies : the gears as rigid bodies (mass properties derived or overridden), same keys.
+    pair : the nominal pair (kind "pair"), or ``None``.
+    assembly_errors : centre displacements of the pair (zero without ``[pair]`` errors).
+    planetary : the planetary set (kind "planetary"), or ``None``.
+    carrier : the carrier body (kind "planetary"), or ``None``.
+    operation : load and speed of the driving gear.
+    stiffness, contact, fe : options of those stages (defaults when the table is absent).
+    groove : relief-groove analysis of a herringbone gear (``[groove]``), or ``None``.
+    dynamics : options of the pair's dynamic model (``[dynamics]``), or ``None``.
+    lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
+    source : the file it was read from (text, hash) or ``None`` when built in Python.
+    tables : names of the tables the file gave (which stages it asks for).
+    """
+
+    name: str
+    kind: str
+    gears: Mapping[str, GearSpec]
+    bodies: Mapping[str, GearBody]
+    pair: GearPair | None = None
+    assembly_errors: AssemblyErrors = field(default_factory=AssemblyErrors)
+    planetary: PlanetarySet | None = None
+    carrier: Carrier | None = None
+    operation: OperatingPoint = field(default_factory=OperatingPoint)
+    stiffness: StiffnessOptions = field(default_factory=StiffnessOptions)
+    contact: ContactOptions = field(default_factory=ContactOptions)
+    fe: SectorFEOptions = field(default_factory=SectorFEOptions)
+    groove: GrooveSpec | None = None
+    dynamics: PairDynamicsOptions | None = None
+    lumped: Any = None
+    source: InputFile | None = field(default=None, compare=False, repr=False)
+    tables: tuple[str, ...] = ()
+
+    @property
+    def pinion(self) -> GearSpec:
+        """The pinion of a pair."""
+        return self.require_pair().pinion
+
+    @property
+    def gear(self) -> GearSpec:
+        """The gear of a pair, or the single gear of a one-gear file."""
+        if "gear" not in self.gears:
+            raise InputError(f"{self.name}: the file has no [gear] table")
+        return self.gears["gear"]
+
+    @property
+    def actual_pair(self) -> GearPair:
+        """The pair as installed: at the centre distance the assembly errors give."""
+        pair = self.require_pair()
+        if self.assembly_errors.is_zero:
+            return pair
+        return AssembledPair(pair, self.assembly_errors).actual
+
+    @property
+    def assembled(self) -> AssembledPair | None:
+        """The assembly-error geometry, or ``None`` without errors."""
+        pair = self.require_pair()
+        return None if self.assembly_errors.is_zero else AssembledPair(pair,
+                                                                      self.assembly_errors)
+
+    def require_pair(self) -> GearPair:
+        """The pair; a clear error when the file describes something else."""
+        if self.pair is None:
+            raise InputError(f"{self.name}: this needs a gear pair ([pinion] and [gear] tables); "
+                             f"the file describes a {_KIND_TEXT[self.kind]}")
+        return self.pair
+
+    def to_dict(self) -> dict[str, Any]:
+        """The parsed document (what determines the numbers), for records and hashes."""
+        return {} if self.source is None else dict(self.source.document)
+
+
+_KIND_TEXT = {"pair": "gear pair", "planetary": "planetary set", "gear": "single gear",
+              "lumped": "lumped dynamic model"}
+
+
+def _material(table: Any, where: str) -> Material:
+    return build(Material, table, T.MATERIAL, where)
+
+
+def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
+    table = doc[role]
+    if not isinstance(table, Mapping):
+        raise InputError(f"{role} = {table!r}: expected a table [{role}]")
+    keys = T.GEAR + T.BODY
+    values = read_table(table, keys, role, subtables=("material",))
+    body_fields = {k.target for k in T.BODY}
+    body = {k: values.pop(k) for k in list(values) if k in body_fields}
+    values.setdefault("name", role)
+    if values.get("helix_angle", 0.0) > 0 and "hand" not in values:
+        values["hand"] = "right"
+    if "material" in table:
+        values["material"] = _material(table["material"], f"{role}.material")
+    with restated(role, keys):
+        gear = GearSpec(**values)
+        return gear, GearBody(gear, **body)
+
+
+def _check_tables(doc: Mapping[str, Any]) -> None:
+    if "model" in doc or "parameters" in doc:
+        raise InputError(
+            "this is a dynamics file of the old format (top-level 'model' and [parameters]): "
+            "describe the gears instead ([pinion] and [gear], or [sun], [planet], [ring], "
+            "[carrier], [planetary]) and put the model options in [dynamics], as in "
+            "workflows/configs/spur_pair_dynamics.toml; a published lumped model without "
+            "gear geometry goes into a [lumped_model] table (workflows/configs/"
+            "lin_parker_planetary.toml)")
+    for k, v in doc.items():
+        if isinstance(v, Mapping):
+            if k not in TABLES:
+                raise unknown(k, TABLES, "table")
+        elif k not in TOP_KEYS:
+            if k in TABLES:
+                raise InputError(f"{k} = {v!r}: expected a table [{k}]")
+            raise unknown(k, TOP_KEYS + TABLES, "top-level key")
+        elif not isinstance(v, str):
+            raise InputError(f"{k} = {v!r}: expected a string in quotes")
+
+
+def _kind(doc: Mapping[str, Any]) -> str:
+    has = {r for r in PAIR_ROLES + PLANETARY_ROLES + ("carrier", "planetary", "lumped_model")
+           if r in doc}
+    if "lumped_model" in has:
+        if has - {"lumped_model"}:
+            raise InputError("[lumped_model] describes a model without gear tables; remove "
+                             f"{', '.join(f'[{t}]' for t in sorted(has - {'lumped_model'}))}")
+        return "lumped"
+    planetary = has & set(PLANETARY_ROLES + ("carrier", "planetary"))
+    if planetary:
+        missing = [t for t in PLANETARY_ROLES + ("carrier", "planetary") if t not in doc]
+        if missing or "pinion" in doc or "gear" in doc:
+            raise InputError("a planetary set needs [sun], [planet], [ring], [carrier] and "
+                             "[planetary] (and no [pinion] or [gear]); missing: "
+                             f"{', '.join(f'[{t}]' for t in missing) or 'none'}")
+        return "planetary"
+    if "pinion" in doc:
+        if "gear" not in doc:
+            raise InputError("a gear pair needs a [gear] table beside [pinion]")
+        return "pair"
+    if "gear" in doc:
+        return "gear"
+    raise InputError("the file describes no gears: give [pinion] and [gear] (a pair), "
+                     "[sun], [planet], [ring], [carrier] and [planetary] (a planetary set), "
+                     "[gear] (one gear) or [lumped_model]")
+
+
+def _operation(doc: Mapping[str, Any]) -> OperatingPoint:
+    return build(OperatingPoint, doc.get("operation", {}), T.OPERATION, "operation")
+
+
+def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOptions:
+    """:class:`ContactOptions` from a parsed ``[contact]`` table (or ``None``: defaults)."""
+    table = {} if table is None else table
+    keys = T.CONTACT + T.MODIFICATIONS
+    values = read_table(table, keys, "contact")
+    mod_fields = {k.target for k in T.MODIFICATIONS}
+    mods = {k: values.pop(k) for k in list(values) if k in mod_fields}
+    with restated("contact", keys):
+        return ContactOptions(modifications=FlankModifications(**mods), **values)
+
+
+def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec | None:
+    if "groove" not in doc:
+        return None
+    values = read_table(doc["groove"], T.GROOVE, "groove")
+    role = values.pop("gear_role", None)
+    if role is None:
+        role = next((r for r, g in gears.items() if g.herringbone), "sun" if "sun" in gears
+                    else "gear")
+    if role not in gears:
+        raise unknown(role, list(gears), "[groove] gear")
+    with restated("groove", T.GROOVE):
+        return GrooveSpec(gear=gears[role], **values)
+
+
+def _dynamics(doc: Mapping[str, Any], base: Path | None) -> PairDynamicsOptions | None:
+    if "dynamics" not in doc:
+        return None
+    table = doc["dynamics"]
+    values = read_table(table, T.DYNAMICS, "dynamics", subtables=T.DYNAMICS_SUBTABLES)
+    values["response"] = build(ResponseOptions, table.get("response", {}), T.RESPONSE,
+                               "dynamics.response")
+    values["sweep"] = build(SweepOptions, table.get("sweep", {}), T.SWEEP, "dynamics.sweep")
+    if "mesh_stiffness" in table:
+        values["mesh_stiffness"] = signal_from_table(table["mesh_stiffness"],
+                                                     "dynamics.mesh_stiffness", base)
+    with restated("dynamics", T.DYNAMICS):
+        return PairDynamicsOptions(**values)
+
+
+def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
+                      base: Path | None = None, source: InputFile | None = None) -> Gearbox:
+    """Build a :class:`Gearbox` from a parsed TOML document.
+
+    Parameters
+    ----------
+    doc : the parsed file.
+    name : label when the file has no ``name`` key.
+    base : folder that relative paths in the file are relative to.
+    source : the file it was read from (kept for run records).
+    """
+    _check_tables(doc)
+    kind = _kind(doc)
+    roles = {"pair": PAIR_ROLES, "planetary": PLANETARY_ROLES, "gear": ("gear",),
+             "lumped": ()}[kind]
+    gears, bodies = {}, {}
+    for role in roles:
+        gears[role], bodies[role] = _gear(doc, role)
+    kw: dict[str, Any] = {}
+    if kind == "pair":
+        values = read_table(doc.get("pair", {}), T.PAIR, "pair")
+        cd = values.pop("centre_distance", None)
+        with restated("pair", T.PAIR):
+            kw["assembly_errors"] = AssemblyErrors(**values)
+            kw["pair"] = GearPair(gears["pinion"], gears["gear"], cd)
+            if not kw["assembly_errors"].is_zero:
+                AssembledPair(kw["pair"], kw["assembly_errors"]).actual  # noqa: B018 (checks)
+    elif "pair" in doc:
+        raise InputError(f"[pair] belongs to a gear pair; this file describes a "
+                         f"{_KIND_TEXT[kind]}")
+    if kind == "planetary":
+        kw["carrier"] = build(Carrier, doc["carrier"], T.CARRIER, "carrier")
+        values = read_table(doc["planetary"], T.PLANETARY, "planetary")
+        with restated("planetary", T.PLANETARY):
+            kw["planetary"] = PlanetarySet(gears["sun"], gears["planet"], gears["ring"],
+                                           **values)
+    if kind == "lumped":
+        from pipeline.config.lumped import lumped_model
+
+        kw["lumped"] = lumped_model(doc["lumped_model"], base)
+    for t in ("stiffness", "contact", "fe", "groove", "dynamics"):
+        if t in doc and kind == "lumped" and t != "dynamics":
+            raise InputError(f"[{t}] needs gear geometry; a [lumped_model] file has none")
+    return Gearbox(
+        name=str(doc.get("name", name)),
+        kind=kind,
+        gears=gears,
+        bodies=bodies,
+        operation=_operation(doc),
+        stiffness=build(StiffnessOptions, doc.get("stiffness", {}), T.STIFFNESS, "stiffness"),
+        contact=contact_options_from_table(doc.get("contact")),
+        fe=build(SectorFEOptions, doc.get("fe", {}), T.FE, "fe"),
+        groove=_groove(doc, gears),
+        dynamics=_dynamics(doc, base),
+        source=source,
+        tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
+        **kw,
+    )
+
+
+def load_gearbox(path: str | Path) -> Gearbox:
+    """Read a gearbox file (relative paths inside are relative to it)."""
+    f = read_input_file(path)
+    return gearbox_from_dict(f.document, name=f.path.stem, base=f.path.parent, source=f)
+
+
+def gearbox_from_text(text: str, name: str = "gearbox") -> Gearbox:
+    """Build a :class:`Gearbox` from TOML text (tests, notebooks)."""
+    data = text.encode("utf-8")
+    doc = parse_toml(data, name)
+    import hashlib
+
+    src = InputFile(None, text, doc, hashlib.sha256(data).hexdigest())
+    return gearbox_from_dict(doc, name=name, source=src)
+
+
+def replace_options(box: Gearbox, **changes: Any) -> Gearbox:
+    """A copy of ``box`` with some stage inputs replaced (``dataclasses.replace``)."""
+    return dataclasses.replace(box, **changes)
+
+
+__all__ = ["Carrier", "Gearbox", "contact_options_from_table", "gearbox_from_dict",
+           "gearbox_from_text", "load_gearbox", "replace_options", "where_text"]

@@ -1,0 +1,78 @@
+"""A periodic stiffness table (``[dynamics.mesh_stiffness]``) -> :class:`PeriodicSignal`.
+
+``kind`` chooses the shape (keys in :data:`pipeline.config.tables.SIGNAL`):
+"rectangular" (single/double contact levels), "contact_line" (ISO 6336-like
+contact-line length), "harmonic" (Fourier series), "constant" and "csv" (one
+column of a CSV file holding one mesh period; a relative path is relative to
+the gearbox file).
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from pipeline.config.schema import Key, read_table, restated, unknown
+from pipeline.config.tables import SIGNAL, SIGNAL_KINDS
+from pipeline.signals import PeriodicSignal
+from pipeline.validation import InputError
+
+
+def signal_from_table(table: Mapping[str, Any], where: str, base: Path | None) -> PeriodicSignal:
+    """Build the signal of a stiffness table at ``where`` (N/m over one mesh period)."""
+    from pipeline.dynamics.excitation import (
+        contact_line_stiffness,
+        harmonic_signal,
+        rectangular_mesh_stiffness,
+    )
+
+    if not isinstance(table, Mapping):
+        raise InputError(f"[{where}] must be a table")
+    kind = table.get("kind", "constant")
+    if not isinstance(kind, str) or kind not in SIGNAL_KINDS:
+        raise InputError(f"[{where}] kind = {kind!r} is not one of "
+                         f"{', '.join(map(repr, SIGNAL_KINDS))}")
+    keys = SIGNAL[kind] + (Key("kind", "string", choices=SIGNAL_KINDS),)
+    try:
+        kw = read_table(table, keys, where)
+    except InputError as exc:
+        raise InputError(f"{exc} (for kind = {kind!r})") from None
+    kw.pop("kind", None)
+    with restated(where, keys):
+        if kind == "rectangular":
+            return rectangular_mesh_stiffness(**kw)
+        if kind == "contact_line":
+            return contact_line_stiffness(**kw)
+        if kind == "harmonic":
+            return harmonic_signal(**kw)
+        if kind == "constant":
+            return PeriodicSignal(np.full(8, float(kw["value"])))
+    return _csv_signal(kw, where, base)
+
+
+def _csv_signal(kw: dict[str, Any], where: str, base: Path | None) -> PeriodicSignal:
+    path = Path(kw["path"])
+    if base is not None and not path.is_absolute():
+        path = base / path
+    if not path.is_file():
+        raise InputError(f"[{where}] path = {str(path)!r} does not exist")
+    try:
+        with path.open(encoding="utf-8") as f:
+            names = [n.strip() for n in next(csv.reader(f), [])]
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"[{where}] path = {str(path)!r} cannot be read ({exc})") from None
+    col = kw.get("column", names[-1] if names else "")
+    if col not in names:
+        raise unknown(col, names, f"[{where}] column")
+    try:
+        values = np.loadtxt(path, delimiter=",", skiprows=1, usecols=names.index(col), ndmin=1)
+    except ValueError as exc:
+        raise InputError(f"[{where}] path = {str(path)!r} is not a CSV table of numbers "
+                         f"({exc})") from None
+    if values.size < 2 or not np.all(np.isfinite(values)):
+        raise InputError(f"[{where}] column {col!r} of {path} needs at least 2 finite values")
+    return PeriodicSignal(values)

@@ -1,0 +1,165 @@
+"""The tables of a gearbox file and their keys (see :mod:`pipeline.config.gearbox`).
+
+Each key's unit is the suffix of its name (:mod:`pipeline.config.units`); the
+ranges are those of the input dataclass it fills (restated in the file's unit
+when a value is refused).
+"""
+
+from __future__ import annotations
+
+from pipeline.config.schema import Key
+
+N = "number"
+I = "integer"  # noqa: E741
+B = "boolean"
+S = "string"
+L = "numbers"
+
+MATERIAL = (
+    Key("youngs_modulus_GPa"),
+    Key("poisson_ratio"),
+    Key("density_kg_m3"),
+    Key("name", S),
+)
+
+GEAR = (
+    Key("teeth", I, required=True, help="number of teeth"),
+    Key("module_mm", N, required=True, help="normal module"),
+    Key("pressure_angle_deg", N, required=True, help="normal pressure angle"),
+    Key("face_width_mm", N, required=True, help="toothed face width (herringbone: both halves)"),
+    Key("helix_angle_deg", N),
+    Key("hand", S, choices=("right", "left", "none")),
+    Key("profile_shift", N),
+    Key("addendum_coef", N),
+    Key("dedendum_coef", N),
+    Key("cutter_tip_radius_coef", N),
+    Key("bore_radius_mm", N),
+    Key("rim_outer_radius_mm", N, field="bore_radius", help="internal gears: outer rim radius"),
+    Key("internal", B),
+    Key("herringbone", B),
+    Key("groove_width_mm", N),
+    Key("tip_radius_mm", N),
+    Key("name", S),
+)
+"""Keys of a gear table that describe the gear itself (:class:`GearSpec`)."""
+
+BODY = (
+    Key("web_width_mm", N),
+    Key("rim_inner_radius_mm", N),
+    Key("hub_radius_mm", N),
+    Key("mass_kg", N, help="override of the mass derived from the geometry"),
+    Key("inertia_kgm2", N, help="override of the polar moment derived from the geometry"),
+)
+"""Keys of a gear table that describe its body for the dynamics (:class:`GearBody`)."""
+
+CARRIER = (
+    Key("mass_kg", N, required=True),
+    Key("inertia_kgm2", N, required=True),
+)
+
+PAIR = (
+    Key("centre_distance_mm", N),
+    Key("assembly_error_pinion_um", L, field="pinion", length=2),
+    Key("assembly_error_gear_um", L, field="gear", length=2),
+)
+
+PLANETARY = (
+    Key("planets", I, field="n_planets", required=True, help="number of planets"),
+    Key("planet_angles_deg", L, field="planet_angles"),
+    Key("direction", I, help="+1: sun turns counter-clockwise relative to the carrier"),
+)
+
+OPERATION = (
+    Key("torque_Nm", N, help="torque on the driving gear"),
+    Key("speed_rpm", N, help="speed of the driving gear"),
+    Key("driver", S, choices=("pinion", "gear")),
+)
+
+STIFFNESS = (
+    Key("friction", "number_or_string", choices=("ehl",)),
+    Key("positions", I),
+    Key("slices", I),
+    Key("foundation_correction", N),
+    Key("roughness_um", N),
+    Key("viscosity_mPas", N),
+)
+
+CONTACT = (
+    Key("positions", I),
+    Key("slices", I),
+    Key("local_contact", S, choices=("weber", "linear", "none")),
+    Key("slice_coupling", N),
+    Key("load_map_profile_points", I),
+    Key("render", B),
+)
+MODIFICATIONS = (
+    Key("tip_relief_pinion_um", N),
+    Key("tip_relief_length_pinion_mm", N, field="relief_length_pinion"),
+    Key("tip_relief_gear_um", N),
+    Key("tip_relief_length_gear_mm", N, field="relief_length_gear"),
+    Key("relief_shape", S, choices=("linear", "parabolic")),
+    Key("crowning_um", N),
+    Key("slope_deviation_um", N),
+    Key("pitch_errors_um", L),
+)
+"""Keys of the ``[contact]`` table that set :class:`FlankModifications`."""
+
+FE = (
+    Key("teeth", I),
+    Key("points", I),
+    Key("refinement", N),
+    Key("kind", S, choices=("plane_strain", "plane_stress")),
+)
+
+GROOVE = (
+    Key("gear", S, field="gear_role", help="the herringbone gear with the groove"),
+    Key("bottom_diameter_mm", N, field="groove_bottom_diameter", required=True),
+    Key("shaft_length_left_mm", N),
+    Key("shaft_length_right_mm", N),
+    Key("shaft_diameter_left_mm", N),
+    Key("shaft_diameter_right_mm", N),
+    Key("torque_Nm", N, field="sun_torque"),
+    Key("mesh_size_mm", N),
+    Key("teeth_model", S, choices=("root_cylinder", "helical_teeth")),
+    Key("coupling", S, choices=("distributed", "rigid", "tooth_forces")),
+    Key("planets", I),
+)
+
+DYNAMICS = (
+    Key("dofs", S, choices=("lateral_torsional", "torsional")),
+    Key("bearing_stiffness_N_per_m", N),
+    Key("bearing_damping_Ns_per_m", N),
+    Key("damping_ratio", N),
+    Key("excitation", S, choices=("analytical",)),
+    Key("friction", B),
+)
+DYNAMICS_SUBTABLES = ("mesh_stiffness", "response", "sweep")
+
+RESPONSE = (
+    Key("method", S, choices=("harmonic_balance", "floquet", "time")),
+    Key("n_harmonics", I),
+    Key("segments", I),
+    Key("periods", I),
+)
+
+SWEEP = (
+    Key("f_min_Hz", N),
+    Key("f_max_Hz", N),
+    Key("points", I),
+    Key("points_coarse", I),
+    Key("method", S, choices=("harmonic_balance", "floquet")),
+    Key("n_harmonics", I),
+)
+
+SIGNAL_KINDS = ("rectangular", "contact_line", "harmonic", "constant", "csv")
+SIGNAL = {
+    "rectangular": (Key("k_single_N_per_m"), Key("k_double_N_per_m"), Key("contact_ratio"),
+                    Key("samples", I), Key("start")),
+    "contact_line": (Key("k_mean_N_per_m"), Key("transverse_ratio"), Key("overlap_ratio"),
+                     Key("samples", I)),
+    "harmonic": (Key("mean_N_per_m"), Key("amplitudes_N_per_m", L), Key("phases_rad", L),
+                 Key("samples", I)),
+    "constant": (Key("value_N_per_m", required=True),),
+    "csv": (Key("path", S, required=True), Key("column", S)),
+}
+"""Keys of a periodic stiffness table, by its ``kind``."""

@@ -1,0 +1,99 @@
+"""Reading a TOML input file safely: every way a file can be unreadable is one line.
+
+Refused with a one-line :class:`~pipeline.validation.InputError` naming the file:
+a missing file or a folder, an unreadable file, a file over 10 MB, binary data
+(NUL bytes), a UTF-8 byte-order mark, text that is not UTF-8 (with the line and
+the offending byte), TOML syntax errors (with tomllib's line and column), and
+tables or arrays nested deeper than :data:`MAX_DEPTH`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import sys
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from pipeline.validation import InputError
+
+MAX_BYTES = 10_000_000
+MAX_DEPTH = 8
+_BOM = b"\xef\xbb\xbf"
+
+
+@dataclass(frozen=True)
+class InputFile:
+    """A parsed input file.
+
+    Attributes
+    ----------
+    path : where it was read from (``None`` for a document built in Python).
+    text : the file as written (UTF-8).
+    document : the parsed TOML (nested dicts and lists).
+    sha256 : hex digest of the raw bytes.
+    """
+
+    path: Path | None
+    text: str
+    document: dict[str, Any]
+    sha256: str
+
+
+def _depth(v: Any) -> int:
+    if isinstance(v, Mapping):
+        return 1 + max((_depth(x) for x in v.values()), default=0)
+    if isinstance(v, list):
+        return 1 + max((_depth(x) for x in v), default=0)
+    return 0
+
+
+def parse_toml(data: bytes, name: str) -> dict[str, Any]:
+    """Decode and parse TOML bytes; ``name`` labels the messages (usually the path)."""
+    if data.startswith(_BOM):
+        raise InputError(f"{name}: starts with a UTF-8 byte-order mark (BOM); save it as UTF-8 "
+                         "without BOM")
+    if b"\x00" in data:
+        raise InputError(f"{name}: contains binary data (NUL bytes); an input file is TOML text")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[: exc.start].count(b"\n") + 1
+        raise InputError(f"{name}: line {line} is not UTF-8 text (byte 0x{data[exc.start]:02x}); "
+                         "save the file as UTF-8") from None
+    limit = sys.getrecursionlimit()
+    try:
+        sys.setrecursionlimit(max(limit, 2000))
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{name}: TOML syntax error: {exc}") from None
+    except RecursionError:
+        raise InputError(f"{name}: tables or arrays nested too deeply (more than "
+                         f"{MAX_DEPTH} levels)") from None
+    finally:
+        sys.setrecursionlimit(limit)
+    if _depth(doc) > MAX_DEPTH:
+        raise InputError(f"{name}: tables or arrays nested too deeply (more than {MAX_DEPTH} "
+                         "levels)")
+    return doc
+
+
+def read_input_file(path: str | Path) -> InputFile:
+    """Read and parse a TOML input file (see the module docstring for what is refused)."""
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"input file {str(path)!r} does not exist")
+    if not path.is_file():
+        raise InputError(f"input file {str(path)!r} is not a file")
+    try:
+        size = path.stat().st_size
+        if size > MAX_BYTES:
+            raise InputError(f"{path}: {size} bytes is larger than an input file can be "
+                             f"({MAX_BYTES} bytes)")
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot be read ({exc.strerror})") from None
+    doc = parse_toml(data, str(path))
+    return InputFile(path, data.decode("utf-8"), doc, hashlib.sha256(data).hexdigest())

@@ -1,0 +1,33 @@
+"""Options of the 2D tooth-sector FE stage (``[fe]`` table, ``gearpipe fe``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from pipeline.validation import check_choice, check_int_range, check_range
+
+PLANE_KINDS = ("plane_strain", "plane_stress")
+
+
+@dataclass(frozen=True)
+class SectorFEOptions:
+    """2D sector FE of each gear of a pair.
+
+    Attributes
+    ----------
+    teeth : teeth in the sector, in [1, 99].
+    points : flank points per tooth of the influence matrix, in [2, 1000].
+    refinement : mesh refinement (flank element size m_n / (12 refinement)), in [0.1, 20].
+    kind : "plane_strain" or "plane_stress".
+    """
+
+    teeth: int = 5
+    points: int = 40
+    refinement: float = 2.0
+    kind: str = "plane_strain"
+
+    def __post_init__(self) -> None:
+        check_int_range("fe.teeth", self.teeth, 1, 99)
+        check_int_range("fe.points", self.points, 2, 1000)
+        check_range("fe.refinement", self.refinement, 0.1, 20.0)
+        check_choice("fe.kind", self.kind, PLANE_KINDS)
