@@ -9,9 +9,8 @@ import pytest
 from gearsets import spur
 
 from pipeline.config import gearbox_from_dict, load_gearbox
-from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.geometry import GearSpec
-from pipeline.geometry.assembly_errors import AssembledPair
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.geometry.planetary import PlanetarySet
 from pipeline.validation import InputError
 

@@ -10,10 +10,10 @@ import meshio
 import numpy as np
 import pytest
 
+from pipeline.config.gearbox import contact_options_from_table
 from pipeline.contact import commands
 from pipeline.contact.loadmap import flank_load_map, flank_surface, write_load_map_vtu
 from pipeline.contact.ltca import loaded_mesh_cycle
-from pipeline.config.gearbox import contact_options_from_table
 from pipeline.contact.separations import FlankModifications
 from pipeline.contact.source import SliceCompliance
 from pipeline.stiffness.mesh import PairModel

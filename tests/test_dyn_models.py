@@ -26,8 +26,8 @@ from pipeline.dynamics.reduction import reduce_rigid_body_modes
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 from pipeline.signals import PeriodicSignal
+from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 
 
 @pytest.fixture(scope="module")

@@ -27,7 +27,7 @@ from pipeline.fem.groove.study import analyse_groove
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import rigid_body_modes
 
-CONFIG = Path(__file__).resolve().parents[1] / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
+CONFIG = Path(__file__).resolve().parents[1] / "workflows/configs/wind_turbine_sun_groove.toml"
 KJ_PAPER = 5.2e7  # N m^2, seed 002 (largest value studied)
 
 

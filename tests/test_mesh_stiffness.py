@@ -10,8 +10,8 @@ import pytest
 from gearsets import spur
 
 from pipeline.config import load_gearbox
-from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.geometry import GearPair
+from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.iso6336 import iso_stiffness
 from pipeline.stiffness.mesh import FrictionModel, PairModel, mesh_stiffness, stiffness_at
@@ -118,7 +118,8 @@ def test_seed001_assembly_conditions_trend():
     """Seed 001: conditions 2 and 3 shorten the double-contact zone; stiffness level drops."""
     from pathlib import Path
 
-    box = load_gearbox(Path(__file__).parents[1] / "workflows/configs/spur_pair_assembly_errors.toml")
+    box = load_gearbox(Path(__file__).parents[1] / "workflows/configs"
+                       / "spur_pair_assembly_errors.toml")
     res = []
     for e in (0.0, 10.0, 100.0):
         errors = AssemblyErrors((0, 0), (e * 1e-6, e * 1e-6))

@@ -10,6 +10,7 @@ from gearsets import spur
 from scipy.integrate import quad
 
 from pipeline.geometry import GearPair
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.foundation import SAINSOT_TABLE, sainsot_polynomials
 from pipeline.stiffness.friction import (
     ehl_friction_coefficient,
@@ -18,7 +19,6 @@ from pipeline.stiffness.friction import (
     load_components,
 )
 from pipeline.stiffness.iso6336 import contact_line_stiffness, iso_stiffness, q_prime
-from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.sections import ToothSections
 from pipeline.stiffness.tooth import classical_tooth_model, tooth_compliance
 from pipeline.validation import InputError

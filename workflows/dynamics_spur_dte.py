@@ -25,15 +25,14 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config import load_gearbox
-from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.plots import plot_spectrum, plot_time_history
-from pipeline.geometry.assembly_errors import AssembledPair
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_run_record
-from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
+from pipeline.stiffness.mesh import FrictionModel
 
 CONFIG = Path(__file__).resolve().parent / "configs" / "spur_pair_assembly_errors.toml"
 # (e_xp, e_yp), (e_xg, e_yg) in um, seed 001 table of conditions

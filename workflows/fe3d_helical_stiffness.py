@@ -44,9 +44,8 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
 from pipeline.fem.fe_source import FESectorCompliance, FESettings
 from pipeline.fem.fe_source3d import FE3DCompliance, FE3DSettings
-from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_json, write_run_record
-from pipeline.stiffness.mesh import FrictionModel, OperatingPoint, PairModel
+from pipeline.stiffness.mesh import FrictionModel, PairModel
 
 HERE = Path(__file__).resolve().parent
 CONFIG = HERE / "configs" / "traction_helical_pair.toml"

@@ -71,12 +71,12 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config import Gearbox, load_gearbox
-from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.fem.fe_source import FESectorCompliance, FESettings
+from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at

@@ -172,7 +172,7 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
         values["hand"] = "right"
     if "material" in table:
         values["material"] = _material(table["material"], f"{role}.material")
-    with restated(role, keys):
+    with restated(role, keys, table):
         gear = GearSpec(**values)
         return gear, GearBody(gear, **body)
 
@@ -236,7 +236,7 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     values = read_table(table, keys, "contact")
     mod_fields = {k.target for k in T.MODIFICATIONS}
     mods = {k: values.pop(k) for k in list(values) if k in mod_fields}
-    with restated("contact", keys):
+    with restated("contact", keys, table):
         return ContactOptions(modifications=FlankModifications(**mods), **values)
 
 
@@ -250,7 +250,7 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec
                     else "gear")
     if role not in gears:
         raise unknown(role, list(gears), "[groove] gear")
-    with restated("groove", T.GROOVE):
+    with restated("groove", T.GROOVE, doc["groove"]):
         return GrooveSpec(gear=gears[role], **values)
 
 
@@ -265,7 +265,7 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None) -> PairDynamicsOptions 
     if "mesh_stiffness" in table:
         values["mesh_stiffness"] = signal_from_table(table["mesh_stiffness"],
                                                      "dynamics.mesh_stiffness", base)
-    with restated("dynamics", T.DYNAMICS):
+    with restated("dynamics", T.DYNAMICS, table):
         return PairDynamicsOptions(**values)
 
 
@@ -291,7 +291,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "pair":
         values = read_table(doc.get("pair", {}), T.PAIR, "pair")
         cd = values.pop("centre_distance", None)
-        with restated("pair", T.PAIR):
+        with restated("pair", T.PAIR, doc.get("pair", {})):
             kw["assembly_errors"] = AssemblyErrors(**values)
             kw["pair"] = GearPair(gears["pinion"], gears["gear"], cd)
             if not kw["assembly_errors"].is_zero:
@@ -302,7 +302,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "planetary":
         kw["carrier"] = build(Carrier, doc["carrier"], T.CARRIER, "carrier")
         values = read_table(doc["planetary"], T.PLANETARY, "planetary")
-        with restated("planetary", T.PLANETARY):
+        with restated("planetary", T.PLANETARY, doc["planetary"]):
             kw["planetary"] = PlanetarySet(gears["sun"], gears["planet"], gears["ring"],
                                            **values)
     if kind == "lumped":

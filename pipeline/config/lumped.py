@@ -115,7 +115,7 @@ def lumped_model(table: Mapping[str, Any], base: Path | None) -> Any:
     if name == "spur_pair" and "mesh_stiffness" not in values:
         raise InputError("[lumped_model] model = 'spur_pair' needs "
                          "[lumped_model.mesh_stiffness]")
-    with restated("lumped_model", keys):
+    with restated("lumped_model", keys, table):
         return cls(**values)
 
 

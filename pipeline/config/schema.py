@@ -18,7 +18,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -189,13 +189,20 @@ def read_table(table: Any, keys: Sequence[Key], where: str,
 _INDEX = re.compile(r"^(.*?)(\[(\d+)\])?$")
 
 
-def _restate(exc: InputError, where: str, keys: Sequence[Key]) -> InputError | None:
+def _stem(key: Key) -> str:
+    suffix = key.unit.suffix
+    return key.name[: -len(suffix) - 1] if suffix else key.name
+
+
+def _restate(exc: InputError, where: str, keys: Sequence[Key],
+             present: Collection[str]) -> InputError | None:
     """The error of a range check on a dataclass field, in the file's key and unit."""
     if exc.field is None or exc.bounds is None:
         return None
     m = _INDEX.match(exc.field.rsplit(".", 1)[-1])
     base, index = m.group(1), m.group(3)
-    key = next((k for k in keys if k.target == base), None)
+    matches = [k for k in keys if base in (k.target, _stem(k))]
+    key = next((k for k in matches if k.name in present), matches[0] if matches else None)
     if key is None:
         return None
     u = key.unit if key.unit is not DIMENSIONLESS else DIMENSIONLESS
@@ -213,15 +220,16 @@ def _restate(exc: InputError, where: str, keys: Sequence[Key]) -> InputError | N
 
 
 @contextmanager
-def restated(where: str, keys: Sequence[Key]) -> Iterator[None]:
+def restated(where: str, keys: Sequence[Key], present: Collection[str] = ()) -> Iterator[None]:
     """Re-raise range errors of the input dataclasses built inside in the file's terms.
 
+    ``present`` are the keys the table gave (they win when two keys set one field).
     Errors the keys of ``where`` cannot explain are prefixed with the table name.
     """
     try:
         yield
     except InputError as exc:
-        again = _restate(exc, where, keys)
+        again = _restate(exc, where, keys, present)
         if again is not None:
             raise again from None
         text = str(exc)
@@ -235,5 +243,5 @@ def build(factory: Callable[..., Any], table: Any, keys: Sequence[Key], where: s
           subtables: Sequence[str] = (), **extra: Any) -> Any:
     """``factory(**read_table(...), **extra)`` with its errors in the file's terms."""
     values = read_table(table, keys, where, subtables)
-    with restated(where, keys):
+    with restated(where, keys, table):
         return factory(**values, **extra)

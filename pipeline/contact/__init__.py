@@ -41,8 +41,8 @@ from pipeline.contact.hertz import (
     hertz_max_pressure,
 )
 from pipeline.contact.ltca import loaded_mesh_cycle
-from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCycle
 from pipeline.contact.options import ContactOptions
+from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints, SliceCompliance
 from pipeline.contact.sweep import solve_positions

@@ -20,6 +20,7 @@ import importlib.util
 from dataclasses import dataclass
 
 from pipeline.geometry.pair import GearPair
+from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.mesh import (
     FrictionModel,
     MeshStiffness,
@@ -27,7 +28,6 @@ from pipeline.stiffness.mesh import (
     PairModel,
     mesh_stiffness,
 )
-from pipeline.signals import PeriodicSignal
 from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
 from pipeline.validation import check_int_range
 

@@ -95,7 +95,8 @@ class PlanetarySet:
                     f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm "
                     "apart, "
                     f"less than the planet tip diameter {2e3 * self.planet.tip_radius_:.4g} mm "
-                    f"(n_planets = {self.n_planets} is too many)"
+                    + (f"(n_planets = {self.n_planets} is too many)" if self.planet_angles is None
+                       else "(planet_angles put neighbours too close)")
                 )
 
     @cached_property

@@ -45,6 +45,7 @@ from pipeline.dynamics.bodies import Body, add_measures
 from pipeline.dynamics.couplings import Bearing, GearMesh, Load, MatrixCoupling, Spring, Tie
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
+from pipeline.dynamics.models.planetary import check_planet_layout
 from pipeline.dynamics.reduction import rigid_body_modes
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import (
@@ -216,6 +217,8 @@ class HerringbonePlanetaryModel:
             object.__setattr__(self, "groove", np.asarray(self.groove.coupling_matrix, float))
         if self.groove is not None and np.ndim(self.groove) == 0:
             check_positive("groove", float(self.groove), "N m/rad")
+
+        check_planet_layout(self)
 
     @property
     def angles(self) -> np.ndarray:

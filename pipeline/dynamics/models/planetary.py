@@ -36,6 +36,27 @@ from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_int_range, check_positive, check_range
 
 
+def check_planet_layout(model) -> None:
+    """Refuse planets that coincide or overlap and a ring or sun that cannot reach them.
+
+    Neighbouring planet centres must be further apart than two planet base radii; the
+    ring's base radius must exceed the carrier radius and the sun's must stay below it.
+    """
+    psi = np.sort(np.mod(model.angles, 2 * math.pi))
+    if psi.size > 1:
+        gaps = np.diff(np.concatenate([psi, [psi[0] + 2 * math.pi]]))
+        chord = 2 * model.carrier_radius * math.sin(gaps.min() / 2)
+        if chord <= 2 * model.base_radius_planet:
+            raise InputError(
+                f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm apart, "
+                f"less than two planet base radii ({2e3 * model.base_radius_planet:.4g} mm); "
+                "check planet_angles and n_planets")
+    check_range("base_radius_ring", model.base_radius_ring, model.carrier_radius, math.inf,
+                lo_open=True, unit="m")
+    check_range("base_radius_sun", model.base_radius_sun, 0.0, model.carrier_radius,
+                lo_open=True, hi_open=True, unit="m")
+
+
 @dataclass(frozen=True)
 class PlanetaryModel:
     """Inputs of the planar planetary model (defaults: Lin and Parker 1999 Table 1).
@@ -125,6 +146,8 @@ class PlanetaryModel:
                 if len(v) != N:
                     raise InputError(f"{f} has {len(v)} entries; need n_planets = {N}")
                 object.__setattr__(self, f, v)
+
+        check_planet_layout(self)
 
     @property
     def angles(self) -> np.ndarray:

@@ -31,8 +31,8 @@ from pipeline.dynamics.mesh_input import MeshExcitation, analytical_excitation
 from pipeline.dynamics.models.split_torque import SplitTorqueModel, StageMesh
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 from pipeline.signals import PeriodicSignal
+from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 
 POWER = 2.0e6  # W per engine
 INPUT_RPM = 20900.0

@@ -16,14 +16,14 @@ import math
 from dataclasses import dataclass
 
 from pipeline.dynamics.assembly import Assembly
+from pipeline.dynamics.bodies import Body
+from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
+from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
 from pipeline.dynamics.mesh_input import MeshExcitation
 from pipeline.dynamics.options import PairDynamicsOptions
 from pipeline.geometry.body import GearBody
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
-from pipeline.dynamics.bodies import Body
-from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
-from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_int_range, check_positive, check_range
 
