@@ -45,7 +45,8 @@ def run(out: Path, positions: int) -> dict:
         cases.append((f"{name}, mu = 0", dataclasses.replace(base, assembly_errors=errors)))
     results = {}
     for name, cfg in progress(cases, "seed 001 cases"):
-        results[name] = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness, assembly_errors=cfg.assembly_errors)
+        results[name] = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness,
+                                          assembly_errors=cfg.assembly_errors)
     table = {}
     for name, r in results.items():
         s = r.mesh.summary()

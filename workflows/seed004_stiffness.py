@@ -58,7 +58,8 @@ def run(out: Path, positions: int, slices: int) -> dict:
     results = {}
     for name, mu in progress(list(variants.items()), "seed 004 cases"):
         cfg = dataclasses.replace(base, stiffness=dataclasses.replace(base.stiffness, friction=mu))
-        r = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness, assembly_errors=cfg.assembly_errors, model=model)
+        r = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness,
+                              assembly_errors=cfg.assembly_errors, model=model)
         model = r.model if isinstance(r.model, PairModel) else None
         results[name] = r
     r0 = results["mu = 0"]
