@@ -148,11 +148,12 @@ def test_render_load_map_png(tmp_path, seed004_pair, helical_cycle):
     (the coloured flank gives many distinct colours)."""
     from PIL import Image
 
-    from pipeline.contact.loadmap import render_load_map
+    from pipeline.viz import save
+    from pipeline.viz.loadmap import render_load_map
 
     lm = flank_load_map(helical_cycle, seed004_pair, profile_points=30)
-    path = render_load_map(seed004_pair, lm, tmp_path / "map.png", "test",
-                           window_size=(600, 450))
+    path = save(render_load_map(seed004_pair, lm, "test", window_size=(600, 450)),
+                tmp_path / "map.png")
     img = np.asarray(Image.open(path).convert("RGB"))
     assert img.shape == (450, 600, 3)
     assert len(np.unique(img.reshape(-1, 3), axis=0)) > 200

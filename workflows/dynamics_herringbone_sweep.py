@@ -63,9 +63,10 @@ from pipeline.dynamics.modal import conservative_mean_stiffness, modal_analysis
 from pipeline.dynamics.models.groove_mesh import side_factors
 from pipeline.dynamics.models.seed002_case import K_J, L_TORSION, seed002_model
 from pipeline.dynamics.peaks import refined_peak
-from pipeline.dynamics.plots import plot_sweep
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.io import write_csv, write_run_record
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_sweep
 
 MESHES = ("s-p1L", "s-p1R")
 
@@ -189,21 +190,25 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     groove = [f"K{j + 1} slide 0" for j in range(5)]
     slide = ["K1 slide 0", "K1 slide +0.5 mm", "K1 slide +1 mm", "K5 slide +1 mm"]
     files.append(
-        plot_sweep(
-            [sweeps[c] for c in groove],
-            groove,
-            MESHES,
+        save(
+            plot_sweep(
+                [sweeps[c] for c in groove],
+                groove,
+                MESHES,
+                title="Seed 002: groove torsional stiffness K1..K5",
+            ),
             out / "sweep_groove.png",
-            title="Seed 002: groove torsional stiffness K1..K5",
         )
     )
     files.append(
-        plot_sweep(
-            [sweeps[c] for c in slide],
-            slide,
-            MESHES,
+        save(
+            plot_sweep(
+                [sweeps[c] for c in slide],
+                slide,
+                MESHES,
+                title="Seed 002: sun axial slide",
+            ),
             out / "sweep_slide.png",
-            title="Seed 002: sun axial slide",
         )
     )
     summary = {
@@ -237,12 +242,14 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     files.append(write_csv(out / "groove_peaks.csv", table))
     for tag, fine in (("peak1", fine1), ("peak2", fine2)):
         files.append(
-            plot_sweep(
-                list(fine.values()),
-                [f"{k}: K = {kj:.2g} N m^2" for k, kj in zip(fine, K_J, strict=True)],
-                MESHES,
+            save(
+                plot_sweep(
+                    list(fine.values()),
+                    [f"{k}: K = {kj:.2g} N m^2" for k, kj in zip(fine, K_J, strict=True)],
+                    MESHES,
+                    title=f"Seed 002: groove stiffness K1..K5, {tag} region (eq. 14 mesh stiffness)",
+                ),
                 out / f"sweep_groove_{tag}.png",
-                title=f"Seed 002: groove stiffness K1..K5, {tag} region (eq. 14 mesh stiffness)",
             )
         )
     write_run_record(

@@ -27,11 +27,13 @@ import argparse
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from pipeline.dynamics.models.seed000_case import ROUGHNESS_UM, seed000_model
 from pipeline.dynamics.multirate import superpose_stages
-from pipeline.dynamics.plots import _figure, _save, plot_harmonic_contributions
 from pipeline.io import write_csv, write_run_record
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_harmonic_contributions
 
 MESHES = {"split": "split1R", "confluence": "conf1R"}
 
@@ -65,25 +67,27 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     cols = {k: np.array(v, dtype=float) for k, v in rows.items()}
     files.append(write_csv(out / "summary.csv", cols))
     for stage, mesh in MESHES.items():
-        fig, ax = _figure()
+        ax = Figure(figsize=(8, 4.5), constrained_layout=True).subplots()
         for s_um, (m, mr) in results.items():
             T = 1.0 / m.split_stage.mesh_frequency
-            ax[0, 0].plot(mr.time / T, mr.dte[mr.mesh(mesh)] * 1e6, label=f"S = {s_um} um")
-        ax[0, 0].set_xlabel("time / split-stage mesh period")
-        ax[0, 0].set_ylabel(f"DTE {mesh} [um]")
-        ax[0, 0].set_title(f"Seed 000: DTE along {mesh} (three stages superposed)")
-        ax[0, 0].legend(fontsize=8)
-        ax[0, 0].grid(alpha=0.3)
-        files.append(_save(fig, out / f"dte_{stage}.png"))
+            ax.plot(mr.time / T, mr.dte[mr.mesh(mesh)] * 1e6, label=f"S = {s_um} um")
+        ax.set_xlabel("time / split-stage mesh period")
+        ax.set_ylabel(f"DTE {mesh} [um]")
+        ax.set_title(f"Seed 000: DTE along {mesh} (three stages superposed)")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        files.append(save(ax, out / f"dte_{stage}.png"))
         hrs = [mr.stages[stage] for _, mr in results.values()]
         idx = hrs[0].response.mesh(mesh)
         files.append(
-            plot_harmonic_contributions(
-                hrs,
-                [f"S = {s} um" for s in results],
+            save(
+                plot_harmonic_contributions(
+                    hrs,
+                    [f"S = {s} um" for s in results],
+                    mesh=idx,
+                    title=f"Contribution of {stage}-stage harmonic orders to DTE {mesh}",
+                ),
                 out / f"contribution_{stage}.png",
-                mesh=idx,
-                title=f"Contribution of {stage}-stage harmonic orders to DTE {mesh}",
             )
         )
     write_run_record(

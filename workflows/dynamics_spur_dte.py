@@ -28,11 +28,12 @@ from pipeline.config import AssemblyErrors, load_pair_config
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
-from pipeline.dynamics.plots import plot_spectrum, plot_time_history
 from pipeline.geometry.assembly_errors import AssembledPair
 from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_run_record
 from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_spectrum, plot_time_history
 
 CONFIG = Path(__file__).resolve().parent / "configs" / "seed001_spur.toml"
 # (e_xp, e_yp), (e_xg, e_yg) in um, seed 001 table of conditions
@@ -112,35 +113,43 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     base = [i for i, lab in enumerate(labels) if lab.startswith("cond 1")]
     mu05 = [i for i, lab in enumerate(labels) if lab.endswith("mu 0.05")]
     files.append(
-        plot_time_history(
-            [responses[i] for i in base],
-            [labels[i] for i in base],
+        save(
+            plot_time_history(
+                [responses[i] for i in base],
+                [labels[i] for i in base],
+                title="Seed 001, condition 1: friction",
+            ),
             out / "dte_friction.png",
-            title="Seed 001, condition 1: friction",
         )
     )
     files.append(
-        plot_time_history(
-            [responses[i] for i in mu05],
-            [labels[i] for i in mu05],
+        save(
+            plot_time_history(
+                [responses[i] for i in mu05],
+                [labels[i] for i in mu05],
+                title="Seed 001, mu = 0.05: assembly errors",
+            ),
             out / "dte_conditions.png",
-            title="Seed 001, mu = 0.05: assembly errors",
         )
     )
     files.append(
-        plot_spectrum(
-            [responses[i] for i in base],
-            [labels[i] for i in base],
+        save(
+            plot_spectrum(
+                [responses[i] for i in base],
+                [labels[i] for i in base],
+                title="DTE spectrum, condition 1",
+            ),
             out / "spectrum_friction.png",
-            title="DTE spectrum, condition 1",
         )
     )
     files.append(
-        plot_spectrum(
-            [responses[i] for i in mu05],
-            [labels[i] for i in mu05],
+        save(
+            plot_spectrum(
+                [responses[i] for i in mu05],
+                [labels[i] for i in mu05],
+                title="DTE spectrum, mu = 0.05: assembly errors",
+            ),
             out / "spectrum_conditions.png",
-            title="DTE spectrum, mu = 0.05: assembly errors",
         )
     )
     write_run_record(

@@ -63,12 +63,10 @@ def _stats(k: np.ndarray) -> dict:
 
 
 def plot(deg: np.ndarray, curves: dict, title: str):
-    import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    fig = Figure(figsize=(7, 6))
+    ax = fig.subplots(2, 1, sharex=True)
     for name, cyc in curves.items():
         ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, marker=".", label=name)
         ax[1].plot(deg, cyc.transmission_error * 1e6, marker=".", label=name)
@@ -83,7 +81,7 @@ def plot(deg: np.ndarray, curves: dict, title: str):
 def run(out: Path, refinement: float, radii: int, face: int | None, slices: int, positions: int,
         cache_dir: Path | None = None, references: bool = True) -> dict:
     """Run the study into ``out``; ``references`` False skips the 2D FE references."""
-    from pipeline.viz.pair_plots import save
+    from pipeline.viz import save
 
     cfg = load_pair_config(CONFIG)
     pair = GearPair(cfg.pinion, cfg.gear, cfg.centre_distance)

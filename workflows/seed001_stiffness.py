@@ -20,7 +20,8 @@ from pipeline.config import AssemblyErrors, load_pair_config
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.analysis import analyse_pair
-from pipeline.viz.pair_plots import plot_stiffness_curves, save
+from pipeline.viz import save
+from pipeline.viz.stiffness import plot_stiffness_curves
 
 HERE = Path(__file__).resolve().parent
 CONFIG = HERE / "configs" / "seed001_spur.toml"

@@ -23,7 +23,8 @@ from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.analysis import analyse_pair
 from pipeline.stiffness.mesh import PairModel
-from pipeline.viz.pair_plots import plot_stiffness_curves, save
+from pipeline.viz import save
+from pipeline.viz.stiffness import plot_stiffness_curves
 
 HERE = Path(__file__).resolve().parent
 CONFIG = HERE / "configs" / "seed004_helical.toml"

@@ -69,6 +69,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from pipeline.config import AssemblyErrors, PairConfig, load_pair_config
 from pipeline.contact.commands import build_source, line_of_action_load
@@ -79,7 +80,7 @@ from pipeline.fem.fe_source import FESectorCompliance, FESettings
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at
-from pipeline.viz.pair_plots import _plt, save
+from pipeline.viz import save
 
 HERE = Path(__file__).resolve().parent
 UM = 1e-6
@@ -159,8 +160,8 @@ def write_summary_csv(path: Path, table: dict) -> Path:
 
 
 def plot_case(name: str, res: dict):
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4))
+    fig = Figure(figsize=(8, 4))
+    ax = fig.subplots()
     deg = np.degrees(res["pinion_angle"])
     ax.plot(deg, res["analytical"] * 1e-8, label="analytical (slice potential energy)")
     ax.plot(deg, res["optimised_slice"] * 1e-8, "--", label="optimised slice (LTCA, eq. 24)")

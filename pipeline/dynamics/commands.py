@@ -64,7 +64,8 @@ def _guard(func):
 def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
     from pipeline.dynamics.modal import modal_analysis
-    from pipeline.dynamics.plots import plot_mode_shapes
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import plot_mode_shapes
 
     cfg, out = _setup(args, "modes")
     system = cfg.model.assembly().assemble()
@@ -86,7 +87,7 @@ def run_modes(args) -> int:
                 "kind [0 none,1 rigid,2 rot,3 trans,4 planet,5 mixed]": kinds,
             },
         ),
-        plot_mode_shapes(res, out / "mode_shapes.png", count=16 if args.full else 8),
+        save(plot_mode_shapes(res, count=16 if args.full else 8), out / "mode_shapes.png"),
     ]
     summary = {
         "frequencies_Hz": res.frequencies,
@@ -129,8 +130,8 @@ def solve_response(cfg: DynamicsConfig, full: bool):
 @_guard
 def run_response(args) -> int:
     """Steady dynamic response: DTE and mesh forces in time, DTE spectrum."""
-    from pipeline.dynamics.plots import (
-        dte_spectrum,
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import (
         plot_harmonic_contributions,
         plot_spectrum,
         plot_time_history,
@@ -143,16 +144,13 @@ def run_response(args) -> int:
         cols[f"dte {m} [m]"] = resp.dte[i]
         cols[f"force {m} [N]"] = resp.mesh_force[i]
     files = [write_csv(out / "time_history.csv", cols)]
-    f, a = dte_spectrum(resp, 0)
+    f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
-    files.append(
-        plot_time_history(
-            [resp], [cfg.name], out / "time_history.png", title=f"{cfg.name}: {resp.mesh_names[0]}"
-        )
-    )
-    files.append(plot_spectrum([resp], [cfg.name], out / "dte_spectrum.png"))
+    fig = plot_time_history([resp], [cfg.name], title=f"{cfg.name}: {resp.mesh_names[0]}")
+    files.append(save(fig, out / "time_history.png"))
+    files.append(save(plot_spectrum([resp], [cfg.name]), out / "dte_spectrum.png"))
     if hr is not None:
-        files.append(plot_harmonic_contributions([hr], [cfg.name], out / "harmonics.png"))
+        files.append(save(plot_harmonic_contributions([hr], [cfg.name]), out / "harmonics.png"))
     summary = {
         "method": resp.method,
         "period_s": resp.period,
@@ -184,8 +182,9 @@ def run_response(args) -> int:
 @_guard
 def run_sweep(args) -> int:
     """RMS dynamic mesh force against mesh frequency."""
-    from pipeline.dynamics.plots import plot_sweep
     from pipeline.dynamics.sweep import mesh_force_sweep
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import plot_sweep
 
     cfg, out = _setup(args, "sweep")
     system = cfg.model.assembly().assemble()
@@ -207,7 +206,7 @@ def run_sweep(args) -> int:
     shown = [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
         res.mesh_names[:2]
     )
-    files.append(plot_sweep([res], [cfg.name], shown, out / "sweep.png", title=cfg.name))
+    files.append(save(plot_sweep([res], [cfg.name], shown, title=cfg.name), out / "sweep.png"))
     peaks = {m: res.peaks(m) for m in shown}
     write_run_record(out, cfg.raw, files, f"gearpipe sweep {args.config}")
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}

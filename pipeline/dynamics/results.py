@@ -68,6 +68,16 @@ class Response:
         d = self.dte[:, self.steady_from :]
         return d.max(axis=1) - d.min(axis=1)
 
+    def dte_spectrum(self, mesh: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """Single-sided amplitude spectrum of the steady DTE of mesh row ``mesh``:
+        (frequency, shape (K,), Hz; amplitude, shape (K,), m)."""
+        s = self.steady_from
+        d = self.dte[mesh, s:-1] if self.dte.shape[1] - s > 1 else self.dte[mesh, s:]
+        dt = self.time[1] - self.time[0]
+        a = np.abs(np.fft.rfft(d - d.mean())) / d.size
+        a[1:] *= 2.0
+        return np.fft.rfftfreq(d.size, dt), a
+
 
 @dataclass(frozen=True)
 class HarmonicResponse:

@@ -28,9 +28,11 @@ def geometry_summary(pair: GearPair) -> dict:
 
 
 def run(args: argparse.Namespace) -> int:
+    from matplotlib.figure import Figure
+
     from pipeline.geometry.profile import tooth_profile
-    from pipeline.viz.pair_plots import _plt, plot_contact_lines, plot_line_of_action, save
-    from pipeline.viz.profile_plot import plot_profile
+    from pipeline.viz import save
+    from pipeline.viz.geometry import plot_contact_lines, plot_line_of_action, plot_profile
 
     cfg = load_pair_config(args.config)
     out = output_dir(args, "geometry")
@@ -46,7 +48,8 @@ def run(args: argparse.Namespace) -> int:
                           out / "line_of_action_actual.png"))
     if pair.pinion.is_helical:
         files.append(save(plot_contact_lines(pair), out / "contact_lines.png"))
-    fig, axes = _plt().subplots(2, 1, figsize=(9, 8))
+    fig = Figure(figsize=(9, 8))
+    axes = fig.subplots(2, 1)
     for ax, g in zip(axes, (pair.pinion, pair.gear), strict=True):
         prof = tooth_profile(g)
         plot_profile(prof, ax=ax)
