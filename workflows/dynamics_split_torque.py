@@ -1,22 +1,23 @@
-"""Seed 000 study: DTE of the split-torque double-power-input transmission against roughness.
+"""Study of Jin et al. (2018): DTE of the split-torque double-power-input transmission against
+roughness.
 
-The 40-DOF model of seed 000 (pipeline.dynamics.models.split_torque with the Table 2
-case of pipeline.dynamics.models.seed000_case) is driven by the analytical mesh
+The 40-DOF model of Jin et al. (2018) (pipeline.dynamics.models.split_torque with the Table 2
+case of pipeline.dynamics.models.split_torque_helicopter) is driven by the analytical mesh
 stiffness and the EHL friction stiffness / friction torque coefficients of every
-stage, for composite roughness 0.3, 0.6 and 0.9 um (seed 000 sec. 5.3). The three
+stage, for composite roughness 0.3, 0.6 and 0.9 um (Jin et al. 2018, sec. 5.3). The three
 stages are solved by the Fourier series (harmonic balance) method, one stage at a
 time, and superposed (pipeline.dynamics.multirate).
 
-Comparison with seed 000 sec. 5.3 (DTE amplitude falls as the roughness rises;
+Comparison with Jin et al. (2018), sec. 5.3 (DTE amplitude falls as the roughness rises;
 coarse run, H = 8): the confluence stage reproduces it (conf1R order-1 amplitude
 0.429 -> 0.414 -> 0.385 um, peak-to-peak 2.610 -> 2.603 -> 2.589 um for S = 0.3,
 0.6, 0.9 um; tested); the split stage moves the other way by < 1 % (split1R
 peak-to-peak 7.857 -> 7.872 -> 7.901 um) although its friction stiffness grows with
-S, so the seed's trend holds here for the confluence stage only.
+S, so the paper's trend holds here for the confluence stage only.
 
 Writes results/dynamics_split_torque/: dte_split.png, dte_confluence.png (DTE over
 two split-stage mesh periods), contribution_split.png, contribution_confluence.png
-(share of each harmonic order, seed 000 Figs. 10-17 b, c), summary.csv, run.json.
+(share of each harmonic order, Jin et al. 2018, Figs. 10-17 b, c), summary.csv, run.json.
 
     python workflows/dynamics_split_torque.py [--full] [--out DIR]
 """
@@ -29,7 +30,10 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from pipeline.dynamics.models.seed000_case import ROUGHNESS_UM, seed000_model
+from pipeline.dynamics.models.split_torque_helicopter import (
+    ROUGHNESS_UM,
+    split_torque_helicopter_model,
+)
 from pipeline.dynamics.multirate import superpose_stages
 from pipeline.io import write_csv, write_run_record
 from pipeline.viz import save
@@ -44,7 +48,9 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     positions = 360 if full else 180
     results = {}
     for s_um in ROUGHNESS_UM:
-        m = seed000_model(s_um * 1e-6, positions=positions, slices=40 if full else 20)
+        m = split_torque_helicopter_model(
+            s_um * 1e-6, positions=positions, slices=40 if full else 20
+        )
         systems = {st: m.stage_system(st) for st in ("input", "split", "confluence")}
         T = 1.0 / m.split_stage.mesh_frequency
         results[s_um] = (m, superpose_stages(systems, H, 2 * T, samples=800))
@@ -73,7 +79,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             ax.plot(mr.time / T, mr.dte[mr.mesh(mesh)] * 1e6, label=f"S = {s_um} um")
         ax.set_xlabel("time / split-stage mesh period")
         ax.set_ylabel(f"DTE {mesh} [um]")
-        ax.set_title(f"Seed 000: DTE along {mesh} (three stages superposed)")
+        ax.set_title(f"Jin et al. 2018: DTE along {mesh} (three stages superposed)")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
         files.append(save(ax, out / f"dte_{stage}.png"))

@@ -1,12 +1,13 @@
-"""Seed 004 helical pair: LTCA mesh stiffness from the slice model vs the 3D FE influence matrix.
+"""Helical pair of Yang et al. (2026): LTCA mesh stiffness from the slice model vs the 3D FE
+influence matrix.
 
-The traction pair of seed 004 Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
+The traction pair of Yang et al. (2026), Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
 130 mm assumed; workflows/configs/seed004_helical.toml) at its rated load is run
-through the loaded tooth contact analysis (seed 004 eqs. 27-29, local approach
+through the loaded tooth contact analysis (Yang et al. 2026, eqs. 27-29, local approach
 eq. 24 "weber") twice, on the same slice contact points:
 
 * ``slice``: the analytical slice compliance (:class:`SliceCompliance`, independent
-  slices, seed 004 section 2.1-2.4);
+  slices, Yang et al. (2026), section 2.1-2.4);
 * ``fe3d``: the 3D FE structural compliance of both gears
   (:class:`pipeline.fem.fe_source3d.FE3DCompliance`), which couples the slices
   across the face width;
@@ -142,7 +143,7 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
         cols[f"{n}_residual [m]"] = c.residual
     files = [write_csv(out / "stiffness.csv", cols), write_json(out / "summary.json", summary)]
     dof = fe.pinion_table.info["dof"], fe.gear_table.info["dof"]
-    title = (f"Seed 004 (z 31/104, beta 4 deg), P = {load / 1e3:.1f} kN, LTCA (weber): "
+    title = (f"Yang et al. 2026 (z 31/104, beta 4 deg), P = {load / 1e3:.1f} kN, LTCA (weber): "
              f"slice vs 3D FE ({dof[0]}/{dof[1]} DOF, refinement {refinement:g})")
     labels = {"slice": "slice method (independent slices)",
               "fe3d": f"3D FE, {fe.sector_teeth}-tooth sectors, face-coupled",

@@ -1,4 +1,4 @@
-"""Sweep the relief groove of the seed 002 sun gear: torsional stiffness vs width and depth.
+"""Sweep the relief groove of Xu et al. (2020) sun gear: torsional stiffness vs width and depth.
 
 For every groove width and groove bottom diameter the 3D P2 model of the sun body
 (root-cylinder halves, distributed coupling unless the config says otherwise)
@@ -56,7 +56,7 @@ def plot(path: Path, widths_mm, diameters_mm, kt, kj, base) -> Path:
     for i, d in enumerate(diameters_mm):
         a1.plot(widths_mm, kt[i] / 1e6, "o-", label=f"groove bottom {d:g} mm")
         a2.plot(widths_mm, kj[i] / 1e7, "o-", label=f"groove bottom {d:g} mm")
-    a2.axhspan(4.0, 5.2, color="0.85", zorder=0, label="seed 002 range 4.0-5.2e7")
+    a2.axhspan(4.0, 5.2, color="0.85", zorder=0, label="Xu et al. 2020 range 4.0-5.2e7")
     a1.set(xlabel="groove width g [mm]", ylabel="k_t between O_L and O_R [MN m/rad]",
            title="torsional stiffness of the sun body")
     a2.set(xlabel="groove width g [mm]", ylabel="K_j = k_t l_LR [1e7 N m^2]",

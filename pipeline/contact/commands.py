@@ -2,7 +2,7 @@
 
 Reads the same TOML as ``gearpipe stiffness`` plus an optional ``[contact]``
 table (:mod:`pipeline.contact.options`). The compliance is the analytical slice
-compliance (seed 004's optimised slice method with ``local_contact = "weber"``);
+compliance (the optimised slice method of Yang et al. 2026 with ``local_contact = "weber"``);
 writes per-position results, per-point unit loads, the load map (PNG + VTU),
 a summary JSON and ``run.json`` to ``results/<config>/contact/``.
 """
@@ -34,7 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
     parser.add_argument("--tooth-model", choices=("exact", "classical"), default="exact",
                         help="exact profile with fillet (default) or the classical involute "
-                             "clamped at the base circle (seed 004 eqs. 11-13)")
+                             "clamped at the base circle (Yang et al. 2026, eqs. 11-13)")
 
 
 def build_source(cfg: PairConfig, opts: ContactOptions, tooth_model: str = "exact"
@@ -69,7 +69,7 @@ def write_cycle(cyc: LoadedMeshCycle, out: Path) -> list[Path]:
         "transmission_error [m]": cyc.transmission_error,
         "mesh_stiffness_tangent [N/m]": cyc.mesh_stiffness,
         "mesh_stiffness_secant [N/m]": cyc.mesh_stiffness_secant,
-        "mesh_stiffness_seed004_km [N/m]": cyc.mesh_stiffness_pointwise,
+        "mesh_stiffness_pointwise [N/m]": cyc.mesh_stiffness_pointwise,
         "max_unit_load [N/mm]": cyc.max_unit_load * 1e-3,
         "residual [m]": cyc.residual,
     }

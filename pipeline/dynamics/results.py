@@ -90,7 +90,7 @@ class HarmonicResponse:
     dte_amplitude : shape (n_mesh, H+1), single-sided amplitude of each DTE harmonic, m
         (order 0 is the mean).
     dte_contribution : shape (n_mesh, H), share of each order 1..H in the sum of the
-        alternating amplitudes (seed 000 "contribution proportion"), -.
+        alternating amplitudes (Jin et al. 2018 "contribution proportion"), -.
     coefficients : shape (2H+1, n_full), complex Q_h of the full coordinates, h = -H..H.
     dte_coefficients : shape (2H+1, n_mesh), complex DTE coefficients D_h (m), h = -H..H:
         ``dte(t) = sum_h D_h exp(i 2 pi h t / T)``.

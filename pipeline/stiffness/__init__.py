@@ -3,6 +3,7 @@ friction (constant or EHL), slicing for helical gears, ISO 6336 and the contact-
 friction stiffness/torque coefficients and Fourier series. Stiffness in N/m, compliance in m/N.
 """
 
+from pipeline.signals import FourierSeries, PeriodicSignal
 from pipeline.stiffness.analysis import PairStiffness, analyse_pair
 from pipeline.stiffness.iso6336 import contact_line_stiffness, iso_stiffness
 from pipeline.stiffness.mesh import (
@@ -12,7 +13,6 @@ from pipeline.stiffness.mesh import (
     PairModel,
     mesh_stiffness,
 )
-from pipeline.signals import FourierSeries, PeriodicSignal
 
 __all__ = [
     "FourierSeries",
