@@ -1,4 +1,4 @@
-"""Shared fixtures: the seed gear pairs used across the tests."""
+"""Shared fixtures: the published gear pairs used across the tests."""
 
 from __future__ import annotations
 
@@ -16,14 +16,15 @@ from pipeline.geometry import GearPair, GearSpec  # noqa: E402
 
 
 @pytest.fixture(scope="session")
-def seed001_pair() -> GearPair:
-    """Seed 001 base case: z 50/50, m 3 mm, 20 deg, b 20 mm, E 200 GPa."""
+def spur_pair_z50() -> GearPair:
+    """The base case of the assembly-error paper: z 50/50, m 3 mm, 20 deg, b 20 mm, E 200 GPa."""
     return GearPair(spur(50, "pinion"), spur(50, "gear"))
 
 
 @pytest.fixture(scope="session")
-def seed004_pair() -> GearPair:
-    """Seed 004 Table 2 traction pair (beta 4 deg, a 495 mm; face width assumed 130 mm)."""
+def helical_traction_pair() -> GearPair:
+    """Traction pair of Yang et al. (2026), Table 2 (beta 4 deg, a 495 mm; face width assumed 130
+    mm)."""
     kw = dict(module=7.35e-3, pressure_angle=math.radians(20), helix_angle=math.radians(4.0),
               addendum_coef=1.2, dedendum_coef=1.55, face_width=0.13, material=STEEL)
     p = GearSpec(teeth=31, hand="right", profile_shift=0.27807, bore_radius=0.045,

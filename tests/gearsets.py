@@ -10,7 +10,8 @@ STEEL = Material(youngs_modulus=2.0e11, poisson_ratio=0.3, density=7850.0)
 
 
 def spur(z: int, name: str, **kw) -> GearSpec:
-    """A seed-001-like spur gear (m 3 mm, 20 deg, b 20 mm, 21 mm bore) with overrides."""
+    """A spur gear like the assembly-error paper's (m 3 mm, 20 deg, b 20 mm, 21 mm bore) with
+    overrides."""
     base = dict(module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
                 bore_radius=0.021, material=STEEL)
     base.update(kw)

@@ -1,4 +1,4 @@
-"""Assembly-error geometry (seed 001), planetary phases (seed 002) and the TOML configuration."""
+"""Assembly-error geometry, planetary phases (Xu et al. 2020) and the TOML configuration."""
 
 from __future__ import annotations
 
@@ -19,21 +19,21 @@ UM = 1e-6
 
 
 @pytest.mark.parametrize("cond,e", [(2, 10.0), (3, 100.0)])
-def test_assembly_error_geometry(seed001_pair, cond, e):
+def test_assembly_error_geometry(spur_pair_z50, cond, e):
     """Actual centre distance, tangency of the actual line of action, and pressure angles.
 
-    Seed 001 frame: O_g = (a sin phi, a cos phi) + (e_xg, e_yg); a' = |O'_g - O'_p|.
-    T1', T2' lie on the base circles with the line of action tangent there, and the
-    pressure angle at a contact point X is acos(r_b / |X - O'|) (seed 001).
+    The frame of the assembly-error paper: O_g = (a sin phi, a cos phi) + (e_xg, e_yg); a' = |O'_g
+    - O'_p|. T1', T2' lie on the base circles with the line of action tangent there, and the
+    pressure angle at a contact point X is acos(r_b / |X - O'|) (the assembly-error paper).
     """
-    ap = AssembledPair(seed001_pair, AssemblyErrors((0.0, 0.0), (e * UM, e * UM)))
+    ap = AssembledPair(spur_pair_z50, AssemblyErrors((0.0, 0.0), (e * UM, e * UM)))
     a, phi = 0.15, D(20)
     expect = math.hypot(a * math.sin(phi) + e * UM, a * math.cos(phi) + e * UM)
     assert ap.centre_distance == pytest.approx(expect, rel=1e-14)
     op, og = ap.centres
     t1, t2 = ap.line_of_action()
     u = (t2 - t1) / np.linalg.norm(t2 - t1)
-    rb = seed001_pair.pinion.base_radius
+    rb = spur_pair_z50.pinion.base_radius
     assert np.linalg.norm(t1 - op) == pytest.approx(rb, rel=1e-12)
     assert np.linalg.norm(t2 - og) == pytest.approx(rb, rel=1e-12)
     assert abs(np.dot(t1 - op, u)) < 1e-15 and abs(np.dot(t2 - og, u)) < 1e-15
@@ -44,19 +44,19 @@ def test_assembly_error_geometry(seed001_pair, cond, e):
     np.testing.assert_allclose(a2, e2, atol=1e-12)
     # start/end of contact lie on the tip circles of the displaced gears
     start, end = ap.contact_limits()
-    assert np.linalg.norm(start - og) == pytest.approx(seed001_pair.gear.tip_radius_, rel=1e-12)
-    assert np.linalg.norm(end - op) == pytest.approx(seed001_pair.pinion.tip_radius_, rel=1e-12)
+    assert np.linalg.norm(start - og) == pytest.approx(spur_pair_z50.gear.tip_radius_, rel=1e-12)
+    assert np.linalg.norm(end - op) == pytest.approx(spur_pair_z50.pinion.tip_radius_, rel=1e-12)
 
 
-def test_assembly_errors_shorten_double_contact(seed001_pair):
-    """Seed 001: larger centre offsets narrow the double-contact zone (condition 3 < 2 < 1)."""
-    eps = [AssembledPair(seed001_pair, AssemblyErrors((0, 0), (e * UM, e * UM))).actual
+def test_assembly_errors_shorten_double_contact(spur_pair_z50):
+    """Larger centre offsets narrow the double-contact zone (condition 3 < 2 < 1)."""
+    eps = [AssembledPair(spur_pair_z50, AssemblyErrors((0, 0), (e * UM, e * UM))).actual
            .transverse_contact_ratio for e in (0.0, 10.0, 100.0)]
     assert eps[0] > eps[1] > eps[2]
     assert eps[0] - eps[2] == pytest.approx(0.0422, abs=5e-4)
 
 
-def seed002_set(n: int = 4) -> PlanetarySet:
+def wind_turbine_set(n: int = 4) -> PlanetarySet:
     kw = dict(module=15e-3, pressure_angle=D(25), helix_angle=D(8), herringbone=True)
     s = GearSpec(teeth=21, face_width=0.185, hand="right", groove_width=0.04, name="sun", **kw)
     p = GearSpec(teeth=37, face_width=0.175, hand="left", groove_width=0.05, name="planet", **kw)
@@ -65,9 +65,9 @@ def seed002_set(n: int = 4) -> PlanetarySet:
     return PlanetarySet(s, p, r, n)
 
 
-def test_seed002_phases():
-    """Seed 002 eq. 10 with psi_n = (n-1) 90 deg: dec(21 (n-1)/4), dec(95 (n-1)/4)."""
-    ps = seed002_set()
+def test_xu2020_planet_phases():
+    """Xu et al. (2020), eq. 10 with psi_n = (n-1) 90 deg: dec(21 (n-1)/4), dec(95 (n-1)/4)."""
+    ps = wind_turbine_set()
     np.testing.assert_allclose(ps.sun_phases, [0, 0.25, 0.5, 0.75], atol=1e-12)
     np.testing.assert_allclose(ps.ring_phases, [0, 0.75, 0.5, 0.25], atol=1e-12)
     assert ps.left_right_phase(2 * math.pi / 21 * 0.3) == pytest.approx(0.3)
@@ -88,9 +88,9 @@ def test_ring_sun_phase_parity(zp, expect):
 
 def test_planetary_errors():
     with pytest.raises(InputError, match="cannot be assembled"):
-        seed002_set(3)
+        wind_turbine_set(3)
     with pytest.raises(InputError, match="ring.teeth"):
-        base = seed002_set()
+        base = wind_turbine_set()
         PlanetarySet(base.sun, base.planet, GearSpec(
             teeth=96, module=15e-3, pressure_angle=D(25), helix_angle=D(8), herringbone=True,
             face_width=0.185, hand="left", internal=True, bore_radius=0.85, name="ring"), 4)

@@ -18,12 +18,12 @@ import pytest
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED001 = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
+SPUR_CONFIG = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
 GROOVE = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
 def test_fe_command(tmp_path, capsys):
-    args = ["fe", str(SEED001), "--out", str(tmp_path), "--teeth", "3", "--points", "8",
+    args = ["fe", str(SPUR_CONFIG), "--out", str(tmp_path), "--teeth", "3", "--points", "8",
             "--refinement", "1", "--json"]
     assert cli(args) == 0
     summary = json.loads(capsys.readouterr().out)
@@ -32,7 +32,7 @@ def test_fe_command(tmp_path, capsys):
         assert s["points"] == 24 and s["symmetry_error"] < 1e-10
         # the rim couples the middle tooth to its neighbours, less than the tooth itself
         assert 0.0 < s["rim_coupling_max_ratio"] < 0.5
-    # seed 001 has identical pinion and gear: identical meshes and compliance
+    # the assembly-error paper has identical pinion and gear: identical meshes and compliance
     assert pin["fe_compliance_pitch_m2_per_N"] == pytest.approx(
         gear["fe_compliance_pitch_m2_per_N"], rel=1e-12)
     S = np.load(tmp_path / "pinion_influence_m2_per_N.npy")
@@ -60,7 +60,7 @@ def test_groove_command(tmp_path, coarse_groove_config, capsys):
     K = np.asarray(res["coupling_matrix"])
     ev = np.sort(np.abs(np.linalg.eigvalsh(K))) / np.abs(K).max()
     assert ev[5] < 1e-9 < 1e-6 < ev[6]  # six rigid-body motions, nothing else, in the null space
-    # seed 002 eq. 11 with the configured sun torque
+    # Xu et al. (2020), eq. 11 with the configured sun torque
     phi = 148000.0 / res["torsional_stiffness"]
     assert payload["phase_shift"]["phi_LR"] == pytest.approx(phi, rel=1e-12)
     with open(out / "coupling_matrix.csv", newline="") as fh:
@@ -77,4 +77,6 @@ def test_groove_command_reports_bad_input(tmp_path, capsys):
                                               "bottom_diameter_mm = 300.0"))
     assert cli(["groove", str(bad), "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
-    assert "groove.bottom_diameter" in err and "0.3" in err
+    # the value in the file's unit (mm); this test used to expect the SI value 0.3 m,
+    # which is the behaviour the gearbox-description issue asks to change
+    assert "groove.bottom_diameter" in err and "300 mm" in err

@@ -12,7 +12,7 @@ import pytest
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
-SEED001 = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
+SPUR_CONFIG = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
 
 
 def load_workflow(name: str):
@@ -24,7 +24,7 @@ def load_workflow(name: str):
 
 
 def test_geometry_command(tmp_path):
-    assert cli(["geometry", str(SEED001), "--out", str(tmp_path)]) == 0
+    assert cli(["geometry", str(SPUR_CONFIG), "--out", str(tmp_path)]) == 0
     data = json.loads((tmp_path / "geometry.json").read_text())
     assert data["transverse_contact_ratio"] == pytest.approx(1.754673, abs=1e-6)
     run = json.loads((tmp_path / "run.json").read_text())
@@ -34,7 +34,7 @@ def test_geometry_command(tmp_path):
 
 
 def test_stiffness_command_json(tmp_path, capsys):
-    assert cli(["stiffness", str(SEED001), "--out", str(tmp_path), "--json"]) == 0
+    assert cli(["stiffness", str(SPUR_CONFIG), "--out", str(tmp_path), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     pe = data["potential_energy"]
     assert pe["min_N_per_m"] < pe["mean_N_per_m"] < pe["max_N_per_m"]
@@ -45,21 +45,21 @@ def test_stiffness_command_json(tmp_path, capsys):
 
 def test_bad_config_is_reported(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
-    bad.write_text(SEED001.read_text().replace("teeth = 50", "teeth = 2", 1))
+    bad.write_text(SPUR_CONFIG.read_text().replace("teeth = 50", "teeth = 2", 1))
     assert cli(["stiffness", str(bad), "--out", str(tmp_path)]) == 2
     assert "pinion.teeth = 2" in capsys.readouterr().err
 
 
-def test_seed001_workflow(tmp_path):
-    table = load_workflow("seed001_stiffness").main(["--out", str(tmp_path)])
+def test_spur_pair_assembly_errors_workflow(tmp_path):
+    table = load_workflow("spur_pair_assembly_errors").main(["--out", str(tmp_path)])
     ideal = table["mu = 0.0"]
     assert table["condition 3 (100 um), mu = 0"]["transverse_contact_ratio"] < \
         ideal["transverse_contact_ratio"]
     assert (tmp_path / "friction.png").exists() and (tmp_path / "run.json").exists()
 
 
-def test_seed004_workflow(tmp_path):
-    table = load_workflow("seed004_stiffness").main(["--out", str(tmp_path)])
+def test_helical_slice_stiffness_workflow(tmp_path):
+    table = load_workflow("helical_slice_stiffness").main(["--out", str(tmp_path)])
     ratio = table["potential_energy_over_contact_line_mean"]["ratio"]
     assert 0.5 < ratio < 1.5
     assert (tmp_path / "single_pair.png").exists()
@@ -71,7 +71,7 @@ def test_default_case(tmp_path):
 
 
 def test_validate_stiffness_workflow(tmp_path):
-    """Coarse run (whole seed 001 gears at refinement 0.3, 6 positions, mu = 0.1).
+    """Coarse run (whole the assembly-error paper gears at refinement 0.3, 6 positions, mu = 0.1).
 
     Single-tooth contact (the minimum) agrees with the analytical model: whole-gear FE
     differs by -4 % (plane stress) / about +1 % (plane strain) in single contact
@@ -84,24 +84,24 @@ def test_validate_stiffness_workflow(tmp_path):
     """
     table = load_workflow("validate_stiffness").main(
         ["--out", str(tmp_path), "--positions", "6", "--refinement", "0.3", "--only", "mu=0.1"])
-    row = table["seed001 mu=0.1"]
+    row = table["spur mu=0.1"]
     assert abs(row["fe_vs_analytical_min_percent"]) < 5.0
     assert row["fe_vs_analytical_mean_percent"] == pytest.approx(-25.0, abs=2.0)
     assert row["fe_enriched_mean_N_per_m"] == pytest.approx(2.935e8, rel=0.02)
-    assert (tmp_path / "seed001_mu0.1.png").stat().st_size > 10_000
+    assert (tmp_path / "spur_mu0.1.png").stat().st_size > 10_000
     header = (tmp_path / "summary.csv").read_text().splitlines()[0]
     assert header.startswith("case,") and "fe_vs_analytical_mean_percent" in header
 
 
 def test_validate_stiffness_helical(tmp_path):
-    """Coarse seed 004 helical run (whole 31/104-tooth gears, refinement 0.3, 10 radii,
+    """Coarse Yang et al. (2026) helical run (whole 31/104-tooth gears, refinement 0.3, 10 radii,
     10 slices, 4 positions; about 10 s).
 
     eps_alpha = 2.05: every transverse section always has two or three tooth pairs in
     contact, so the rim/body coupling of the FE influence matrix acts over the whole
-    cycle and there is no single-contact window in which FE and analytical agree (seed
-    001: min within 5 %). Without the coupling the FE curve is within 1 % of the
-    analytical one (FE diagonal 12 % stiffer, eq. 24 local contact 11 % softer); the
+    cycle and there is no single-contact window in which FE and analytical agree (the
+    assembly-error paper's spur pair: min within 5 %). Without the coupling the FE curve is within
+    1 % of the analytical one (FE diagonal 12 % stiffer, eq. 24 local contact 11 % softer); the
     coupling lowers it by 20 % (-19.0 to -21.2 % over the cycle). Fine run (refinement
     1.0, 30 radii, 20 slices, 36 positions): mean -20.4 % (max -21.2, min -19.5 %),
     FE mean 2.193e9 N/m; this coarse run: -19.6 %, FE mean +1.7 %. Refinement 0.2 with
@@ -110,9 +110,9 @@ def test_validate_stiffness_helical(tmp_path):
     table = load_workflow("validate_stiffness").main(
         ["--out", str(tmp_path), "--positions", "4", "--refinement", "0.3", "--radii", "10",
          "--slices", "10", "--only", "helical"])
-    row = table["seed004 helical"]
+    row = table["helical"]
     assert row["fe_vs_analytical_mean_percent"] == pytest.approx(-20.4, abs=2.0)
     assert row["fe_vs_analytical_min_percent"] < -16.0  # coupled at every position
     assert row["fe_vs_analytical_max_percent"] > -24.0
     assert row["fe_enriched_mean_N_per_m"] == pytest.approx(2.193e9, rel=0.03)
-    assert (tmp_path / "seed004_helical.png").stat().st_size > 10_000
+    assert (tmp_path / "helical.png").stat().st_size > 10_000

@@ -10,8 +10,8 @@ from pipeline.stiffness.mesh import FrictionModel, PairModel
 
 
 @pytest.fixture(scope="module")
-def model(seed004_pair):
-    return PairModel.build(seed004_pair)
+def model(helical_traction_pair):
+    return PairModel.build(helical_traction_pair)
 
 
 def test_dry_source_plus_friction_change_equals_friction_source(model):
@@ -24,7 +24,7 @@ def test_dry_source_plus_friction_change_equals_friction_source(model):
         change = corrected.friction_change(pos)
         pts = corrected.points(pos)
         approach = pts.s < model.pair.s_pitch
-        # seed 004: friction stiffens in approach (less compliance) and softens in recess
+        # Yang et al. (2026): friction stiffens in approach (less compliance) and softens in recess
         assert np.all(change[approach] < 0) and np.all(change[~approach] > 0)
 
 

@@ -22,8 +22,8 @@ from pipeline.validation import InputError
 
 
 @pytest.fixture(scope="module")
-def helical_cycle(seed004_pair):
-    pair = seed004_pair
+def helical_cycle(helical_traction_pair):
+    pair = helical_traction_pair
     model = PairModel(pair, classical_tooth_model(pair.pinion), classical_tooth_model(pair.gear),
                       hertz_compliance(pair.pinion, pair.gear))
     L = 0.25 * pair.path_length
@@ -32,12 +32,12 @@ def helical_cycle(seed004_pair):
     return loaded_mesh_cycle(src, 6031.0 / pair.pinion.base_radius, mods, positions=30)
 
 
-def test_load_map_of_spur_pair_single_contact_zone(seed001_pair):
+def test_load_map_of_spur_pair_single_contact_zone(spur_pair_z50):
     """Spur pair, eps = 0, constant Hertz: in the single-tooth zone
     (s_end - p_bt, s_start + p_bt), one sample spacing in from its ends, one pair carries
     P over the face width, so the map shows p = P / b there exactly (1e-12), and less in
     the double-tooth zones."""
-    pair = seed001_pair
+    pair = spur_pair_z50
     model = PairModel(pair, classical_tooth_model(pair.pinion), classical_tooth_model(pair.gear),
                       hertz_compliance(pair.pinion, pair.gear))
     P = 340.0 / pair.pinion.base_radius
@@ -54,10 +54,10 @@ def test_load_map_of_spur_pair_single_contact_zone(seed001_pair):
     assert lm.unit_load[double].max() < P / pair.face_width * (1 - 1e-3)
 
 
-def test_flank_surface_lies_on_the_involute(seed004_pair, helical_cycle):
+def test_flank_surface_lies_on_the_involute(helical_traction_pair, helical_cycle):
     """The 3D flank points lie at the pinion radius sqrt(s^2 + r_b1^2) of their roll
     coordinate at every face position, and span the face width."""
-    pair = seed004_pair
+    pair = helical_traction_pair
     lm = flank_load_map(helical_cycle, pair, profile_points=50)
     assert lm.unit_load.shape == (50, 12 + 2)
     xyz = flank_surface(pair, lm)
@@ -67,11 +67,11 @@ def test_flank_surface_lies_on_the_involute(seed004_pair, helical_cycle):
     assert xyz[0, 0, 2] == 0.0
 
 
-def test_vtu_round_trip(tmp_path, seed004_pair, helical_cycle):
+def test_vtu_round_trip(tmp_path, helical_traction_pair, helical_cycle):
     """The VTU read back with meshio holds the grid (n_s x n_z points, mm) and the unit
     load in N/mm equal to the map in N/m / 1000 (float64 round trip: 1e-12)."""
-    lm = flank_load_map(helical_cycle, seed004_pair, profile_points=20)
-    path = write_load_map_vtu(seed004_pair, lm, tmp_path / "map.vtu")
+    lm = flank_load_map(helical_cycle, helical_traction_pair, profile_points=20)
+    path = write_load_map_vtu(helical_traction_pair, lm, tmp_path / "map.vtu")
     mesh = meshio.read(path)
     assert mesh.points.shape[0] == lm.unit_load.size
     got = np.sort(mesh.point_data["unit_load_N_per_mm"])
@@ -123,8 +123,8 @@ render = {render}
 
 
 def test_contact_command_writes_its_outputs(tmp_path, capsys):
-    """gearpipe contact on a seed-001-like spur pair (classical tooth model): all files
-    are written, the JSON load equals 340 N m / r_b1 and the LTCA/slice mean ratio is
+    """gearpipe contact on a spur pair like the assembly-error paper's (classical tooth model): all
+    files are written, the JSON load equals 340 N m / r_b1 and the LTCA/slice mean ratio is
     below 1 (the relief unloads the pinion tip in double contact) but above 0.9."""
     cfg = tmp_path / "spur.toml"
     cfg.write_text(CONFIG.format(render="false"))  # the PNG render is tested above
@@ -143,16 +143,17 @@ def test_contact_command_writes_its_outputs(tmp_path, capsys):
     assert 0.9 < summary["ltca_over_slice_method_mean"] <= 1.0
 
 
-def test_render_load_map_png(tmp_path, seed004_pair, helical_cycle):
+def test_render_load_map_png(tmp_path, helical_traction_pair, helical_cycle):
     """The off-screen pyvista render writes a PNG of the requested size that is not blank
     (the coloured flank gives many distinct colours)."""
     from PIL import Image
 
-    from pipeline.contact.loadmap import render_load_map
+    from pipeline.viz import save
+    from pipeline.viz.loadmap import render_load_map
 
-    lm = flank_load_map(helical_cycle, seed004_pair, profile_points=30)
-    path = render_load_map(seed004_pair, lm, tmp_path / "map.png", "test",
-                           window_size=(600, 450))
+    lm = flank_load_map(helical_cycle, helical_traction_pair, profile_points=30)
+    path = save(render_load_map(helical_traction_pair, lm, "test", window_size=(600, 450)),
+                tmp_path / "map.png")
     img = np.asarray(Image.open(path).convert("RGB"))
     assert img.shape == (450, 600, 3)
     assert len(np.unique(img.reshape(-1, 3), axis=0)) > 200

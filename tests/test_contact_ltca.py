@@ -17,23 +17,23 @@ from pipeline.validation import InputError
 
 
 def classical(pair) -> PairModel:
-    """Tooth models of seed 004 eqs. 11-13 (involute clamped at the base circle)."""
+    """Tooth models of Yang et al. (2026), eqs. 11-13 (involute clamped at the base circle)."""
     return PairModel(pair, classical_tooth_model(pair.pinion), classical_tooth_model(pair.gear),
                      hertz_compliance(pair.pinion, pair.gear))
 
 
 @pytest.fixture(scope="module")
-def spur_model(seed001_pair):
-    return classical(seed001_pair)
+def spur_model(spur_pair_z50):
+    return classical(spur_pair_z50)
 
 
 @pytest.fixture(scope="module")
-def helical_model(seed004_pair):
-    return classical(seed004_pair)
+def helical_model(helical_traction_pair):
+    return classical(helical_traction_pair)
 
 
 def spur_load(pair) -> float:
-    return 340.0 / pair.pinion.base_radius  # seed 001: 340 N m on the pinion
+    return 340.0 / pair.pinion.base_radius  # the assembly-error paper: 340 N m on the pinion
 
 
 @pytest.mark.parametrize("mu", [0.0, 0.1])
@@ -42,7 +42,7 @@ def test_ltca_reproduces_the_slice_method(case, mu, spur_model, helical_model):
     """Independent slices, constant Hertz compliance, eps = 0: every slice in the path
     is loaded, so the LTCA stiffness k = 1^T G^-1 1 = sum_i 1/G_ii must equal
     pipeline.stiffness.mesh.stiffness_at exactly (1e-12), tangent and secant, with and
-    without friction (mu = 0.1, seed 004 eqs. 19-23 sign convention)."""
+    without friction (mu = 0.1, Yang et al. 2026, eqs. 19-23 sign convention)."""
     model = spur_model if case == "spur" else helical_model
     src = SliceCompliance(model, slices=30, friction=FrictionModel(mu=mu))
     assert isinstance(src, ComplianceSource)
@@ -56,7 +56,7 @@ def test_ltca_reproduces_the_slice_method(case, mu, spur_model, helical_model):
 
 
 def test_weber_local_contact_lowers_stiffness_about_ten_percent(helical_model):
-    """Seed 004 section 2.3: the nonlinear local deformation (eq. 24) lowers the mesh
+    """Yang et al. (2026), section 2.3: the nonlinear local deformation (eq. 24) lowers the mesh
     stiffness of its traction pair by 'approximately 10%' at rated load (20 233 N m on
     the gear) without changing its shape. Checked: mean ratio in [0.85, 0.95] and the
     ratio varies by < 3 % over the cycle."""
@@ -72,8 +72,9 @@ def test_weber_local_contact_lowers_stiffness_about_ten_percent(helical_model):
 
 
 def test_tip_relief_lowers_entry_stiffness_and_tip_load(spur_model):
-    """Seed 001 spur pair, 340 N m. A linear tip relief of 30 um over 30 % of the path on
-    both gears exceeds the ~15 um deflection, so at contact entry (first positions of the
+    """The spur pair of the assembly-error paper, 340 N m. A linear tip relief of 30 um over 30 %
+    of the path on both gears exceeds the ~15 um deflection, so at contact entry (first positions
+    of the
     cycle, gear tip on the pinion root) the entering pair carries less load and the
     tangent and secant stiffness drop (first two of 40 positions); the load at the pinion
     tip (last 5 % of the path) falls below the unmodified case; the total load stays P."""
@@ -96,11 +97,11 @@ def test_tip_relief_lowers_entry_stiffness_and_tip_load(spur_model):
     assert relief.mesh_stiffness[single] == pytest.approx(plain.mesh_stiffness[single], rel=1e-9)
 
 
-def test_separations_are_the_stated_formulas(seed004_pair):
+def test_separations_are_the_stated_formulas(helical_traction_pair):
     """eps at chosen points against the closed forms of pipeline.contact.separations:
     parabolic pinion/gear tip relief, crowning C_b at both faces and 0 at mid face,
     slope deviation, pitch error of pair k = 1, +inf off the path."""
-    pair = seed004_pair
+    pair = helical_traction_pair
     b, L = pair.face_width, 2e-3
     s = np.array([pair.s_end, pair.s_end - L / 2, pair.s_start, pair.s_pitch, pair.s_pitch,
                   pair.s_pitch, pair.s_end + 1e-4])
@@ -140,10 +141,10 @@ def test_slice_coupling_structure(helical_model):
     assert np.abs(c.mesh_stiffness / a.mesh_stiffness - 1).max() < 1e-4
 
 
-def test_points_follow_the_contact_lines(seed004_pair, helical_model):
+def test_points_follow_the_contact_lines(helical_traction_pair, helical_model):
     """Candidate points lie on s = s0 + k p_bt + z tan(beta_b) inside the path, and
     their widths add up to the contact-line lengths times cos(beta_b)."""
-    pair = seed004_pair
+    pair = helical_traction_pair
     src = SliceCompliance(helical_model, slices=40)
     s0 = float(pair.mesh_cycle(7)[4])
     pts = src.points(s0)

@@ -1,4 +1,4 @@
-"""Split-torque model (seed 000), analytical mesh inputs, modal damping, groove input.
+"""Split-torque model (Jin et al. 2018), analytical mesh inputs, modal damping, groove input.
 
 Exact references: static (mean) equilibrium of every shaft - the period mean of the
 inertia and damping forces of a periodic response is zero, so the mean mesh forces
@@ -19,7 +19,7 @@ from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
 from pipeline.dynamics.models.planetary import PlanetaryModel
-from pipeline.dynamics.models.seed000_case import seed000_model
+from pipeline.dynamics.models.split_torque_helicopter import split_torque_helicopter_model
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.multirate import superpose_stages
 from pipeline.dynamics.reduction import reduce_rigid_body_modes
@@ -32,11 +32,11 @@ from pipeline.stiffness.mesh import FrictionModel, OperatingPoint
 
 @pytest.fixture(scope="module")
 def split_model():
-    return seed000_model(friction=False, positions=90, slices=12)
+    return split_torque_helicopter_model(friction=False, positions=90, slices=12)
 
 
 def test_split_torque_has_40_dof_and_shafts_balance(split_model):
-    """40 DOF (seed 000 eq. 1); mean mesh forces balance every shaft's torque.
+    """40 DOF (Jin et al. 2018, eq. 1); mean mesh forces balance every shaft's torque.
 
     Exact in the harmonic balance; the sampled mean of k(t) dte(t) over 512 points
     aliases the stiffness harmonics above 512 - H, hence rel. 1e-5.
@@ -183,22 +183,22 @@ def test_matrices_sparse_equal_dense_and_force_carries_the_loads():
     assert abs(dense.F @ R[:, 0]) < 1e-9 * T * np.abs(R[:, 0]).max()
 
 
-# Seed 002 sec. 3.1 / Fig. 5: K_1 -> K_5 changes the maximum sun-planet mesh stiffness
+# Xu et al. (2020), sec. 3.1 / Fig. 5: K_1 -> K_5 changes the maximum sun-planet mesh stiffness
 # by these percentages. They are printed to 0.01 %, so half a unit of the last digit,
 # 5e-5, is the tolerance of a faithful reproduction.
-SEED002_FIG5 = [("L", 0.0979), ("R", -0.1123)]
+XU2020_FIG5 = [("L", 0.0979), ("R", -0.1123)]
 
 
-@pytest.mark.parametrize(("side", "published"), SEED002_FIG5)
-def test_seed002_mesh_stiffness_change_with_groove_stiffness(side, published):
-    """Max of the seed 002 model's sun-planet stiffness k_0is L(t) at K_5 vs K_1 (eq. 14).
+@pytest.mark.parametrize(("side", "published"), XU2020_FIG5)
+def test_xu2020_mesh_stiffness_change_with_groove_stiffness(side, published):
+    """Max of Xu et al. (2020) model's sun-planet stiffness k_0is L(t) at K_5 vs K_1 (eq. 14).
 
     Checked on the signals the model assembles (the relation plus the eq. 11 phase,
     which must not change the maximum); the ring-planet meshes do not change (eq. 15).
     """
-    from pipeline.dynamics.models.seed002_case import K_J, seed002_model
+    from pipeline.dynamics.models.wind_turbine_planetary import K_J, wind_turbine_herringbone_model
 
-    m1, m5 = seed002_model(K_J[0]), seed002_model(K_J[-1])
+    m1, m5 = wind_turbine_herringbone_model(K_J[0]), wind_turbine_herringbone_model(K_J[-1])
     i = "LR".index(side)
     k1, k5 = m1.k_sun_mesh[i], m5.k_sun_mesh[i]
     assert k5.values.max() / k1.values.max() - 1.0 == pytest.approx(published, abs=5e-5)
@@ -206,10 +206,10 @@ def test_seed002_mesh_stiffness_change_with_groove_stiffness(side, published):
     assert m5.phase_lr > m1.phase_lr  # softer groove, larger twist (eqs. 1, 11)
 
 
-def test_seed002_mesh_stiffness_is_monotonic_in_groove_stiffness():
+def test_xu2020_mesh_stiffness_is_monotonic_in_groove_stiffness():
     """Fig. 5: as K_j falls the left side stiffens and the right side softens."""
     from pipeline.dynamics.models.groove_mesh import side_factors
-    from pipeline.dynamics.models.seed002_case import K_J
+    from pipeline.dynamics.models.wind_turbine_planetary import K_J
 
     f = [side_factors(k) for k in K_J]
     assert f[0].left == f[0].right == 1.0
@@ -221,7 +221,7 @@ def test_seed002_mesh_stiffness_is_monotonic_in_groove_stiffness():
 
 def test_groove_mesh_relation_rejects_values_outside_the_paper_range():
     from pipeline.dynamics.models.groove_mesh import GrooveMeshRelation, side_factors
-    from pipeline.dynamics.models.seed002_case import seed002_model
+    from pipeline.dynamics.models.wind_turbine_planetary import wind_turbine_herringbone_model
     from pipeline.validation import InputError
 
     with pytest.raises(InputError, match=r"groove_Kj = 3\.9e\+07 N m\^2 .*\[4e\+07, 5\.2e\+07\]"):
@@ -231,5 +231,5 @@ def test_groove_mesh_relation_rejects_values_outside_the_paper_range():
     with pytest.raises(InputError, match="change_right"):
         GrooveMeshRelation(change_right=-1.0)
     # outside the range the earlier, equal-sides model is still available
-    m = seed002_model(1e8, groove_mesh=None)
+    m = wind_turbine_herringbone_model(1e8, groove_mesh=None)
     assert not isinstance(m.k_sun_mesh, tuple)

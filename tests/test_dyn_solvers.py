@@ -1,4 +1,5 @@
-"""Time integration, Floquet steady state and harmonic balance on the seed 001 spur pair.
+"""Time integration, Floquet steady state and harmonic balance on the spur pair of the
+assembly-error paper.
 
 The reference for the harmonic balance is the time integration of the same
 equations (independent method); the reference for the Woodbury solve is the dense
@@ -17,7 +18,8 @@ from pipeline.validation import InputError
 
 @pytest.fixture(scope="module")
 def rect_pair():
-    """Seed 001 base case with a rectangular stiffness (2.0/3.4e8 N/m, contact ratio 1.65)."""
+    """The base case of the assembly-error paper with a rectangular stiffness (2.0/3.4e8 N/m,
+    contact ratio 1.65)."""
     k = rectangular_mesh_stiffness(2.0e8, 3.4e8, 1.65, 360)
     return SpurPairModel(k).assembly().assemble()
 
@@ -55,7 +57,8 @@ def test_woodbury_equals_dense(rect_pair):
 
 
 def test_first_order_error_is_second_order_in_the_fluctuation():
-    """Seed 000 first-order method: its error against Hill's method scales as amplitude^2."""
+    """First-order method of Jin et al. (2018): its error against Hill's method scales as
+    amplitude^2."""
     amps = np.array([0.01, 0.02, 0.04])
     err = []
     for amp in amps:

@@ -90,7 +90,8 @@ def test_command_reports_bad_config(tmp_path, capsys):
 
 
 def test_spur_dte_workflow_coarse(tmp_path):
-    """Seed 001 workflow on the analytical stiffness: trends, plus one regression number.
+    """The assembly-error paper's workflow on the analytical stiffness: trends, plus one regression
+    number.
 
     Larger assembly errors shorten the contact path (smaller contact ratio) and raise
     the DTE peak-to-peak at every friction level; friction raises the RMS mesh force.
@@ -109,7 +110,8 @@ def test_spur_dte_workflow_coarse(tmp_path):
 
 
 def test_split_torque_workflow_coarse(tmp_path):
-    """Seed 000 workflow: confluence-stage DTE falls as the roughness rises (seed 000 sec. 5.3).
+    """Workflow of Jin et al. (2018): confluence-stage DTE falls as the roughness rises (Jin et al.
+    2018, sec. 5.3).
 
     The split (spur) stage of this model moves the other way by < 1 % (see the report);
     only the reproduced trend is asserted.
@@ -124,7 +126,7 @@ def test_split_torque_workflow_coarse(tmp_path):
 
 
 def test_herringbone_sweep_workflow_coarse(tmp_path):
-    """Seed 002 workflow (coarse, 100 points, H = 10): the trends of seed 002 sec. 4.
+    """Workflow of Xu et al. (2020) (coarse, 100 points, H = 10): the trends of its sec. 4.
 
     * Softer groove (K_1 -> K_5 = 5.2e7 -> 4.0e7 N m^2) lowers the natural frequency of
       the sun-half twist (groove) mode monotonically, by about sqrt(K5/K1) on the
@@ -163,16 +165,17 @@ def test_herringbone_sweep_workflow_coarse(tmp_path):
 
 
 def test_herringbone_hb_agrees_with_time_integration_at_the_main_peak():
-    """Seed 002 model (56 DOF), 1440 Hz main peak: HB (H = 20) vs time integration < 1 %.
+    """Xu et al. (2020) model (56 DOF), 1440 Hz main peak: HB (H = 20) vs time integration < 1 %.
 
     Time integration: exact propagator on 360 segments per mesh period, run from the
     static state until the period-to-period change is below 1e-6. Measured here:
     2.5e-3 on the RMS force (the 360-segment h^2 error dominates; the benchmark's
     ladder shows it falling to 2e-4 at 720 segments). 1 % is the issue's requirement.
     """
-    from pipeline.dynamics.models.seed002_case import seed002_model
+    from pipeline.dynamics.models.wind_turbine_planetary import wind_turbine_herringbone_model
 
-    s = seed002_model(half_coupling=(5e10, 5e10, 5e10, 5e10)).assembly().assemble()
+    model = wind_turbine_herringbone_model(half_coupling=(5e10, 5e10, 5e10, 5e10))
+    s = model.assembly().assemble()
     f = np.array([1440.0])
     hb = mesh_force_sweep(s, f, n_harmonics=20, executor=None)
     ti = mesh_force_sweep(
@@ -213,8 +216,8 @@ def test_refined_peak_on_a_coarse_grid():
     assert refined_peak(f, f).at_edge
 
 
-def test_seed002_main_peak_frequency_falls_with_groove_stiffness():
-    """Seed 002 Fig. 9 trend: the main peak (near 1440 Hz) moves down as K_j falls.
+def test_xu2020_main_peak_frequency_falls_with_groove_stiffness():
+    """Xu et al. (2020), Fig. 9 trend: the main peak (near 1440 Hz) moves down as K_j falls.
 
     Coarse grid (4 Hz) around the peak, H = 10, parabola-refined peak of the RMS mesh
     force of s-p1L and s-p1R. With the K_j-dependent left/right mesh stiffness (eq. 14)
@@ -222,7 +225,7 @@ def test_seed002_main_peak_frequency_falls_with_groove_stiffness():
     R 1440.4 -> 1436.4 Hz); with equal sides (``groove_mesh=None``, groove spring and
     phase only) they barely move (L -0.5 Hz, R +0.3 Hz), so the trend comes from eq. 14.
     """
-    from pipeline.dynamics.models.seed002_case import K_J, seed002_model
+    from pipeline.dynamics.models.wind_turbine_planetary import K_J, wind_turbine_herringbone_model
     from pipeline.dynamics.peaks import refined_peak
 
     f = np.arange(1400.0, 1481.0, 4.0)
@@ -231,7 +234,10 @@ def test_seed002_main_peak_frequency_falls_with_groove_stiffness():
         out = []
         for kj in K_J:
             sw = mesh_force_sweep(
-                seed002_model(kj, **kw).assembly().assemble(), f, n_harmonics=10, executor=None
+                wind_turbine_herringbone_model(kj, **kw).assembly().assemble(),
+                f,
+                n_harmonics=10,
+                executor=None,
             )
             pk = [
                 refined_peak(f, sw.rms_force[sw.mesh_names.index(m)]) for m in ("s-p1L", "s-p1R")

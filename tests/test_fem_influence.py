@@ -2,7 +2,7 @@
 
 Ladder of checks:
 * half-plane kernel: averaged over a Hertz (semi-elliptical) pressure it reproduces
-  Weber-Banaschek's approach (one body of seed 004 eq. 24) to O(a^2/h^2);
+  Weber-Banaschek's approach (one body of Yang et al. 2026, eq. 24) to O(a^2/h^2);
 * Maxwell-Betti: the FE patch-to-patch matrix is symmetric to solver round-off;
 * the structural compliance does not depend on the load-patch width (the raw FE
   value changes by ~6 % between c = 0.05 and 0.2 m_n, the structural one < 0.5 %);
@@ -129,23 +129,24 @@ def test_patch_must_fit_on_involute(sector3):
 
 
 @pytest.mark.slow
-def test_whole_gear_mesh_and_fe_source(seed001_pair):
-    """Whole-gear 2D model (teeth = z) as the contact solver's compliance source, seed 001 pair.
+def test_whole_gear_mesh_and_fe_source(spur_pair_z50):
+    """Whole-gear 2D model (teeth = z) as the contact solver's compliance source, the pair of the
+    assembly-error paper.
 
     The FE source satisfies the ComplianceSource protocol; G is symmetric, positive, with
     rim coupling between the two tooth pairs; its diagonal lies within 20 % of the
     analytical slice compliance (bending + shear + axial + foundation of both teeth):
-    measured -4 % over the mesh cycle (whole seed 001 gears, plane stress, ~18 s).
+    measured -4 % over the mesh cycle (whole the assembly-error paper gears, plane stress, ~18 s).
     """
     from pipeline.contact.source import ComplianceSource, SliceCompliance
     from pipeline.fem.fe_source import FESectorCompliance, FESettings
     from pipeline.stiffness.mesh import PairModel
 
-    src = FESectorCompliance.build(seed001_pair, FESettings(radii=12, refinement=0.7,
+    src = FESectorCompliance.build(spur_pair_z50, FESettings(radii=12, refinement=0.7,
                                                             kind="plane_stress"))
     assert isinstance(src, ComplianceSource)
-    an = SliceCompliance(PairModel.build(seed001_pair))
-    for s0 in seed001_pair.mesh_cycle(3):
+    an = SliceCompliance(PairModel.build(spur_pair_z50))
+    for s0 in spur_pair_z50.mesh_cycle(3):
         G = src.matrix(s0)
         assert len(src.points(s0)) == G.shape[0]
         assert np.allclose(G, G.T, rtol=1e-10, atol=0)

@@ -88,8 +88,8 @@ def test_rejects_too_many_teeth():
         build_sector_mesh(EXT, SectorMeshSettings(teeth=15))
 
 
-def test_whole_gear_with_full_round_root(seed004_pair, tmp_path):
-    """Seed 004's 31-tooth pinion as a whole gear (regression: Gmsh hung on it).
+def test_whole_gear_with_full_round_root(helical_traction_pair, tmp_path):
+    """Yang et al. (2026)'s 31-tooth pinion as a whole gear (regression: Gmsh hung on it).
 
     With h_f* = 1.55 the largest cutter tip radius fills the rack tooth space, so the
     root circle land has zero length and the profile repeats its points there. The
@@ -98,7 +98,7 @@ def test_whole_gear_with_full_round_root(seed004_pair, tmp_path):
     tooth (flank with fillet, two tip halves, flank), and the mesh must reproduce the
     exact area, z A_tooth + pi (r_f^2 - r_bore^2), within 5e-5 (as for the sectors).
     """
-    gear = seed004_pair.pinion
+    gear = helical_traction_pair.pinion
     assert np.all(np.hypot(*np.diff(tooth_profile(gear).outline()[:10], axis=0).T) == 0.0)
     s = SectorMeshSettings.for_gear(gear, teeth=gear.teeth, refinement=0.3)
     pieces = _split_outline(gear, gear.teeth, s.profile_points)

@@ -69,7 +69,7 @@ def test_unsupported_pairs_and_small_sectors_are_rejected():
     with pytest.raises(InputError, match="herringbone"):
         FE3DCompliance.build(GearPair(herring, other))
     # k = -1..1 touch: a 3-tooth sector is the least; 2*1+1 = 3 is accepted, but the
-    # seed-004-like reach needs more
+    # reach like Yang et al. (2026)'s pair needs more
     assert list(touching_pairs(HELICAL_PAIR)) == [-1, 0, 1]
     wide = GearPair(GearSpec(face_width=60e-3, helix_angle=BETA, hand="right", **KW),
                     GearSpec(face_width=60e-3, helix_angle=BETA, hand="left", **KW))
@@ -223,8 +223,9 @@ def test_ltca_with_3d_source(helical):
 
     Measured: 3D / slice = 1.15 .. 1.28 (mean 1.22; 305 vs 252 N/um). The 3D model is
     stiffer for known reasons: a 3-tooth sector clamped at its cuts and bore (the 2D study
-    found a clamped 5-tooth sector +55 % stiffer than the slice model on seed 001, whose
-    foundation term assumes a whole gear body) and the coarse mesh (refinement 0.6: ~5 %
+    found a clamped 5-tooth sector +55 % stiffer than the slice model on the assembly-error paper's
+    pair, whose foundation term assumes a whole gear body) and the coarse mesh (refinement 0.6: ~5
+    %
     too stiff, test above); the free tooth ends and the face coupling make it softer where
     a contact line reaches an end face."""
     P = 4000.0
@@ -239,11 +240,12 @@ def test_ltca_with_3d_source(helical):
     assert np.all((ratio > 0.7) & (ratio < 1.4))
 
 
-# ---- slow: the seed 004 workflow at its coarsest ---------------------------------------------
+# ---- slow: fe3d workflow (Yang et al. 2026 pair) at its coarsest
+# ---------------------------------------------
 @pytest.mark.slow
-def test_seed004_workflow_coarse(tmp_path):
-    """workflows/fe3d_helical_stiffness.py on seed 004's pair at refinement 0.4 (35k DOF per
-    gear, 3 x 6 grid), 4 positions, without the 2D references: writes its files, both LTCA
+def test_fe3d_helical_workflow_coarse(tmp_path):
+    """workflows/fe3d_helical_stiffness.py on Yang et al. (2026)'s pair at refinement 0.4 (35k DOF
+    per gear, 3 x 6 grid), 4 positions, without the 2D references: writes its files, both LTCA
     runs converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6]
     (measured 1.42 with a 4 x 8 grid; the workflow's default at refinement 0.6 gives 1.38:
     the clamped 5-tooth sectors, see the workflow's 2D references)."""

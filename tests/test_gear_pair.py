@@ -54,15 +54,15 @@ def test_reference_tooth_thickness(x):
     assert 2 * ry * g.half_tooth_angle(ry) == pytest.approx(expect, rel=1e-13)
 
 
-def test_contact_ratio_closed_form(seed001_pair):
+def test_contact_ratio_closed_form(spur_pair_z50):
     """eps_a = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin a_w) / p_bt (standard form)."""
-    p, g = seed001_pair.pinion, seed001_pair.gear
-    a = seed001_pair.operating_centre_distance
+    p, g = spur_pair_z50.pinion, spur_pair_z50.gear
+    a = spur_pair_z50.operating_centre_distance
     eps = (math.sqrt(p.tip_radius_**2 - p.base_radius**2)
            + math.sqrt(g.tip_radius_**2 - g.base_radius**2) - a * math.sin(D(20)))
     eps /= p.transverse_base_pitch
-    assert seed001_pair.transverse_contact_ratio == pytest.approx(eps, rel=1e-13)
-    assert seed001_pair.transverse_contact_ratio == pytest.approx(1.75467, abs=1e-5)
+    assert spur_pair_z50.transverse_contact_ratio == pytest.approx(eps, rel=1e-13)
+    assert spur_pair_z50.transverse_contact_ratio == pytest.approx(1.75467, abs=1e-5)
     assert a == pytest.approx(0.150, rel=1e-14)
 
 
@@ -92,9 +92,9 @@ def test_internal_pair_contact_ratio():
     assert r.tip_radius_ == pytest.approx(0.12 - 3e-3, rel=1e-14)
 
 
-def test_helical_overlap_ratio_and_contact_lines(seed004_pair):
+def test_helical_overlap_ratio_and_contact_lines(helical_traction_pair):
     """eps_b = b sin(b) / (pi m_n); mean contact line length = eps_a b / cos(b_b) (exact)."""
-    pair = seed004_pair
+    pair = helical_traction_pair
     assert pair.overlap_ratio == pytest.approx(0.13 * math.sin(D(4)) / (math.pi * 7.35e-3),
                                                rel=1e-13)
     s0 = pair.mesh_cycle(20000)
@@ -109,18 +109,20 @@ def test_helical_overlap_ratio_and_contact_lines(seed004_pair):
         assert pair.s_start - 1e-12 <= seg[:, 0].min() and seg[:, 0].max() <= pair.s_end + 1e-12
 
 
-def test_seed004_table2_centre_distance(seed004_pair):
-    """Seed 004 Table 2 numbers give its 495 mm centre distance with beta = 4 deg (to 1 um)."""
-    assert seed004_pair.operating_centre_distance == pytest.approx(0.495, abs=1e-6)
-    assert 2.0 < seed004_pair.total_contact_ratio < 3.0  # 'alternates between two and three'
+def test_yang2026_table2_centre_distance(helical_traction_pair):
+    """The numbers of Yang et al. (2026), Table 2 give its 495 mm centre distance with beta = 4 deg
+    (to 1 um)."""
+    assert helical_traction_pair.operating_centre_distance == pytest.approx(0.495, abs=1e-6)
+    # 'alternates between two and three'
+    assert 2.0 < helical_traction_pair.total_contact_ratio < 3.0
 
 
-def test_sliding_velocity_vanishes_at_pitch_point(seed001_pair):
+def test_sliding_velocity_vanishes_at_pitch_point(spur_pair_z50):
     """v_s = (w1 + w2)(s - s_pitch) for an external pair."""
-    s = np.linspace(seed001_pair.s_start, seed001_pair.s_end, 7)
-    vs = seed001_pair.sliding_velocity(s, 100.0)
-    w2 = 100.0 / seed001_pair.gear_ratio
-    np.testing.assert_allclose(vs, (100.0 + w2) * (s - seed001_pair.s_pitch), atol=1e-12)
+    s = np.linspace(spur_pair_z50.s_start, spur_pair_z50.s_end, 7)
+    vs = spur_pair_z50.sliding_velocity(s, 100.0)
+    w2 = 100.0 / spur_pair_z50.gear_ratio
+    np.testing.assert_allclose(vs, (100.0 + w2) * (s - spur_pair_z50.s_pitch), atol=1e-12)
 
 
 @pytest.mark.parametrize(

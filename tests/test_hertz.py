@@ -101,8 +101,8 @@ def test_weber_approach_is_the_half_plane_solution():
     np.testing.assert_allclose(errs[1:] * ratios[1:] ** 2, -coef, rtol=1e-3)
 
 
-def test_equal_materials_reduce_to_seed004_eq24():
-    """Seed 004 eq. (24) written out literally for equal materials:
+def test_equal_materials_reduce_to_yang2026_eq24():
+    """Yang et al. (2026), eq. (24) written out literally for equal materials:
     u = 4F(1-nu^2)/(pi E b) (ln(2 sqrt(k1 k2)/a) - nu/(2(1-nu))),
     a = sqrt(8 F rho1 rho2/(rho1+rho2) (1-nu^2)/(pi E b))."""
     E, nu = STEEL.youngs_modulus, STEEL.poisson_ratio
@@ -133,7 +133,8 @@ def test_dissimilar_materials_sum_per_body_terms():
 
 @pytest.fixture
 def slices() -> HertzLineContact:
-    """Three slices of a seed-004-like mesh (4.3 mm wide, rho 20-60 mm, depths 5-8 mm)."""
+    """Three slices of a mesh like Yang et al. (2026)'s (4.3 mm wide, rho 20-60 mm, depths 5-8
+    mm)."""
     return HertzLineContact(4.3e-3, [0.02, 0.035, 0.05], [0.06, 0.045, 0.03],
                             [8e-3, 6.5e-3, 5e-3], [5e-3, 6.5e-3, 8e-3], STEEL, STEEL)
 

@@ -1,4 +1,4 @@
-"""Time-varying mesh stiffness: exact properties, seed trends and the ISO 6336 band."""
+"""Time-varying mesh stiffness: exact properties, published trends and the ISO 6336 band."""
 
 from __future__ import annotations
 
@@ -18,35 +18,36 @@ from pipeline.stiffness.mesh import FrictionModel, PairModel, mesh_stiffness, st
 
 
 @pytest.fixture(scope="module")
-def seed001_model(seed001_pair):
-    return PairModel.build(seed001_pair)
+def spur_model_z50(spur_pair_z50):
+    return PairModel.build(spur_pair_z50)
 
 
 @pytest.fixture(scope="module")
-def seed004_model(seed004_pair):
-    return PairModel.build(seed004_pair)
+def helical_traction_model(helical_traction_pair):
+    return PairModel.build(helical_traction_pair)
 
 
-def test_mu_zero_is_frictionless_and_pitch_point_has_no_friction(seed001_model):
+def test_mu_zero_is_frictionless_and_pitch_point_has_no_friction(spur_model_z50):
     """mu = 0 reproduces the frictionless curve exactly; at the pitch point friction vanishes."""
-    k0 = mesh_stiffness(seed001_model, 360)
-    kz = mesh_stiffness(seed001_model, 360, friction=FrictionModel(mu=0.0))
+    k0 = mesh_stiffness(spur_model_z50, 360)
+    kz = mesh_stiffness(spur_model_z50, 360, friction=FrictionModel(mu=0.0))
     np.testing.assert_array_equal(k0.total, kz.total)
-    pair = seed001_model.pair
+    pair = spur_model_z50.pair
     s_pitch = np.array([pair.s_pitch])  # the leading pair (k = 0) exactly at the pitch point
     j = list(pair.pair_indices()).index(0)
-    a = stiffness_at(seed001_model, s_pitch).pairs
-    b = stiffness_at(seed001_model, s_pitch, friction=FrictionModel(mu=0.1)).pairs
+    a = stiffness_at(spur_model_z50, s_pitch).pairs
+    b = stiffness_at(spur_model_z50, s_pitch, friction=FrictionModel(mu=0.1)).pairs
     assert b[0, j] == pytest.approx(a[0, j], rel=1e-14)
 
 
-def test_friction_raises_approach_lowers_recess(seed001_model):
-    """Seed 004 figs. 6-7: friction stiffens a tooth pair in approach and softens it in recess."""
-    pair = seed001_model.pair
+def test_friction_raises_approach_lowers_recess(spur_model_z50):
+    """Yang et al. (2026), figs. 6-7: friction stiffens a tooth pair in approach and softens it in
+    recess."""
+    pair = spur_model_z50.pair
     s = np.linspace(pair.s_start + 1e-5, pair.s_end - 1e-5, 41)
     # put one pair at each s (leading pair offset so that pair k = 0 sits at s)
-    k0 = stiffness_at(seed001_model, s).pairs[:, list(pair.pair_indices()).index(0)]
-    k1 = stiffness_at(seed001_model, s, friction=FrictionModel(mu=0.1)).pairs[
+    k0 = stiffness_at(spur_model_z50, s).pairs[:, list(pair.pair_indices()).index(0)]
+    k1 = stiffness_at(spur_model_z50, s, friction=FrictionModel(mu=0.1)).pairs[
         :, list(pair.pair_indices()).index(0)]
     approach, recess = s < pair.s_pitch, s > pair.s_pitch
     assert np.all(k1[approach] > k0[approach])
@@ -56,20 +57,20 @@ def test_friction_raises_approach_lowers_recess(seed001_model):
     assert 0.01 < jump < 0.2
 
 
-def test_identical_gears_give_symmetric_pair_stiffness(seed001_model):
+def test_identical_gears_give_symmetric_pair_stiffness(spur_model_z50):
     """z1 = z2, no friction: single-pair stiffness is symmetric about the pitch point (exact)."""
-    pair = seed001_model.pair
+    pair = spur_model_z50.pair
     d = np.linspace(0.0, 0.9 * min(pair.s_pitch - pair.s_start, pair.s_end - pair.s_pitch), 9)
     j = list(pair.pair_indices()).index(0)
-    kp = stiffness_at(seed001_model, pair.s_pitch + d).pairs[:, j]
-    km = stiffness_at(seed001_model, pair.s_pitch - d).pairs[:, j]
+    kp = stiffness_at(spur_model_z50, pair.s_pitch + d).pairs[:, j]
+    km = stiffness_at(spur_model_z50, pair.s_pitch - d).pairs[:, j]
     np.testing.assert_allclose(kp, km, rtol=1e-6)
 
 
-def test_pair_count_follows_contact_ratio(seed001_model):
+def test_pair_count_follows_contact_ratio(spur_model_z50):
     """One or two pairs in contact, two for a fraction (eps_a - 1) of the mesh cycle."""
-    pair = seed001_model.pair
-    m = mesh_stiffness(seed001_model, 3600)
+    pair = spur_model_z50.pair
+    m = mesh_stiffness(spur_model_z50, 3600)
     n = (m.pairs > 0).sum(axis=1)
     assert set(np.unique(n)) == {1, 2}
     assert np.mean(n == 2) == pytest.approx(pair.transverse_contact_ratio - 1, abs=1e-3)
@@ -94,13 +95,13 @@ def test_mean_stiffness_in_iso_band(z1, z2, x1, x2):
     assert 0.8 <= ratio <= 1.2
 
 
-def test_helical_slices_converge_and_reduce_fluctuation(seed004_model, seed001_model):
+def test_helical_slices_converge_and_reduce_fluctuation(helical_traction_model, spur_model_z50):
     """100 slices agree with 1000 within 0.5 %; helical fluctuation is below the spur one."""
-    a = mesh_stiffness(seed004_model, 180, 100).total
-    b = mesh_stiffness(seed004_model, 180, 1000).total
+    a = mesh_stiffness(helical_traction_model, 180, 100).total
+    b = mesh_stiffness(helical_traction_model, 180, 1000).total
     assert np.max(np.abs(a - b)) / b.mean() < 5e-3
-    spur_m = mesh_stiffness(seed001_model, 360)
-    helical = mesh_stiffness(seed004_model, 360, 100)
+    spur_m = mesh_stiffness(spur_model_z50, 360)
+    helical = mesh_stiffness(helical_traction_model, 360, 100)
     assert np.ptp(helical.total) / helical.mean < np.ptp(spur_m.total) / spur_m.mean
 
 
@@ -114,8 +115,9 @@ def test_helical_with_tiny_helix_matches_spur():
     np.testing.assert_allclose(hel, sp, rtol=2e-3)
 
 
-def test_seed001_assembly_conditions_trend():
-    """Seed 001: conditions 2 and 3 shorten the double-contact zone; stiffness level drops."""
+def test_assembly_error_conditions_trend():
+    """Assembly-error paper: conditions 2 and 3 shorten the double-contact zone; stiffness level
+    drops."""
     from pathlib import Path
 
     box = load_gearbox(Path(__file__).parents[1] / "workflows/configs"
@@ -130,12 +132,12 @@ def test_seed001_assembly_conditions_trend():
     assert res[0].mean > res[1].mean > res[2].mean
 
 
-def test_herringbone_halves_sum(seed004_pair):
+def test_herringbone_halves_sum(helical_traction_pair):
     """Herringbone: in-line halves give twice one half; an offset half smooths the sum."""
-    p = dataclasses.replace(seed004_pair.pinion, herringbone=True, face_width=0.26)
-    g = dataclasses.replace(seed004_pair.gear, herringbone=True, face_width=0.26)
+    p = dataclasses.replace(helical_traction_pair.pinion, herringbone=True, face_width=0.26)
+    g = dataclasses.replace(helical_traction_pair.gear, herringbone=True, face_width=0.26)
     model = PairModel.build(GearPair(p, g))
-    half = PairModel.build(seed004_pair)
+    half = PairModel.build(helical_traction_pair)
     both = mesh_stiffness(model, 120, 40).total
     one = mesh_stiffness(half, 120, 40).total
     np.testing.assert_allclose(both, 2 * one, rtol=1e-12)

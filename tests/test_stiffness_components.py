@@ -42,7 +42,7 @@ def test_sainsot_polynomials_in_published_ranges(h_f, theta_f):
 
 
 def test_sainsot_signs_matter():
-    """The sign-stripped table (as the seed's extracted text prints it) leaves Q* out of range."""
+    """The sign-stripped table (as the extracted paper text prints it) leaves Q* out of range."""
     b = np.array([1 / 0.06**2, 2.85**2, 2.85 / 0.06, 1 / 0.06, 2.85, 1.0])
     q_wrong = (np.abs(SAINSOT_TABLE) @ b)[3]
     assert not PUBLISHED["Q"][0] <= q_wrong <= PUBLISHED["Q"][1]
@@ -64,7 +64,7 @@ def test_section_integrals_exact_for_uniform_beam():
 @pytest.mark.parametrize("a1", [0.05, 0.15, 0.3, 0.42])
 @pytest.mark.parametrize("mu_lam", [0.0, 0.1, -0.1])
 def test_classical_tooth_matches_closed_form(a1, mu_lam):
-    """Base-circle-clamped involute tooth vs the closed-form integrals of seed 004
+    """Base-circle-clamped involute tooth vs the closed-form integrals of Yang et al. (2026)
     (eqs. 11-13, 21-23).
 
     The contact point with load angle a1 has tan(alpha_R) = a1 + a2 (a2: half base angle);
@@ -171,9 +171,9 @@ def test_iso_typical_value_and_load_correction():
     assert light.c_single / iso_stiffness(pair).c_single == pytest.approx(0.5**0.25, rel=1e-12)
 
 
-def test_contact_line_method_mean_equals_iso(seed004_pair):
+def test_contact_line_method_mean_equals_iso(helical_traction_pair):
     """k_m(t) = k_ym L(t) with the mean pinned to c_gamma_alpha b; shape follows L(t)."""
-    cl = contact_line_stiffness(seed004_pair, 720)
+    cl = contact_line_stiffness(helical_traction_pair, 720)
     assert cl.total.mean() == pytest.approx(cl.iso.mesh_stiffness, rel=1e-12)
     np.testing.assert_allclose(cl.total / cl.contact_length, cl.k_per_length, rtol=1e-12)
 

@@ -1,6 +1,6 @@
 """The main job: geometry -> analytical mesh stiffness for an embedded default spur pair.
 
-The default is the seed 001 base case (z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at
+The default is the assembly-error paper base case (z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at
 2340 rpm) with EHL friction. Writes to results/default_case/: line of action and
 tooth profiles (PNG), the mesh stiffness over a mesh cycle with the ISO 6336
 contact-line comparison (CSV, JSON, PNG), friction stiffness/torque coefficients,

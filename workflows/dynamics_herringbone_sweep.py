@@ -1,14 +1,15 @@
-"""Seed 002 study: dynamic mesh force sweeps with groove torsional stiffness and sun axial slide.
+"""Study of Xu et al. (2020): dynamic mesh force sweeps with groove torsional stiffness and sun
+axial slide.
 
-Herringbone planetary set of seed 002 (21/37/95 teeth, m_n 15 mm, 8 deg helix,
-4 planets; see pipeline.dynamics.models.seed002_case for the assumed masses and
+Herringbone planetary set of Xu et al. (2020) (21/37/95 teeth, m_n 15 mm, 8 deg helix,
+4 planets; see pipeline.dynamics.models.wind_turbine_planetary for the assumed masses and
 supports), swept over mesh frequency by harmonic balance (RMS of the dynamic
-mesh force, seed 002 Figs. 9-10):
+mesh force, Xu et al. (2020), Figs. 9-10):
 
 * groove stiffness K_1..K_5 = 5.2e7..4.0e7 N m^2 at zero slide;
 * axial slide 0, +0.5, +1 mm at K_1, and +1 mm at K_5.
 
-The groove stiffness enters twice (seed 002 eqs. 1, 11, 14-15): as the twist
+The groove stiffness enters twice (Xu et al. 2020, eqs. 1, 11, 14-15): as the twist
 phase lambda_LR of the right sun meshes and through the left/right sun-planet
 mesh stiffness, which changes by +9.79 % / -11.23 % from K_1 to K_5 (sec. 3.1,
 Fig. 5; :mod:`pipeline.dynamics.models.groove_mesh`, linear in the twist
@@ -16,7 +17,7 @@ Fig. 5; :mod:`pipeline.dynamics.models.groove_mesh`, linear in the twist
 Fig. 9 on fine grids (2 Hz coarse, 0.5 Hz ``--full``; parabola-refined peaks),
 once with that relation and once with equal sides.
 
-Comparison with seed 002 sec. 4 (coarse run: 100 points, H = 10, fine grids 2 Hz):
+Comparison with Xu et al. (2020), sec. 4 (coarse run: 100 points, H = 10, fine grids 2 Hz):
 
 * K_1 -> K_5, main peak (paper: "near 1440 Hz"): s-p1L 1436.4 -> 1430.0 Hz,
   s-p1R 1440.4 -> 1436.4 Hz, falling monotonically - the paper's direction
@@ -61,11 +62,16 @@ import numpy as np
 
 from pipeline.dynamics.modal import conservative_mean_stiffness, modal_analysis
 from pipeline.dynamics.models.groove_mesh import side_factors
-from pipeline.dynamics.models.seed002_case import K_J, L_TORSION, seed002_model
+from pipeline.dynamics.models.wind_turbine_planetary import (
+    K_J,
+    L_TORSION,
+    wind_turbine_herringbone_model,
+)
 from pipeline.dynamics.peaks import refined_peak
-from pipeline.dynamics.plots import plot_sweep
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.io import write_csv, write_run_record
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_sweep
 
 MESHES = ("s-p1L", "s-p1R")
 
@@ -108,9 +114,10 @@ def mode_energy_shares(system, kj: float, lo: float, hi: float) -> tuple[float, 
 
 
 def groove_peak_study(coarse: dict, full: bool, H: int, executor) -> tuple[dict, dict, dict]:
-    """Peak frequencies per K_j on fine grids around the two peak regions of seed 002 Fig. 9.
+    """Peak frequencies per K_j on fine grids around the two peak regions of Xu et al. (2020), Fig.
+    9.
 
-    Peak 1 is the main peak (seed 002: near 1440 Hz), peak 2 the next region (near
+    Peak 1 is the main peak (Xu et al. 2020: near 1440 Hz), peak 2 the next region (near
     2500 Hz). Each K_j is run with the K_j-dependent left/right mesh stiffness (the
     model) and with equal sides (``groove_mesh=None``, the earlier model), to separate
     the effect of eq. 14's stiffness change from that of the groove spring and phase.
@@ -138,7 +145,7 @@ def groove_peak_study(coarse: dict, full: bool, H: int, executor) -> tuple[dict,
         put("k factor R [-]", sf.right)
         for tag, rel in (("", "default"), (" equal sides", None)):
             kw = {} if rel == "default" else {"groove_mesh": None}
-            system = seed002_model(kj, **kw).assembly().assemble()
+            system = wind_turbine_herringbone_model(kj, **kw).assembly().assemble()
             a = mesh_force_sweep(system, grid1, n_harmonics=H, executor=executor)
             if not tag:  # the second region only with the model's relation
                 b = mesh_force_sweep(system, grid2, n_harmonics=H, executor=executor)
@@ -175,7 +182,7 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     )
     sweeps, groove_f = {}, {}
     for name, (kj, slide) in cases.items():
-        system = seed002_model(kj, slide).assembly().assemble()
+        system = wind_turbine_herringbone_model(kj, slide).assembly().assemble()
         groove_f[name] = groove_mode_frequency(system)
         sweeps[name] = mesh_force_sweep(system, freqs, n_harmonics=H, executor=executor)
     files = []
@@ -189,21 +196,25 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     groove = [f"K{j + 1} slide 0" for j in range(5)]
     slide = ["K1 slide 0", "K1 slide +0.5 mm", "K1 slide +1 mm", "K5 slide +1 mm"]
     files.append(
-        plot_sweep(
-            [sweeps[c] for c in groove],
-            groove,
-            MESHES,
+        save(
+            plot_sweep(
+                [sweeps[c] for c in groove],
+                groove,
+                MESHES,
+                title="Xu et al. (2020): groove torsional stiffness K1..K5",
+            ),
             out / "sweep_groove.png",
-            title="Seed 002: groove torsional stiffness K1..K5",
         )
     )
     files.append(
-        plot_sweep(
-            [sweeps[c] for c in slide],
-            slide,
-            MESHES,
+        save(
+            plot_sweep(
+                [sweeps[c] for c in slide],
+                slide,
+                MESHES,
+                title="Xu et al. (2020): sun axial slide",
+            ),
             out / "sweep_slide.png",
-            title="Seed 002: sun axial slide",
         )
     )
     summary = {
@@ -237,12 +248,15 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     files.append(write_csv(out / "groove_peaks.csv", table))
     for tag, fine in (("peak1", fine1), ("peak2", fine2)):
         files.append(
-            plot_sweep(
-                list(fine.values()),
-                [f"{k}: K = {kj:.2g} N m^2" for k, kj in zip(fine, K_J, strict=True)],
-                MESHES,
+            save(
+                plot_sweep(
+                    list(fine.values()),
+                    [f"{k}: K = {kj:.2g} N m^2" for k, kj in zip(fine, K_J, strict=True)],
+                    MESHES,
+                    title=f"Xu et al. 2020: groove stiffness K1..K5, {tag} region "
+                    "(eq. 14 mesh stiffness)",
+                ),
                 out / f"sweep_groove_{tag}.png",
-                title=f"Seed 002: groove stiffness K1..K5, {tag} region (eq. 14 mesh stiffness)",
             )
         )
     write_run_record(

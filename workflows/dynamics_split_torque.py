@@ -1,22 +1,23 @@
-"""Seed 000 study: DTE of the split-torque double-power-input transmission against roughness.
+"""Study of Jin et al. (2018): DTE of the split-torque double-power-input transmission against
+roughness.
 
-The 40-DOF model of seed 000 (pipeline.dynamics.models.split_torque with the Table 2
-case of pipeline.dynamics.models.seed000_case) is driven by the analytical mesh
+The 40-DOF model of Jin et al. (2018) (pipeline.dynamics.models.split_torque with the Table 2
+case of pipeline.dynamics.models.split_torque_helicopter) is driven by the analytical mesh
 stiffness and the EHL friction stiffness / friction torque coefficients of every
-stage, for composite roughness 0.3, 0.6 and 0.9 um (seed 000 sec. 5.3). The three
+stage, for composite roughness 0.3, 0.6 and 0.9 um (Jin et al. 2018, sec. 5.3). The three
 stages are solved by the Fourier series (harmonic balance) method, one stage at a
 time, and superposed (pipeline.dynamics.multirate).
 
-Comparison with seed 000 sec. 5.3 (DTE amplitude falls as the roughness rises;
+Comparison with Jin et al. (2018), sec. 5.3 (DTE amplitude falls as the roughness rises;
 coarse run, H = 8): the confluence stage reproduces it (conf1R order-1 amplitude
 0.429 -> 0.414 -> 0.385 um, peak-to-peak 2.610 -> 2.603 -> 2.589 um for S = 0.3,
 0.6, 0.9 um; tested); the split stage moves the other way by < 1 % (split1R
 peak-to-peak 7.857 -> 7.872 -> 7.901 um) although its friction stiffness grows with
-S, so the seed's trend holds here for the confluence stage only.
+S, so the paper's trend holds here for the confluence stage only.
 
 Writes results/dynamics_split_torque/: dte_split.png, dte_confluence.png (DTE over
 two split-stage mesh periods), contribution_split.png, contribution_confluence.png
-(share of each harmonic order, seed 000 Figs. 10-17 b, c), summary.csv, run.json.
+(share of each harmonic order, Jin et al. 2018, Figs. 10-17 b, c), summary.csv, run.json.
 
     python workflows/dynamics_split_torque.py [--full] [--out DIR]
 """
@@ -27,11 +28,16 @@ import argparse
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
-from pipeline.dynamics.models.seed000_case import ROUGHNESS_UM, seed000_model
+from pipeline.dynamics.models.split_torque_helicopter import (
+    ROUGHNESS_UM,
+    split_torque_helicopter_model,
+)
 from pipeline.dynamics.multirate import superpose_stages
-from pipeline.dynamics.plots import _figure, _save, plot_harmonic_contributions
 from pipeline.io import write_csv, write_run_record
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_harmonic_contributions
 
 MESHES = {"split": "split1R", "confluence": "conf1R"}
 
@@ -42,7 +48,9 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     positions = 360 if full else 180
     results = {}
     for s_um in ROUGHNESS_UM:
-        m = seed000_model(s_um * 1e-6, positions=positions, slices=40 if full else 20)
+        m = split_torque_helicopter_model(
+            s_um * 1e-6, positions=positions, slices=40 if full else 20
+        )
         systems = {st: m.stage_system(st) for st in ("input", "split", "confluence")}
         T = 1.0 / m.split_stage.mesh_frequency
         results[s_um] = (m, superpose_stages(systems, H, 2 * T, samples=800))
@@ -65,25 +73,27 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     cols = {k: np.array(v, dtype=float) for k, v in rows.items()}
     files.append(write_csv(out / "summary.csv", cols))
     for stage, mesh in MESHES.items():
-        fig, ax = _figure()
+        ax = Figure(figsize=(8, 4.5), constrained_layout=True).subplots()
         for s_um, (m, mr) in results.items():
             T = 1.0 / m.split_stage.mesh_frequency
-            ax[0, 0].plot(mr.time / T, mr.dte[mr.mesh(mesh)] * 1e6, label=f"S = {s_um} um")
-        ax[0, 0].set_xlabel("time / split-stage mesh period")
-        ax[0, 0].set_ylabel(f"DTE {mesh} [um]")
-        ax[0, 0].set_title(f"Seed 000: DTE along {mesh} (three stages superposed)")
-        ax[0, 0].legend(fontsize=8)
-        ax[0, 0].grid(alpha=0.3)
-        files.append(_save(fig, out / f"dte_{stage}.png"))
+            ax.plot(mr.time / T, mr.dte[mr.mesh(mesh)] * 1e6, label=f"S = {s_um} um")
+        ax.set_xlabel("time / split-stage mesh period")
+        ax.set_ylabel(f"DTE {mesh} [um]")
+        ax.set_title(f"Jin et al. 2018: DTE along {mesh} (three stages superposed)")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        files.append(save(ax, out / f"dte_{stage}.png"))
         hrs = [mr.stages[stage] for _, mr in results.values()]
         idx = hrs[0].response.mesh(mesh)
         files.append(
-            plot_harmonic_contributions(
-                hrs,
-                [f"S = {s} um" for s in results],
+            save(
+                plot_harmonic_contributions(
+                    hrs,
+                    [f"S = {s} um" for s in results],
+                    mesh=idx,
+                    title=f"Contribution of {stage}-stage harmonic orders to DTE {mesh}",
+                ),
                 out / f"contribution_{stage}.png",
-                mesh=idx,
-                title=f"Contribution of {stage}-stage harmonic orders to DTE {mesh}",
             )
         )
     write_run_record(

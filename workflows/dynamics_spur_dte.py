@@ -1,11 +1,12 @@
-"""Seed 001 DTE study: spur pair base case, three assembly-error conditions, friction 0/0.05/0.1.
+"""DTE study of the assembly-error paper: spur pair base case, three assembly-error conditions,
+friction 0/0.05/0.1.
 
-The 6-DOF lateral-torsional model of seed 001 (z 50/50, m 3 mm, 20 deg, b 20 mm,
+The 6-DOF lateral-torsional model of the assembly-error paper (z 50/50, m 3 mm, 20 deg, b 20 mm,
 340 N m, 2340 rpm; gears and operation from workflows/configs/spur_pair_assembly_errors.toml)
 is solved for its steady periodic response by harmonic balance. The mesh
 excitation is the pipeline's analytical (potential-energy) mesh stiffness of the
-*actual* pair (centres displaced by the seed 001 assembly errors,
-pipeline.geometry.assembly_errors) with the seed 000 friction stiffness and
+*actual* pair (centres displaced by the assembly-error paper assembly errors,
+pipeline.geometry.assembly_errors) with Jin et al. (2018) friction stiffness and
 friction torque coefficients for the friction coefficient
 (pipeline.dynamics.mesh_input).
 
@@ -28,14 +29,15 @@ from pipeline.config import load_gearbox
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
-from pipeline.dynamics.plots import plot_spectrum, plot_time_history
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_run_record
 from pipeline.stiffness.mesh import FrictionModel
+from pipeline.viz import save
+from pipeline.viz.dynamics import plot_spectrum, plot_time_history
 
 CONFIG = Path(__file__).resolve().parent / "configs" / "spur_pair_assembly_errors.toml"
-# (e_xp, e_yp), (e_xg, e_yg) in um, seed 001 table of conditions
+# (e_xp, e_yp), (e_xg, e_yg) in um, the assembly-error paper table of conditions
 CONDITIONS = {
     1: ((0.0, 0.0), (0.0, 0.0)),
     2: ((0.0, 0.0), (10.0, 10.0)),
@@ -45,7 +47,7 @@ FRICTIONS = (0.0, 0.05, 0.1)
 
 
 def actual_pair(condition: int) -> GearPair:
-    """The seed 001 pair with the centres of one assembly condition."""
+    """The assembly-error paper pair with the centres of one assembly condition."""
     cfg = load_gearbox(CONFIG)
     nominal = GearPair(cfg.pinion, cfg.gear)
     ep, eg = CONDITIONS[condition]
@@ -57,7 +59,7 @@ def actual_pair(condition: int) -> GearPair:
 
 
 def model_for(condition: int, mu: float, positions: int = 360) -> tuple[SpurPairModel, GearPair]:
-    """Seed 001 6-DOF model driven by the analytical stiffness of one case."""
+    """The assembly-error paper 6-DOF model driven by the analytical stiffness of one case."""
     cfg = load_gearbox(CONFIG)
     pair = actual_pair(condition)
     op = cfg.operation
@@ -112,35 +114,43 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     base = [i for i, lab in enumerate(labels) if lab.startswith("cond 1")]
     mu05 = [i for i, lab in enumerate(labels) if lab.endswith("mu 0.05")]
     files.append(
-        plot_time_history(
-            [responses[i] for i in base],
-            [labels[i] for i in base],
+        save(
+            plot_time_history(
+                [responses[i] for i in base],
+                [labels[i] for i in base],
+                title="Spur pair, condition 1: friction",
+            ),
             out / "dte_friction.png",
-            title="Seed 001, condition 1: friction",
         )
     )
     files.append(
-        plot_time_history(
-            [responses[i] for i in mu05],
-            [labels[i] for i in mu05],
+        save(
+            plot_time_history(
+                [responses[i] for i in mu05],
+                [labels[i] for i in mu05],
+                title="Spur pair, mu = 0.05: assembly errors",
+            ),
             out / "dte_conditions.png",
-            title="Seed 001, mu = 0.05: assembly errors",
         )
     )
     files.append(
-        plot_spectrum(
-            [responses[i] for i in base],
-            [labels[i] for i in base],
+        save(
+            plot_spectrum(
+                [responses[i] for i in base],
+                [labels[i] for i in base],
+                title="DTE spectrum, condition 1",
+            ),
             out / "spectrum_friction.png",
-            title="DTE spectrum, condition 1",
         )
     )
     files.append(
-        plot_spectrum(
-            [responses[i] for i in mu05],
-            [labels[i] for i in mu05],
+        save(
+            plot_spectrum(
+                [responses[i] for i in mu05],
+                [labels[i] for i in mu05],
+                title="DTE spectrum, mu = 0.05: assembly errors",
+            ),
             out / "spectrum_conditions.png",
-            title="DTE spectrum, mu = 0.05: assembly errors",
         )
     )
     write_run_record(

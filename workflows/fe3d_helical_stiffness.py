@@ -1,12 +1,13 @@
-"""Seed 004 helical pair: LTCA mesh stiffness from the slice model vs the 3D FE influence matrix.
+"""Helical pair of Yang et al. (2026): LTCA mesh stiffness from the slice model vs the 3D FE
+influence matrix.
 
-The traction pair of seed 004 Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
+The traction pair of Yang et al. (2026), Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, face
 130 mm assumed; workflows/configs/traction_helical_pair.toml) at its rated load is run
-through the loaded tooth contact analysis (seed 004 eqs. 27-29, local approach
+through the loaded tooth contact analysis (Yang et al. 2026, eqs. 27-29, local approach
 eq. 24 "weber") twice, on the same slice contact points:
 
 * ``slice``: the analytical slice compliance (:class:`SliceCompliance`, independent
-  slices, seed 004 section 2.1-2.4);
+  slices, Yang et al. (2026), section 2.1-2.4);
 * ``fe3d``: the 3D FE structural compliance of both gears
   (:class:`pipeline.fem.fe_source3d.FE3DCompliance`), which couples the slices
   across the face width;
@@ -62,12 +63,10 @@ def _stats(k: np.ndarray) -> dict:
 
 
 def plot(deg: np.ndarray, curves: dict, title: str):
-    import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    fig = Figure(figsize=(7, 6))
+    ax = fig.subplots(2, 1, sharex=True)
     for name, cyc in curves.items():
         ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, marker=".", label=name)
         ax[1].plot(deg, cyc.transmission_error * 1e6, marker=".", label=name)
@@ -82,7 +81,7 @@ def plot(deg: np.ndarray, curves: dict, title: str):
 def run(out: Path, refinement: float, radii: int, face: int | None, slices: int, positions: int,
         cache_dir: Path | None = None, references: bool = True) -> dict:
     """Run the study into ``out``; ``references`` False skips the 2D FE references."""
-    from pipeline.viz.pair_plots import save
+    from pipeline.viz import save
 
     cfg = load_gearbox(CONFIG)
     pair = cfg.pair
@@ -143,7 +142,7 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
         cols[f"{n}_residual [m]"] = c.residual
     files = [write_csv(out / "stiffness.csv", cols), write_json(out / "summary.json", summary)]
     dof = fe.pinion_table.info["dof"], fe.gear_table.info["dof"]
-    title = (f"Seed 004 (z 31/104, beta 4 deg), P = {load / 1e3:.1f} kN, LTCA (weber): "
+    title = (f"Yang et al. 2026 (z 31/104, beta 4 deg), P = {load / 1e3:.1f} kN, LTCA (weber): "
              f"slice vs 3D FE ({dof[0]}/{dof[1]} DOF, refinement {refinement:g})")
     labels = {"slice": "slice method (independent slices)",
               "fe3d": f"3D FE, {fe.sector_teeth}-tooth sectors, face-coupled",

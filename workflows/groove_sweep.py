@@ -1,4 +1,4 @@
-"""Sweep the relief groove of the seed 002 sun gear: torsional stiffness vs width and depth.
+"""Sweep the relief groove of Xu et al. (2020) sun gear: torsional stiffness vs width and depth.
 
 For every groove width and groove bottom diameter the 3D P2 model of the sun body
 (root-cylinder halves, distributed coupling unless the config says otherwise)
@@ -27,6 +27,7 @@ from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
 from pipeline.io import write_csv, write_run_record  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
+from pipeline.viz import save  # noqa: E402
 
 CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
@@ -48,15 +49,14 @@ def sweep(config: Path, widths_mm, diameters_mm, mesh_size_mm: float, show_progr
 
 
 def plot(path: Path, widths_mm, diameters_mm, kt, kj, base) -> Path:
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
-    from pipeline.io import atomic_write
-
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    fig = Figure(figsize=(11, 4.2), constrained_layout=True)
+    a1, a2 = fig.subplots(1, 2)
     for i, d in enumerate(diameters_mm):
         a1.plot(widths_mm, kt[i] / 1e6, "o-", label=f"groove bottom {d:g} mm")
         a2.plot(widths_mm, kj[i] / 1e7, "o-", label=f"groove bottom {d:g} mm")
-    a2.axhspan(4.0, 5.2, color="0.85", zorder=0, label="seed 002 range 4.0-5.2e7")
+    a2.axhspan(4.0, 5.2, color="0.85", zorder=0, label="Xu et al. 2020 range 4.0-5.2e7")
     a1.set(xlabel="groove width g [mm]", ylabel="k_t between O_L and O_R [MN m/rad]",
            title="torsional stiffness of the sun body")
     a2.set(xlabel="groove width g [mm]", ylabel="K_j = k_t l_LR [1e7 N m^2]",
@@ -67,9 +67,7 @@ def plot(path: Path, widths_mm, diameters_mm, kt, kj, base) -> Path:
     fig.suptitle(f"{base.gear.name}: z = {base.gear.teeth}, m_n = {base.gear.module * 1e3:g} mm, "
                  f"halves {base.gear.half_width * 1e3:g} mm; {base.teeth_model}, "
                  f"{base.coupling} coupling, P2 FE", fontsize=10)
-    atomic_write(path, lambda p: fig.savefig(p, dpi=120, format="png"))
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -91,10 +89,10 @@ def main(argv: list[str] | None = None) -> dict:
         "k_t [N m/rad]": kt.ravel(), "K_j [N m^2]": kj.ravel(), "n_dof": dofs.ravel()}),
         plot(out / "groove_sweep.png", widths, diameters, kt, kj, base)]
     if not args.no_picture:
-        from pipeline.fem.groove.render import render_twisted_body
+        from pipeline.viz.groove import render_twisted_body
 
         a = analyse_groove(dataclasses.replace(base, mesh_size=h * 1e-3))
-        files.append(render_twisted_body(a, out / "twist.png", base.sun_torque or 1e5))
+        files.append(save(render_twisted_body(a, base.sun_torque or 1e5), out / "twist.png"))
     write_run_record(out, {"config": dataclasses.asdict(base), "widths_mm": widths,
                            "diameters_mm": diameters, "mesh_size_mm": h}, files,
                      "workflows/groove_sweep.py" + (" --full" if args.full else ""))

@@ -1,13 +1,13 @@
 """Analytical vs FE-enriched mesh stiffness over a mesh cycle (issue: FE validation).
 
-For the seed 001 spur pair (friction 0 / 0.05 / 0.1; assembly conditions 1-3)
-and the seed 004-like helical pair, three mesh stiffness curves are computed:
+For the spur pair of the assembly-error paper (friction 0 / 0.05 / 0.1; assembly conditions 1-3)
+and Yang et al. (2026)-like helical pair, three mesh stiffness curves are computed:
 
 * ``analytical`` - the slice potential-energy method of :mod:`pipeline.stiffness`
   (exact profile, Sainsot foundation, constant Hertz term, friction);
 * ``optimised slice`` - the loaded tooth contact of :mod:`pipeline.contact` on the
-  same analytical slice compliance with seed 004's eq. 24 local contact
-  (seed 004's optimised slice method);
+  same analytical slice compliance with Yang et al. (2026)'s, eq. 24 local contact
+  (Yang et al. (2026)'s optimised slice method);
 * ``FE-enriched`` - the same loaded tooth contact on the 2D FE influence
   coefficients of both gears (:mod:`pipeline.fem.fe_source`, rim coupling between
   the tooth pairs in contact, Hertz near field removed), with eq. 24 local contact
@@ -17,7 +17,7 @@ The FE-enriched and the optimised slice curves differ only in the structural
 compliance, so their difference is the error of the analytical tooth + foundation
 model; the analytical curve additionally differs in the local contact model.
 
-Findings (seed 001, whole gears, plane strain, refinement 0.5, 12 positions; the
+Findings (the assembly-error paper, whole gears, plane strain, refinement 0.5, 12 positions; the
 refinement 1.0 mean differs by 0.6 %): the FE-enriched mean is 26 % below the
 analytical one (-25 % for condition 3) and 18 % below the optimised slice curve.
 The gap is in double contact only (max -30 %); single contact (min) agrees within
@@ -25,16 +25,16 @@ The gap is in double contact only (max -30 %); single contact (min) agrees withi
 contact through the gear body: G_01 = 1.88e-9 m/N against diagonals of
 3.6-4.8e-9 m/N, constant over the mesh cycle (a rigid rotation of the rim), of
 which 1.06e-9 m/N is the torsion of the annulus between the 21 mm bore (assumed,
-not given by seed 001) and the root circle, r_b^2 (1/r_i^2 - 1/r_f^2) / (4 pi G b)
+not given by the assembly-error paper) and the root circle, r_b^2 (1/r_i^2 - 1/r_f^2) / (4 pi G b)
 per gear. The slice model adds the tooth pairs in parallel without coupling, which
 alone accounts for the double-contact gap (coupled vs uncoupled two-spring
 stiffness with these numbers: -30 %). The analytical vs optimised slice
-difference (-10 %) is the local contact model (constant Hertz vs seed 004 eq. 24).
+difference (-10 %) is the local contact model (constant Hertz vs Yang et al. 2026, eq. 24).
 Friction (0 -> 0.1) changes the means by < 0.2 %. A clamped 5-tooth sector instead
 of the whole gear gives +55 % (free cuts: -94 %), hence ``teeth=None``.
 
-Findings (seed 004 helical pair, whole gears, plane strain, refinement 1.0, 30 radii,
-20 slices, 36 positions; bores 45/150 mm and b = 130 mm assumed, not given by seed 004):
+Findings (Yang et al. 2026 helical pair, whole gears, plane strain, refinement 1.0, 30 radii,
+20 slices, 36 positions; bores 45/150 mm and b = 130 mm assumed, not given by Yang et al. (2026)):
 FE-enriched mean 2.19e9 N/m against 2.75e9 N/m analytical, -20.4 % (max -21.2 %, min
 -19.5 %), and -11.0 % against the optimised slice curve. With eps_alpha = 2.05 every
 transverse section always has two (5 % of the cycle three) tooth pairs in contact, so
@@ -42,14 +42,14 @@ the body/rim coupling that the spur pair shows in double contact only acts over 
 whole cycle: removing the off-diagonal FE terms raises the FE-enriched stiffness by
 25 % (coupled vs uncoupled: -20.0 %, range -19.0 to -21.2 %). Per unit width, two pairs
 in one section have FE diagonals 8.1 and 7.3e-11 m^2/N and coupling 2.4e-11 m^2/N
-(29-32 % of the diagonals, against 39-52 % for seed 001's smaller bore and shallower
-teeth); 0.95e-11 of it is the torsion of the two annuli between bore and root circle
+(29-32 % of the diagonals, against 39-52 % for the assembly-error paper's smaller bore and
+shallower teeth); 0.95e-11 of it is the torsion of the two annuli between bore and root circle
 (0.47 + 0.48e-11), the rest decays slowly with the tooth distance (neighbour 0.97 / 1.33,
 four teeth away 0.61 / 1.00e-11 m^2/N, pinion / gear). Without the coupling the FE
 agrees with the analytical curve (mean -0.4 %) by a cancellation: the FE diagonal is
 12 % less compliant than tooth + Sainsot foundation (+11.3 % stiffness vs the optimised
 slice; at refinement 0.5 plane strain gives +12.1 %, plane stress +5.9 %, so about half
-is plane strain vs the analytical model's E), while seed 004's eq. 24 local contact is
+is plane strain vs the analytical model's E), while Yang et al. (2026)'s, eq. 24 local contact is
 10.6 % softer than the constant Hertz term.
 Refinement 0.3 / 10 radii / 10 slices / 4 positions gives -19.6 % (FE mean +1.7 %).
 
@@ -69,6 +69,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from pipeline.config import Gearbox, load_gearbox
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load
@@ -80,13 +81,13 @@ from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at
-from pipeline.viz.pair_plots import _plt, save
+from pipeline.viz import save
 
 HERE = Path(__file__).resolve().parent
 UM = 1e-6
-SEED001 = HERE / "configs" / "spur_pair_assembly_errors.toml"
-SEED004 = HERE / "configs" / "traction_helical_pair.toml"
-CONDITIONS = {  # seed 001 table: gear centre displaced by (e_x, e_y), um
+SPUR_CONFIG = HERE / "configs" / "spur_pair_assembly_errors.toml"
+HELICAL_CONFIG = HERE / "configs" / "traction_helical_pair.toml"
+CONDITIONS = {  # the assembly-error paper table: gear centre displaced by (e_x, e_y), um
     "condition 2": (10.0, 10.0),
     "condition 3": (100.0, 100.0),
 }
@@ -94,15 +95,15 @@ CONDITIONS = {  # seed 001 table: gear centre displaced by (e_x, e_y), um
 
 def cases() -> list[tuple[str, Gearbox]]:
     """(name, configuration) of every compared case."""
-    base = load_gearbox(SEED001)
+    base = load_gearbox(SPUR_CONFIG)
     out = []
     for mu in (0.0, 0.05, 0.1):
-        out.append((f"seed001 mu={mu}", dataclasses.replace(
+        out.append((f"spur mu={mu}", dataclasses.replace(
             base, stiffness=dataclasses.replace(base.stiffness, friction=mu))))
     for name, (ex, ey) in CONDITIONS.items():
         errors = AssemblyErrors((0.0, 0.0), (ex * UM, ey * UM))
-        out.append((f"seed001 {name}", dataclasses.replace(base, assembly_errors=errors)))
-    out.append(("seed004 helical", load_gearbox(SEED004)))
+        out.append((f"spur {name}", dataclasses.replace(base, assembly_errors=errors)))
+    out.append(("helical", load_gearbox(HELICAL_CONFIG)))
     return out
 
 
@@ -161,8 +162,8 @@ def write_summary_csv(path: Path, table: dict) -> Path:
 
 
 def plot_case(name: str, res: dict):
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(8, 4))
+    fig = Figure(figsize=(8, 4))
+    ax = fig.subplots()
     deg = np.degrees(res["pinion_angle"])
     ax.plot(deg, res["analytical"] * 1e-8, label="analytical (slice potential energy)")
     ax.plot(deg, res["optimised_slice"] * 1e-8, "--", label="optimised slice (LTCA, eq. 24)")

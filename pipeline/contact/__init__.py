@@ -20,7 +20,7 @@ the loaded approach and the mesh stiffness.
   loads, load sharing, transmission error, mesh stiffness, unit loads (:mod:`.ltca`).
 - Load maps over the flank (pyvista PNG, VTU) in :mod:`.loadmap`; the
   ``gearpipe contact`` command in :mod:`.commands` (options: :mod:`.options`).
-- :class:`HertzLineContact` - Weber-Banaschek local approach, seed 004 eq. (24),
+- :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),
   and Hertz half-width / maximum pressure (:mod:`.hertz`).
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
 """

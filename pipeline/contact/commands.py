@@ -17,12 +17,7 @@ import numpy as np
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.contact.analysis import TOOTH_MODELS, analyse_contact, analytical_compliance
-from pipeline.contact.loadmap import (
-    flank_load_map,
-    plot_load_map_2d,
-    render_load_map,
-    write_load_map_vtu,
-)
+from pipeline.contact.loadmap import flank_load_map, write_load_map_vtu
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.mesh import stiffness_at
@@ -32,7 +27,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
     parser.add_argument("--tooth-model", choices=TOOTH_MODELS, default="exact",
                         help="exact profile with fillet (default) or the classical involute "
-                             "clamped at the base circle (Yang et al. 2026 eqs. 11-13)")
+                             "clamped at the base circle (Yang et al. 2026, eqs. 11-13)")
 
 
 def write_cycle(cyc: LoadedMeshCycle, out: Path) -> list[Path]:
@@ -40,34 +35,10 @@ def write_cycle(cyc: LoadedMeshCycle, out: Path) -> list[Path]:
             write_csv(out / "contact_points.csv", cyc.point_columns())]
 
 
-def plot_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str):
-    """Mesh stiffness, transmission error and load sharing over the cycle (matplotlib)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    deg = np.degrees(cyc.pinion_angle)
-    fig, ax = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
-    ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, label="LTCA tangent dP/dx")
-    ax[0].plot(deg, cyc.mesh_stiffness_secant * 1e-9, "--", label="LTCA secant P/x")
-    ax[0].plot(deg, k_slice * 1e-9, ":", label="slice method (pipeline.stiffness)")
-    ax[0].set_ylabel("mesh stiffness [1e9 N/m = kN/um]")
-    ax[0].legend(fontsize=8)
-    ax[1].plot(deg, cyc.transmission_error * 1e6)
-    ax[1].set_ylabel("loaded static TE [um]")
-    for j, k in enumerate(cyc.pair_index):
-        if cyc.pair_loads[:, j].any():
-            ax[2].plot(deg, cyc.load_share[:, j], label=f"tooth pair {k}")
-    ax[2].set_ylabel("load share [-]")
-    ax[2].set_xlabel("pinion angle [deg]")
-    ax[2].legend(fontsize=8)
-    ax[0].set_title(title)
-    return fig
-
-
 def run(args: argparse.Namespace) -> int:
-    from pipeline.viz.pair_plots import save
+    from pipeline.viz import save
+    from pipeline.viz.contact import plot_contact_cycle
+    from pipeline.viz.loadmap import plot_load_map_2d, render_load_map
 
     box = load(args)
     pair, opts = box.actual_pair, box.contact
@@ -80,12 +51,12 @@ def run(args: argparse.Namespace) -> int:
     title = (f"{box.name}: P = {cyc.load:.0f} N, local contact {opts.local_contact}, "
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
     files = write_cycle(cyc, out)
-    files.append(save(plot_cycle(cyc, ref.total, title), out / "contact_cycle.png"))
+    files.append(save(plot_contact_cycle(cyc, ref.total, title), out / "contact_cycle.png"))
     lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
     files.append(save(plot_load_map_2d(lm, title), out / "load_map_2d.png"))
     files.append(write_load_map_vtu(pair, lm, out / "load_map.vtu"))
     if opts.render:
-        files.append(render_load_map(pair, lm, out / "load_map.png", title))
+        files.append(save(render_load_map(pair, lm, title), out / "load_map.png"))
     summary = {
         **cyc.summary(),
         "slice_method_mean_N_per_m": ref.mean,

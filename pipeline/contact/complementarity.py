@@ -1,7 +1,7 @@
 """Loaded tooth contact of one mesh position: compatibility, F >= 0 and load balance.
 
 Find the loads ``F`` (N, shape (n,)) on the ``n`` candidate contact points and the
-approach ``x_s`` (m) such that (seed 004, eqs. 27-29)
+approach ``x_s`` (m) such that (Yang et al. 2026, eqs. 27-29)
 
     G F + u_c(F) + eps - x_s = 0   where F > 0,
     G F + u_c(F) + eps - x_s >= 0  where F = 0   (the gap stays open),

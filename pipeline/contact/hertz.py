@@ -21,13 +21,13 @@ for body ``k``
 This is the integral of the plane-strain normal strain along the symmetry axis
 of a half-plane under the Hertz pressure, from the surface to depth ``h_k``, to
 leading order in ``(a / h_k)^2`` (checked by quadrature of the Flamant solution
-in tests/test_hertz.py). For two equal materials the sum ``u_1 + u_2`` is seed
-004 eq. (24):
+in tests/test_hertz.py). For two equal materials the sum ``u_1 + u_2`` is eq. (24)
+of Yang et al. (2026):
 
     u_c = 4 F (1 - nu^2) / (pi E b) * (ln(2 sqrt(h1 h2) / a) - nu / (2 (1 - nu))),
 
 with ``F = w b`` the slice load and ``b`` the slice width, and ``a`` as above
-(seed 004 writes ``a = sqrt(8 F rho_eq (1 - nu^2) / (pi E b))``, the same thing).
+(Yang et al. 2026 write ``a = sqrt(8 F rho_eq (1 - nu^2) / (pi E b))``, the same thing).
 
 ``u_c`` is zero at zero load, increasing and concave in ``F`` (its tangent
 ``du_c/dF = u_c/F - (2/(pi b)) sum_k (1 - nu_k^2)/E_k / 2`` falls like ``ln F``),
@@ -128,7 +128,7 @@ def _positive_array(field_name: str, value: ArrayLike) -> np.ndarray:
 
 @dataclass(frozen=True)
 class HertzLineContact:
-    """Weber-Banaschek local approach of ``n`` slice contacts (seed 004 eq. 24).
+    """Weber-Banaschek local approach of ``n`` slice contacts (Yang et al. 2026, eq. 24).
 
     Attributes
     ----------
@@ -227,7 +227,8 @@ class HertzLineContact:
                                   self.contact_modulus)
 
     def approach(self, loads: ArrayLike) -> np.ndarray:
-        """Local contact approach u_c (m) at slice loads F (N), seed 004 eq. (24); u_c(0) = 0."""
+        """Local contact approach u_c (m) at slice loads F (N), Yang et al. (2026), eq. (24);
+        u_c(0) = 0."""
         F = np.asarray(loads, dtype=float)
         pos = F > 0.0
         t = self._log_terms(F)
@@ -258,7 +259,7 @@ class HertzLineContact:
 @dataclass(frozen=True)
 class LinearLocalCompliance:
     """Load-independent local compliance ``u_c = c F`` (e.g. the constant Hertz
-    compliance ``4 (1 - nu^2) / (pi E b)`` of seed 001 per slice).
+    compliance ``4 (1 - nu^2) / (pi E b)`` of the assembly-error paper per slice).
 
     Attributes
     ----------

@@ -9,8 +9,8 @@ as it rolls through the mesh. :func:`flank_load_map` puts them on a regular grid
 within each slice); :func:`flank_surface` maps the grid onto the 3D pinion flank
 (involute at radius ``r = sqrt(s^2 + r_b1^2)``, swept along the helix by
 rotating the transverse section through ``z tan(beta) / r_ref``);
-:func:`render_load_map` draws it with pyvista (PNG, colour bar in N/mm, axes in
-mm) and :func:`write_load_map_vtu` saves it for ParaView.
+:func:`write_load_map_vtu` saves it for ParaView; :mod:`pipeline.viz.loadmap`
+draws it (pyvista PNG, colour bar in N/mm, axes in mm, and a 2D matplotlib map).
 """
 
 from __future__ import annotations
@@ -129,59 +129,16 @@ def load_map_grid(pair: GearPair, load_map: FlankLoadMap):
     return grid
 
 
+def tooth_body_grid(gear: GearSpec, z: np.ndarray):
+    """pyvista StructuredGrid of one whole tooth of ``gear`` (transverse outline swept over
+    the face positions ``z`` (m) along the helix), coordinates in mm."""
+    import pyvista as pv
+
+    outline = _tooth_outline(gear)
+    return _grid(pv, _sweep(gear, outline[:, 0], outline[:, 1], z) * 1e3)
+
+
 def write_load_map_vtu(pair: GearPair, load_map: FlankLoadMap, path: str | Path) -> Path:
     """Save the loaded flank as an unstructured VTU (coordinates in mm), atomically."""
     grid = load_map_grid(pair, load_map).cast_to_unstructured_grid()
     return atomic_write(path, lambda p: grid.save(p, binary=True))
-
-
-def render_load_map(pair: GearPair, load_map: FlankLoadMap, path: str | Path,
-                    title: str = "", window_size: tuple[int, int] = (1000, 800)) -> Path:
-    """PNG of the unit load on the 3D pinion tooth (off-screen), colour bar in N/mm."""
-    import pyvista as pv
-
-    flank = load_map_grid(pair, load_map)
-    gear = pair.pinion
-    outline = _tooth_outline(gear)
-    body = _grid(pv, _sweep(gear, outline[:, 0], outline[:, 1], load_map.z) * 1e3)
-    # lift the coloured flank a hair off the grey tooth so the two do not z-fight
-    centre = np.array([0.0, gear.root_radius * 1e3, 0.0])
-    d = flank.points - centre
-    d[:, 2] = 0.0
-    flank.points = flank.points + 2e-3 * gear.module * 1e3 * d / np.linalg.norm(
-        d, axis=1, keepdims=True)
-    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-    try:
-        plotter.add_mesh(body, color="lightgrey", smooth_shading=True)
-        plotter.add_mesh(flank, scalars="unit_load_N_per_mm", cmap="viridis",
-                         scalar_bar_args={"title": "unit load p [N/mm]", "vertical": False,
-                                          "position_x": 0.25, "position_y": 0.04,
-                                          "width": 0.5, "height": 0.07, "fmt": "%.0f"})
-        # x spans only the tooth thickness and is seen end-on: its title, no crowded labels
-        plotter.show_bounds(xtitle="x", ytitle="y [mm]", ztitle="face z [mm]",
-                            location="outer", grid=False, show_xlabels=False, n_ylabels=3,
-                            fmt="%.0f")
-        if title:
-            plotter.add_text(title, font_size=10)
-        plotter.view_vector((1.0, 0.25, 0.6), viewup=(0.0, 1.0, 0.0))
-        out = atomic_write(path, lambda p: plotter.screenshot(p))
-    finally:
-        plotter.close()
-    return out
-
-
-def plot_load_map_2d(load_map: FlankLoadMap, title: str = ""):
-    """Matplotlib map of the unit load over the plane of action (N/mm); returns the figure."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3,
-                         load_map.unit_load * 1e-3, shading="gouraud", cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label="unit load p [N/mm]")
-    ax.set_xlabel("face position z [mm]")
-    ax.set_ylabel("pinion contact radius [mm]")
-    ax.set_title(title or "unit load over the pinion flank (one mesh cycle)")
-    return fig

@@ -3,20 +3,21 @@
 For each mesh position: the source gives the candidate points and their
 structural compliance ``G``; :mod:`pipeline.contact.separations` gives the
 initial gaps; a local contact model gives ``u_c(F)``; and
-:func:`pipeline.contact.complementarity.solve_contact` solves seed 004 eqs.
+:func:`pipeline.contact.complementarity.solve_contact` solves Yang et al. (2026) eqs.
 (27)-(29) for the loads and the approach, checking its residual. Positions are
 solved in order, each warm-started from the loads of the previous position on
 the points they share (same tooth pair, same face position).
 
 Local contact models (``local``):
 
-* ``"weber"`` - the nonlinear local approach of seed 004 eq. (24)
+* ``"weber"`` - the nonlinear local approach of Yang et al. (2026), eq. (24)
   (:class:`~pipeline.contact.hertz.HertzLineContact`), with the profile radii of
   curvature and the distances ``h_1, h_2`` from the contact point along the load
-  line to each tooth's centreline. This is seed 004's optimised slice method.
+  line to each tooth's centreline. This is Yang et al. (2026)'s optimised slice method.
 * ``"linear"`` - the constant Hertz compliance ``4 (1 - nu^2) / (pi E w)`` per
-  slice (seed 001 / seed 004 eq. 7), exactly what :mod:`pipeline.stiffness.mesh`
-  adds. With independent slices, no friction difference and ``eps = 0`` the
+  slice (the assembly-error paper / Yang et al. 2026, eq. 7), exactly what
+  :mod:`pipeline.stiffness.mesh` adds. With independent slices, no friction difference and ``eps =
+  0`` the
   LTCA mesh stiffness then equals the analytical slice stiffness exactly (every
   slice is loaded and ``k = 1^T G^-1 1 = sum_i 1 / G_ii``).
 * ``"none"`` - structural compliance only.
@@ -43,11 +44,11 @@ LOCAL_MODELS = ("weber", "linear", "none")
 
 
 def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
-    """Seed 004 eq. (24) local approach of the candidate points (n,).
+    """Yang et al. (2026), eq. (24) local approach of the candidate points (n,).
 
     ``h_k`` is the distance from the contact point along the load line (the
     line of action) to the centreline of tooth ``k``: ``h_c / cos(load angle)``
-    with the half thickness ``h_c`` at the load point (the ``k_1, k_2`` of seed 004).
+    with the half thickness ``h_c`` at the load point (the ``k_1, k_2`` of Yang et al. 2026).
     """
     s = np.clip(points.s, pair.s_start, pair.s_end)
     rho1, rho2 = pair.curvature_radii(s)

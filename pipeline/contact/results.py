@@ -14,7 +14,7 @@ approach along it):
   contact (everywhere except isolated loads). This is the stiffness a
   lumped-parameter dynamic model linearised about this load needs.
 * ``mesh_stiffness_pointwise`` ``k_m = sum_{i in A} F_i / (x_s - eps_i)``, the
-  sum of the secant stiffnesses of the loaded points (seed 004, section 2.3).
+  sum of the secant stiffnesses of the loaded points (Yang et al. 2026, section 2.3).
   It equals ``k_s`` when ``eps = 0``, and ``k_t`` for a linear diagonal ``G``.
 
 At zero load the three are the limits ``P -> 0+``: ``1^T G_AA^{-1} 1`` over the
@@ -57,7 +57,9 @@ class ContactSolution:
     newton_iterations : number of linearisations of u_c (0 for a linear problem).
     mesh_stiffness_secant : k_s, N/m (module docstring).
     mesh_stiffness_tangent : k_t = dP/dx_s, N/m (module docstring).
-    mesh_stiffness_pointwise : k_m, N/m, seed 004 (module docstring).
+    mesh_stiffness_pointwise : k_m, N/m: the pointwise (slice-sum) mesh stiffness of
+        Yang et al. (2026), section 2.3, sum of the loaded points' secant stiffnesses
+        (module docstring); CSV column ``mesh_stiffness_pointwise [N/m]``.
     label : mesh-position label used in messages, or None.
     """
 
@@ -166,8 +168,8 @@ class LoadedMeshCycle:
     mesh_stiffness : tangent mesh stiffness k = dP/dx_s, N/m (exact, from the loaded
         set; see :class:`ContactSolution`).
     mesh_stiffness_secant : P / (x_s - min eps), N/m.
-    mesh_stiffness_pointwise : k_m = sum F_i / (x_s - eps_i), N/m, the pointwise mesh
-        stiffness of Yang et al. (2026).
+    mesh_stiffness_pointwise : pointwise (slice-sum) mesh stiffness of Yang et al. (2026),
+        k_m = sum F_i / (x_s - eps_i), N/m; CSV column ``mesh_stiffness_pointwise [N/m]``.
     residual, tolerance : complementarity residual and its accepted bound, m.
     newton_iterations : linearisations of the local contact approach.
     max_unit_load : largest unit load along any contact line, N/m.

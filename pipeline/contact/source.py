@@ -7,7 +7,7 @@ the solver adds itself (:mod:`pipeline.contact.hertz`). Two sources implement
 the :class:`ComplianceSource` protocol:
 
 * :class:`SliceCompliance` (here): the analytical slice potential-energy method
-  of seed 004 (section 2.1-2.4) on the tooth models of :mod:`pipeline.stiffness`;
+  of Yang et al. (2026) (section 2.1-2.4) on the tooth models of :mod:`pipeline.stiffness`;
 * the FE influence coefficients of :mod:`pipeline.fem` (FE-enriched stiffness).
 
 Conventions (the same as :mod:`pipeline.stiffness.mesh`)
@@ -23,11 +23,11 @@ Conventions (the same as :mod:`pipeline.stiffness.mesh`)
   contact line through a point of face width ``w_i`` is ``w_i / cos(beta_b)``
   long, so the unit load along the contact line is ``p_i = F_i / w_i`` (N/m).
 
-Slice coupling. Seed 004 treats the slices as independent cantilevers: its
+Slice coupling. Yang et al. (2026) treat the slices as independent cantilevers: its
 compliance matrix ``lambda_g`` (eq. 28) is diagonal, ``lambda_g,ii`` the
 bending + shear + axial compression + foundation compliance of both teeth of
 slice ``i`` (eq. 25 without the Hertz term). That is the default here
-(``coupling = 0``). As an option (not in seed 004) neighbouring slices of the
+(``coupling = 0``). As an option (not in Yang et al. 2026) neighbouring slices of the
 same tooth can be coupled: ``G = D^{1/2} (I - kappa L) D^{1/2}``, with ``D`` the
 diagonal slice compliance and ``L`` the graph Laplacian of the chain of slices
 in contact on each tooth. Rows of ``I - kappa L`` sum to one, so a uniformly
@@ -151,19 +151,21 @@ def slice_points(pair: GearPair, slices: int, position: float) -> ContactPoints:
 
 @dataclass(frozen=True)
 class SliceCompliance:
-    """Analytical slice compliance (seed 004 section 2.1-2.4) as a :class:`ComplianceSource`.
+    """Analytical slice compliance (Yang et al. 2026, section 2.1-2.4) as a
+    :class:`ComplianceSource`.
 
     Attributes
     ----------
     model : tooth models of the pair (:class:`~pipeline.stiffness.mesh.PairModel`).
     slices : slices across the face width of a helical gear (spur gears use one).
     friction : friction model (sign convention of :mod:`pipeline.stiffness.friction`);
-        friction changes the bending/compression split of each slice (seed 004 eqs. 19-23).
+        friction changes the bending/compression split of each slice (Yang et al. 2026, eqs.
+        19-23).
     operating : operating point (driver, and load/speed for the EHL friction coefficient).
     foundation_correction : factor on the body stiffness while more than one tooth
         pair is in contact, as in :func:`pipeline.stiffness.mesh.stiffness_at`.
     coupling : kappa in [0, 0.25), coupling of neighbouring slices (module docstring);
-        0 is seed 004's independent slices.
+        0 is Yang et al. (2026)'s independent slices.
     """
 
     model: PairModel
@@ -196,7 +198,7 @@ class SliceCompliance:
     def diagonal(self, position: float) -> np.ndarray:
         """Independent-slice compliance of the candidate points, m/N, shape (n,).
 
-        Bending + shear + axial + foundation of both teeth (seed 004 eq. 25 without
+        Bending + shear + axial + foundation of both teeth (Yang et al. 2026, eq. 25 without
         the Hertz term), per slice: the per-unit-width compliance over the slice width.
         """
         pair = self.pair
@@ -236,8 +238,8 @@ class SliceCompliance:
     def hertz_compliance(self, position: float) -> np.ndarray:
         """Constant Hertz compliance of each slice, m/N, (n,): ``4 (1 - nu^2) / (pi E w)``.
 
-        The load-independent local contact term of the slice method (seed 004 eq. 7,
-        seed 001), the one :mod:`pipeline.stiffness.mesh` adds to every slice.
+        The load-independent local contact term of the slice method (Yang et al. 2026, eq. 7,
+        the assembly-error paper), the one :mod:`pipeline.stiffness.mesh` adds to every slice.
         """
         pts = self.points(position)
         return self.model.hertz / pts.width
@@ -248,7 +250,7 @@ class FrictionCorrected:
     """A normal-load compliance source (e.g. FE) with the slice model's friction effect added.
 
     FE influence coefficients are computed for loads normal to the flank. Friction
-    tilts the tooth load (seed 004 eqs. 19-23) and so changes the bending and
+    tilts the tooth load (Yang et al. 2026, eqs. 19-23) and so changes the bending and
     compression of each tooth; that change is taken from the analytical slice
     model - the slice compliance with friction minus the one without - and added
     on the diagonal of ``base.matrix``. Both sources must use the same candidate

@@ -41,7 +41,7 @@ class Assembly:
     carrier_speed : Omega in rad/s for bodies in the rotating (carrier) frame.
     name : label.
     modal_damping_ratio : zeta (-) of a constant modal damping added to every elastic
-        mode of the mean stiffness, ``C += M Phi diag(2 zeta omega) Phi^T M`` (seed 002
+        mode of the mean stiffness, ``C += M Phi diag(2 zeta omega) Phi^T M`` (Xu et al. 2020
         sec. 2.3 "constant modal damping"); 0 adds none.
     """
 

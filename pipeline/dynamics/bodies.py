@@ -10,7 +10,7 @@ Frames: translations are measured in the body's own frame, turned by
 this for radial/tangential coordinates. When ``rotating_frame`` is true the
 assembly frame of this body rotates at the carrier speed Omega, which adds the
 gyroscopic terms ``2 m Omega`` and the centripetal softening ``m Omega^2`` on
-x, y (seed 002 eq. 22; Lin and Parker 1999).
+x, y (Xu et al. 2020, eq. 22; Lin and Parker 1999).
 """
 
 from __future__ import annotations

@@ -80,12 +80,13 @@ def _emit(args, summary: dict, lines: list[str]) -> None:
 
 def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
-    from pipeline.dynamics.plots import plot_mode_shapes
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import plot_mode_shapes
 
     box, model, out = _setup(args, "modes")
     res = analyse_modes(model)
     files = [write_csv(out / "modes.csv", res.columns()),
-             plot_mode_shapes(res, out / "mode_shapes.png", count=16 if args.full else 8)]
+             save(plot_mode_shapes(res, count=16 if args.full else 8), out / "mode_shapes.png")]
     summary = {**res.summary(), "out": str(out)}
     write_run_record(out, box.to_dict(), files, f"gearpipe modes {args.config}")
     lines = [f"{len(res.dof_names)} DOF, results in {out}",
@@ -102,8 +103,8 @@ def run_modes(args) -> int:
 
 def run_response(args) -> int:
     """Steady dynamic response: DTE and mesh forces in time, DTE spectrum."""
-    from pipeline.dynamics.plots import (
-        dte_spectrum,
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import (
         plot_harmonic_contributions,
         plot_spectrum,
         plot_time_history,
@@ -114,16 +115,13 @@ def run_response(args) -> int:
                               refine=2 if args.full else 1)
     resp, hr = result.response, result.harmonic
     files = [write_csv(out / "time_history.csv", result.columns())]
-    f, a = dte_spectrum(resp, 0)
+    f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
-    files.append(
-        plot_time_history(
-            [resp], [box.name], out / "time_history.png", title=f"{box.name}: {resp.mesh_names[0]}"
-        )
-    )
-    files.append(plot_spectrum([resp], [box.name], out / "dte_spectrum.png"))
+    fig = plot_time_history([resp], [box.name], title=f"{box.name}: {resp.mesh_names[0]}")
+    files.append(save(fig, out / "time_history.png"))
+    files.append(save(plot_spectrum([resp], [box.name]), out / "dte_spectrum.png"))
     if hr is not None:
-        files.append(plot_harmonic_contributions([hr], [box.name], out / "harmonics.png"))
+        files.append(save(plot_harmonic_contributions([hr], [box.name]), out / "harmonics.png"))
     summary = {**result.summary(), "out": str(out)}
     write_json(out / "summary.json", summary)
     files.append(out / "summary.json")
@@ -142,7 +140,8 @@ def run_response(args) -> int:
 
 def run_sweep(args) -> int:
     """RMS dynamic mesh force against mesh frequency."""
-    from pipeline.dynamics.plots import plot_sweep
+    from pipeline.viz import save
+    from pipeline.viz.dynamics import plot_sweep
 
     box, model, out = _setup(args, "sweep")
     res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
@@ -152,7 +151,7 @@ def run_sweep(args) -> int:
     shown = [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
         res.mesh_names[:2]
     )
-    files.append(plot_sweep([res], [box.name], shown, out / "sweep.png", title=box.name))
+    files.append(save(plot_sweep([res], [box.name], shown, title=box.name), out / "sweep.png"))
     peaks = {m: res.peaks(m) for m in shown}
     write_run_record(out, box.to_dict(), files, f"gearpipe sweep {args.config}")
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}

@@ -13,12 +13,12 @@ force on the coordinates is ``-F v`` with ``F = k(t) (delta - e(t)) + c (d/dt)(d
 A transmission error ``e`` (m) is a geometric separation of the flanks, so a
 positive ``e`` unloads the mesh.
 
-Friction (seed 000 eqs. 15-17): the friction force ``f = K_f(t) delta`` and the
+Friction (Jin et al. 2018, eqs. 15-17): the friction force ``f = K_f(t) delta`` and the
 friction torques ``T_i = K_Tfi(t) delta`` are written as :class:`FrictionLoad`
 entries, each a signed periodic coefficient (N/m or N m/m) and the generalized
 force pattern it acts along (a measure, e.g. the in-plane direction normal to the
 line of action on both gears, or one gear's rotation). The friction force of the
-mesh damping force is neglected, as in seed 000 (K_f = lambda mu K).
+mesh damping force is neglected, as in Jin et al. (2018) (K_f = lambda mu K).
 """
 
 from __future__ import annotations
@@ -161,7 +161,7 @@ class GearMesh:
     phase : delay of this mesh in mesh periods: ``k(tau - phase)``.
     order : mesh cycles per system period (1 for one-stage systems).
     transmission_error : e(tau) in m over one mesh period, or ``None``.
-    friction : friction forces/torques of seed 000.
+    friction : friction forces/torques of Jin et al. (2018).
     """
 
     name: str

@@ -74,7 +74,8 @@ def contact_line_stiffness(
     samples: int = 360,
     period: float = float("nan"),
 ) -> PeriodicSignal:
-    """Helical mesh stiffness ``k(t) = k_0 L(t)`` from the contact-line length (seed 002 eq. 13).
+    """Helical mesh stiffness ``k(t) = k_0 L(t)`` from the contact-line length (Xu et al. 2020, eq.
+    13).
 
     On the plane of action (transverse length ``eps_alpha`` and axial length
     ``eps_beta``, both in base pitches) each tooth pair touches along a line
@@ -118,14 +119,15 @@ def constant_pair_excitation(
     samples: int = 360,
     period: float = float("nan"),
 ):
-    """Mesh stiffness and seed 000 friction coefficients of a spur mesh, constant pair stiffness.
+    """Mesh stiffness and friction coefficients (Jin et al. 2018) of a spur mesh, constant pair
+    stiffness.
 
     Each tooth pair in contact adds ``k_pair``; pairs enter at roll coordinate
     ``s_start`` and leave at ``s_end`` one base pitch apart (pinion driving). The
     friction of a pair is ``mu lambda k_pair delta`` along the profile normal ``n``
     (``lambda = +1`` before the pitch point, ``-1`` after: it opposes the sliding of
     the pinion flank), with arms ``rho1 = s`` on the pinion and ``rho2 = T1T2 - s``
-    on the gear (seed 000 eqs. 15-16). Signs follow
+    on the gear (Jin et al. 2018, eqs. 15-16). Signs follow
     :mod:`pipeline.dynamics.mesh_geometry` (+n on the pinion; torques positive in
     each gear's own sense of rotation).
 

@@ -18,7 +18,7 @@ Two couplings are offered:
   the solve uses the Woodbury identity: per-harmonic solves with Z_h, then one
   dense "capacitance" system of size n_terms (2H+1). ``method="dense"`` assembles
   the whole n (2H+1) system instead (for checks).
-* ``"first_order"`` (seed 000 sec. 5): the fluctuation acts only on the static
+* ``"first_order"`` (Jin et al. 2018, sec. 5): the fluctuation acts only on the static
   deflection, ``Z_h Q_h = F_h - sum_j u_j c'_{j,h} (v_j . Q_0)``, so every order is
   an independent time-invariant problem and the response is the superposition of
   the responses to each order. It neglects products of fluctuations.
@@ -81,7 +81,7 @@ def solve_coefficients(
     ----------
     system : a system without rigid-body modes.
     n_harmonics : H (>= 1); the response keeps orders -H..H of 1/T.
-    coupling : "full" (Hill) or "first_order" (seed 000).
+    coupling : "full" (Hill) or "first_order" (Jin et al. 2018).
     method : "woodbury" or "dense" (full coupling only).
     """
     H = check_int_range("n_harmonics", n_harmonics, 1, 5000)
@@ -140,7 +140,7 @@ def harmonic_balance(
     ----------
     system : any system (rigid-body modes are removed first).
     n_harmonics : H, highest harmonic order of 1/T kept.
-    coupling : "full" (Hill, agrees with time integration) or "first_order" (seed 000).
+    coupling : "full" (Hill, agrees with time integration) or "first_order" (Jin et al. 2018).
     method : "woodbury" (fast) or "dense".
     samples : points of the returned period (default max(16 H, 512)).
 

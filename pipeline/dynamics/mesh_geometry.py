@@ -13,7 +13,7 @@ For a mesh between gear 1 and gear 2 with unit line-of-action direction
 * ``beta_b`` the base helix angle (rad), ``h = +1/-1`` the hand of the helix
   seen from gear 1 (left and right halves of a herringbone gear have opposite h).
 
-This is eq. 17 of seed 002 and the Lin-Parker planar projection when
+This is eq. 17 of Xu et al. (2020) and the Lin-Parker planar projection when
 ``beta_b = 0``.
 """
 

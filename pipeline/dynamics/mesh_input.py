@@ -2,7 +2,7 @@
 
 The stiffness stage (:mod:`pipeline.stiffness.mesh`) gives, over one mesh
 cycle, the mesh stiffness k(t), the friction stiffness K_f(t) and the friction
-torque coefficients KT_f1, KT_f2 of seed 000 eqs. 15-17. This module turns them
+torque coefficients KT_f1, KT_f2 of Jin et al. (2018), eqs. 15-17. This module turns them
 into the periodic signals a :class:`~pipeline.dynamics.couplings.GearMesh` takes.
 
 Sign conventions (the dynamics' own, see :mod:`pipeline.dynamics.mesh_geometry`
@@ -115,7 +115,7 @@ def analytical_excitation(
     Parameters
     ----------
     pair : the (actual) gear pair, including assembly errors through its centre distance.
-    friction : constant mu or EHL friction (seed 000 eq. 9); default none.
+    friction : constant mu or EHL friction (Jin et al. 2018, eq. 9); default none.
     operating : torque (N m) and speed (rad/s) of the driver (EHL load and mesh period).
     positions : samples per mesh period.
     slices : slices across the face for helical gears.

@@ -1,6 +1,6 @@
 """Superposition of stage responses for gear trains with incommensurate mesh frequencies.
 
-Seed 000's Fourier series method splits every time-varying coefficient into its
+Jin et al. (2018)'s Fourier series method splits every time-varying coefficient into its
 mean and its fluctuation, keeps the fluctuations to first order, and adds up the
 responses to each excitation. Stages that mesh at incommensurate frequencies then
 superpose: stage s is solved alone (its coefficients vary with its own mesh period
@@ -74,7 +74,7 @@ def superpose_stages(
     n_harmonics : H of every stage solution.
     duration : s, length of the returned time history (from t = 0).
     samples : time samples.
-    coupling : "full" (Hill within each stage) or "first_order" (seed 000 throughout).
+    coupling : "full" (Hill within each stage) or "first_order" (Jin et al. 2018 throughout).
     """
     check_positive("duration", duration, "s")
     if not systems:

@@ -90,6 +90,15 @@ class Response:
             cols[f"dte {m} [m]"] = self.dte[i]
             cols[f"force {m} [N]"] = self.mesh_force[i]
         return cols
+    def dte_spectrum(self, mesh: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """Single-sided amplitude spectrum of the steady DTE of mesh row ``mesh``:
+        (frequency, shape (K,), Hz; amplitude, shape (K,), m)."""
+        s = self.steady_from
+        d = self.dte[mesh, s:-1] if self.dte.shape[1] - s > 1 else self.dte[mesh, s:]
+        dt = self.time[1] - self.time[0]
+        a = np.abs(np.fft.rfft(d - d.mean())) / d.size
+        a[1:] *= 2.0
+        return np.fft.rfftfreq(d.size, dt), a
 
 
 @dataclass(frozen=True)
@@ -103,7 +112,7 @@ class HarmonicResponse:
     dte_amplitude : shape (n_mesh, H+1), single-sided amplitude of each DTE harmonic, m
         (order 0 is the mean).
     dte_contribution : shape (n_mesh, H), share of each order 1..H in the sum of the
-        alternating amplitudes (seed 000 "contribution proportion"), -.
+        alternating amplitudes (Jin et al. 2018 "contribution proportion"), -.
     coefficients : shape (2H+1, n_full), complex Q_h of the full coordinates, h = -H..H.
     dte_coefficients : shape (2H+1, n_mesh), complex DTE coefficients D_h (m), h = -H..H:
         ``dte(t) = sum_h D_h exp(i 2 pi h t / T)``.

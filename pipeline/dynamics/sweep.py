@@ -12,7 +12,7 @@ Sweep methods (all return the same :class:`SweepResult`):
   (independent points, mapped too).
 * ``"time"``: transient time integration, period by period, until the steady
   state is detected; each point starts from the steady state of the previous one
-  (continuation, seed 002 sec. 4), so it runs in order.
+  (continuation, Xu et al. 2020, sec. 4), so it runs in order.
 """
 
 from __future__ import annotations
@@ -204,7 +204,7 @@ def mesh_force_sweep(
     tol: float = 1e-6,
     show_progress: bool = False,
 ) -> SweepResult:
-    """RMS dynamic mesh force against mesh frequency (seed 002 Figs. 9-10).
+    """RMS dynamic mesh force against mesh frequency (Xu et al. 2020, Figs. 9-10).
 
     Parameters
     ----------
@@ -274,7 +274,7 @@ def mesh_force_sweep(
 
 
 def load_sharing_factor(response: Response, meshes: Sequence[str]) -> np.ndarray:
-    """Dynamic load factor of seed 002 eq. 24: ``N F_n(t) / sum_n F_n(t)``.
+    """Dynamic load factor of Xu et al. (2020), eq. 24: ``N F_n(t) / sum_n F_n(t)``.
 
     Parameters
     ----------

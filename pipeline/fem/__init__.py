@@ -12,5 +12,5 @@
 * ``sector3d`` / ``flank3d`` / ``influence3d`` / ``halfspace_separation`` - the same in
   3D: helical (or spur, or herringbone-half) sectors, profile x face-width flank grids,
   compliance matrices in m/N, Boussinesq near field.
-* ``groove`` - herringbone sun relief-groove stiffness (seed 002).
+* ``groove`` - herringbone sun relief-groove stiffness (Xu et al. 2020).
 """

@@ -43,9 +43,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def analyse_gear(gear: GearSpec, args: SectorFEOptions, out: Path, tag: str) -> tuple[dict,
                                                                                        list]:
     """Mesh, influence matrix and single-tooth comparison of one gear; returns summary, files."""
-    from pipeline.fem.sector_plots import plot_compliance, plot_deformed, plot_sector_mesh
     from pipeline.stiffness.tooth import tooth_compliance, tooth_model
-    from pipeline.viz.pair_plots import save
+    from pipeline.viz import save
+    from pipeline.viz.fem import plot_compliance, plot_deformed, plot_sector_mesh
 
     n, mid = args.teeth, args.teeth // 2
     sec = sector_mesh(gear, SectorMeshSettings.for_gear(gear, n, args.refinement))

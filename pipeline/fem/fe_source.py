@@ -12,14 +12,14 @@ from 2D sector influence matrices (:mod:`pipeline.fem.influence`) of both gears:
 * Candidate points are the slices of :class:`pipeline.contact.source.SliceCompliance`
   (one per tooth pair for spur gears). Two points are coupled when they lie in the
   same transverse section (same ``z``): the 2D model couples the tooth pairs in
-  contact through the rims; different sections are independent, as in seed 004's
+  contact through the rims; different sections are independent, as in Yang et al. (2026)'s
   slice method. Per slice of width ``w`` the 2D per-unit-width compliance is
   divided by ``w`` (m/N).
 * Tooth mapping (sign convention): tooth pair ``k`` (:meth:`GearPair.pair_indices`)
   is pinion sector tooth ``mid - k`` and gear sector tooth ``mid + k``, with
   ``mid = teeth // 2`` (per gear); loads on the right flanks. This is the mirror image of a
   counter-clockwise driving pinion; the mirror leaves every compliance unchanged.
-* The local Hertz approach is not included (the contact solver adds seed 004 eq. 24).
+* The local Hertz approach is not included (the contact solver adds Yang et al. 2026, eq. 24).
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ class FESettings:
     ----------
     teeth : teeth per sector (>= 3, covering the tooth pairs in contact), or None for the
         whole gear (default: a sector with clamped cut faces is too stiff for deep gear
-        bodies - seed 001's gear: -42 % with 7 teeth, -4 % as a whole gear, vs the
+        bodies - the assembly-error paper's gear: -42 % with 7 teeth, -4 % as a whole gear, vs the
         analytical compliance; see :mod:`pipeline.fem.influence`).
     radii : tabulated points per flank.
     refinement : mesh refinement (:meth:`SectorMeshSettings.for_gear`).

@@ -2,7 +2,7 @@
 
 :class:`FE3DCompliance` implements :class:`pipeline.contact.source.ComplianceSource`
 from the 3D sector influence matrices of :mod:`pipeline.fem.influence3d`, one per
-gear, so the loaded-contact solver (seed 004 eqs. 27-29, local approach eq. 24)
+gear, so the loaded-contact solver (Yang et al. 2026, eqs. 27-29, local approach eq. 24)
 sees the face-width coupling of the teeth that the slice method neglects.
 
 Method
@@ -39,7 +39,7 @@ Method
 * Normal to transverse: the solver's loads and approaches are along the transverse
   line of action (:mod:`pipeline.contact.source`); the flank normal leans out of the
   transverse plane by the base helix angle, so ``G = G_normal / cos^2(beta_b)``.
-* The local Hertz approach is not included (the contact solver adds seed 004 eq. 24).
+* The local Hertz approach is not included (the contact solver adds Yang et al. 2026, eq. 24).
 
 Mapping (sign conventions)
 --------------------------
@@ -72,8 +72,8 @@ Limits
   is given) and, by default, at its radial cuts: stiffer than a whole gear body, so
   the body/foundation part of the compliance is low; the tooth part is what the 3D
   model adds. workflows/validate_stiffness.py found a clamped 5-tooth 2D sector +55 %
-  stiffer than the slice model on seed 001; here (tests, z 30 helical pair) the
-  default 3-tooth sector gave a 16 % higher LTCA mesh stiffness than a 5-tooth one.
+  stiffer than the slice model on the assembly-error paper's pair; here (tests, z 30 helical pair)
+  the default 3-tooth sector gave a 16 % higher LTCA mesh stiffness than a 5-tooth one.
   Use ``teeth`` = 2 max|k| + 3 or more where the budget allows.
 * Discretisation: the default 3D meshes are coarse (flank elements ``m_n / (3
   refinement)``); a displacement FE model is stiffer than the real tooth (a few %

@@ -8,7 +8,7 @@ outward normal (out of the tooth material) is perpendicular to the involute and
 tangent to the base circle. The *arc coordinate* along the involute from the
 base circle is ``t = (r^2 - r_b^2) / (2 r_b)`` (the roll length squared over
 ``2 r_b``), the *depth* ``h`` is the distance from the point along the inward
-normal to the tooth centre line (h_k of seed 004 eq. 24, Weber-Banaschek).
+normal to the tooth centre line (h_k of Yang et al. 2026, eq. 24, Weber-Banaschek).
 """
 
 from __future__ import annotations

@@ -50,7 +50,7 @@ class FlankGrid3D:
     tangent_face : (n, 3) unit in-surface tangent ``normal x tangent_profile`` (z >= 0).
     arc : (n,) arc coordinate along the involute from the base circle, m.
     depth : (n,) transverse distance along the inward normal to the tooth centre
-        line, m (h of seed 004 eq. 24; the 2D depth of the same point).
+        line, m (h of Yang et al. 2026, eq. 24; the 2D depth of the same point).
     shape : (n_teeth, n_face, n_profile) of the grid.
     """
 

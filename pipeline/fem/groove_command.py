@@ -69,10 +69,11 @@ def run(args: argparse.Namespace) -> int:
     files.append(write_csv(out / "coupling_matrix.csv",
                            {f"{n} [SI]": res.coupling_matrix[:, i] for i, n in
                             enumerate(DOF_NAMES)}))
-    from pipeline.fem.groove.render import render_twisted_body
+    from pipeline.viz import save
+    from pipeline.viz.groove import render_twisted_body
 
     torque = spec.sun_torque or 1e3 * res.torsional_stiffness * 1e-6
-    files.append(render_twisted_body(analysis, out / "twist.png", torque))
+    files.append(save(render_twisted_body(analysis, torque), out / "twist.png"))
     rows = [res]
     if args.full:
         for variant in (

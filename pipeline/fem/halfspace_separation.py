@@ -14,7 +14,7 @@ inward normal) per unit load at ``j``. ``H_ij`` is the compression of an elastic
 half-space between the surface and depth ``h``, averaged over patch ``i`` per
 unit load spread over patch ``j`` - the analytical near field of the very load
 the FE carried. The contact solver then adds back the local approach between
-the surface and depth ``h`` with the actual contact width (seed 004 eq. 24 per
+the surface and depth ``h`` with the actual contact width (Yang et al. 2026, eq. 24 per
 slice, the same ``h``). ``H`` is applied to pairs on the same flank only.
 
 Kernel (Johnson, Contact Mechanics, eq. 3.21a; shear modulus ``G``): a unit

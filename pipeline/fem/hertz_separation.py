@@ -12,7 +12,7 @@ point is the displacement of a reference point *inside* the tooth, the point
 at depth ``h`` on the tooth centre line along the contact normal, plus the
 compression of the material between that point and the surface. The second
 part is local: Weber and Banaschek take it from the half-plane, which gives
-seed 004 eq. (24) (:class:`pipeline.contact.hertz.HertzLineContact`, added by
+Yang et al. (2026), eq. (24) (:class:`pipeline.contact.hertz.HertzLineContact`, added by
 the contact solver with the actual Hertz half-width). So the FE must deliver
 the first part: the *structural* compliance
 
@@ -135,7 +135,8 @@ def patch_halfplane_compliance(separation: np.ndarray, depth: np.ndarray, half_w
 
 def weber_halfplane(load_half_width: float, depth: float, material: Material) -> float:
     """Weber-Banaschek compression of one body per unit line load (plane strain), m^2/N:
-    ``2 (1 - nu^2)/(pi E) (ln(2 h / a) - nu / (2 (1 - nu)))`` (one body of seed 004 eq. 24)."""
+    ``2 (1 - nu^2)/(pi E) (ln(2 h / a) - nu / (2 (1 - nu)))`` (one body of Yang et al. 2026, eq.
+    24)."""
     E, nu = material.youngs_modulus, material.poisson_ratio
     return 2 * (1 - nu * nu) / (math.pi * E) * (math.log(2 * depth / load_half_width)
                                                  - nu / (2 * (1 - nu)))

@@ -11,7 +11,7 @@ to solver round-off. All patches are solved from one factorisation
 (:func:`pipeline.fem.linear_static.solve_static`). The local Hertzian near
 field is then removed analytically (:mod:`pipeline.fem.hertz_separation`), so
 the result is the *structural* compliance to which the contact solver adds
-seed 004 eq. (24).
+Yang et al. (2026), eq. (24).
 
 2D models are per unit face width: ``G`` is in m^2/N (m per N/m);
 :meth:`InfluenceMatrix.matrix` divides by a face width for m/N.
@@ -19,7 +19,7 @@ seed 004 eq. (24).
 Boundary conditions. The sector is clamped on its bore (external gear) or outer
 rim (internal gear). Its radial cut faces are clamped too by default: with free
 cut faces a narrow sector rotates as a wedge about the bore, which a full gear
-cannot do (seed 001's gear, bore 21 mm under a 71 mm root circle: 13x the
+cannot do (the assembly-error paper's gear, bore 21 mm under a 71 mm root circle: 13x the
 analytical compliance with 5 free-cut teeth). Clamped cuts approach the full-gear
 value from the stiff side as teeth are added, free cuts from the flexible side;
 z 30, bore 30 mm, plane stress, middle tooth vs the analytical compliance:

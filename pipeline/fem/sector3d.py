@@ -307,8 +307,9 @@ def bench_helical_sector(refinement: float = 1.5, n_profile: int = 20, n_face: i
                          method: str = "auto", cache: bool = False) -> dict:
     """Benchmark figures of the 3D helical sector influence matrix (issue 3).
 
-    Seed 001's gear (z 50, m_n 3 mm, alpha_n 20 deg, b 20 mm, bore 21 mm) made helical
-    (beta 15 deg, right hand, an assumption: seed 001 is spur), 3 teeth, the loaded
+    The assembly-error paper's gear (z 50, m_n 3 mm, alpha_n 20 deg, b 20 mm, bore 21 mm) made
+    helical (beta 15 deg, right hand, an assumption: the assembly-error paper is spur), 3 teeth,
+    the loaded
     (right) flank of every tooth on an ``n_profile x n_face`` grid (active profile x
     face width), default patch half-width. Returns a dict of figures: DOFs, points,
     timings (s), solver, CG iterations, symmetry error, volume error, compliance
@@ -321,7 +322,7 @@ def bench_helical_sector(refinement: float = 1.5, n_profile: int = 20, n_face: i
 
     gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
                     helix_angle=math.radians(15), hand="right", bore_radius=0.021,
-                    material=Material(2.0e11, 0.3, 7850.0), name="seed001-helical")
+                    material=Material(2.0e11, 0.3, 7850.0), name="z50-helical")
     settings = Sector3DSettings.for_gear(gear, teeth=3, refinement=refinement)
     t0 = time.perf_counter()
     sector = sector3d_mesh(gear, settings, cache=cache)

@@ -1,6 +1,6 @@
-"""Spur/helical pair with displaced centres (assembly errors, seed 001).
+"""Spur/helical pair with displaced centres (assembly errors, the assembly-error paper).
 
-Seed 001's frame has its origin at the nominal pinion centre O_p, the y-axis
+The assembly-error paper's frame has its origin at the nominal pinion centre O_p, the y-axis
 along the theoretical line of action and the x-axis normal to it; the nominal
 gear centre is ``O_g = (a sin(phi), a cos(phi))`` with ``a`` the nominal centre
 distance and ``phi`` the operating pressure angle. The installed centres are
@@ -16,7 +16,7 @@ stiffness of the displaced pair is that of the pair at centre distance ``a'``,
 with the mesh cycle shifted in pinion angle by the rotation of the line of
 action (:attr:`AssembledPair.roll_offset`).
 
-The seed's text places ``O_g`` at angle ``phi`` from its y-axis (so the error
+The paper's text places ``O_g`` at angle ``phi`` from its y-axis (so the error
 vector is projected on ``(sin phi, cos phi)`` to change the centre distance);
 we take those coordinates literally.
 """
@@ -69,7 +69,7 @@ class AssembledPair:
     Attributes
     ----------
     nominal : the pair as designed.
-    errors : the centre displacements (m, seed 001 frame).
+    errors : the centre displacements (m, the assembly-error paper frame).
     """
 
     nominal: GearPair
@@ -77,11 +77,12 @@ class AssembledPair:
 
     def __post_init__(self) -> None:
         if self.nominal.gear.internal:
-            raise InputError("assembly errors are modelled for external pairs only (seed 001)")
+            raise InputError("assembly errors are modelled for external pairs only "
+                             "(the assembly-error paper)")
 
     @cached_property
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
-        """Installed centres (O'_p, O'_g) in the seed 001 frame, m, each shape (2,)."""
+        """Installed centres (O'_p, O'_g) in the assembly-error paper frame, m, each shape (2,)."""
         a = self.nominal.operating_centre_distance
         phi = self.nominal.operating_pressure_angle
         op = np.array(self.errors.pinion, dtype=float)

@@ -15,8 +15,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pipeline.viz.pair_plots import _plt, plot_contact_lines, plot_line_of_action, save
-    from pipeline.viz.profile_plot import plot_profile
+    from matplotlib.figure import Figure
+
+    from pipeline.viz import save
+    from pipeline.viz.geometry import plot_contact_lines, plot_line_of_action, plot_profile
 
     box = load(args)
     res = analyse_geometry(box.require_pair(), box.assembly_errors)
@@ -30,7 +32,8 @@ def run(args: argparse.Namespace) -> int:
                           out / "line_of_action_actual.png"))
     if pair.pinion.is_helical:
         files.append(save(plot_contact_lines(pair), out / "contact_lines.png"))
-    fig, axes = _plt().subplots(2, 1, figsize=(9, 8))
+    fig = Figure(figsize=(9, 8))
+    axes = fig.subplots(2, 1)
     for ax, g, prof in zip(axes, (pair.pinion, pair.gear), res.profiles, strict=True):
         plot_profile(prof, ax=ax)
         ax.set_title(f"{g.name}: z = {g.teeth}, undercut = {prof.undercut}")

@@ -1,7 +1,7 @@
-"""Planetary sets: planet positions, assembly condition and meshing phases (seed 002).
+"""Planetary sets: planet positions, assembly condition and meshing phases (Xu et al. 2020).
 
 Phases are fractions of one mesh period ``T_m = 2 pi / ((omega_s - omega_c) z_s)``
-(seed 002 eq. 7), in [0, 1):
+(Xu et al. 2020, eq. 7), in [0, 1):
 
 * ``lambda_sn = dec(+- z_s psi_n / 2 pi)`` - sun-planet mesh n relative to mesh 1 (eq. 10a);
 * ``lambda_rn = dec(+- z_r psi_n / 2 pi)`` - ring-planet mesh n relative to mesh 1 (eq. 10b);
@@ -130,7 +130,7 @@ class PlanetarySet:
         return 1.0 + self.ring.teeth / self.sun.teeth
 
     def mesh_period(self, sun_speed: float, carrier_speed: float = 0.0) -> float:
-        """T_m = 2 pi / ((omega_s - omega_c) z_s) in s (seed 002 eq. 7); speeds in rad/s."""
+        """T_m = 2 pi / ((omega_s - omega_c) z_s) in s (Xu et al. 2020, eq. 7); speeds in rad/s."""
         rel = abs(sun_speed - carrier_speed)
         if rel == 0:
             raise InputError("sun and carrier speeds are equal: there is no meshing")
@@ -138,12 +138,12 @@ class PlanetarySet:
 
     @cached_property
     def sun_phases(self) -> np.ndarray:
-        """lambda_sn, shape (N,) (seed 002 eq. 10a)."""
+        """lambda_sn, shape (N,) (Xu et al. 2020, eq. 10a)."""
         return dec(self.direction * self.sun.teeth * self.angles / (2 * math.pi))
 
     @cached_property
     def ring_phases(self) -> np.ndarray:
-        """lambda_rn, shape (N,) (seed 002 eq. 10b)."""
+        """lambda_rn, shape (N,) (Xu et al. 2020, eq. 10b)."""
         return dec(self.direction * self.ring.teeth * self.angles / (2 * math.pi))
 
     @cached_property

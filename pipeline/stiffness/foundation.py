@@ -3,8 +3,8 @@
     lambda_f = cos^2(alpha_m) / (E L)
                * [ L* (u_f/S_f)^2 + M* (u_f/S_f) + P* (1 + Q* tan^2 alpha_m) ]
 
-(J. Mech. Des. 126, 748-752; seed 004 eq. 16), with the coefficients from the
-fitted polynomials (seed 004 eq. 17)
+(J. Mech. Des. 126, 748-752; Yang et al. 2026, eq. 16), with the coefficients from the
+fitted polynomials (Yang et al. 2026, eq. 17)
 
     X*(h_f, theta_f) = A/theta_f^2 + B h_f^2 + C h_f/theta_f + D/theta_f + E h_f + F,
 
@@ -13,7 +13,7 @@ of the tooth at the root circle, ``S_f = 2 r_f theta_f`` the tooth thickness at
 the root circle, ``u_f`` the distance along the centreline from the root circle
 to where the load line crosses it, and ``alpha_m`` the load angle.
 
-The extracted text of seed 004 Table 1 lost the minus signs; the signs below are
+The extracted text of Table 1 of Yang et al. (2026) lost the minus signs; the signs below are
 those of the original paper (Table 1 of Sainsot et al. 2004). The fit was made
 for 1.4 <= h_f <= 7 and 0.01 <= theta_f <= 0.12 rad; outside that range the
 formula is extrapolated and :func:`foundation_coefficients` reports it.

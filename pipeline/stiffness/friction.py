@@ -1,12 +1,12 @@
 """Tooth-flank friction: the one place where its sign convention is written.
 
-Sign convention (seeds 001, 004, 000)
--------------------------------------
+Sign convention (assembly-error paper, Yang et al. 2026, Jin et al. 2018)
+-------------------------------------------------------------------------
 ``lam = +1`` in the *approach* (contact before the pitch point in time), ``-1``
 in the *recess*, ``0`` exactly at the pitch point, where sliding vanishes and
 there is no friction. With the pinion driving, approach is ``s < s_pitch``.
 
-* Tooth loading (seed 004 eqs. 19-20): in the approach the friction force on
+* Tooth loading (Yang et al. 2026, eqs. 19-20): in the approach the friction force on
   either flank points towards that tooth's root (away from the pitch point on the
   driver, towards it on the driven gear), so with ``F_f = mu F``
 
@@ -14,19 +14,19 @@ there is no friction. With the pinion driving, approach is ``s < s_pitch``.
       F_a = F (sin a + lam mu cos a)      (compression, along the centreline)
 
   where ``a`` is the load angle. Friction therefore *stiffens* the teeth in the
-  approach and softens them in the recess (seed 004 figs. 6-7). Seed 001 prints
-  the opposite pairing of signs; its text and seed 004 agree on the physics used
-  here.
-* Friction stiffness and torque coefficients (seed 000 eqs. 15-17):
+  approach and softens them in the recess (Yang et al. 2026, figs. 6-7). The assembly-error
+  paper prints the opposite pairing of signs; its text and Yang et al. (2026) agree on the physics
+  used here.
+* Friction stiffness and torque coefficients (Jin et al. 2018, eqs. 15-17):
   ``K_f = lam mu k`` is positive when the friction force on the pinion points in
   the approach direction of sliding, and ``KT_f,i = lam mu k rho_i`` is positive
   when the friction torque on gear i acts with the driving torque (driver) or with
-  the load torque (driven gear), as seed 000 describes for the approach.
+  the load torque (driven gear), as Jin et al. (2018) describe for the approach.
 
 Friction coefficient
 --------------------
 Either a constant, or the EHL regression of Xu, Kahraman et al. (2007) used in
-seed 000 eq. 9 (Table 1 coefficients):
+Jin et al. (2018), eq. 9 (Table 1 coefficients):
 
     mu = exp(f) P_h^b2 |SR|^b3 V_e^b6 nu_0^b7 R^b8
     f  = b1 + b4 |SR| P_h log10(nu_0) + b5 exp(-|SR| P_h log10(nu_0)) + b9 exp(S)
@@ -71,7 +71,7 @@ def ehl_friction_coefficient(
     effective_radius: ArrayLike,
     roughness: float,
 ) -> np.ndarray:
-    """EHL friction coefficient of Xu et al. (2007), seed 000 eq. 9.
+    """EHL friction coefficient of Xu et al. (2007), Jin et al. (2018), eq. 9.
 
     Parameters
     ----------

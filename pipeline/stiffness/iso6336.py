@@ -1,8 +1,9 @@
-"""Tooth stiffness of ISO 6336-1 (method B) and the contact-line method of seed 004, section 3.1.
+"""Tooth stiffness of ISO 6336-1 (method B) and the contact-line method of Yang et al. (2026),
+section 3.1.
 
 ISO 6336-1:2019, 9.3:
 
-* theoretical single stiffness ``c'_th = 1 / q'`` with (seed 004 eq. 33)
+* theoretical single stiffness ``c'_th = 1 / q'`` with (Yang et al. 2026, eq. 33)
   ``q' = 0.04723 + 0.15551/z_n1 + 0.25791/z_n2 - 0.00635 x1 - 0.11654 x1/z_n1
   - 0.00193 x2 - 0.24188 x2/z_n2 + 0.00529 x1^2 + 0.00182 x2^2`` in mm um/N,
   z_n the virtual tooth numbers (``z_n2 = inf`` for an internal gear);
@@ -151,9 +152,9 @@ class ContactLineStiffness:
 
 def contact_line_stiffness(pair: GearPair, positions: int = 360,
                            tangential_load: float | None = None) -> ContactLineStiffness:
-    """Contact-line method (seed 004 section 3.1): k_m(t) proportional to L(t).
+    """Contact-line method (Yang et al. 2026, section 3.1): k_m(t) proportional to L(t).
 
-    Seed 004 writes ``k_ym = k_y B / L_max`` with ``k_y = (0.75 eps_alpha + 0.25) c'``;
+    Yang et al. (2026) write ``k_ym = k_y B / L_max`` with ``k_y = (0.75 eps_alpha + 0.25) c'``;
     taken literally its mean ``k_ym <L>`` exceeds the ISO mean mesh stiffness
     ``c_gamma_alpha b`` by ``<L>/L_max`` (= eps_alpha for spur gears). We keep the
     method's premise (k proportional to contact length) and normalise it so that

@@ -2,7 +2,7 @@
 
 Each tooth pair in contact is a series chain (pinion tooth + pinion body +
 Hertz contact + gear tooth + gear body); pairs in contact act in parallel.
-Helical gears are cut into ``N`` thin spur slices across the face (seed 004,
+Helical gears are cut into ``N`` thin spur slices across the face (Yang et al. 2026,
 section 2.1); slice ``j`` at face position ``z_j`` meets its mate at roll
 coordinate ``s + z_j tan(beta_b)``, so each slice has its own load position,
 friction direction and contact state. Everything is evaluated as one array of
@@ -33,7 +33,7 @@ from pipeline.validation import InputError, check_int_range, check_range
 
 @dataclass(frozen=True)
 class FrictionModel:
-    """Friction coefficient: constant ``mu`` or ``"ehl"`` (seed 000 eq. 9).
+    """Friction coefficient: constant ``mu`` or ``"ehl"`` (Jin et al. 2018, eq. 9).
 
     Attributes
     ----------
@@ -64,7 +64,7 @@ class MeshStiffness:
     pinion_angle : shape (m,), pinion rotation from the start of the cycle, rad.
     total : shape (m,), mesh stiffness k(t), N/m.
     pairs : shape (m, K), stiffness of each tooth pair (0 when out of contact), N/m.
-    friction_stiffness : shape (m,), K_f = sum lam mu k (seed 000 eq. 15), N/m.
+    friction_stiffness : shape (m,), K_f = sum lam mu k (Jin et al. 2018, eq. 15), N/m.
     friction_torque_pinion, friction_torque_gear : shape (m,), KT_f,i = sum lam mu k rho_i, N.
     mu : shape (m, K, N), friction coefficient at every slice contact (0 out of contact).
     contact_length : shape (m,), total contact line length, m.
@@ -155,7 +155,7 @@ def mesh_stiffness(
     friction : friction model (default: none).
     operating : torque and speed (for EHL friction and the mesh period).
     foundation_correction : factor on the body stiffness while more than one tooth
-        pair is in contact (seed 001 uses 1.1; 1 leaves Sainsot's formula as is).
+        pair is in contact (the assembly-error paper uses 1.1; 1 leaves Sainsot's formula as is).
     """
     check_int_range("stiffness.positions", positions, 8, 10_000_000)
     return stiffness_at(model, model.pair.mesh_cycle(positions), slices, friction, operating,
@@ -175,7 +175,7 @@ def stiffness_at(
 
     For herringbone gears both helical halves are evaluated and summed; the right
     half runs ``half_offset`` base pitches (fraction, [0, 1)) behind the left one
-    (0 for halves cut in line; see seed 002 for the phase a twisted sun adds).
+    (0 for halves cut in line; see Xu et al. 2020 for the phase a twisted sun adds).
     ``pairs`` then holds the left half's pairs followed by the right half's.
     """
     check_int_range("stiffness.slices", slices, 1, 100_000)

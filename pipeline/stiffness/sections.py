@@ -106,7 +106,7 @@ def _graded(n: int) -> np.ndarray:
 def involute_sections(gear: GearSpec, n: int = 4000) -> ToothSections:
     """Sections of the classical model: pure involute, clamped at the base circle.
 
-    This is the textbook model behind the closed-form integrals of seed 004
+    This is the textbook model behind the closed-form integrals of Yang et al. (2026)
     (eqs. 11-13): the tooth is cut off at the base circle and its sections are
     chords perpendicular to the centreline. Used as an exact reference for the
     numerical integration; the pipeline's default uses the exact profile.
@@ -114,7 +114,7 @@ def involute_sections(gear: GearSpec, n: int = 4000) -> ToothSections:
     if gear.internal:
         raise ValueError("involute_sections models external teeth only")
     rb = gear.base_radius
-    psi_b = gear.half_tooth_angle(rb)  # half angle at the base circle (alpha_2 of seed 004)
+    psi_b = gear.half_tooth_angle(rb)  # half angle at the base circle (Yang et al.: alpha_2)
     ra = gear.tip_radius_
     r = rb + (ra - rb) * _graded(n)
     psi = _half_angles(gear, r)

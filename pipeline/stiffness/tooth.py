@@ -9,8 +9,8 @@ root circle (sections from :mod:`pipeline.stiffness.sections`):
     1/k_s = int 1.2 F_b^2 / (G A) d eta / F^2
     1/k_a = int F_a^2 / (E A) d eta / F^2
 
-(seed 001; seed 004 eqs. 1-3 and 21-23), where ``eta_c`` is the load point's
-centreline distance from the clamp and ``h_c`` its half thickness. The body
+(the assembly-error paper; Yang et al. 2026, eqs. 1-3 and 21-23), where ``eta_c`` is the load
+point's centreline distance from the clamp and ``h_c`` its half thickness. The body
 (fillet-foundation) term is Sainsot's (:mod:`pipeline.stiffness.foundation`),
 applied to the resultant of normal load and friction. All compliances here are
 *per unit face width* (m^2/N): divide by the face width (m) for m/N.
@@ -99,7 +99,7 @@ def _root_half_angle(x: np.ndarray, y: np.ndarray, rf: float, gear: GearSpec) ->
 
 
 def classical_tooth_model(gear: GearSpec, n_sections: int = 4000) -> ToothModel:
-    """The textbook model (pure involute clamped at the base circle, seed 004 eqs. 11-13).
+    """The textbook model (pure involute clamped at the base circle, Yang et al. 2026, eqs. 11-13).
 
     Kept as an exact reference for the numerical integration; the foundation uses
     ``theta_f`` = half tooth angle at the base circle and the root radius.
@@ -161,8 +161,8 @@ def tooth_compliance(model: ToothModel, contact_radius: ArrayLike, mu: ArrayLike
 def hertz_compliance(pinion: GearSpec, gear: GearSpec) -> float:
     """Constant Hertz compliance of a line contact per unit face width, m^2/N.
 
-    ``1/k_h = 4 (1 - nu^2) / (pi E L)`` for equal materials (seed 001, seed 004
-    eq. 7), generalised to ``2/(pi L) [(1-nu1^2)/E1 + (1-nu2^2)/E2]``.
+    ``1/k_h = 4 (1 - nu^2) / (pi E L)`` for equal materials (the assembly-error paper, Yang et al.
+    2026 eq. 7), generalised to ``2/(pi L) [(1-nu1^2)/E1 + (1-nu2^2)/E2]``.
     """
     m1, m2 = pinion.material, gear.material
     return 2.0 / math.pi * (1.0 / m1.plane_strain_modulus + 1.0 / m2.plane_strain_modulus)

@@ -3,15 +3,16 @@
 Targets: < 5 ms per mesh position for a spur pair (3 tooth pairs x 5 slices),
 < 50 ms for a helical pair (30 slices, ~90 loaded candidate points).
 
-Inputs are one mesh cycle of the seed 001 spur pair (340 N m) and the seed 004
-helical pair (20 233 N m on the gear): contact points, curvature radii and
-contact lines from :class:`pipeline.geometry.GearPair`; initial separations
+Inputs are one mesh cycle of the spur pair of the assembly-error paper (340 N m)
+and the helical pair of Yang et al. (2026) (20 233 N m on the gear): contact
+points, curvature radii and contact lines from :class:`pipeline.geometry.GearPair`;
+initial separations
 from linear tip relief and lead crowning. The compliance is a stand-in for the
 FE influence coefficients that will feed the solver: per tooth pair a dense
 block coupling the slices along the face with an exponential kernel (positive
 definite, decay length b/4), scaled so that a uniform load sees the usual
 single-pair stiffness 14 N/(mm um) per unit face width, softer at both ends of
-the path. Hertz local approach by seed 004 eq. (24).
+the path. Hertz local approach by Yang et al. (2026), eq. (24).
 
 Side by side in one run: warm-started sweep (each position from the previous),
 cold starts, linear vs Hertz, and scipy's SLSQP on the same linear QP for a few
@@ -19,7 +20,7 @@ positions (accuracy cross-check and speed ratio).
 
 Second part, the full pipeline per mesh position with the analytical slice
 compliance (:class:`pipeline.contact.source.SliceCompliance`, classical tooth
-model, seed 004 eq. 24 local contact, tip relief + crowning):
+model, Yang et al. (2026), eq. 24 local contact, tip relief + crowning):
 :func:`pipeline.contact.ltca.loaded_mesh_cycle` timed end to end, i.e. candidate
 points, G from the potential-energy method, separations, Hertz geometry and the solve.
 Prints the figures and writes results/benchmarks/contact.json.
@@ -211,11 +212,11 @@ def ltca_case(name: str, pair: GearPair, slices: int, torque: float, n_positions
 
 
 def main(n_positions: int = 60) -> dict:
-    spur = run_case("spur seed 001, 3 pairs x 5 slices", spur_pair(), 5, 340.0, n_positions)
-    hel = run_case("helical seed 004, 30 slices", helical_pair(), 30, 20233.0, n_positions)
-    e2e = [ltca_case("spur seed 001, slice compliance", spur_pair(), 1, 340.0, n_positions),
-           ltca_case("helical seed 004, 30 slices", helical_pair(), 30, 20233.0, n_positions),
-           ltca_case("helical seed 004, 30 slices, coupled (kappa 0.2)", helical_pair(), 30,
+    spur = run_case("spur 50/50, 3 pairs x 5 slices", spur_pair(), 5, 340.0, n_positions)
+    hel = run_case("helical 31/104, 30 slices", helical_pair(), 30, 20233.0, n_positions)
+    e2e = [ltca_case("spur 50/50, slice compliance", spur_pair(), 1, 340.0, n_positions),
+           ltca_case("helical 31/104, 30 slices", helical_pair(), 30, 20233.0, n_positions),
+           ltca_case("helical 31/104, 30 slices, coupled (kappa 0.2)", helical_pair(), 30,
                      20233.0, n_positions, 0.2)]
     out = {"spur": spur, "helical": hel, "end_to_end_slice_compliance": e2e,
            "targets_per_position_s": {"spur": 0.005, "helical": 0.050},

@@ -1,6 +1,6 @@
 """Benchmark: FE influence matrices (targets from issue 3).
 
-2D sector, seed 001 gear (z 50, m 3 mm), 3 teeth, 40 flank points per tooth, the
+2D sector, the assembly-error paper gear (z 50, m 3 mm), 3 teeth, 40 flank points per tooth, the
 refinement at which the single-tooth compliance is converged (< 0.1 % change to
 the next refinement, tests/test_fem_influence.py): target < 30 s on 2 cores.
 Side by side: one factorisation + all 120 right-hand sides vs a separate

@@ -1,4 +1,4 @@
-"""Benchmark: relief-groove torsional stiffness of the seed 002 sun (target from issue 4).
+"""Benchmark: relief-groove torsional stiffness of Xu et al. (2020) sun (target from issue 4).
 
 Target: one converged torsional stiffness in under 90 s on 2 cores, with the
 peak memory stated, and the whole 12 x 12 coupling matrix from one
@@ -10,7 +10,7 @@ Each case runs in a fresh process (so that the peak resident memory from
 the time includes Gmsh meshing, P2 assembly, the solver set-up and the solves:
 
 * root-cylinder model at h = 30 mm (converged: within 0.1 % of h = 22 mm, see
-  tests/test_groove_seed.py) with the default solver (CHOLMOD when installed,
+  tests/test_groove_wind_turbine_sun.py) with the default solver (CHOLMOD when installed,
   else p-multigrid CG);
 * ``--full`` adds the same with SuperLU (the scipy direct solver) for comparison,
   and the real helical teeth model at h = 40 mm (tooth surfaces 12 mm).

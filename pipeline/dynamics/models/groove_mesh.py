@@ -1,13 +1,13 @@
 """Sun-planet mesh stiffness of the two herringbone halves against the groove stiffness.
 
-Seed 002 (Xu et al. 2020) makes the left and right sun-planet mesh stiffness
+Xu et al. (2020) make the left and right sun-planet mesh stiffness
 depend on the torsional stiffness K_j of the sun's relief groove:
 
 * eq. 1: the relative twist of the sun halves is ``phi_LRj = T_s l / K_j``
   (K_j = G_j I_j in N m^2, l the torsion length in m), so ``phi_LRj ~ 1 / K_j``;
 * eq. 11: the twist gives the left/right meshing phase
   ``lambda_LRj = dec(z_s phi_LRj / 2 pi)`` (already in
-  :mod:`pipeline.dynamics.models.seed002_case`);
+  :mod:`pipeline.dynamics.models.wind_turbine_planetary`);
 * eq. 14: ``k_Lsn(t) = k_0Ls L(t - lambda_sn T_m)`` and
   ``k_Rsn(t) = k_0Rs L(t - (lambda_sn + lambda_LRj) T_m)``, with *side-specific*
   stiffness per unit contact-line length k_0Ls, k_0Rs; eq. 15: the ring-planet
@@ -50,7 +50,7 @@ from pipeline.validation import InputError, check_positive, check_range
 
 @dataclass(frozen=True)
 class GrooveMeshRelation:
-    """Side factors of the sun-planet mesh stiffness against K_j (seed 002 eq. 14, Fig. 5).
+    """Side factors of the sun-planet mesh stiffness against K_j (Xu et al. 2020, eq. 14, Fig. 5).
 
     Attributes
     ----------
@@ -58,8 +58,8 @@ class GrooveMeshRelation:
         nominal mesh stiffness, N m^2.
     calibration_Kj : K_5 < K_1, where the published changes apply, N m^2.
     change_left : relative change of the maximum left sun-planet mesh stiffness
-        from K_1 to K_5 (-); seed 002: +0.0979.
-    change_right : same for the right side (-); seed 002: -0.1123.
+        from K_1 to K_5 (-); Xu et al. (2020): +0.0979.
+    change_right : same for the right side (-); Xu et al. (2020): -0.1123.
     """
 
     reference_Kj: float = 5.2e7
@@ -82,8 +82,8 @@ class GrooveMeshRelation:
             check_range(f, getattr(self, f), -1.0, 1.0, lo_open=True, hi_open=True)
 
 
-SEED002_GROOVE_MESH = GrooveMeshRelation()
-"""The relation with seed 002's published values (K_1 = 5.2e7, K_5 = 4.0e7 N m^2)."""
+XU2020_GROOVE_MESH = GrooveMeshRelation()
+"""The relation with Xu et al. (2020)'s published values (K_1 = 5.2e7, K_5 = 4.0e7 N m^2)."""
 
 
 @dataclass(frozen=True)
@@ -109,14 +109,14 @@ class SideFactors:
         return 0.5 * (self.left + self.right)
 
 
-def side_factors(Kj: float, relation: GrooveMeshRelation = SEED002_GROOVE_MESH) -> SideFactors:
+def side_factors(Kj: float, relation: GrooveMeshRelation = XU2020_GROOVE_MESH) -> SideFactors:
     """Left and right sun-planet mesh stiffness factors at groove stiffness ``Kj``.
 
     Parameters
     ----------
     Kj : groove torsional stiffness G I, N m^2, within
         ``[relation.calibration_Kj, relation.reference_Kj]`` (the range the paper covers).
-    relation : the calibrated relation (default: seed 002's published values).
+    relation : the calibrated relation (default: Xu et al. (2020)'s published values).
 
     Returns
     -------
@@ -133,7 +133,7 @@ def side_factors(Kj: float, relation: GrooveMeshRelation = SEED002_GROOVE_MESH) 
         check_range("groove_Kj", Kj, lo, hi, unit="N m^2")
     except InputError as e:
         raise InputError(
-            f"{e} (seed 002 gives the left/right mesh stiffness change only for K_j in "
+            f"{e} (Xu et al. 2020 give the left/right mesh stiffness change only for K_j in "
             "this range; pass groove_mesh=None for equal sides)"
         ) from None
     s = (hi / float(Kj) - 1.0) / (hi / lo - 1.0)

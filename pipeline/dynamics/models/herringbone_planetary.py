@@ -1,15 +1,15 @@
-"""Herringbone planetary set of seed 002: every member as two helical halves, 8(N+3) DOF.
+"""Herringbone planetary set of Xu et al. (2020): every member as two helical halves, 8(N+3) DOF.
 
 Bodies ``sL, sR, rL, rR, cL, cR, p1L, p1R, ...`` each carry x, y, z, theta in
 the carrier frame (planets in their radial/tangential frame), so gyroscopic and
-centripetal terms follow (seed 002 eq. 22). Half ``i`` of a mesh uses the
-projection of seed 002 eq. 17 with the base helix angle beta_b and the hand
+centripetal terms follow (Xu et al. 2020, eq. 22). Half ``i`` of a mesh uses the
+projection of Xu et al. (2020), eq. 17 with the base helix angle beta_b and the hand
 ``+1`` (left) or ``-1`` (right).
 
 Left/right joints:
 
 * sun: the relief-groove coupling. Either a torsional stiffness (N m/rad; the
-  beam guess K_j / l_LR of seed 002 eq. 1) with translational stiffnesses or
+  beam guess K_j / l_LR of Xu et al. (2020), eq. 1) with translational stiffnesses or
   ties, or the FE 12 x 12 matrix on ``[ux, uy, uz, rx, ry, rz]`` at O_L then
   O_R. The model has no tilting DOFs, so rx, ry are either *dropped*
   (``groove_rotations="drop"``, default: the halves are held against tilting, as
@@ -20,17 +20,17 @@ Left/right joints:
 * planets, ring, carrier: a tie (rigid, default) or a stiffness per DOF.
 
 Axial slide of the sun (z_a, m, + towards the right/output side) shifts the
-sun's toothed halves against the planets' (seed 002 sec. 3.1): the engaged face
+sun's toothed halves against the planets' (Xu et al. 2020, sec. 3.1): the engaged face
 width of each sun mesh becomes ``b -+ z_a`` (left loses, right gains), so the
 sun-mesh stiffness of each side is scaled by ``(b -+ z_a) / b`` with
 ``b = engaged_width`` (the contact-line length k_0 L(t) of eq. 13 is proportional
 to the engaged width). The static load and the response then move in opposite
 directions on the two sides while the natural frequencies barely change.
-The sun's external torque acts on both halves (``sun_load_side="both"``, seed
-002 eq. 20d) or only on the output half (``"R"``): then the left half's share
+The sun's external torque acts on both halves (``sun_load_side="both"``, Xu
+et al. 2020, eq. 20d) or only on the output half (``"R"``): then the left half's share
 passes through the groove, which twists it and makes the two sides unequal.
 Meshing phases: sun mesh n uses ``phase_sun[n]`` (+ ``phase_lr`` on the right
-side, seed 002 eq. 14d), ring mesh n ``phase_ring[n]``.
+side, Xu et al. 2020, eq. 14d), ring mesh n ``phase_ring[n]``.
 """
 
 from __future__ import annotations
@@ -122,9 +122,9 @@ class HerringbonePlanetaryModel:
     engaged_width : engaged face width b of one sun mesh, m (needed when axial_slide != 0).
     sun_load_side : "both" halves or only "R" / "L" take the sun torque.
     planet_angles, phase_sun, phase_ring : as in the planar model, shape (N,).
-    phase_lr : extra phase of the right sun meshes, mesh periods (seed 002 lambda_LR).
+    phase_lr : extra phase of the right sun meshes, mesh periods (Xu et al. 2020, lambda_LR).
     damping_ratio, sun_torque, carrier_speed, mesh_period : as in the planar model.
-    modal_damping_ratio : constant modal damping of seed 002 (-), see :class:`Assembly`.
+    modal_damping_ratio : constant modal damping of Xu et al. (2020) (-), see :class:`Assembly`.
     """
 
     n_planets: int = 4

@@ -15,7 +15,7 @@ psi_rn = psi_n + alpha_r), derived in :mod:`pipeline.dynamics.mesh_geometry`::
 Planet bearings tie each planet centre to the carrier point at radius r_c
 (radial and tangential springs k_p). Mesh phases: sun mesh n uses
 ``k_sp(tau - phase_sun[n])`` and ring mesh n ``k_rp(tau - phase_ring[n])``
-(seed 002 eqs. 14-15: phase_ring = lambda_rn + lambda_rs); pass them from
+(Xu et al. 2020, eqs. 14-15: phase_ring = lambda_rn + lambda_rs); pass them from
 :mod:`pipeline.geometry.planetary` or give them explicitly.
 """
 

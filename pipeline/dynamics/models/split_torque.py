@@ -1,4 +1,4 @@
-"""Split-torque double-power-input transmission of seed 000 (40 DOF).
+"""Split-torque double-power-input transmission of Jin et al. (2018) (40 DOF).
 
 Two identical branches ``L`` and ``R`` (one engine each) meet at one output gear:
 
@@ -13,14 +13,14 @@ Two identical branches ``L`` and ``R`` (one engine each) meet at one output gear
   the output shaft.
 
 That is 1 + 4 + 4 + 1 + 2 x 4 = 18 DOF per branch plus 4 at the output: 40, as in
-seed 000 eq. 1. The bevel mesh uses the projection of seed 000 eqs. 4-5 (direction
-cosines P_x, P_y, P_z from the pitch-cone, spiral and pressure angles) in the
+Jin et al. (2018), eq. 1. The bevel mesh uses the projection of Jin et al. (2018), eqs. 4-5
+(direction cosines P_x, P_y, P_z from the pitch-cone, spiral and pressure angles) in the
 shafts' own frames; the parallel-axis meshes use
 :func:`pipeline.dynamics.mesh_geometry.cylindrical_mesh_measure` with every theta
 counter-clockwise in the common frame. Each mesh carries its stiffness and the
-seed 000 friction force and friction torques (eqs. 15-17).
+Jin et al. (2018) friction force and friction torques (eqs. 15-17).
 
-Seed 000 states the installation angles (108, 104, 150 deg) without a figure we can
+Jin et al. (2018) state the installation angles (108, 104, 150 deg) without a figure we can
 read; we take them as the angle between the two split gears seen from the split
 pinion, between the two confluence pinions of a branch seen from the output gear,
 and between the two branches' bisectors at the output gear. Only the directions
@@ -28,7 +28,7 @@ of the lines of action enter the lumped model.
 
 The three stages mesh at incommensurate frequencies. :meth:`SplitTorqueModel.stage_system`
 returns the system in which only one stage's coefficients vary (period: that stage's
-mesh period), the others held at their means; the seed's Fourier series method
+mesh period), the others held at their means; the Fourier series method of Jin et al. (2018)
 superposes the stage responses (:func:`pipeline.dynamics.harmonic_balance.superpose_stages`).
 """
 
@@ -78,13 +78,13 @@ class StageMesh:
 
 @dataclass(frozen=True)
 class SplitTorqueModel:
-    """Inputs of the seed 000 split-torque model.
+    """Inputs of the split-torque model of Jin et al. (2018).
 
     Attributes
     ----------
     input_stage, split_stage, confluence_stage : :class:`StageMesh` of each stage.
     bevel_angles : (pitch-cone delta, spiral beta, normal pressure alpha) of the bevel
-        pinion, rad (seed 000 eq. 5).
+        pinion, rad (Jin et al. 2018, eq. 5).
     masses : kg per body kind: "bp", "bg", "sp", "gs" (split gear), "gc" (confluence
         pinion), "o".
     inertias : kg m^2 per body kind, plus "in" (engine rotor) and "out" (rotor load).
@@ -197,7 +197,7 @@ class SplitTorqueModel:
                 # split gear j seen from the split pinion, away from the output gear
                 gamma_s = bisector + sgn * a_s / 2
                 # meshing phases: the teeth of the common gear between the two contacts
-                # (the same rule as the planet phases of seed 002 eq. 10)
+                # (the same rule as the planet phases of Xu et al. 2020, eq. 10)
                 ph_s = float(
                     dec(self.split_stage.teeth_driver * (sgn - 1) / 2 * a_s / (2 * math.pi))
                 )
@@ -325,7 +325,8 @@ class SplitTorqueModel:
         pz = math.cos(delta) * math.sin(beta) * math.cos(alpha) - math.sin(delta) * math.sin(alpha)
         st = self.input_stage
         p, g = f"bp{b}", f"bg{b}"
-        # seed 000 eq. 4 with compression positive and each theta in its own driving sense
+        # Jin et al. (2018), eq. 4 with compression positive and each theta in its own driving
+        # sense
         measure = {
             (p, "x"): -px,
             (g, "x"): -px,

@@ -1,10 +1,10 @@
-"""Six-DOF lateral-torsional spur pair of seed 001.
+"""Six-DOF lateral-torsional spur pair of the assembly-error paper.
 
 Coordinates ``pinion.x, pinion.y, pinion.theta, gear.x, gear.y, gear.theta``;
 x lies along the line of action, each gear's theta is positive in its own
 sense of rotation (the gear turns opposite to the pinion), so the dynamic
 transmission error is ``delta = x_p - x_g + r_bp theta_p - r_bg theta_g``
-(seed 001) and the mesh force ``F = k(t) (delta - e) + c delta'`` with
+(the assembly-error paper) and the mesh force ``F = k(t) (delta - e) + c delta'`` with
 ``c = 2 zeta sqrt(k_mean m_e)``, ``m_e = 1 / (r_bp^2 / I_p + r_bg^2 / I_g)``.
 The pinion carries the input torque T_p, the gear the balancing load
 ``T_g = T_p r_bg / r_bp``.
@@ -30,7 +30,8 @@ from pipeline.validation import InputError, check_int_range, check_positive, che
 
 @dataclass(frozen=True)
 class SpurPairModel:
-    """Inputs of the seed 001 spur pair (defaults: its Table of base parameters).
+    """Inputs of the spur pair of the assembly-error paper (defaults: its Table of base
+    parameters).
 
     Attributes
     ----------
@@ -45,7 +46,7 @@ class SpurPairModel:
     torque : input torque on the pinion, N m.
     speed : pinion speed, rad/s.
     transmission_error : e(tau) in m, or ``None``.
-    friction_stiffness : K_f(tau) in N/m (seed 000 eq. 16), or ``None``.
+    friction_stiffness : K_f(tau) in N/m (Jin et al. 2018, eq. 16), or ``None``.
     friction_torque_pinion, friction_torque_gear : K_Tf(tau) in N m/m, or ``None``.
     torsional_only : keep only the two rotations (2-inertia model).
     """

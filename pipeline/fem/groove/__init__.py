@@ -2,7 +2,8 @@
 
 ``spec`` (input) -> ``mesh`` (Gmsh, cached) -> P2 elasticity -> ``coupling``
 (12 x 12 between O_L and O_R) -> ``result`` (:class:`GrooveStiffness`), driven by
-``study``; ``config`` reads TOML, ``render`` draws the twisted body.
+``study``; ``config`` reads TOML, ``stress`` gives the torsional shear stress
+(:mod:`pipeline.viz.groove` draws the twisted body).
 """
 
 from pipeline.fem.groove.result import GrooveStiffness, PhaseShift

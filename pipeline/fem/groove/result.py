@@ -1,6 +1,6 @@
 """The relief-groove stiffness that the dynamic models take directly.
 
-Seed 002 joins the left and right helical halves of the sun gear at nodes O_L
+Xu et al. (2020) join the left and right helical halves of the sun gear at nodes O_L
 and O_R by a torsion beam of rigidity K_j = G I_j (N m^2, eq. 1) over l_LR, and
 by coupling stiffnesses k_LRs in x, y, z (eqs. 20-21). :class:`GrooveStiffness`
 carries the full 12 x 12 stiffness between the two nodes from a 3D FE model, the
@@ -29,9 +29,9 @@ class PhaseShift:
 
     Attributes
     ----------
-    phi_LR : relative twist angle between O_L and O_R, rad (seed 002 eq. 1).
+    phi_LR : relative twist angle between O_L and O_R, rad (Xu et al. 2020, eq. 1).
     lambda_LR : phase coefficient dec(z_s phi_LR / 2 pi) (-), fractional part
-        with the sign of phi_LR (seed 002 eq. 11).
+        with the sign of phi_LR (Xu et al. 2020, eq. 11).
     """
 
     phi_LR: float
@@ -46,7 +46,7 @@ class GrooveStiffness:
     ----------
     torsional_stiffness : k_t, N m/rad: torque over relative twist of O_L and O_R
         under a pure torque (other generalised forces zero).
-    equivalent_Kj : K_j = k_t l_LR, N m^2 (the G I_j of seed 002 eq. 1).
+    equivalent_Kj : K_j = k_t l_LR, N m^2 (the G I_j of Xu et al. 2020, eq. 1).
     l_LR : distance O_L - O_R, m.
     coupling_matrix : (12, 12), DOFs [ux, uy, uz, rx, ry, rz] at O_L then O_R
         (z = gear axis); blocks in N/m, N/rad (= N m/m) and N m/rad; symmetric,
@@ -79,10 +79,10 @@ class GrooveStiffness:
                     ) -> PhaseShift:
         """Relative twist and mesh phase coefficient for sun torque T_s (N m).
 
-        ``phi_LR = f T_s / k_t = f T_s l_LR / K_j`` (seed 002 eq. 1 with f = 1: the
+        ``phi_LR = f T_s / k_t = f T_s l_LR / K_j`` (Xu et al. 2020, eq. 1 with f = 1: the
         whole sun torque twists the groove) and ``lambda_LR = dec(z_s phi / 2 pi)``
         (eq. 11). ``groove_torque_fraction`` f is the share of T_s crossing the
-        groove: 1 as in seed 002; 0.5 when both halves take half the mesh torque
+        groove: 1 as in Xu et al. (2020); 0.5 when both halves take half the mesh torque
         and it leaves through the right shaft.
         """
         phi = groove_torque_fraction * sun_torque_Nm / self.torsional_stiffness

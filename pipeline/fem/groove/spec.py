@@ -1,6 +1,6 @@
 """Input of the relief-groove stiffness study (frozen, SI) and the body it describes.
 
-Layout along the gear axis z, origin at the middle of the groove (seed 002,
+Layout along the gear axis z, origin at the middle of the groove (Xu et al. 2020,
 Fig. 2): left helical half [-g/2 - b/2, -g/2], groove [-g/2, g/2], right half
 [g/2, g/2 + b/2], where b is ``GearSpec.face_width`` (both toothed halves) and g
 the groove width; optional shaft extensions beyond the outer gear faces. The

@@ -1,12 +1,13 @@
-"""Seed 004 stiffness study: helical slice method with friction, and the contact-line method.
+"""Stiffness study of Yang et al. (2026): helical slice method with friction, and the contact-line
+method.
 
-Traction pair of seed 004 Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, a 495 mm,
+Traction pair of Yang et al. (2026), Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, a 495 mm,
 face width assumed 130 mm) at its rated load (20,233 N m on the wheel).
-Writes to results/seed004_stiffness/: mesh stiffness without/with friction
+Writes to results/helical_slice_stiffness/: mesh stiffness without/with friction
 (mu 0.05 and EHL), the single-tooth-pair stiffness along its engagement, the
 contact-line (ISO 6336) comparison, a summary table and run.json.
 
-    python workflows/seed004_stiffness.py [--full] [--out DIR]
+    python workflows/helical_slice_stiffness.py [--full] [--out DIR]
 """
 
 from __future__ import annotations
@@ -23,7 +24,8 @@ from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.mesh import PairModel
-from pipeline.viz.pair_plots import plot_stiffness_curves, save
+from pipeline.viz import save
+from pipeline.viz.stiffness import plot_stiffness_curves
 
 HERE = Path(__file__).resolve().parent
 CONFIG = HERE / "configs" / "traction_helical_pair.toml"
@@ -56,7 +58,7 @@ def run(out: Path, positions: int, slices: int) -> dict:
     variants = {"mu = 0": 0.0, "mu = 0.05": 0.05, "EHL friction": "ehl"}
     model = None
     results = {}
-    for name, mu in progress(list(variants.items()), "seed 004 cases"):
+    for name, mu in progress(list(variants.items()), "Yang et al. 2026 cases"):
         cfg = dataclasses.replace(base, stiffness=dataclasses.replace(base.stiffness, friction=mu))
         r = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness,
                               assembly_errors=cfg.assembly_errors, model=model)
@@ -77,18 +79,20 @@ def run(out: Path, positions: int, slices: int) -> dict:
     files = [write_json(out / "summary.json", table)]
     files.append(save(plot_stiffness_curves(
         [(n, deg, r.mesh.total) for n, r in results.items()],
-        title="Seed 004: slice potential-energy method with friction"), out / "friction.png"))
+        title="Yang et al. (2026): slice potential-energy method with friction"),
+        out / "friction.png"))
     files.append(save(plot_stiffness_curves(
         [("slice potential energy (mu = 0)", deg, r0.mesh.total),
          ("contact-line method (ISO 6336)", deg, r0.contact_line.total)],
-        title="Seed 004: slice method vs contact-line method"), out / "contact_line.png"))
+        title="Yang et al. (2026): slice method vs contact-line method"),
+        out / "contact_line.png"))
     curves = []
     for name in ("mu = 0", "mu = 0.05"):
         s, k = single_pair_curve(results[name])
         curves.append((name, s * 1e3, k))
     files.append(save(plot_stiffness_curves(
         curves, xlabel="roll coordinate of the pair at z = 0 [mm]",
-        title="Seed 004: single tooth pair stiffness through its engagement"),
+        title="Yang et al. (2026): single tooth pair stiffness through its engagement"),
         out / "single_pair.png"))
     cols = {"pinion_angle [rad]": r0.mesh.pinion_angle,
             "contact_line_method [N/m]": r0.contact_line.total}
@@ -96,14 +100,14 @@ def run(out: Path, positions: int, slices: int) -> dict:
         cols[f"{n} [N/m]"] = r.mesh.total
     files.append(write_csv(out / "curves.csv", cols))
     write_run_record(out, {"config": str(CONFIG), "positions": positions, "slices": slices},
-                     files, "workflows/seed004_stiffness.py")
+                     files, "workflows/helical_slice_stiffness.py")
     return table
 
 
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true", help="720 positions x 200 slices")
-    ap.add_argument("--out", type=Path, default=Path("results/seed004_stiffness"))
+    ap.add_argument("--out", type=Path, default=Path("results/helical_slice_stiffness"))
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     table = run(args.out, *((720, 200) if args.full else (360, 100)))

@@ -1,21 +1,21 @@
-"""The split-torque helicopter transmission of seed 000 (Table 2) as model inputs.
+"""The split-torque helicopter transmission of Jin et al. (2018) (Table 2) as model inputs.
 
 Table 2: 2000 kW (taken per engine: the two inputs are identical engines and the
 branches equal), 20900 rpm input; normal modules 3.85, 3.5 and 4.4 mm (the table
 prints "44"; 44 mm is no helicopter module and 4.4 mm fits the 100 mm face);
 ratios 27/74 (bevel), 31/98 (split), 23/215 (confluence); pressure angles 20,
 22.5, 20 deg; face widths 45, 48, 100 mm; spiral/helix angle 30 deg for the input
-and confluence stages (the confluence gears are herringbone, seed 000 sec. 5.2);
+and confluence stages (the confluence gears are herringbone, Jin et al. 2018, sec. 5.2);
 installation angles 108, 104, 150 deg.
 
 The bevel stage's stiffness is that of its virtual (Tredgold) helical pair, z_v =
 z / cos(delta), turned to the normal direction (k_n = k_t / cos^2 beta_b) because
-the seed 000 projection of eq. 5 is along the tooth normal; its radii are the
+Jin et al. (2018) projection of eq. 5 is along the tooth normal; its radii are the
 pitch radii of the actual bevel gears (eq. 4 "radius of mesh points"). The stiffness and the
 friction coefficients of every stage come from the pipeline's analytical stiffness
-with the EHL friction of seed 000 eq. 9 (:mod:`pipeline.dynamics.mesh_input`).
+with the EHL friction of Jin et al. (2018), eq. 9 (:mod:`pipeline.dynamics.mesh_input`).
 
-Not given by seed 000 (assumed, stated here): masses and inertias of steel discs of
+Not given by Jin et al. (2018) (assumed, stated here): masses and inertias of steel discs of
 the pitch diameters and face widths; shaft torsional stiffnesses; bearing
 stiffness 1e9 N/m (radial) and 5e8 N/m (axial); engine rotor inertia 0.05 kg m^2;
 rotor load inertia 500 kg m^2 (it only sets the rigid-body mode); mesh damping
@@ -42,7 +42,7 @@ MODULE = {"input": 3.85e-3, "split": 3.5e-3, "confluence": 4.4e-3}
 PRESSURE = {"input": 20.0, "split": 22.5, "confluence": 20.0}
 WIDTH = {"input": 0.045, "split": 0.048, "confluence": 0.100}
 HELIX = {"input": 30.0, "split": 0.0, "confluence": 30.0}
-ROUGHNESS_UM = (0.3, 0.6, 0.9)  # seed 000 sec. 5.3
+ROUGHNESS_UM = (0.3, 0.6, 0.9)  # Jin et al. (2018), sec. 5.3
 
 
 def _disc(radius: float, width: float) -> tuple[float, float]:
@@ -86,18 +86,18 @@ def _speeds() -> dict[str, float]:
     return out
 
 
-def seed000_model(
+def split_torque_helicopter_model(
     roughness: float = 0.6e-6,
     friction: bool = True,
     positions: int = 180,
     slices: int = 30,
     viscosity: float = 0.02,
 ) -> SplitTorqueModel:
-    """Seed 000 split-torque model with EHL friction for a surface roughness.
+    """Jin et al. (2018) split-torque model with EHL friction for a surface roughness.
 
     Parameters
     ----------
-    roughness : composite RMS roughness S in m (seed 000: 0.3, 0.6, 0.9 um).
+    roughness : composite RMS roughness S in m (Jin et al. 2018: 0.3, 0.6, 0.9 um).
     friction : include the friction force and friction torques.
     positions : samples per mesh period of each stage's stiffness.
     slices : face slices of the helical stages.
@@ -129,7 +129,7 @@ def seed000_model(
                     )
                 },
             )
-        if st == "input":  # seed 000 eq. 4: radii of the mesh points of the actual bevels
+        if st == "input":  # Jin et al. 2018, eq. 4: radii of the mesh points of the bevels
             beta = math.radians(HELIX[st])
             r1, r2 = (z * MODULE[st] / (2 * math.cos(beta)) for z in (z1, z2))
         else:

@@ -1,4 +1,4 @@
-"""The seed 002 sun gear body: coupling contract, loading options, convergence, paper value.
+"""Xu et al. (2020) sun gear body: coupling contract, loading options, convergence, paper value.
 
 Fast cases use a coarse mesh (h = 60 mm, about 11k DOF). References:
 
@@ -9,7 +9,7 @@ Fast cases use a coarse mesh (h = 60 mm, about 11k DOF). References:
   torque: the twist between the half centres agrees up to the local (Saint-Venant)
   effect of the band loads and their discretisation by whole triangles;
 * rigid halves (RBE2) are an upper bound of the distributed (RBE3) stiffness;
-* seed 002 studies K_j from 5.2e7 down to 4.0e7 N m^2 for its sun (slow case).
+* Xu et al. (2020) study K_j from 5.2e7 down to 4.0e7 N m^2 for their sun (slow case).
 """
 
 from __future__ import annotations
@@ -28,17 +28,17 @@ from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import rigid_body_modes
 
 CONFIG = Path(__file__).resolve().parents[1] / "workflows/configs/wind_turbine_sun_groove.toml"
-KJ_PAPER = 5.2e7  # N m^2, seed 002 (largest value studied)
+KJ_PAPER = 5.2e7  # N m^2, Xu et al. (2020) (largest value studied)
 
 
 @pytest.fixture(scope="module")
-def seed():
+def sun_case():
     return load_gearbox(CONFIG).groove
 
 
 @pytest.fixture(scope="module")
-def coarse(seed):
-    spec = dataclasses.replace(seed, mesh_size=0.06, coupling="tooth_forces")
+def coarse(sun_case):
+    spec = dataclasses.replace(sun_case, mesh_size=0.06, coupling="tooth_forces")
     return analyse_groove(spec, use_cache=False)
 
 
@@ -76,7 +76,7 @@ def test_contract_and_loading_options(coarse):
     assert r.torsional_stiffness == pytest.approx(k_dist, rel=0.05)
     rigid = analyse_groove(dataclasses.replace(coarse.spec, coupling="rigid"), use_cache=False)
     assert rigid.result.torsional_stiffness > 1.2 * k_dist  # rigid halves: upper bound
-    # Dynamics contract: JSON round trip and seed 002 eq. 11 phase shift.
+    # Dynamics contract: JSON round trip and Xu et al. (2020), eq. 11 phase shift.
     back = GrooveStiffness.from_dict(r.to_dict())
     np.testing.assert_array_equal(back.coupling_matrix, K)
     ps = r.phase_shift(148000.0)
@@ -85,9 +85,9 @@ def test_contract_and_loading_options(coarse):
 
 
 @pytest.mark.slow
-def test_mesh_convergence_root_cylinder(seed):
+def test_mesh_convergence_root_cylinder(sun_case):
     """k_t changes by < 1 % between the two finest meshes (h = 30, 22 mm), monotonically."""
-    kt = [analyse_groove(dataclasses.replace(seed, mesh_size=h)).result.torsional_stiffness
+    kt = [analyse_groove(dataclasses.replace(sun_case, mesh_size=h)).result.torsional_stiffness
           for h in (0.04, 0.03, 0.022)]
     changes = np.abs(np.diff(kt)) / kt[-1]
     assert changes[-1] < 0.01 and changes[-1] <= changes[0]
@@ -95,10 +95,10 @@ def test_mesh_convergence_root_cylinder(seed):
 
 
 @pytest.mark.slow
-def test_seed002_helical_teeth_vs_root_cylinder_and_paper(seed):
+def test_xu2020_sun_helical_teeth_vs_root_cylinder_and_paper(sun_case):
     """Real teeth stiffen the body by < 2 %; K_j within 20 % of the paper's 5.2e7 N m^2."""
-    root = analyse_groove(dataclasses.replace(seed, mesh_size=0.04)).result
-    teeth = analyse_groove(dataclasses.replace(seed, mesh_size=0.04,
+    root = analyse_groove(dataclasses.replace(sun_case, mesh_size=0.04)).result
+    teeth = analyse_groove(dataclasses.replace(sun_case, mesh_size=0.04,
                                                teeth_model="helical_teeth")).result
     assert 0.0 < teeth.torsional_stiffness / root.torsional_stiffness - 1.0 < 0.02
     for r in (root, teeth):

@@ -1,10 +1,11 @@
-"""Seed 001 stiffness study: friction 0 / 0.05 / 0.1 and assembly-error conditions 1-3.
+"""Stiffness study of the assembly-error paper: friction 0 / 0.05 / 0.1 and assembly-error
+conditions 1-3.
 
-Spur pair z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at 2340 rpm (seed 001 table).
-Writes to results/seed001_stiffness/: overlay plots (PNG), the curves (CSV), a
+Spur pair z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at 2340 rpm (the assembly-error paper table).
+Writes to results/spur_pair_assembly_errors/: overlay plots (PNG), the curves (CSV), a
 table of max/min/mean per case (CSV + JSON) and run.json.
 
-    python workflows/seed001_stiffness.py [--full] [--out DIR]
+    python workflows/spur_pair_assembly_errors.py [--full] [--out DIR]
 """
 
 from __future__ import annotations
@@ -21,12 +22,13 @@ from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.analysis import analyse_stiffness
-from pipeline.viz.pair_plots import plot_stiffness_curves, save
+from pipeline.viz import save
+from pipeline.viz.stiffness import plot_stiffness_curves
 
 HERE = Path(__file__).resolve().parent
 CONFIG = HERE / "configs" / "spur_pair_assembly_errors.toml"
 UM = 1e-6
-CONDITIONS = {  # seed 001 table: (e_xp, e_yp), (e_xg, e_yg) in um
+CONDITIONS = {  # the assembly-error paper table: (e_xp, e_yp), (e_xg, e_yg) in um
     "condition 1 (ideal)": ((0.0, 0.0), (0.0, 0.0)),
     "condition 2 (10 um)": ((0.0, 0.0), (10.0, 10.0)),
     "condition 3 (100 um)": ((0.0, 0.0), (100.0, 100.0)),
@@ -44,7 +46,7 @@ def run(out: Path, positions: int) -> dict:
         errors = AssemblyErrors(tuple(v * UM for v in ep), tuple(v * UM for v in eg))
         cases.append((f"{name}, mu = 0", dataclasses.replace(base, assembly_errors=errors)))
     results = {}
-    for name, cfg in progress(cases, "seed 001 cases"):
+    for name, cfg in progress(cases, "spur pair cases"):
         results[name] = analyse_stiffness(cfg.pair, cfg.operation, cfg.stiffness,
                                           assembly_errors=cfg.assembly_errors)
     table = {}
@@ -71,24 +73,25 @@ def run(out: Path, positions: int) -> dict:
     }))
     deg = lambda r: np.degrees(r.mesh.pinion_angle)  # noqa: E731
     fr = [(n, deg(results[n]), results[n].mesh.total) for n in results if n.startswith("mu")]
-    files.append(save(plot_stiffness_curves(fr, title="Seed 001: friction (condition 1)"),
+    files.append(save(plot_stiffness_curves(fr, title="Spur pair: friction (condition 1)"),
                       out / "friction.png"))
     ae = [(n, deg(results[n]), results[n].mesh.total) for n in results if n.startswith("cond")]
-    files.append(save(plot_stiffness_curves(ae, title="Seed 001: assembly errors (mu = 0)"),
+    files.append(save(plot_stiffness_curves(ae, title="Spur pair: assembly errors (mu = 0)"),
                       out / "assembly_errors.png"))
     cols = {"pinion_angle [rad]": results["mu = 0.0"].mesh.pinion_angle}
     for i, (n, r) in enumerate(results.items()):
         cols[f"case{i} {n} [N/m]"] = r.mesh.total
     files.append(write_csv(out / "curves.csv", cols))
     write_run_record(out, {"config": str(CONFIG), "positions": positions,
-                           "cases": list(results)}, files, "workflows/seed001_stiffness.py")
+                           "cases": list(results)},
+                     files, "workflows/spur_pair_assembly_errors.py")
     return table
 
 
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true", help="3600 positions per mesh cycle")
-    ap.add_argument("--out", type=Path, default=Path("results/seed001_stiffness"))
+    ap.add_argument("--out", type=Path, default=Path("results/spur_pair_assembly_errors"))
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     table = run(args.out, 3600 if args.full else 360)

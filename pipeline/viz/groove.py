@@ -5,39 +5,27 @@ pyvista costs seconds to import, so it is imported inside the function only.
 
 from __future__ import annotations
 
-from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.groove.study import GrooveAnalysis
+from pipeline.fem.groove.stress import torsional_shear_stress
 
-
-def torsional_shear_stress(analysis: GrooveAnalysis, u: np.ndarray) -> np.ndarray:
-    """Element-mean shear stress tau_theta_z (Pa), shape (n_elements,), for displacement u (m)."""
-    basis = analysis.model.basis
-    lam, mu = analysis.model.lam, analysis.model.mu
-    grad = basis.interpolate(u).grad  # (3, 3, n_el, n_q)
-    w = basis.dx / basis.dx.sum(axis=1, keepdims=True)
-    g = np.einsum("ijeq,eq->eij", grad, w)  # element means
-    eps = 0.5 * (g + g.transpose(0, 2, 1))
-    sigma = 2 * mu * eps + lam * np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3)
-    mesh = analysis.mesh.mesh
-    c = mesh.p[:, mesh.t].mean(axis=1)  # (3, n_el) centroids
-    r = np.hypot(c[0], c[1])
-    e_theta = np.stack([-c[1], c[0], 0 * r]) / np.where(r > 0, r, 1.0)
-    return np.einsum("ie,eij,j->e", e_theta, sigma, np.array([0.0, 0.0, 1.0]))
+if TYPE_CHECKING:
+    from pipeline.fem.groove.study import GrooveAnalysis
 
 
 def render_twisted_body(
-    analysis: GrooveAnalysis, path: str | Path, torque: float, magnification: float | None = None,
+    analysis: GrooveAnalysis, torque: float, magnification: float | None = None,
     window: tuple[int, int] = (1400, 800),
-) -> Path:
-    """Write a PNG of the body deformed by relative torque ``torque`` (N m) between the halves.
+):
+    """Off-screen pyvista Plotter of the body deformed by relative torque ``torque`` (N m).
+
+    Save it with :func:`pipeline.viz.save` (which also closes it).
 
     Parameters
     ----------
     analysis : from :func:`pipeline.fem.groove.study.analyse_groove`.
-    path : PNG file to write.
     torque : relative torque in N m (O_L against O_R).
     magnification : displacement scale (default: largest displacement shown as 8 %
         of the root radius).
@@ -75,8 +63,4 @@ def render_twisted_body(
     plotter.camera_position = [(1.0, -1.6, zc + 0.5), (0.0, 0.0, zc), (1.0, 0.0, 0.0)]
     plotter.reset_camera()
     plotter.camera.zoom(1.3)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    plotter.screenshot(str(path))
-    plotter.close()
-    return path
+    return plotter

@@ -1,17 +1,17 @@
-"""The herringbone planetary case of seed 002 as model inputs (1.5 MW wind-turbine stage).
+"""The herringbone planetary case of Xu et al. (2020) as model inputs (1.5 MW wind-turbine stage).
 
 Sun 21, planet 37, ring 95 teeth, m_n 15 mm, alpha_n 25 deg, beta 8 deg, 4
 planets; face widths 185/175/185 mm with relief grooves 40/50/40 mm; groove
-torsional stiffness K_j from 5.2e7 to 4.0e7 N m^2 (seed 002 sec. 3.1). The seed
-gives no masses or support stiffnesses: masses and inertias are those of steel
+torsional stiffness K_j from 5.2e7 to 4.0e7 N m^2 (Xu et al. 2020, sec. 3.1). The
+paper gives no masses or support stiffnesses: masses and inertias are those of steel
 discs of the gear dimensions, supports and mesh stiffness are typical values for
 this size (stated below); they set where the peaks fall, not the trends.
 Planet angles and meshing phases (eqs. 10a-c, 11) come from
 :class:`pipeline.geometry.planetary.PlanetarySet`. Damping: mesh damping ratio
-0.05 plus a constant modal damping of 0.02 (seed 002 sec. 2.3 uses a constant
+0.05 plus a constant modal damping of 0.02 (Xu et al. 2020, sec. 2.3 uses a constant
 modal damping without giving its value).
 
-Groove stiffness and mesh stiffness (seed 002 eqs. 1, 11, 14-15): K_j sets the
+Groove stiffness and mesh stiffness (Xu et al. 2020, eqs. 1, 11, 14-15): K_j sets the
 twist of the sun halves, hence the right meshes' phase lambda_LR, *and* the
 left/right sun-planet mesh stiffness (+9.79 % / -11.23 % from K_1 to K_5,
 :mod:`pipeline.dynamics.models.groove_mesh`); ring-planet meshes keep their
@@ -24,7 +24,7 @@ import math
 
 from pipeline.dynamics.excitation import contact_line_stiffness
 from pipeline.dynamics.models.groove_mesh import (
-    SEED002_GROOVE_MESH,
+    XU2020_GROOVE_MESH,
     GrooveMeshRelation,
     side_factors,
 )
@@ -40,10 +40,10 @@ ALPHA_N = math.radians(25.0)
 BETA = math.radians(8.0)
 HALF_WIDTH = 0.0625  # m, toothed width of one half in mesh (planet (175 - 50) / 2 mm)
 L_LR = 0.0725 + 0.040  # m, distance between the half centres of the sun (72.5 + 40 mm)
-# Torsional length in eq. 1: seed 002 measures the twist from the torsion centre O_T,
+# Torsional length in eq. 1: Xu et al. (2020) measure the twist from the torsion centre O_T,
 # l_LT = 657.5 mm from O_L; we use it as the beam length of the groove torsion.
 L_TORSION = 0.6575
-K_J = (5.2e7, 4.9e7, 4.6e7, 4.3e7, 4.0e7)  # N m^2, seed 002 K_1..K_5
+K_J = (5.2e7, 4.9e7, 4.6e7, 4.3e7, 4.0e7)  # N m^2, Xu et al. (2020) K_1..K_5
 RHO = 7850.0
 C_GAMMA = 2.0e10  # N/m per m of face width (ISO 6336-1 mesh stiffness order, 20 N/(mm um))
 POWER = 1.5e6  # W
@@ -55,8 +55,8 @@ def _disc(r_out: float, r_in: float, width: float) -> tuple[float, float]:
     return m, 0.5 * m * (r_out**2 + r_in**2)
 
 
-def planetary_set(n_planets: int = 4) -> PlanetarySet:
-    """The seed 002 gears (Table 1) as a :class:`PlanetarySet` (phases of eq. 10)."""
+def wind_turbine_planetary_set(n_planets: int = 4) -> PlanetarySet:
+    """The gears of Xu et al. (2020) (Table 1) as a :class:`PlanetarySet` (phases of eq. 10)."""
     common = dict(module=M_N, pressure_angle=ALPHA_N, helix_angle=BETA, herringbone=True)
     sun = GearSpec(Z_S, face_width=0.370, hand="right", groove_width=0.040, name="sun", **common)
     planet = GearSpec(
@@ -75,7 +75,7 @@ def planetary_set(n_planets: int = 4) -> PlanetarySet:
     return PlanetarySet(sun, planet, ring, n_planets)
 
 
-def seed002_model(
+def wind_turbine_herringbone_model(
     groove_Kj: float = K_J[0],
     axial_slide: float = 0.0,
     mesh_frequency: float = 1440.0,
@@ -85,31 +85,31 @@ def seed002_model(
     stagger: float = 0.0,
     groove: GrooveStiffness | None = None,
     modal_damping_ratio: float = 0.02,
-    groove_mesh: GrooveMeshRelation | None = SEED002_GROOVE_MESH,
+    groove_mesh: GrooveMeshRelation | None = XU2020_GROOVE_MESH,
 ) -> HerringbonePlanetaryModel:
-    """Seed 002 model at one mesh frequency.
+    """The herringbone planetary model of Xu et al. (2020) at one mesh frequency.
 
     Parameters
     ----------
-    groove_Kj : K_j in N m^2; the groove torsional stiffness is K_j / l (seed 002 eq. 1,
+    groove_Kj : K_j in N m^2; the groove torsional stiffness is K_j / l (Xu et al. 2020, eq. 1,
         l = L_TORSION). Ignored when ``groove`` is given.
     axial_slide : sun axial slide z_a in m (+ to the output/right side).
     mesh_frequency : Hz; carrier speed = 2 pi f / z_r (ring fixed).
     damping_ratio : mesh damping ratio (-).
     half_coupling : (kx, ky, kz, ktheta) joining planet/ring/carrier halves; ``None`` ties them.
     samples : samples per mesh period of the stiffness.
-    stagger : left/right tooth stagger of the herringbone in mesh periods (seed 002 gives
+    stagger : left/right tooth stagger of the herringbone in mesh periods (Xu et al. 2020 give
         none); added to the twist phase lambda_LR of the right sun meshes.
     groove : FE groove stiffness (issue 4, :class:`GrooveStiffness`): its 12 x 12 coupling
         matrix joins the sun halves and its ``phase_shift`` gives lambda_LR; ``None`` uses
         the beam value ``groove_Kj / L_TORSION`` with stiff translations.
-    modal_damping_ratio : constant modal damping (-) of seed 002 (sec. 2.3).
-    groove_mesh : left/right sun-planet mesh stiffness against K_j (seed 002 eq. 14,
+    modal_damping_ratio : constant modal damping (-) of Xu et al. (2020) (sec. 2.3).
+    groove_mesh : left/right sun-planet mesh stiffness against K_j (Xu et al. 2020, eq. 14,
         Fig. 5; :func:`~pipeline.dynamics.models.groove_mesh.side_factors`), evaluated at
         ``groove_Kj`` (or ``groove.equivalent_Kj``), which must then lie in [K_5, K_1];
         ``None``: both sides keep the nominal stiffness at every K_j.
     """
-    ps = planetary_set(4)
+    ps = wind_turbine_planetary_set(4)
     mt = M_N / math.cos(BETA)
     at = math.atan(math.tan(ALPHA_N) / math.cos(BETA))
     bb = math.atan(math.tan(BETA) * math.cos(at))

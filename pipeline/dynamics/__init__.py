@@ -1,0 +1,88 @@
+"""Lumped-parameter gearbox dynamics: bodies and couplings assembled into a linear
+time-periodic system, excited by the loaded mesh stiffness and static transmission
+error of every mesh, solved for modes, periodic responses and frequency sweeps.
+
+Package map (data flows top to bottom):
+
+- :mod:`.bodies` - rigid bodies with named degrees of freedom (``"sun.x"``, ...).
+- :mod:`.couplings` - springs, bearings, torsional shafts, gear meshes (with friction
+  loads), matrix couplings (e.g. a groove stiffness), ties and external loads.
+- :mod:`.mesh_geometry` - line-of-action projections of cylindrical gear meshes.
+- :mod:`.excitation`, :mod:`.mesh_input` - mesh stiffness and transmission error as
+  periodic signals: idealised (rectangular, contact-line) or from the pipeline's
+  analytical stiffness (:func:`analytical_excitation`).
+- :mod:`.assembly` - :class:`Assembly`: bodies + couplings + loads ->
+  :class:`~.system.LinearPeriodicSystem` (:mod:`.system`: M, C, K(t), G, F(t)).
+- :mod:`.models` - ready-made gearboxes: spur pair (6 DOF), planar planetary set
+  (Lin and Parker 1999), herringbone planetary (Xu et al. 2020), split-torque
+  transmission (Jin et al. 2018), and the published cases as inputs
+  (``wind_turbine_planetary``, ``split_torque_helicopter``).
+- :mod:`.modal` - natural frequencies, mode shapes and planetary mode types.
+- :mod:`.harmonic_balance` - periodic response by the Fourier series method (Hill's
+  coupling or first order); :mod:`.multirate` superposes stages with incommensurate
+  mesh frequencies.
+- :mod:`.integrate` - exact piecewise propagators, Floquet steady state.
+- :mod:`.sweep` - mesh-force sweeps over speed (local or Dask executors), load sharing;
+  :mod:`.peaks` refines peak frequencies.
+- :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
+- :mod:`.reduction`, :mod:`.signals` - rigid-body-mode removal and exact segment means
+  / Fourier coefficients shared by the solvers.
+- :mod:`.config`, :mod:`.commands` - TOML studies and ``gearpipe modes|response|sweep``
+  (not imported here). Figures are in :mod:`pipeline.viz.dynamics`.
+"""
+
+from pipeline.dynamics.assembly import Assembly
+from pipeline.dynamics.bodies import Body
+from pipeline.dynamics.couplings import (
+    Bearing,
+    FrictionLoad,
+    GearMesh,
+    Load,
+    MatrixCoupling,
+    Spring,
+    Tie,
+    TorsionalShaft,
+)
+from pipeline.dynamics.harmonic_balance import harmonic_balance
+from pipeline.dynamics.integrate import integrate, steady_state
+from pipeline.dynamics.mesh_input import MeshExcitation, analytical_excitation
+from pipeline.dynamics.modal import modal_analysis
+from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
+from pipeline.dynamics.models.planetary import PlanetaryModel
+from pipeline.dynamics.models.split_torque import SplitTorqueModel
+from pipeline.dynamics.models.spur_pair import SpurPairModel
+from pipeline.dynamics.multirate import superpose_stages
+from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
+from pipeline.dynamics.sweep import SweepResult, load_sharing_factor, mesh_force_sweep
+from pipeline.dynamics.system import LinearPeriodicSystem
+
+__all__ = [
+    "Assembly",
+    "Bearing",
+    "Body",
+    "FrictionLoad",
+    "GearMesh",
+    "HarmonicResponse",
+    "HerringbonePlanetaryModel",
+    "LinearPeriodicSystem",
+    "Load",
+    "MatrixCoupling",
+    "MeshExcitation",
+    "ModalResult",
+    "PlanetaryModel",
+    "Response",
+    "SplitTorqueModel",
+    "Spring",
+    "SpurPairModel",
+    "SweepResult",
+    "Tie",
+    "TorsionalShaft",
+    "analytical_excitation",
+    "harmonic_balance",
+    "integrate",
+    "load_sharing_factor",
+    "mesh_force_sweep",
+    "modal_analysis",
+    "steady_state",
+    "superpose_stages",
+]

@@ -1,0 +1,33 @@
+"""Loaded tooth contact over a mesh cycle: stiffness, transmission error, load sharing."""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from pipeline.contact.results import LoadedMeshCycle
+
+
+def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
+                       fig: Figure | None = None) -> Figure:
+    """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
+    load sharing over the cycle, three panels; returns the figure."""
+    if fig is None:
+        fig = Figure(figsize=(7, 8))
+    ax = fig.subplots(3, 1, sharex=True)
+    deg = np.degrees(cyc.pinion_angle)
+    ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, label="LTCA tangent dP/dx")
+    ax[0].plot(deg, cyc.mesh_stiffness_secant * 1e-9, "--", label="LTCA secant P/x")
+    ax[0].plot(deg, k_slice * 1e-9, ":", label="slice method (pipeline.stiffness)")
+    ax[0].set_ylabel("mesh stiffness [1e9 N/m = kN/um]")
+    ax[0].legend(fontsize=8)
+    ax[1].plot(deg, cyc.transmission_error * 1e6)
+    ax[1].set_ylabel("loaded static TE [um]")
+    for j, k in enumerate(cyc.pair_index):
+        if cyc.pair_loads[:, j].any():
+            ax[2].plot(deg, cyc.load_share[:, j], label=f"tooth pair {k}")
+    ax[2].set_ylabel("load share [-]")
+    ax[2].set_xlabel("pinion angle [deg]")
+    ax[2].legend(fontsize=8)
+    ax[0].set_title(title)
+    return fig

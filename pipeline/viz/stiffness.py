@@ -1,0 +1,59 @@
+"""Mesh stiffness figures: stiffness curves over a mesh cycle, friction coefficients.
+
+Axes are labelled with units; every function draws into ``ax`` (or ``fig``) when
+given one, otherwise into a new :class:`~matplotlib.figure.Figure`, and returns it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+
+def plot_stiffness_curves(
+    curves: Sequence[tuple[str, np.ndarray, np.ndarray]],
+    xlabel: str = "pinion rotation over one mesh cycle [deg]",
+    title: str = "",
+    pairs: np.ndarray | None = None,
+    pairs_x: np.ndarray | None = None,
+    ax: Axes | None = None,
+) -> Axes:
+    """Overlay stiffness curves ``(label, x, k [N/m])``; optional per-pair curves of the first."""
+    if ax is None:
+        ax = Figure(figsize=(8, 4.2)).subplots()
+    for i, (label, x, k) in enumerate(curves):
+        ax.plot(x, np.asarray(k) * 1e-8, lw=1.6, color=f"C{i}", label=label)
+    if pairs is not None and pairs_x is not None:
+        for j in range(pairs.shape[1]):
+            kj = np.where(pairs[:, j] > 0, pairs[:, j], np.nan)
+            if np.any(np.isfinite(kj)):
+                ax.plot(pairs_x, kj * 1e-8, lw=0.8, ls=":", color="0.35",
+                        label="single tooth pairs" if j == 0 else None)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("mesh stiffness [1e8 N/m]")
+    ax.grid(alpha=0.3)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_friction_coefficients(x: np.ndarray, kf: np.ndarray, kt1: np.ndarray, kt2: np.ndarray,
+                               title: str = "", fig: Figure | None = None) -> Figure:
+    """Friction stiffness (N/m) and friction torque coefficients (N) over a mesh cycle."""
+    if fig is None:
+        fig = Figure(figsize=(10, 3.8))
+    a1, a2 = fig.subplots(1, 2)
+    a1.plot(x, kf * 1e-6)
+    a1.set_ylabel("friction stiffness K_f [1e6 N/m]")
+    a2.plot(x, kt1 * 1e-3, label="driving gear")
+    a2.plot(x, kt2 * 1e-3, label="driven gear")
+    a2.set_ylabel("friction torque coefficient KT_f [kN]")
+    a2.legend(fontsize=8)
+    for a in (a1, a2):
+        a.set_xlabel("pinion rotation over one mesh cycle [deg]")
+        a.grid(alpha=0.3)
+    fig.suptitle(title)
+    return fig
