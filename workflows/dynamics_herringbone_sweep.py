@@ -56,6 +56,7 @@ frequency per K_j around each peak region), run.json.
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -268,11 +269,12 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
     return {"cases": summary["case"], **cols, "sweeps": sweeps, "groove_peaks": table}
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> dict:
+    """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     res = run(a.full, a.out)
     t = res["groove_peaks"]
     print("K_j [N m^2]  k L/R      peak1 L / R [Hz]   (equal sides)      peak2 L / R [Hz]")
@@ -295,7 +297,8 @@ def main() -> None:
             f"  R {res['peak R [Hz]'][i]:7.1f} Hz ({res['peak force R [N]'][i]:9.0f} N)"
             f"  mean L/R {res['mean force L [N]'][i]:9.0f} / {res['mean force R [N]'][i]:9.0f} N"
         )
+    return res
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

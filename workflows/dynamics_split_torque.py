@@ -25,6 +25,7 @@ two split-stage mesh periods), contribution_split.png, contribution_confluence.p
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -105,11 +106,12 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     return cols
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> dict:
+    """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     cols = run(a.full, a.out)
     for i, s in enumerate(cols["roughness [um]"]):
         print(
@@ -120,7 +122,8 @@ def main() -> None:
                 for m in MESHES.values()
             )
         )
+    return cols
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

@@ -21,6 +21,7 @@ run.json.
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -162,11 +163,12 @@ def run(full: bool = False, out: Path | None = None) -> dict:
     return cols
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> dict:
+    """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     cols = run(a.full, a.out)
     for i in range(len(cols["condition [-]"])):
         print(
@@ -175,7 +177,8 @@ def main() -> None:
             f"DTE p-p {cols['dte peak-to-peak [m]'][i] * 1e6:7.3f} um  "
             f"RMS force {cols['rms mesh force [N]'][i]:8.1f} N"
         )
+    return cols
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])
