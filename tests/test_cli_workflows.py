@@ -75,7 +75,7 @@ def test_validate_stiffness_workflow(tmp_path):
 
     Single-tooth contact (the minimum) agrees with the analytical model: whole-gear FE
     differs by -4 % (plane stress) / about +1 % (plane strain) in single contact
-    (fe_source docs; +0.7 % measured here). In double contact the FE influence
+    (fe2d_source docs; +0.7 % measured here). In double contact the FE influence
     matrix couples the two tooth pairs through the gear body (off-diagonal about
     45 % of the diagonal: disc torsion between the 21 mm bore and the rim plus rim
     coupling), which the slice model lacks: the mean is 25.0 % lower at this

@@ -26,19 +26,20 @@ from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTri
 
 from pipeline.fem.flank import active_radii, flank_points
-from pipeline.fem.flank3d import face_positions, flank_grid
-from pipeline.fem.halfspace_separation import (
+from pipeline.fem.flank_grid import face_positions, flank_grid
+from pipeline.fem.influence import influence_matrix
+from pipeline.fem.nearfield_halfplane import halfplane_kernel
+from pipeline.fem.nearfield_halfspace import (
     halfspace_kernel,
     patch_autocorrelation_1d,
     patch_halfspace_compliance,
     singular_integral,
 )
-from pipeline.fem.hertz_separation import halfplane_kernel
-from pipeline.fem.influence import influence_matrix
-from pipeline.fem.influence3d import influence_matrix_3d
-from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
-from pipeline.fem.sector3d import Sector3DSettings, helix_sign, section_area, sector3d_mesh
-from pipeline.fem.tetmesh import _tri_shape
+from pipeline.fem.pmultigrid import PMultigridCG
+from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
+from pipeline.fem.sector3d import SectorSettings3D, helix_sign, section_area, sector_mesh_3d
+from pipeline.fem.solvers import DirectSolver, solver_named
+from pipeline.fem.tetmesh import tri_shape
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError
 
@@ -55,7 +56,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def helical(cache):
-    return sector3d_mesh(HELICAL, Sector3DSettings.for_gear(HELICAL, 3, 0.6), cache_dir=cache)
+    return sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, 0.6), cache_dir=cache)
 
 
 # ---- geometry -----------------------------------------------------------------------------
@@ -64,8 +65,8 @@ def test_volume_is_extruded_section(gear, cache):
     """|V_mesh / (A b) - 1| < 5e-4. Measured 4e-5 (spur) and 6e-6 (helical): the splines
     through the section points vs its polyline, and the loft between sections; the
     tolerance is 10x that, far below a lost tooth (~4 % of the volume) or a wrong width."""
-    s = Sector3DSettings.for_gear(gear, 3, 0.6)
-    sec = sector3d_mesh(gear, s, cache_dir=cache)
+    s = SectorSettings3D.for_gear(gear, 3, 0.6)
+    sec = sector_mesh_3d(gear, s, cache_dir=cache)
     exact = section_area(gear, 3, s.profile_points, sec.inner_radius) * gear.face_width
     assert sec.volume() == pytest.approx(exact, rel=5e-4)
 
@@ -75,14 +76,14 @@ def test_herringbone_half_has_opposite_twist(cache):
     g = GearSpec(face_width=12e-3, helix_angle=math.radians(20), hand="left", herringbone=True,
                  groove_width=5e-3, **KW)
     assert helix_sign(g, 0) == -1 and helix_sign(g, 1) == 1
-    s = Sector3DSettings.for_gear(g, 1, 0.5, half=1)
-    sec = sector3d_mesh(g, s, cache_dir=cache)
+    s = SectorSettings3D.for_gear(g, 1, 0.5, half=1)
+    sec = sector_mesh_3d(g, s, cache_dir=cache)
     assert sec.width == pytest.approx(6e-3)
     assert sec.twist_rate == pytest.approx(math.tan(g.helix_angle) / g.reference_radius)
     exact = section_area(g, 1, s.profile_points, sec.inner_radius) * 6e-3
     assert sec.volume() == pytest.approx(exact, rel=5e-4)
     with pytest.raises(InputError, match="half"):
-        sector3d_mesh(HELICAL, Sector3DSettings(half=1), cache=False)
+        sector_mesh_3d(HELICAL, SectorSettings3D(half=1), cache=False)
 
 
 def test_flank_groups_lie_on_their_tooth_side(helical):
@@ -113,7 +114,7 @@ def test_grid_points_on_meshed_flank_with_its_normal(helical):
                      face_positions(helical.width, 4, 1.5 * C))
     tri = helical.tets.triangles["right1"]
     X, _ = get_quadrature(RefTri, 8)
-    N, dN = _tri_shape(X, 6)
+    N, dN = tri_shape(X, 6)
     xe = helical.mesh.doflocs[:, tri]
     q = np.einsum("cnf,nq->cfq", xe, N).reshape(3, -1).T
     tang = np.einsum("cnf,ndq->cdfq", xe, dN)
@@ -172,7 +173,7 @@ def test_patch_compliance_tends_to_point_kernel():
 def helical_G(helical):
     pts = flank_grid(helical, [0, 1, 2], active_radii(HELICAL, 4, margin=1.5 * C),
                      face_positions(helical.width, 3, 1.5 * C))
-    return influence_matrix_3d(helical, pts, method="splu")
+    return influence_matrix(helical, pts, solver=DirectSolver("splu"))
 
 
 def test_symmetric_positive_definite_with_rim_coupling(helical_G):
@@ -193,11 +194,11 @@ def test_symmetric_positive_definite_with_rim_coupling(helical_G):
 def test_pmg_cg_agrees_with_direct(helical, helical_G):
     """The default solver without CHOLMOD (p-multigrid CG, rtol 1e-9, blocks of 10
     right-hand sides) gives the SuperLU matrix to 1e-7 of its largest entry."""
-    G = influence_matrix_3d(helical, helical_G.points, method="pmg-cg", block=10)
+    G = influence_matrix(helical, helical_G.points, solver=PMultigridCG(rtol=1e-9), block=10)
     assert G.method == "pmg-cg" and G.iterations > 0
     assert np.abs(G.fe - helical_G.fe).max() < 1e-7 * np.abs(helical_G.fe).max()
-    with pytest.raises(InputError, match="influence3d.method"):
-        influence_matrix_3d(helical, helical_G.points, method="mumps")
+    with pytest.raises(InputError, match="solver.method"):
+        influence_matrix(helical, helical_G.points, solver=solver_named("mumps"))
 
 
 def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: float,
@@ -211,9 +212,9 @@ def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: 
     b = gear.face_width
     nz = 7
     cz = b / (nz - 1)
-    sec = sector3d_mesh(gear, Sector3DSettings.for_gear(gear, 3, refinement), cache_dir=cache)
+    sec = sector_mesh_3d(gear, SectorSettings3D.for_gear(gear, 3, refinement), cache_dir=cache)
     pts = flank_grid(sec, [1], [radius], np.linspace(0.0, b, nz))
-    G = influence_matrix_3d(sec, pts, patch_half_width=cz, method="splu", ends=ends)
+    G = influence_matrix(sec, pts, patch_half_width=cz, solver=DirectSolver("splu"), ends=ends)
     w = np.full(nz, cz)
     w[[0, -1]] *= 0.5
     return float(G.fe[nz // 2] @ w), float(G.structural[nz // 2] @ w)
@@ -222,7 +223,7 @@ def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: 
 @pytest.fixture(scope="module")
 def plane_2d():
     """2D plane-strain and plane-stress compliances (m^2/N) at the pitch point, c = 1 mm."""
-    sec = sector_mesh(SPUR, SectorMeshSettings.for_gear(SPUR, 3, 1.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings2D.for_gear(SPUR, 3, 1.0), cache=False)
     pts = flank_points(SPUR, 3, [1], [SPUR.reference_radius])
     return {k: influence_matrix(sec, pts, patch_half_width=1e-3, kind=k)
             for k in ("plane_strain", "plane_stress")}
@@ -255,7 +256,7 @@ def test_plane_strain_limit_converges(cache):
     shrinks monotonically, at a fitted rate > 1.2 in the flank element size (measured
     2.1 for the FE value, 1.6 for the structural one) and is < 1.5 % at the finest
     (measured 0.5 % FE, 0.9 % structural)."""
-    sec = sector_mesh(SPUR, SectorMeshSettings.for_gear(SPUR, 3, 2.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings2D.for_gear(SPUR, 3, 2.0), cache=False)
     ref = influence_matrix(sec, flank_points(SPUR, 3, [1], [SPUR.reference_radius]),
                            patch_half_width=1e-3)
     refinements = np.array([1.0, 1.5, 2.0])
@@ -280,10 +281,10 @@ def test_structural_compliance_independent_of_patch_width(cache):
     c = 0.6 and 0.9 mm (measured 25 % -> 5.6 %: the smallest patch needs a finer mesh)."""
     spread = {}
     for r in (1.0, 2.0):
-        sec = sector3d_mesh(HELICAL, Sector3DSettings.for_gear(HELICAL, 3, r), cache_dir=cache)
+        sec = sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, r), cache_dir=cache)
         pts = flank_grid(sec, [1], [HELICAL.reference_radius], [0.5 * sec.width])
         vals = np.array([[g.fe[0, 0], g.structural[0, 0]] for g in
-                         (influence_matrix_3d(sec, pts, patch_half_width=c)
+                         (influence_matrix(sec, pts, patch_half_width=c)
                           for c in (0.6e-3, 0.9e-3, 1.2e-3))])
         spread[r] = vals / vals[1]
     fine = spread[2.0]

@@ -1,4 +1,4 @@
-"""The 3D FE compliance source (pipeline.fem.fe_source3d) for the loaded-contact solver.
+"""The 3D FE compliance source (pipeline.contact.fe3d_source) for the loaded-contact solver.
 
 Ladder of checks:
 * inputs: settings and unsupported pairs are rejected with the field named;
@@ -22,11 +22,12 @@ import math
 import numpy as np
 import pytest
 
+from pipeline.contact.fe3d_source import FE3DCompliance, touching_pairs
+from pipeline.contact.fe3d_table import FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import ComplianceSource, SliceCompliance
-from pipeline.fem.fe_source3d import FE3DCompliance, FE3DSettings, touching_pairs
-from pipeline.fem.flank3d import flank_grid
-from pipeline.fem.sector3d import sector3d_mesh
+from pipeline.fem.flank_grid import flank_grid
+from pipeline.fem.sector3d import sector_mesh_3d
 from pipeline.geometry import GearPair, GearSpec
 from pipeline.stiffness.mesh import PairModel
 from pipeline.validation import InputError
@@ -36,7 +37,7 @@ BETA = math.radians(15)
 PINION = GearSpec(face_width=12e-3, helix_angle=BETA, hand="right", name="p", **KW)
 GEAR = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", name="g", **KW)
 HELICAL_PAIR = GearPair(PINION, GEAR)
-# coarse: 10k DOF per gear; c = 0.6 m_n spans ~1 flank element (fe_source3d docstring)
+# coarse: 10k DOF per gear; c = 0.6 m_n spans ~1 flank element (fe3d_table docstring)
 COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
 
 
@@ -87,7 +88,7 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
     sel = pts.pair == 0
     for gear, (tooth, arc, zs) in zip((PINION, GEAR), helical.flank_coordinates(pts),
                                       strict=True):
-        sec = sector3d_mesh(gear, _sector_settings(gear, helical), cache_dir=cache)
+        sec = sector_mesh_3d(gear, _sector_settings(gear, helical), cache_dir=cache)
         rb = gear.base_radius
         r = np.sqrt(2 * rb * arc[sel, 0] + rb * rb)
         for z, tol in ((zs[sel, 0], 1e-9), (gear.face_width - zs[sel, 0], None)):
@@ -105,7 +106,7 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
 
 
 def _sector_settings(gear, src):
-    from pipeline.fem.fe_source3d import _sector_settings
+    from pipeline.contact.fe3d_table import _sector_settings
 
     return _sector_settings(gear, src.sector_teeth, src.settings)
 
@@ -132,7 +133,7 @@ def test_interpolation_reproduces_table_at_nodes(helical):
 def test_protocol_symmetry_and_definiteness(helical):
     """Every position: G symmetric, positive diagonal, smallest eigenvalue > -2 % of the
     largest (the structural tables are positive definite only up to discretisation,
-    influence3d docstring; measured -0.4 %)."""
+    influence docstring; measured -0.4 %)."""
     assert isinstance(helical, ComplianceSource)
     for s0 in HELICAL_PAIR.mesh_cycle(5):
         pts = helical.points(s0)
@@ -195,13 +196,13 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
     between two tooth pairs (far-field terms converge faster). Bands: diagonal
     [0.92, 1.005] (the known 3-7 % deficit plus 1.5 % for interpolation/extrapolation;
     a displacement model may not be softer than the reference), coupling [0.95, 1.03]."""
-    from pipeline.fem.fe_source import FESectorCompliance, FESettings
+    from pipeline.contact import FE2DCompliance, FE2DSettings
 
     spur = GearSpec(face_width=6e-3, name="s", **KW)
     pair = GearPair(spur, spur)
     fe3 = FE3DCompliance.build(pair, FE3DSettings(teeth=5, radii=5, refinement=0.6, ends="sliding",
                                                   method="splu"), cache_dir=cache)
-    fe2 = FESectorCompliance.build(pair, FESettings(teeth=5, radii=12, refinement=1.0,
+    fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, radii=12, refinement=1.0,
                                                     kind="plane_strain"))
     ratios, cross = [], []
     for s0 in pair.mesh_cycle(6):
@@ -287,7 +288,7 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
       the 5-tooth one (measured 305 vs 262 N/um): the sector cuts, not the 3D model,
       carry most of the excess over the slice method in test_ltca_with_3d_source.
     """
-    from pipeline.fem.fe_source import FESectorCompliance, FESettings
+    from pipeline.contact import FE2DCompliance, FE2DSettings
 
     P = 4000.0
     kw = dict(teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
@@ -296,9 +297,9 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
         "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache_dir=cache),
         "sliding": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(ends="sliding", **kw),
                                         cache_dir=cache),
-        "strain": FESectorCompliance.build(HELICAL_PAIR, FESettings(
+        "strain": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, radii=12, slices=8, kind="plane_strain")),
-        "stress": FESectorCompliance.build(HELICAL_PAIR, FESettings(
+        "stress": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, radii=12, slices=8, kind="plane_stress")),
         "three_teeth": FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache),
     }.items():

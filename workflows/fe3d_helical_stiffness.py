@@ -9,11 +9,11 @@ eq. 24 "weber") twice, on the same slice contact points:
 * ``slice``: the analytical slice compliance (:class:`SliceCompliance`, independent
   slices, Yang et al. (2026), section 2.1-2.4);
 * ``fe3d``: the 3D FE structural compliance of both gears
-  (:class:`pipeline.fem.fe_source3d.FE3DCompliance`), which couples the slices
+  (:class:`pipeline.contact.fe3d_source.FE3DCompliance`), which couples the slices
   across the face width;
 
 and, to tell the 3D effect from the sector's boundary conditions, with two 2D FE
-references (:class:`~pipeline.fem.fe_source.FESectorCompliance`, same slices, no face
+references (:class:`~pipeline.contact.fe2d_source.FE2DCompliance`, same slices, no face
 coupling): ``fe2d_sector`` a 7-tooth sector clamped at the bore and its cuts, plane
 strain (the 3D model's sliding-ends limit), and ``fe2d_whole`` the whole gears,
 plane stress (what validate_stiffness uses for deep bodies).
@@ -41,10 +41,9 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config import load_gearbox
+from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
-from pipeline.fem.fe_source import FESectorCompliance, FESettings
-from pipeline.fem.fe_source3d import FE3DCompliance, FE3DSettings
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.mesh import FrictionModel, PairModel
 
@@ -96,9 +95,9 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
     t0 = time.perf_counter()
     teeth_2d = 2 * int(np.abs(pair.pair_indices()).max()) + 1
     if references:
-        sources["fe2d_sector"] = FESectorCompliance.build(pair, FESettings(
+        sources["fe2d_sector"] = FE2DCompliance.build(pair, FE2DSettings(
             teeth=teeth_2d, radii=12, slices=slices, kind="plane_strain"))
-        sources["fe2d_whole"] = FESectorCompliance.build(pair, FESettings(
+        sources["fe2d_whole"] = FE2DCompliance.build(pair, FE2DSettings(
             teeth=None, radii=12, slices=slices, kind="plane_stress"))
     t_build_2d = time.perf_counter() - t0
     cycles, t_ltca = {}, {}

@@ -9,7 +9,7 @@ and Yang et al. (2026)-like helical pair, three mesh stiffness curves are comput
   same analytical slice compliance with Yang et al. (2026)'s, eq. 24 local contact
   (Yang et al. (2026)'s optimised slice method);
 * ``FE-enriched`` - the same loaded tooth contact on the 2D FE influence
-  coefficients of both gears (:mod:`pipeline.fem.fe_source`, rim coupling between
+  coefficients of both gears (:mod:`pipeline.contact.fe2d_source`, rim coupling between
   the tooth pairs in contact, Hertz near field removed), with eq. 24 local contact
   and the analytical friction change added (:class:`FrictionCorrected`).
 
@@ -72,11 +72,11 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.config import Gearbox, load_gearbox
+from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
-from pipeline.fem.fe_source import FESectorCompliance, FESettings
 from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
@@ -107,7 +107,7 @@ def cases() -> list[tuple[str, Gearbox]]:
     return out
 
 
-def compare(cfg: Gearbox, positions: int, fe: FESettings, cache: dict) -> dict:
+def compare(cfg: Gearbox, positions: int, fe: FE2DSettings, cache: dict) -> dict:
     """Analytical, optimised-slice and FE-enriched curves of one case (N/m, shape (positions,))."""
     opts = ContactOptions(slices=fe.slices)
     actual = cfg.actual_pair
@@ -119,7 +119,7 @@ def compare(cfg: Gearbox, positions: int, fe: FESettings, cache: dict) -> dict:
     slice_cycle = loaded_mesh_cycle(src, load, local="weber", positions=s0)
     key = (actual.pinion, actual.gear, actual.operating_centre_distance, fe)
     if key not in cache:
-        cache[key] = FESectorCompliance.build(actual, fe)
+        cache[key] = FE2DCompliance.build(actual, fe)
     fe_cycle = loaded_mesh_cycle(FrictionCorrected(cache[key], src), load, local="weber",
                                  positions=s0)
     return {
@@ -176,7 +176,7 @@ def plot_case(name: str, res: dict):
     return fig
 
 
-def run(out: Path, positions: int, fe: FESettings, only: str = "") -> dict:
+def run(out: Path, positions: int, fe: FE2DSettings, only: str = "") -> dict:
     """Compare every case whose name contains ``only``; write plots, curves and the table."""
     table, files, curves, cache = {}, [], {}, {}
     selected = [(n, c) for n, c in cases() if only in n]
@@ -209,8 +209,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--out", type=Path, default=HERE.parent / "results" / "validate_stiffness")
     ap.add_argument("--only", default="", help="run only the cases whose name contains this")
     args = ap.parse_args(argv)
-    # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe_source docs)
-    fe = FESettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
+    # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe2d_source docs)
+    fe = FE2DSettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
     table = run(args.out, args.positions, fe, args.only)
     for name, row in table.items():
         print(f"{name:22s} mean: analytical {row['analytical_mean_N_per_m']:.4e}  "

@@ -23,6 +23,9 @@ the loaded approach and the mesh stiffness.
 - :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),
   and Hertz half-width / maximum pressure (:mod:`.hertz`).
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
+- :class:`FE2DCompliance`, :class:`FE3DCompliance` - the FE stage's influence matrices
+  adapted to :class:`ComplianceSource` (:mod:`.fe2d_source`; :mod:`.fe3d_source` on the
+  tables of :mod:`.fe3d_table`).
 """
 
 from pipeline.contact.analysis import analyse_contact, analytical_compliance, line_of_action_load
@@ -31,6 +34,9 @@ from pipeline.contact.complementarity import (
     complementarity_residual,
     solve_contact,
 )
+from pipeline.contact.fe2d_source import FE2DCompliance, FE2DSettings
+from pipeline.contact.fe3d_source import FE3DCompliance
+from pipeline.contact.fe3d_table import FE3DSettings
 from pipeline.contact.hertz import (
     HertzLineContact,
     LinearLocalCompliance,
@@ -50,7 +56,8 @@ from pipeline.contact.sweep import solve_positions
 __all__ = [
     "ContactOptions", "analyse_contact", "analytical_compliance", "line_of_action_load",
     "ComplianceSource", "ContactConvergenceError", "ContactPoints", "ContactSolution",
-    "ContactSweep", "FlankModifications", "HertzLineContact", "LinearLocalCompliance",
+    "ContactSweep", "FE2DCompliance", "FE2DSettings", "FE3DCompliance", "FE3DSettings",
+    "FlankModifications", "HertzLineContact", "LinearLocalCompliance",
     "LoadedMeshCycle", "LocalCompliance", "SliceCompliance", "complementarity_residual",
     "contact_modulus", "effective_radius", "hertz_half_width", "hertz_max_pressure",
     "initial_separations", "loaded_mesh_cycle", "solve_contact", "solve_positions",

@@ -19,10 +19,11 @@ import numpy as np
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.fem.flank import active_radii, flank_points
-from pipeline.fem.influence import clamped_dofs, influence_matrix, patch_loads
+from pipeline.fem.influence import constrained_dofs, influence_matrix
 from pipeline.fem.linear_static import build_model, solve_static
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
-from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
+from pipeline.fem.patch_loads import patch_loads
+from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 
@@ -48,7 +49,7 @@ def analyse_gear(gear: GearSpec, args: SectorFEOptions, out: Path, tag: str) -> 
     from pipeline.viz.fem import plot_compliance, plot_deformed, plot_sector_mesh
 
     n, mid = args.teeth, args.teeth // 2
-    sec = sector_mesh(gear, SectorMeshSettings.for_gear(gear, n, args.refinement))
+    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, n, args.refinement))
     r = active_radii(gear, args.points)
     pts = flank_points(gear, n, np.repeat(np.arange(n), r.size), np.tile(r, n))
     G = influence_matrix(sec, pts, kind=args.kind)
@@ -71,7 +72,7 @@ def analyse_gear(gear: GearSpec, args: SectorFEOptions, out: Path, tag: str) -> 
     model = build_model(sec.mesh, gear.material, kind=args.kind)
     one = flank_points(gear, n, [mid], [gear.reference_radius])
     u = solve_static(model, 1e3 * patch_loads(sec, one, G.patch_half_width).toarray(),
-                     clamped_dofs(sec, model)).displacements[:, 0]
+                     constrained_dofs(sec, model)).displacements[:, 0]
     scale = 0.05 * gear.module / max(np.abs(u).max(), 1e-30)
     files.append(save(plot_deformed(sec, u, scale, title + ", 1 N/mm at the pitch radius"),
                       out / f"{tag}_deformed.png"))

@@ -1,5 +1,9 @@
 """Points on the involute flanks of a sector: position, normal, roll/arc coordinate, depth.
 
+:class:`FlankPoints` holds flank points of a 2D sector (:func:`flank_points` here) or
+of a 3D one (the profile x face grids of :func:`pipeline.fem.flank_grid.flank_grid`);
+the influence routine (:mod:`pipeline.fem.influence`) takes either.
+
 A flank point is given by its tooth ``k`` of the sector, its side (``"right"``:
 the clockwise flank, x >= 0 in the tooth frame; ``"left"``) and its radius ``r``
 (m) on the involute. In the tooth frame (centre line along +y) the right flank
@@ -25,20 +29,25 @@ from pipeline.validation import InputError, check_choice
 SIDES = ("right", "left")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FlankPoints:
-    """``n`` candidate contact points on the flanks of a sector.
+    """``n`` candidate contact points on the flanks of a 2D or 3D sector (``dim`` 2 or 3).
 
     Attributes
     ----------
     tooth : (n,) int, sector tooth index.
     side : (n,) int, +1 right flank, -1 left flank.
     radius : (n,) radius on the involute, m.
-    position : (n, 2) global coordinates, m.
-    normal : (n, 2) outward unit normal (out of the tooth material).
-    tangent : (n, 2) unit tangent, pointing towards the tip.
+    position : (n, dim) coordinates, m.
+    normal : (n, dim) outward unit normal (out of the tooth material).
+    tangent : (n, dim) unit tangent along the transverse profile, towards the tip.
     arc : (n,) arc coordinate along the involute from the base circle, m.
-    depth : (n,) distance along the inward normal to the tooth centre line, m.
+    depth : (n,) transverse distance along the inward normal to the tooth centre line, m
+        (h of Yang et al. 2026, eq. 24; in 3D the 2D depth of the same point).
+    z : 3D only, else None: (n,) axial position, m (0 .. face width).
+    tangent_face : 3D only, else None: (n, 3) unit in-surface tangent ``normal x tangent``
+        (z component >= 0).
+    shape : 3D only, else None: (n_teeth, n_face, n_profile) of the grid.
     """
 
     tooth: np.ndarray
@@ -49,9 +58,17 @@ class FlankPoints:
     tangent: np.ndarray
     arc: np.ndarray
     depth: np.ndarray
+    z: np.ndarray | None = None
+    tangent_face: np.ndarray | None = None
+    shape: tuple[int, int, int] | None = None
 
     def __len__(self) -> int:
         return int(self.radius.size)
+
+    @property
+    def dim(self) -> int:
+        """2 (points of a 2D sector) or 3."""
+        return int(self.position.shape[1])
 
     def same_flank(self) -> np.ndarray:
         """(n, n) bool: points i and j lie on the same flank (tooth and side)."""

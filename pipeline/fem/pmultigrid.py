@@ -200,3 +200,38 @@ def pmg_cg(
         its += 1
     x = X.reshape(np.shape(b))
     return PMGSolution(x, its, float(res.max()), t1 - t0, time.perf_counter() - t1)
+
+
+class PMGFactor:
+    """The p-multigrid CG set up for one matrix (the :class:`Factorization` of
+    :class:`PMultigridCG`); ``iterations`` is the most any block of solves needed."""
+
+    method = "pmg-cg"
+
+    def __init__(self, A: sp.csr_matrix, preconditioner: TwoLevelPreconditioner, rtol: float,
+                 factor_seconds: float):
+        self.A, self.preconditioner, self.rtol = A, preconditioner, rtol
+        self.factor_seconds = factor_seconds
+        self.iterations = 0
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """Solve A x = b for every column of ``b`` to ``rtol``; returns the shape of ``b``."""
+        sol = pmg_cg(self.A, b, None, rtol=self.rtol, preconditioner=self.preconditioner)
+        self.iterations = max(self.iterations, sol.iterations)
+        return sol.x
+
+
+@dataclass(frozen=True)
+class PMultigridCG:
+    """Solver (:class:`pipeline.fem.solvers.Solver`): set the two-level preconditioner up
+    once on the P1 coarse space of ``basis``, then CG to ``rtol`` per right-hand side."""
+
+    rtol: float = 1e-9
+    degree: int = 3
+
+    def __call__(self, A: sp.spmatrix, basis: Basis, free: np.ndarray) -> PMGFactor:
+        t0 = time.perf_counter()
+        A = sp.csr_matrix(A)
+        P, _ = p1_prolongation(basis)
+        M = TwoLevelPreconditioner(A, P[free], self.degree)
+        return PMGFactor(A, M, self.rtol, time.perf_counter() - t0)

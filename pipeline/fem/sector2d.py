@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from skfem import MeshTri2
@@ -34,13 +35,16 @@ from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
+if TYPE_CHECKING:
+    from pipeline.fem.sector3d import SectorSettings3D
+
 CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
 # outline points closer than this (times m_n) are one point: Gmsh cannot mesh a zero-length curve
 MERGE_TOL = 1e-6
 
 
 @dataclass(frozen=True)
-class SectorMeshSettings:
+class SectorSettings2D:
     """Mesh settings of a 2D sector.
 
     Attributes
@@ -69,7 +73,7 @@ class SectorMeshSettings:
 
     @classmethod
     def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0
-                 ) -> SectorMeshSettings:
+                 ) -> SectorSettings2D:
         """Settings scaled by the module: flank size m_n / (12 refinement), body m_n / 2.5."""
         check_range("sector.refinement", refinement, 0.05, 100.0)
         m = gear.module
@@ -94,7 +98,7 @@ class SectorMesh2D:
     mesh: MeshTri2
     facets: dict
     gear: GearSpec
-    settings: SectorMeshSettings
+    settings: SectorSettings2D
     inner_radius: float
 
     def tooth_angle(self, k: int) -> float:
@@ -107,7 +111,7 @@ class SectorMesh2D:
         return int(self.mesh.doflocs.shape[1])
 
 
-def inner_radius(gear: GearSpec, settings: SectorMeshSettings) -> float:
+def inner_radius(gear: GearSpec, settings: SectorSettings2D | SectorSettings3D) -> float:
     """Radius of the sector's inner (external gear) or outer (internal gear) boundary, m.
 
     ``settings.inner_radius`` if given, else ``gear.bore_radius`` if > 0, else (solid
@@ -142,7 +146,7 @@ def _drop_repeated(pts: np.ndarray, tol: float) -> np.ndarray:
     return pts[np.r_[True, step > tol]]
 
 
-def _split_outline(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, np.ndarray]]:
+def outline_pieces(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, np.ndarray]]:
     """The outline as (group name, (m, 2) polyline) pieces, CCW, split at flank ends/corners."""
     from pipeline.geometry.profile import gear_outline
 
@@ -171,14 +175,14 @@ def _split_outline(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, n
     return pieces
 
 
-def build_sector_mesh(gear: GearSpec, settings: SectorMeshSettings) -> TetMeshData:
+def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshData:
     """Mesh the sector in Gmsh (quadratic triangles); returns 2D data (see module docstring)."""
     full = settings.teeth == gear.teeth
     if 2 * settings.teeth >= gear.teeth and not full:
         raise InputError(f"sector.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
                          f"or = z (whole gear)")
     r_in = inner_radius(gear, settings)
-    pieces = _split_outline(gear, settings.teeth, settings.profile_points)
+    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
     with gmsh_session() as gmsh:
         geo = gmsh.model.geo
         first = geo.addPoint(*pieces[0][1][0], 0.0)
@@ -219,7 +223,7 @@ def build_sector_mesh(gear: GearSpec, settings: SectorMeshSettings) -> TetMeshDa
 
 
 def _mesh_and_extract(gmsh, curves: dict[str, list[int]], surf: int, outline_curves: list[int],
-                      settings: SectorMeshSettings) -> TetMeshData:
+                      settings: SectorSettings2D) -> TetMeshData:
     """Physical groups, size field (fine on the outline), P2 mesh -> 2D data."""
     for name, tags in curves.items():
         gmsh.model.addPhysicalGroup(1, tags, name=name)
@@ -292,13 +296,13 @@ def to_skfem_tri(data: TetMeshData) -> tuple[MeshTri2, dict]:
     return mesh, facets
 
 
-def sector_mesh(gear: GearSpec, settings: SectorMeshSettings | None = None, cache: bool = True,
-                cache_dir=None) -> SectorMesh2D:
+def sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D | None = None, cache: bool = True,
+                   cache_dir=None) -> SectorMesh2D:
     """The (cached) 2D sector mesh of ``gear``; see the module docstring for the groups."""
-    settings = settings or SectorMeshSettings.for_gear(gear)
+    settings = settings or SectorSettings2D.for_gear(gear)
     r_in = inner_radius(gear, settings)
     inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in}
-    data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh(gear, settings),
+    data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh_2d(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
     mesh, facets = to_skfem_tri(data)
     return SectorMesh2D(mesh, facets, gear, settings, r_in)

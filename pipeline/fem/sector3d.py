@@ -34,7 +34,6 @@ gear and the settings (:mod:`pipeline.fem.cache`). Lengths in m.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -42,7 +41,7 @@ from skfem import Basis, ElementTetP0
 
 from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
-from pipeline.fem.sector2d import SectorMeshSettings, _split_outline, inner_radius
+from pipeline.fem.sector2d import inner_radius, outline_pieces
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
@@ -52,7 +51,7 @@ GEOMETRY_VERSION = 1
 
 
 @dataclass(frozen=True)
-class Sector3DSettings:
+class SectorSettings3D:
     """Mesh settings of a 3D sector.
 
     Attributes
@@ -66,7 +65,8 @@ class Sector3DSettings:
         a spur sector needs 2).
     half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
         second (opposite hand); each is ``face_width / 2`` wide.
-    inner_radius : bore radius of the mesh, m; None as in :func:`sector2d.inner_radius`.
+    inner_radius : bore radius of the mesh, m; None as in
+        :func:`pipeline.fem.sector2d.inner_radius`.
     """
 
     teeth: int = 3
@@ -89,12 +89,12 @@ class Sector3DSettings:
 
     @classmethod
     def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0, half: int = 0
-                 ) -> Sector3DSettings:
+                 ) -> SectorSettings3D:
         """Settings scaled by the module: tooth sides m_n / (3 refinement), body m_n.
 
         Coarser than 2D (m_n / 12): a 3D P2 model at that size would have millions
         of DOFs. z 50, m_n 3 mm, 3 teeth x 20 mm: 56k DOF at refinement 1, 114k at
-        1.5. The load patches of :mod:`pipeline.fem.influence3d` need refinement >= 2
+        1.5. The 3D load patches of :mod:`pipeline.fem.influence` need refinement >= 2
         for their near field to be resolved (see there).
         """
         check_range("sector3d.refinement", refinement, 0.05, 20.0)
@@ -136,7 +136,7 @@ class SectorMesh3D:
 
     tets: SkfemTetMesh
     gear: GearSpec
-    settings: Sector3DSettings
+    settings: SectorSettings3D
     inner_radius: float
     width: float
     twist_rate: float
@@ -174,16 +174,16 @@ def section_area(gear: GearSpec, teeth: int, points: int, r_in: float) -> float:
     return shoelace - 0.5 * r_in**2 * (th - math.sin(th))  # the bore arc, not its chord
 
 
-def build_sector3d_mesh(gear: GearSpec, settings: Sector3DSettings) -> TetMeshData:
+def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
     """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
     if gear.internal:
         raise InputError(f"{gear.name}: the 3D sector mesh supports external gears only")
     if 2 * settings.teeth >= gear.teeth:
         raise InputError(f"sector3d.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g}")
-    r_in = inner_radius(gear, _as_2d(settings))
+    r_in = inner_radius(gear, settings)
     b = _width(gear)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
-    pieces = _split_outline(gear, settings.teeth, settings.profile_points)
+    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
     names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
@@ -204,10 +204,6 @@ def build_sector3d_mesh(gear: GearSpec, settings: Sector3DSettings) -> TetMeshDa
         gmsh.option.setNumber("Mesh.Optimize", 1)
         gmsh.model.mesh.generate(3)
         return extract_tet_mesh(gmsh, 2, groups, {"sector": [vol]})
-
-
-def _as_2d(settings: Sector3DSettings) -> SectorMeshSettings:
-    return SectorMeshSettings(teeth=settings.teeth, inner_radius=settings.inner_radius)
 
 
 def _section_wire(occ, pieces, r_in: float, rot: float, z: float) -> int:
@@ -272,7 +268,7 @@ def _classify_surfaces(gmsh, vol: int, pieces, r_in: float, b: float, rate: floa
     return groups
 
 
-def _size_field(gmsh, settings: Sector3DSettings, tooth_surfaces: list[int]) -> None:
+def _size_field(gmsh, settings: SectorSettings3D, tooth_surfaces: list[int]) -> None:
     fld = gmsh.model.mesh.field
     dist = fld.add("Distance")
     fld.setNumbers(dist, "SurfacesList", tooth_surfaces)
@@ -288,62 +284,16 @@ def _size_field(gmsh, settings: Sector3DSettings, tooth_surfaces: list[int]) -> 
     gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size_body)
 
 
-def sector3d_mesh(gear: GearSpec, settings: Sector3DSettings | None = None, cache: bool = True,
-                  cache_dir=None) -> SectorMesh3D:
+def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cache: bool = True,
+                   cache_dir=None) -> SectorMesh3D:
     """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
-    settings = settings or Sector3DSettings.for_gear(gear)
+    settings = settings or SectorSettings3D.for_gear(gear)
     if settings.half == 1 and not gear.herringbone:
         raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
-    r_in = inner_radius(gear, _as_2d(settings))
+    r_in = inner_radius(gear, settings)
     inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in,
               "version": GEOMETRY_VERSION}
-    data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build_sector3d_mesh(gear, settings),
+    data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build_sector_mesh_3d(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     return SectorMesh3D(to_skfem(data), gear, settings, r_in, _width(gear), rate)
-
-
-def bench_helical_sector(refinement: float = 1.5, n_profile: int = 20, n_face: int = 20,
-                         method: str = "auto", cache: bool = False) -> dict:
-    """Benchmark figures of the 3D helical sector influence matrix (issue 3).
-
-    The assembly-error paper's gear (z 50, m_n 3 mm, alpha_n 20 deg, b 20 mm, bore 21 mm) made
-    helical (beta 15 deg, right hand, an assumption: the assembly-error paper is spur), 3 teeth,
-    the loaded
-    (right) flank of every tooth on an ``n_profile x n_face`` grid (active profile x
-    face width), default patch half-width. Returns a dict of figures: DOFs, points,
-    timings (s), solver, CG iterations, symmetry error, volume error, compliance
-    ranges (m/N) and the rim coupling ratio.
-    """
-    from pipeline.fem.flank import active_radii
-    from pipeline.fem.flank3d import face_positions, flank_grid
-    from pipeline.fem.influence3d import influence_matrix_3d
-    from pipeline.geometry.gear import Material
-
-    gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
-                    helix_angle=math.radians(15), hand="right", bore_radius=0.021,
-                    material=Material(2.0e11, 0.3, 7850.0), name="z50-helical")
-    settings = Sector3DSettings.for_gear(gear, teeth=3, refinement=refinement)
-    t0 = time.perf_counter()
-    sector = sector3d_mesh(gear, settings, cache=cache)
-    t_mesh = time.perf_counter() - t0
-    c = 0.3 * gear.module
-    pts = flank_grid(sector, [0, 1, 2], active_radii(gear, n_profile, margin=1.5 * c),
-                     face_positions(sector.width, n_face, 1.5 * c))
-    res = influence_matrix_3d(sector, pts, method=method)
-    S = res.structural
-    n1 = n_profile * n_face
-    mid = n1 + (n_face // 2) * n_profile + n_profile - 1  # middle tooth, mid-face, tip
-    exact = section_area(gear, 3, settings.profile_points, sector.inner_radius) * sector.width
-    return {
-        "case": f"3D helical sector z50 m3 b20 beta15, 3 teeth x {n_profile} x {n_face} points",
-        "refinement": refinement, "dof": res.n_dof, "free_dof": res.n_free,
-        "elements": int(sector.mesh.t.shape[1]), "points": len(pts),
-        "mesh_s": t_mesh, "timings_s": res.timings, "solver": res.method,
-        "cg_iterations": res.iterations, "symmetry_error": res.symmetry_error(),
-        "volume_error": sector.volume() / exact - 1.0,
-        "fe_diag_range_m_per_N": [float(np.diag(res.fe).min()), float(np.diag(res.fe).max())],
-        "structural_diag_range_m_per_N": [float(np.diag(S).min()), float(np.diag(S).max())],
-        "rim_coupling_ratio": float(np.abs(S[mid, :n1]).max() / S[mid, mid]),
-        "patch_half_width_m": res.patch_half_width,
-    }

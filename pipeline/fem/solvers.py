@@ -28,6 +28,12 @@ failed to import"); later releases (0.0.3, 0.0.4) are source-only and need a sys
 MUMPS to build (pip's build of 0.0.4 stops in meson). Without scikit-sparse, 3D models with
 many right-hand sides use cholespy's CHOLMOD, or, without it, the p-multigrid CG of
 :mod:`pipeline.fem.pmultigrid` (block right-hand sides, one set-up).
+
+Solvers are passed in, as scikit-fem's ``solve(..., solver=...)`` takes them: a
+:class:`Solver` is called once with the free-free matrix and returns a set-up
+(a factor, or a preconditioner) whose ``solve`` then takes block after block of
+right-hand sides. :class:`DirectSolver` factorises; :class:`~pipeline.fem.pmultigrid.PMultigridCG`
+iterates. :func:`solver_named` turns a configuration string into one of them.
 """
 
 from __future__ import annotations
@@ -35,14 +41,18 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 from importlib.util import find_spec
+from typing import Protocol
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from skfem import Basis
 
+from pipeline.fem.pmultigrid import PMultigridCG
 from pipeline.validation import InputError, check_choice
 
 FACTOR_METHODS = ("auto", "cholmod", "cholespy", "splu")
+SOLVERS = FACTOR_METHODS + ("pmg-cg",)  # what configuration files may name
 
 
 def cholmod_available() -> bool:
@@ -106,6 +116,54 @@ class SPDFactor:
         if b.shape[0] != self.n:
             raise InputError(f"right-hand side has {b.shape[0]} rows, the matrix {self.n}")
         return np.asarray(self._solve(b))
+
+    @property
+    def iterations(self) -> int:
+        """0: a factorisation does not iterate."""
+        return 0
+
+
+class Factorization(Protocol):
+    """A matrix set up for many solves: a factor, or a preconditioner and its iteration."""
+
+    method: str
+    factor_seconds: float
+    iterations: int
+
+    def solve(self, b: np.ndarray) -> np.ndarray: ...
+
+
+class Solver(Protocol):
+    """Sets up the free-free stiffness ``A`` of ``basis`` (``free``: its DOFs) once."""
+
+    def __call__(self, A: sp.spmatrix, basis: Basis, free: np.ndarray) -> Factorization: ...
+
+
+@dataclass(frozen=True)
+class DirectSolver:
+    """Factorise once (:func:`factorize_spd`); ``method`` "auto", "cholmod", "cholespy" or
+    "splu"."""
+
+    method: str = "auto"
+
+    def __post_init__(self) -> None:
+        check_choice("solver.method", self.method, FACTOR_METHODS)
+
+    def __call__(self, A: sp.spmatrix, basis: Basis | None = None,
+                 free: np.ndarray | None = None) -> SPDFactor:
+        return factorize_spd(A, self.method)
+
+
+def solver_named(name: str = "auto", dim: int = 3) -> Solver:
+    """The solver a configuration string names (:data:`SOLVERS`).
+
+    "auto" is the sparse Cholesky when one is installed; without it SuperLU in 2D
+    (fast there) and the p-multigrid CG in 3D (SuperLU fills badly on 3D P2 elasticity).
+    """
+    check_choice("solver.method", name, SOLVERS)
+    if name == "pmg-cg" or (name == "auto" and dim == 3 and sparse_cholesky() is None):
+        return PMultigridCG()
+    return DirectSolver(name)
 
 
 def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:

@@ -67,7 +67,7 @@ def to_skfem(data: TetMeshData) -> SkfemTetMesh:
     return SkfemTetMesh(mesh, facets, triangles)
 
 
-def _tri_shape(X: np.ndarray, nn: int) -> tuple[np.ndarray, np.ndarray]:
+def tri_shape(X: np.ndarray, nn: int) -> tuple[np.ndarray, np.ndarray]:
     """Shape functions (nn, nq) and their reference gradients (nn, 2, nq) on a triangle."""
     xi, eta = X
     l1, l2, l3 = 1.0 - xi - eta, xi, eta
@@ -109,7 +109,7 @@ def surface_mass(points: np.ndarray, triangles: np.ndarray, n_nodes: int, intord
     """
     nn = triangles.shape[0]
     X, W = get_quadrature(RefTri, intorder)
-    N, dN = _tri_shape(X, nn)
+    N, dN = tri_shape(X, nn)
     xe = points[:, triangles]  # (3, nn, nf)
     # Tangents (3, 2, nf, nq)
     tang = np.einsum("cnf,ndq->cdfq", xe, dN)

@@ -1,4 +1,7 @@
-"""Separating the local (Hertzian) near field from FE flank compliances.
+"""The local (Hertzian) near field of a 2D flank load patch, for subtraction from FE.
+
+:func:`nearfield_halfplane` is the matrix ``H`` below for the points of a 2D sector;
+:mod:`pipeline.fem.influence` subtracts it.
 
 The problem. A load on the flank compresses the material right under it: in
 2D the surface displacement of a half-plane grows like ``ln(1/a)`` as the load
@@ -43,10 +46,9 @@ Weber's ``2 (1 - nu^2)/(pi E) (ln(2 h / a) - nu / (2 (1 - nu)))`` to
 convolved with the autocorrelation of the patch, evaluated by product
 integration against the closed-form antiderivative of the kernel.
 
-For a 3D model (:mod:`pipeline.fem.influence3d`) the analogue is the Boussinesq
-half-space near field of the same kind of patch
-(:mod:`pipeline.fem.halfspace_separation`); integrated along a line, its kernel is
-the plane-strain kernel below (tested).
+For a 3D model the analogue is the Boussinesq half-space near field of the same
+kind of patch (:mod:`pipeline.fem.nearfield_halfspace`); integrated along a line,
+its kernel is the plane-strain kernel below (tested).
 """
 
 from __future__ import annotations
@@ -55,12 +57,13 @@ import math
 
 import numpy as np
 
+from pipeline.fem.flank import FlankPoints
 from pipeline.geometry.gear import Material
 from pipeline.validation import check_choice, check_positive
 
 
 def _coefficients(material: Material, kind: str) -> tuple[float, float]:
-    check_choice("hertz_separation.kind", kind, ("plane_strain", "plane_stress", "3d"))
+    check_choice("nearfield_halfplane.kind", kind, ("plane_strain", "plane_stress", "3d"))
     E, nu = material.youngs_modulus, material.poisson_ratio
     if kind == "plane_stress":
         return 1.0 / (math.pi * E), (1.0 + nu) / (math.pi * E)
@@ -131,6 +134,18 @@ def patch_halfplane_compliance(separation: np.ndarray, depth: np.ndarray, half_w
         F = _kernel_antiderivative(ss - edges[None, :], hh, A, B)
         out[a:a + step] = -(np.diff(F, axis=1) * vals[None, :]).sum(axis=1)
     return out.reshape(s.shape)
+
+
+def nearfield_halfplane(points: FlankPoints, half_width: float, material: Material,
+                        kind: str = "plane_strain") -> np.ndarray:
+    """(n, n) ``H`` of the 2D ``points`` (module docstring), m^2/N: same-flank pairs, separated
+    by their arc coordinates, at the geometric mean of their depths; zero elsewhere."""
+    H = np.zeros((len(points), len(points)))
+    ii, jj = np.nonzero(points.same_flank())
+    h = np.sqrt(points.depth[ii] * points.depth[jj])
+    H[ii, jj] = patch_halfplane_compliance(points.arc[ii] - points.arc[jj], h, half_width,
+                                           material, kind)
+    return H
 
 
 def weber_halfplane(load_half_width: float, depth: float, material: Material) -> float:

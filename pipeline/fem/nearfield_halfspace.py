@@ -1,6 +1,7 @@
 """The local (Boussinesq) near field of a flank load patch in 3D, for subtraction from FE.
 
-This is the 3D analogue of :mod:`pipeline.fem.hertz_separation`. A load on a 3D
+This is the 3D analogue of :mod:`pipeline.fem.nearfield_halfplane`;
+:func:`nearfield_halfspace` is the matrix ``H`` below for the points of a 3D sector. A load on a 3D
 flank compresses the material right under it; the surface displacement of a
 half-space under a point load grows like ``1/rho`` (Boussinesq), so an FE
 compliance of a small load patch depends on the patch and the mesh and says
@@ -31,7 +32,7 @@ along an infinite line it gives the plane-strain kernel of the 2D module.
 
 Patch. The FE load patch is ``q(t, w) = cos^2(pi t / 2c) cos^2(pi w / 2c)``
 (``|t|, |w| < c``) in the two in-surface directions (profile, face) of
-:mod:`pipeline.fem.flank3d`, scaled to a unit resultant. ``H`` depends on the
+:mod:`pipeline.fem.flank_grid`, scaled to a unit resultant. ``H`` depends on the
 separation ``s = (s_t, s_w)`` of the patch centres through the autocorrelation
 ``R(v) = R_1(v_t) R_1(v_w)`` of the patch, with the closed form (``u = |v|``,
 ``alpha = pi / c``)
@@ -54,6 +55,7 @@ import math
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from pipeline.fem.flank import FlankPoints
 from pipeline.geometry.gear import Material
 from pipeline.validation import check_positive
 
@@ -166,3 +168,20 @@ def patch_halfspace_compliance(sep_t: np.ndarray, sep_w: np.ndarray, depth: np.n
         if np.any(far):
             sing[sl][far] = (1.0 / (rho[far] / c)) @ wt
     return (A * sing / c + smooth).reshape(shape)
+
+
+def nearfield_halfspace(points: FlankPoints, half_width: float, material: Material
+                        ) -> np.ndarray:
+    """(n, n) ``H`` of the 3D ``points`` (module docstring), m/N: same-flank pairs at the
+    geometric mean of their depths; zero elsewhere."""
+    H = np.zeros((len(points), len(points)))
+    ii, jj = np.nonzero(points.same_flank())
+    d = points.position[ii] - points.position[jj]
+    # separation in the frame of j (and of i, averaged: H is even in s, so symmetric)
+    st = 0.5 * (np.abs(np.einsum("ij,ij->i", d, points.tangent[jj]))
+                + np.abs(np.einsum("ij,ij->i", d, points.tangent[ii])))
+    sw = 0.5 * (np.abs(np.einsum("ij,ij->i", d, points.tangent_face[jj]))
+                + np.abs(np.einsum("ij,ij->i", d, points.tangent_face[ii])))
+    h = np.sqrt(points.depth[ii] * points.depth[jj])
+    H[ii, jj] = patch_halfspace_compliance(st, sw, h, half_width, material)
+    return H

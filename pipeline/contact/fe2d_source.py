@@ -1,7 +1,8 @@
-"""FE influence coefficients as a compliance source for the loaded-contact solver.
+"""2D FE influence coefficients as a compliance source for the loaded-contact solver.
 
-:class:`FESectorCompliance` implements :class:`pipeline.contact.source.ComplianceSource`
-from 2D sector influence matrices (:mod:`pipeline.fem.influence`) of both gears:
+:class:`FE2DCompliance` adapts the FE stage to the contact solver's protocol
+(:class:`pipeline.contact.source.ComplianceSource`) from 2D sector influence matrices
+(:func:`pipeline.fem.influence.influence_matrix`) of both gears:
 
 * For each gear one structural influence matrix is computed once, on ``radii``
   points of the right flank of every tooth of a ``teeth``-tooth sector (one
@@ -28,17 +29,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
-from pipeline.fem.sector2d import SectorMeshSettings, sector_mesh
+from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import InputError, check_int_range, check_range
 
 
 @dataclass(frozen=True)
-class FESettings:
+class FE2DSettings:
     """Settings of the FE compliance tables.
 
     Attributes
@@ -48,7 +50,7 @@ class FESettings:
         bodies - the assembly-error paper's gear: -42 % with 7 teeth, -4 % as a whole gear, vs the
         analytical compliance; see :mod:`pipeline.fem.influence`).
     radii : tabulated points per flank.
-    refinement : mesh refinement (:meth:`SectorMeshSettings.for_gear`).
+    refinement : mesh refinement (:meth:`SectorSettings2D.for_gear`).
     kind : "plane_strain" or "plane_stress".
     slices : slices across the face width for helical pairs (spur: 1).
     cuts : "clamped" or "free" sector cut faces.
@@ -69,15 +71,15 @@ class FESettings:
         check_int_range("fe.slices", self.slices, 1, 10_000)
 
 
-def _teeth(gear: GearSpec, settings: FESettings) -> int:
+def _teeth(gear: GearSpec, settings: FE2DSettings) -> int:
     return gear.teeth if settings.teeth is None else settings.teeth
 
 
-def gear_table(gear: GearSpec, settings: FESettings, teeth: np.ndarray) -> InfluenceMatrix:
+def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> InfluenceMatrix:
     """Influence matrix of ``settings.radii`` right-flank points on the sector teeth ``teeth``
     (consecutive indices, ascending)."""
     n = _teeth(gear, settings)
-    sec = sector_mesh(gear, SectorMeshSettings.for_gear(gear, n, settings.refinement))
+    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, n, settings.refinement))
     from pipeline.geometry.profile import tooth_profile
 
     # tabulate as close to both ends of the involute as the load patch (0.1 m_n) allows
@@ -90,16 +92,6 @@ def gear_table(gear: GearSpec, settings: FESettings, teeth: np.ndarray) -> Influ
                          margin=0.11 * gear.module)
     pts = flank_points(gear, n, np.repeat(teeth, r.size), np.tile(r, teeth.size))
     return influence_matrix(sec, pts, kind=settings.kind, cuts=settings.cuts)
-
-
-def linear_weights(nodes: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Left node index and weight of the right node for linear interpolation (linear
-    extrapolation beyond the ends) of ``x`` on ascending ``nodes``."""
-    x = np.asarray(x, dtype=float)
-    if nodes.size == 1:
-        return np.zeros(x.shape, dtype=int), np.zeros(x.shape)
-    k = np.clip(np.searchsorted(nodes, x) - 1, 0, nodes.size - 2)
-    return k, (x - nodes[k]) / (nodes[k + 1] - nodes[k])
 
 
 def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarray,
@@ -115,7 +107,7 @@ def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarr
 
 
 @dataclass(frozen=True)
-class FESectorCompliance:
+class FE2DCompliance:
     """FE-enriched compliance source (module docstring); build with :meth:`build`.
 
     Attributes
@@ -126,14 +118,14 @@ class FESectorCompliance:
     """
 
     pair: GearPair
-    settings: FESettings = field(default_factory=FESettings)
+    settings: FE2DSettings = field(default_factory=FE2DSettings)
     pinion_table: InfluenceMatrix | None = None
     gear_table: InfluenceMatrix | None = None
 
     @classmethod
-    def build(cls, pair: GearPair, settings: FESettings | None = None) -> FESectorCompliance:
+    def build(cls, pair: GearPair, settings: FE2DSettings | None = None) -> FE2DCompliance:
         """Mesh and solve both sectors (one factorisation each)."""
-        settings = settings or FESettings()
+        settings = settings or FE2DSettings()
         if pair.pinion.herringbone:
             raise InputError("fe source: analyse one helical half of a herringbone pair")
         k = pair.pair_indices()

@@ -1,5 +1,8 @@
 """Grids of points on the helical flanks of a 3D sector: profile x face width, with normals.
 
+The grid is a :class:`~pipeline.fem.flank.FlankPoints` with ``z``, ``tangent_face`` and
+``shape`` set.
+
 A grid point is given by its sector tooth ``k``, its side, its radius ``r`` on the
 involute and its axial position ``z`` (0 <= z <= b). At mid-face (z = b/2) it is
 the 2D flank point of :func:`pipeline.fem.flank.flank_points` (same tooth angles,
@@ -12,11 +15,11 @@ tangent, the flank is ``P(s, z) = R(theta(z)) p + z e_z``; its tangents are
 ``dP/ds = R t2`` and ``dP/dz = theta' e_z x P + e_z``. The outward unit normal is
 their cross product, oriented out of the tooth (it tilts out of the transverse
 plane by the base helix angle on the base cylinder and by the helix angle at
-radius ``r``, ``tan beta_r = r theta'``, elsewhere). ``tangent_profile`` is
-``R t2`` (towards the tip), ``tangent_face = normal x tangent_profile`` (the
+radius ``r``, ``tan beta_r = r theta'``, elsewhere). ``tangent`` is
+``R t2`` (towards the tip), ``tangent_face = normal x tangent`` (the
 in-surface direction across the profile, with a positive z component). These
 two in-surface directions are the local coordinates of the load patches
-(:mod:`pipeline.fem.influence3d`).
+(:mod:`pipeline.fem.patch_loads`).
 
 Ordering: points run over teeth (outer), face positions, then radii (inner), so
 ``values.reshape(n_teeth, n_face, n_profile)`` gives the grid of each tooth.
@@ -24,65 +27,23 @@ Ordering: points run over teeth (outer), face positions, then radii (inner), so
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from pipeline.fem.flank import SIDES, flank_points
+from pipeline.fem.flank import SIDES, FlankPoints, flank_points
 from pipeline.fem.sector3d import SectorMesh3D
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 
-@dataclass(frozen=True, eq=False)
-class FlankGrid3D:
-    """``n`` candidate contact points on the helical flanks of a 3D sector.
-
-    Attributes
-    ----------
-    tooth : (n,) int, sector tooth index.
-    side : (n,) int, +1 right flank, -1 left flank.
-    radius : (n,) radius on the involute, m.
-    z : (n,) axial position, m (0 .. face width).
-    position : (n, 3) coordinates, m.
-    normal : (n, 3) outward unit normal (out of the tooth material).
-    tangent_profile : (n, 3) unit tangent along the transverse profile, towards the tip.
-    tangent_face : (n, 3) unit in-surface tangent ``normal x tangent_profile`` (z >= 0).
-    arc : (n,) arc coordinate along the involute from the base circle, m.
-    depth : (n,) transverse distance along the inward normal to the tooth centre
-        line, m (h of Yang et al. 2026, eq. 24; the 2D depth of the same point).
-    shape : (n_teeth, n_face, n_profile) of the grid.
-    """
-
-    tooth: np.ndarray
-    side: np.ndarray
-    radius: np.ndarray
-    z: np.ndarray
-    position: np.ndarray
-    normal: np.ndarray
-    tangent_profile: np.ndarray
-    tangent_face: np.ndarray
-    arc: np.ndarray
-    depth: np.ndarray
-    shape: tuple[int, int, int]
-
-    def __len__(self) -> int:
-        return int(self.radius.size)
-
-    def same_flank(self) -> np.ndarray:
-        """(n, n) bool: points i and j lie on the same flank (tooth and side)."""
-        return (self.tooth[:, None] == self.tooth[None, :]) & (self.side[:, None] == self.side)
-
-
 def face_positions(width: float, n: int, margin: float) -> np.ndarray:
     """``n`` axial positions (m) equally spaced from ``margin`` to ``width - margin``."""
-    check_int_range("flank3d.n_face", n, 1, 10000)
-    check_range("flank3d.face_margin", margin, 0.0, 0.5 * width, hi_open=n > 1, unit="m")
+    check_int_range("flank_grid.n_face", n, 1, 10000)
+    check_range("flank_grid.face_margin", margin, 0.0, 0.5 * width, hi_open=n > 1, unit="m")
     return np.array([0.5 * width]) if n == 1 else np.linspace(margin, width - margin, n)
 
 
 def flank_grid(sector: SectorMesh3D, teeth: ArrayLike, radii: ArrayLike, z: ArrayLike,
-               side: str = "right") -> FlankGrid3D:
+               side: str = "right") -> FlankPoints:
     """The grid ``teeth x z x radii`` on one side of the teeth of ``sector``.
 
     Parameters
@@ -93,13 +54,13 @@ def flank_grid(sector: SectorMesh3D, teeth: ArrayLike, radii: ArrayLike, z: Arra
     z : (n_face,) axial positions in ``[0, b]``, m (e.g. :func:`face_positions`).
     side : "right" or "left".
     """
-    check_choice("flank3d.side", side, SIDES)
+    check_choice("flank_grid.side", side, SIDES)
     k = np.asarray(teeth, dtype=int).reshape(-1)
     r = np.asarray(radii, dtype=float).reshape(-1)
     zz = np.asarray(z, dtype=float).reshape(-1)
     b = sector.width
     if np.any((zz < 0) | (zz > b)):
-        raise InputError(f"flank3d.z outside the face width [0, {b:.6g}] m: "
+        raise InputError(f"flank_grid.z outside the face width [0, {b:.6g}] m: "
                          f"{zz.min():.6g} .. {zz.max():.6g} m")
     shape = (k.size, zz.size, r.size)
     kk = np.repeat(k, zz.size * r.size)
@@ -124,4 +85,4 @@ def flank_grid(sector: SectorMesh3D, teeth: ArrayLike, radii: ArrayLike, z: Arra
     nrm[flip] *= -1.0
     t2 = np.cross(nrm, t1)
     t2[t2[:, 2] < 0] *= -1.0
-    return FlankGrid3D(kk, p2.side, rg, zg, pos, nrm, t1, t2, p2.arc, p2.depth, shape)
+    return FlankPoints(kk, p2.side, rg, pos, nrm, t1, p2.arc, p2.depth, zg, t2, shape)

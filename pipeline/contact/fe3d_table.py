@@ -1,0 +1,248 @@
+"""Structural flank tables of one gear's 3D sector (for the 3D FE compliance source).
+
+The tables of :class:`~pipeline.contact.fe3d_source.FE3DCompliance`.
+For each gear one structural influence matrix ``S`` (m/N: normal approach
+per unit normal load, FE minus the Boussinesq near field) is computed once, on a
+grid of ``radii x face`` points on the right flank of every sector tooth that a
+tooth pair in contact can reach over a mesh cycle (one solver set-up per gear).
+Profile points are equally spaced in the arc coordinate of the involute between the
+form (or base) circle and the tip, ``c`` of arc inside both ends (``c`` the load
+patch half-width: the patch reaches the tip corner but does not cross it); face
+points from ``face_margin c`` to ``b - face_margin c``, about ``c`` apart.
+``S`` is symmetrised (it is symmetric to solver accuracy) and projected onto the
+positive semidefinite matrices (negative eigenvalues, discretisation error of
+~0.2-2 % of the largest, set to zero: the contact solver needs a semidefinite
+``G``; the change is recorded in the table's ``info``). Tables are cached on
+disk by a content hash of the gear, mesh settings, grid and boundary conditions
+(``meshes/fe3dtable-<hash>.npz``, written atomically), like the meshes themselves.
+
+Discretisation: the default 3D meshes are coarse (flank elements ``m_n / (3
+refinement)``); a displacement FE model is stiffer than the real tooth (a few %
+for line loads, ~10 % for a concentrated patch at refinement 1, see
+:mod:`pipeline.fem.influence`), and ``S`` is positive definite only up to that
+error, hence the projection above.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.contact._interpolation import linear_weights
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.flank import active_radii
+from pipeline.fem.flank_grid import face_positions, flank_grid
+from pipeline.fem.influence import CUTS, ENDS, influence_matrix
+from pipeline.fem.sector2d import inner_radius
+from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
+from pipeline.fem.solvers import SOLVERS, solver_named
+from pipeline.geometry.gear import GearSpec
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
+
+# Bump when the same inputs would give a different table.
+TABLE_FORMAT = 2  # 2: tables on sector_mesh_3d's own meshes (no cleaned-outline copy)
+_STORED = ("structural", "dof", "free_dof", "solver", "seconds")  # arrays in the cache file
+
+
+@dataclass(frozen=True)
+class FE3DSettings:
+    """Settings of the 3D FE compliance tables.
+
+    Attributes
+    ----------
+    teeth : teeth per sector (3..99, odd values centre the loaded teeth), or None for
+        the fewest that hold the tooth pairs in contact (``2 max|k| + 1``).
+    radii : flank grid points along the profile (2..200).
+    face : flank grid points across the face width (1..200), or None for a spacing of
+        about one patch half-width (the structural kernel then varies little between
+        nodes; coarser face grids blur its peak at the diagonal).
+    refinement : mesh refinement (:meth:`SectorSettings3D.for_gear`), 0.2..4.
+    patch : load patch half-width c in normal modules (0.1..2). Default 0.5, wider than
+        the 3D default 0.3 of :func:`pipeline.fem.influence.influence_matrix`: the
+        near-field subtraction needs the patch resolved by the mesh (0.3 m_n needs
+        refinement 2), and the structural part does not depend on c once it is. At
+        refinement 0.6 and c = 0.3 m_n (less than one flank element) the structural
+        diagonal fell below its neighbours (table eigenvalues down to -16 % of the
+        largest); at c = 0.5-0.6 m_n: -0.2 to -0.4 %.
+    face_margin : distance of the outer face grid points from the end faces, in
+        patch half-widths (0..10; 1 keeps every patch whole on the flank).
+    cuts : "clamped" or "free" sector cut faces.
+    ends : "free" or "sliding" (u_z = 0) end faces.
+    slices : slices across the face width of a helical pair (spur: 1).
+    hub_depth : if given, the sector is clamped at ``max(bore, r_f - hub_depth m_n)``
+        instead of the bore (1..100 modules): a shallower body for deep gears.
+    method : solver (:func:`pipeline.fem.solvers.solver_named`, 3D).
+    """
+
+    teeth: int | None = None
+    radii: int = 8
+    face: int | None = None
+    refinement: float = 1.0
+    patch: float = 0.5
+    face_margin: float = 1.0
+    cuts: str = "clamped"
+    ends: str = "free"
+    slices: int = 30
+    hub_depth: float | None = None
+    method: str = "auto"
+
+    def __post_init__(self) -> None:
+        if self.teeth is not None:
+            check_int_range("fe3d.teeth", self.teeth, 3, 99)
+        check_int_range("fe3d.radii", self.radii, 2, 200)
+        if self.face is not None:
+            check_int_range("fe3d.face", self.face, 1, 200)
+        check_range("fe3d.refinement", self.refinement, 0.2, 4.0)
+        check_range("fe3d.patch", self.patch, 0.1, 2.0, unit="m_n")
+        check_range("fe3d.face_margin", self.face_margin, 0.0, 10.0)
+        check_choice("fe3d.cuts", self.cuts, CUTS)
+        check_choice("fe3d.ends", self.ends, ENDS)
+        check_int_range("fe3d.slices", self.slices, 1, 10_000)
+        if self.hub_depth is not None:
+            check_range("fe3d.hub_depth", self.hub_depth, 1.0, 100.0, unit="m_n")
+        check_choice("fe3d.method", self.method, SOLVERS)
+
+
+@dataclass(frozen=True, eq=False)
+class FlankTable3D:
+    """Structural compliance on the right-flank grid of some teeth of one gear's 3D sector.
+
+    Attributes
+    ----------
+    teeth : (n_t,) sector tooth indices of the grid, ascending.
+    arc : (n_p,) arc coordinates of the profile points, m (ascending).
+    z : (n_f,) face positions in the sector frame, m (ascending).
+    structural : (N, N) structural compliance, m/N (symmetric, semidefinite: module
+        docstring), N = n_t n_f n_p, points
+        ordered by tooth (outer), face position, then profile (inner).
+    width : meshed face width of the sector, m.
+    info : DOFs, solver, timings (s) of the FE solve and whether the table was read
+        from the cache.
+    """
+
+    teeth: np.ndarray
+    arc: np.ndarray
+    z: np.ndarray
+    structural: np.ndarray
+    width: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        return (self.teeth.size, self.z.size, self.arc.size)
+
+    def weights(self, tooth: np.ndarray, arc: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """(n, N) bilinear interpolation weights (linear extrapolation) of ``n`` points.
+
+        ``tooth`` sector tooth indices (must be in :attr:`teeth`), ``arc`` and ``z`` in m;
+        ``W @ S @ W.T`` is the compliance between the points.
+        """
+        tooth = np.asarray(tooth, dtype=int).reshape(-1)
+        arc = np.asarray(arc, dtype=float).reshape(-1)
+        z = np.asarray(z, dtype=float).reshape(-1)
+        block = np.searchsorted(self.teeth, tooth)
+        if np.any(block >= self.teeth.size) or np.any(self.teeth[np.minimum(
+                block, self.teeth.size - 1)] != tooth):
+            raise InputError(f"fe3d table: teeth {np.setdiff1d(tooth, self.teeth)} are not "
+                             f"tabulated (tabulated: {self.teeth})")
+        n_t, n_f, n_p = self.shape
+        ka, wa = linear_weights(self.arc, arc)
+        kz, wz = linear_weights(self.z, z)
+        W = np.zeros((tooth.size, n_t * n_f * n_p))
+        rows = np.arange(tooth.size)
+        for da, fa in ((0, 1 - wa), (1, wa)):
+            for dz, fz in ((0, 1 - wz), (1, wz)):
+                cols = (block * n_f + np.minimum(kz + dz, n_f - 1)) * n_p + np.minimum(
+                    ka + da, n_p - 1)
+                np.add.at(W, (rows, cols), fa * fz)
+        return W
+
+
+def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings) -> SectorSettings3D:
+    s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
+    if settings.hub_depth is not None:
+        r = max(gear.bore_radius, gear.root_radius - settings.hub_depth * gear.module)
+        s3 = replace(s3, inner_radius=r)
+    return s3
+
+
+def _grid(gear: GearSpec, sector_width: float, settings: FE3DSettings
+          ) -> tuple[np.ndarray, np.ndarray, float]:
+    """Profile radii (m), face positions (m) and patch half-width c (m) of the table grid."""
+    from pipeline.geometry.profile import tooth_profile
+
+    c = settings.patch * gear.module
+    form = tooth_profile(gear).form_radius
+    r = active_radii(gear, settings.radii, lo=max(form, gear.base_radius), margin=c)
+    margin = min(settings.face_margin * c, 0.5 * sector_width * (1 - 1e-9))
+    n = settings.face
+    if n is None:
+        n = max(2, int(round((sector_width - 2 * margin) / c)) + 1)
+    z = face_positions(sector_width, n, margin)
+    return r, z, c
+
+
+def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings: FE3DSettings,
+                cache: bool = True, cache_dir: str | Path | None = None) -> FlankTable3D:
+    """The (cached) structural table of ``gear``'s right flanks on sector teeth ``loaded``.
+
+    Parameters
+    ----------
+    gear : an external, non-herringbone gear.
+    sector_teeth : teeth of the 3D sector.
+    loaded : sector tooth indices whose right flanks carry grid points (ascending).
+    settings : grid, mesh and boundary-condition settings.
+    cache, cache_dir : on-disk cache of tables and meshes (default ``meshes/``).
+    """
+    loaded = np.unique(np.asarray(loaded, dtype=int))
+    s3 = _sector_settings(gear, sector_teeth, settings)
+    width = gear.face_width
+    r, z, c = _grid(gear, width, settings)
+    rb = gear.base_radius
+    arc = (r * r - rb * rb) / (2 * rb)
+    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": asdict(gear),
+           "sector": asdict(s3), "inner_radius": inner_radius(gear, s3),
+           "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
+           "ends": settings.ends}
+
+    def build() -> dict:
+        t0 = time.perf_counter()
+        sector = sector_mesh_3d(gear, s3, cache=cache, cache_dir=cache_dir)
+        pts = flank_grid(sector, loaded, r, z)
+        res = influence_matrix(sector, pts, patch_half_width=c,
+                               solver=solver_named(settings.method, dim=3),
+                               cuts=settings.cuts, ends=settings.ends)
+        return {"structural": res.structural, "dof": res.n_dof, "free_dof": res.n_free,
+                "solver": res.method, "seconds": time.perf_counter() - t0,
+                "timings_s": res.timings, "symmetry_error": res.symmetry_error()}
+
+    def save(path: Path, v: dict) -> Path:
+        return save_arrays(path, {k: v[k] for k in _STORED})
+
+    v, _, hit = cached_file("fe3dtable", key, build, load_arrays, save, cache_dir, cache)
+    info = {"dof": int(v["dof"]), "free_dof": int(v["free_dof"]), "solver": str(v["solver"]),
+            "seconds": float(v["seconds"]), "cached": hit,
+            **{k: v[k] for k in ("timings_s", "symmetry_error") if k in v}}
+    S = v["structural"]
+    return _table(loaded, arc, z, S, width, info)
+
+
+def _table(teeth, arc, z, S, width, info) -> FlankTable3D:
+    """Symmetrise ``S`` and project it onto the positive semidefinite matrices.
+
+    The FE structural matrix is positive definite only up to discretisation error
+    (:mod:`pipeline.fem.influence`); the contact solver rejects an indefinite ``G``.
+    Negative eigenvalues are set to zero (the nearest semidefinite matrix in the
+    Frobenius norm); ``info`` records the smallest eigenvalue relative to the largest
+    and the relative size of the change.
+    """
+    S = 0.5 * (S + S.T)
+    ev, V = np.linalg.eigh(S)
+    Sp = (V * np.maximum(ev, 0.0)) @ V.T
+    Sp = 0.5 * (Sp + Sp.T)
+    info = {**info, "min_eigenvalue_ratio": float(ev[0] / ev[-1]),
+            "psd_projection_change": float(np.linalg.norm(Sp - S) / np.linalg.norm(S))}
+    return FlankTable3D(teeth, arc, z, Sp, width, info)
