@@ -4,7 +4,7 @@
     [contact]
     positions = 60                 # mesh positions over one cycle
     slices = 30                    # slices across the face (helical gears)
-    local_contact = "weber"        # "weber" (Yang et al. 2026, eq. 24), "linear" (constant Hertz), "none"
+    local_contact = "weber"        # "weber" (Yang et al. 2026, eq. 24), "linear", "none"
     slice_coupling = 0.0           # kappa in [0, 0.25): 0 = independent slices (Yang et al. 2026)
     tip_relief_pinion_um = 0.0     # C_a at the pinion tip, along the line of action
     tip_relief_length_pinion_mm = 0.0   # roll length L_a of the pinion relief along the path

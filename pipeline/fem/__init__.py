@@ -23,10 +23,12 @@ from pipeline.fem.flank import FlankPoints, active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import InfluenceMatrix, constrained_dofs, influence_matrix
 from pipeline.fem.linear_static import build_model, load_compliance, solve_static
+from pipeline.fem.options import SectorFEOptions
 from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.pmultigrid import PMultigridCG
 from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
 from pipeline.fem.sector3d import SectorMesh3D, SectorSettings3D, sector_mesh_3d
+from pipeline.fem.sector_analysis import SectorResult, analyse_sector
 from pipeline.fem.solvers import DirectSolver, solver_named
 
 __all__ = [
@@ -34,5 +36,5 @@ __all__ = [
     "SectorMesh3D", "SectorSettings2D", "SectorSettings3D", "active_radii", "build_model",
     "constrained_dofs", "face_positions", "flank_grid", "flank_points", "influence_matrix",
     "load_compliance", "patch_loads", "sector_mesh_2d", "sector_mesh_3d", "solve_static",
-    "solver_named",
+    "solver_named", "SectorFEOptions", "SectorResult", "analyse_sector",
 ]
