@@ -53,7 +53,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.geometry.planetary import PlanetarySet
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
-from pipeline.validation import InputError
+from pipeline.validation import InputError, check_range
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
@@ -69,6 +69,10 @@ class Carrier:
 
     mass: float
     inertia: float
+
+    def __post_init__(self) -> None:
+        check_range("carrier.mass", self.mass, 0.0, 1e7, lo_open=True, unit="kg")
+        check_range("carrier.inertia", self.inertia, 0.0, 1e7, lo_open=True, unit="kg m^2")
 
 
 @dataclass(frozen=True)
@@ -167,6 +171,15 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
     values = read_table(table, keys, role, subtables=("material",))
     body_fields = {k.target for k in T.BODY}
     body = {k: values.pop(k) for k in list(values) if k in body_fields}
+    internal = values.get("internal", False)
+    for name, ok in (("rim_outer_radius_mm", internal), ("bore_radius_mm", not internal)):
+        if name in table and not ok:
+            right = "rim_outer_radius_mm" if internal else "bore_radius_mm"
+            raise InputError(f"{role}.{name}: {'an internal' if internal else 'an external'} "
+                             f"gear takes {right} instead")
+    if internal and "rim_outer_radius_mm" not in table:
+        raise InputError(f"[{role}] is an internal gear and needs the key 'rim_outer_radius_mm' "
+                         "(outer radius of the ring's rim)")
     values.setdefault("name", role)
     if values.get("helix_angle", 0.0) > 0 and "hand" not in values:
         values["hand"] = "right"
@@ -309,9 +322,16 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         from pipeline.config.lumped import lumped_model
 
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
-    for t in ("stiffness", "contact", "fe", "groove", "dynamics"):
-        if t in doc and kind == "lumped" and t != "dynamics":
-            raise InputError(f"[{t}] needs gear geometry; a [lumped_model] file has none")
+    if kind == "lumped":
+        for t in ("operation", "stiffness", "contact", "fe", "groove"):
+            if t in doc:
+                raise InputError(f"[{t}] needs gear geometry; a [lumped_model] file has none "
+                                 "(its load, speed and stiffness are keys of [lumped_model])")
+        extra = [k for k in doc.get("dynamics", {}) if k not in ("response", "sweep")]
+        if extra:
+            raise InputError(f"dynamics.{extra[0]}: a [lumped_model] file takes only "
+                             "[dynamics.response] and [dynamics.sweep]; the model's own keys "
+                             "go into [lumped_model]")
     return Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,

@@ -94,9 +94,12 @@ def lumped_model(table: Mapping[str, Any], base: Path | None) -> Any:
     """The model dataclass the ``[lumped_model]`` table describes."""
     if not isinstance(table, Mapping):
         raise InputError("[lumped_model] must be a table")
-    name = table.get("model")
+    if "model" not in table:
+        raise InputError("[lumped_model] needs the key 'model' (one of "
+                         f"{', '.join(map(repr, MODELS))})")
+    name = table["model"]
     if name not in MODELS:
-        raise InputError(f"[lumped_model] model = {name!r} is not one of "
+        raise InputError(f"lumped_model.model = {name!r} is not one of "
                          f"{', '.join(map(repr, MODELS))}")
     cls = _model_class(name)
     keys = model_keys(cls) + (Key("model", "string", choices=MODELS),)
@@ -105,9 +108,9 @@ def lumped_model(table: Mapping[str, Any], base: Path | None) -> Any:
     values.pop("model")
     if "mesh_frequency" in values:
         f = values.pop("mesh_frequency")
-        if not f > 0:
-            raise InputError(f"[lumped_model] mesh_frequency_Hz = {f:.6g} Hz is outside the "
-                             "allowed range (0, inf) Hz")
+        if not 1e-3 <= f <= 1e6:
+            raise InputError(f"lumped_model.mesh_frequency_Hz = {f:.6g} Hz is outside the "
+                             "allowed range [0.001, 1e+06] Hz")
         values["mesh_period"] = 1.0 / f
     for sub, fname in signals.items():
         if sub in table:

@@ -136,6 +136,8 @@ def _convert(key: Key, where: str, v: Any) -> Any:
                 raise InputError(f"{_key_text(where, key.name)} = {_show(v)}: must be finite")
         return tuple(u.to_si(float(x)) for x in v)
     if key.kind == "number_or_string" and _is_number(v):
+        if not math.isfinite(float(v)):
+            raise InputError(f"{_key_text(where, key.name)} = {_show(v)}: must be finite")
         return u.to_si(float(v))
     if not isinstance(v, str):
         raise bad
@@ -178,6 +180,11 @@ def read_table(table: Any, keys: Sequence[Key], where: str,
             raise unknown(name, list(by_name) + list(subtables),
                           f"{where_text(where)} key")
         key = by_name[name]
+        if key.target in out:
+            other = next(k.name for k in keys if k.target == key.target and k.name in table
+                         and k.name != name)
+            raise InputError(f"{_key_text(where, name)} and {_key_text(where, other)} set the "
+                             "same value: give only one")
         out[key.target] = _convert(key, where, v)
     for k in keys:
         if k.required and k.name not in table:

@@ -24,17 +24,11 @@ from pipeline.validation import InputError
 
 def signal_from_table(table: Mapping[str, Any], where: str, base: Path | None) -> PeriodicSignal:
     """Build the signal of a stiffness table at ``where`` (N/m over one mesh period)."""
-    from pipeline.dynamics.excitation import (
-        contact_line_stiffness,
-        harmonic_signal,
-        rectangular_mesh_stiffness,
-    )
-
     if not isinstance(table, Mapping):
-        raise InputError(f"[{where}] must be a table")
+        raise InputError(f"{where}: expected a table [{where}]")
     kind = table.get("kind", "constant")
     if not isinstance(kind, str) or kind not in SIGNAL_KINDS:
-        raise InputError(f"[{where}] kind = {kind!r} is not one of "
+        raise InputError(f"{where}.kind = {kind!r} is not one of "
                          f"{', '.join(map(repr, SIGNAL_KINDS))}")
     keys = SIGNAL[kind] + (Key("kind", "string", choices=SIGNAL_KINDS),)
     try:
@@ -42,7 +36,26 @@ def signal_from_table(table: Mapping[str, Any], where: str, base: Path | None) -
     except InputError as exc:
         raise InputError(f"{exc} (for kind = {kind!r})") from None
     kw.pop("kind", None)
-    with restated(where, keys):
+    if kind == "harmonic" and "phases" in kw and len(kw["phases"]) != len(kw["amplitudes"]):
+        raise InputError(f"{where}.phases_rad = {list(table['phases_rad'])}: expected "
+                         f"{len(kw['amplitudes'])} numbers (one per amplitude), got "
+                         f"{len(kw['phases'])}")
+    signal = _build(kind, kw, where, keys, table, base)
+    if np.any(signal.values <= 0.0):
+        raise InputError(f"{where}: the {kind} stiffness falls to "
+                         f"{signal.values.min():.6g} N/m; a mesh stiffness must be > 0 N/m "
+                         "everywhere")
+    return signal
+
+
+def _build(kind: str, kw: dict[str, Any], where: str, keys, table, base) -> PeriodicSignal:
+    from pipeline.dynamics.excitation import (
+        contact_line_stiffness,
+        harmonic_signal,
+        rectangular_mesh_stiffness,
+    )
+
+    with restated(where, keys, table):
         if kind == "rectangular":
             return rectangular_mesh_stiffness(**kw)
         if kind == "contact_line":
@@ -59,20 +72,20 @@ def _csv_signal(kw: dict[str, Any], where: str, base: Path | None) -> PeriodicSi
     if base is not None and not path.is_absolute():
         path = base / path
     if not path.is_file():
-        raise InputError(f"[{where}] path = {str(path)!r} does not exist")
+        raise InputError(f"{where}.path = {str(path)!r} does not exist")
     try:
         with path.open(encoding="utf-8") as f:
             names = [n.strip() for n in next(csv.reader(f), [])]
     except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"[{where}] path = {str(path)!r} cannot be read ({exc})") from None
+        raise InputError(f"{where}.path = {str(path)!r} cannot be read ({exc})") from None
     col = kw.get("column", names[-1] if names else "")
     if col not in names:
-        raise unknown(col, names, f"[{where}] column")
+        raise unknown(col, names, f"{where}.column")
     try:
         values = np.loadtxt(path, delimiter=",", skiprows=1, usecols=names.index(col), ndmin=1)
     except ValueError as exc:
-        raise InputError(f"[{where}] path = {str(path)!r} is not a CSV table of numbers "
+        raise InputError(f"{where}.path = {str(path)!r} is not a CSV table of numbers "
                          f"({exc})") from None
     if values.size < 2 or not np.all(np.isfinite(values)):
-        raise InputError(f"[{where}] column {col!r} of {path} needs at least 2 finite values")
+        raise InputError(f"{where}.column = {col!r}: {path} needs at least 2 finite values")
     return PeriodicSignal(values)

@@ -153,12 +153,14 @@ SWEEP = (
 
 SIGNAL_KINDS = ("rectangular", "contact_line", "harmonic", "constant", "csv")
 SIGNAL = {
-    "rectangular": (Key("k_single_N_per_m"), Key("k_double_N_per_m"), Key("contact_ratio"),
-                    Key("samples", I), Key("start")),
-    "contact_line": (Key("k_mean_N_per_m"), Key("transverse_ratio"), Key("overlap_ratio"),
-                     Key("samples", I)),
-    "harmonic": (Key("mean_N_per_m"), Key("amplitudes_N_per_m", L), Key("phases_rad", L),
-                 Key("samples", I)),
+    "rectangular": (Key("k_single_N_per_m", required=True),
+                    Key("k_double_N_per_m", required=True),
+                    Key("contact_ratio", required=True), Key("samples", I), Key("start")),
+    "contact_line": (Key("k_mean_N_per_m", required=True),
+                     Key("transverse_ratio", required=True),
+                     Key("overlap_ratio", required=True), Key("samples", I)),
+    "harmonic": (Key("mean_N_per_m", required=True), Key("amplitudes_N_per_m", L, required=True),
+                 Key("phases_rad", L), Key("samples", I)),
     "constant": (Key("value_N_per_m", required=True),),
     "csv": (Key("path", S, required=True), Key("column", S)),
 }

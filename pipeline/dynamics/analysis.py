@@ -51,8 +51,8 @@ def analyse_response(model, options: ResponseOptions | None = None, *,
                      refine: int = 1) -> ResponseResult:
     """Steady dynamic response by the method of ``options``.
 
-    ``refine`` multiplies the harmonics (harmonic balance) and segments (propagator) for a
-    finer run (``--full`` on the command line uses 2 and 4).
+    ``refine`` multiplies the harmonics (harmonic balance) and the segments (propagator)
+    for a finer run (``--full`` on the command line uses 2); at most 500 harmonics.
     """
     from pipeline.dynamics.harmonic_balance import harmonic_balance
     from pipeline.dynamics.integrate import integrate, steady_state
@@ -61,7 +61,7 @@ def analyse_response(model, options: ResponseOptions | None = None, *,
     system = model.assembly().assemble()
     segments = None if options.segments is None else options.segments * refine
     if options.method == "harmonic_balance":
-        hr = harmonic_balance(system, options.n_harmonics * refine)
+        hr = harmonic_balance(system, min(options.n_harmonics * refine, 500))
         return ResponseResult(hr.response, hr)
     if options.method == "floquet":
         return ResponseResult(steady_state(system, segments))

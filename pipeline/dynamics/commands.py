@@ -51,6 +51,9 @@ def dynamic_model(box: Gearbox):
 
     if box.kind == "lumped":
         return box.lumped
+    if box.kind == "gear":
+        raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
+                         "a gear pair ([pinion] and [gear]) or a [lumped_model]")
     if box.kind != "pair":
         raise InputError(f"{box.name}: dynamic models are built from a gear pair or a "
                          "[lumped_model]; a planetary set's model from its gears is not "

@@ -23,6 +23,7 @@ from pipeline.commands_common import add_common_arguments, emit, load, output_di
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
 from pipeline.fem.sector_analysis import SectorResult, analyse_sector
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.validation import InputError
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -66,7 +67,15 @@ def options(box_fe: SectorFEOptions, args: argparse.Namespace) -> SectorFEOption
     """The ``[fe]`` table with the command-line options that were given on top."""
     given = {k: getattr(args, k) for k in ("teeth", "points", "refinement", "kind")
              if getattr(args, k) is not None}
-    return dataclasses.replace(box_fe, **given)
+    try:
+        return dataclasses.replace(box_fe, **given)
+    except InputError as exc:  # name the option as typed on the command line
+        name = (exc.field or "").rsplit(".", 1)[-1]
+        if name in given and exc.bounds is not None:
+            lo, hi = exc.bounds[:2]
+            raise InputError(f"--{name} = {given[name]} is outside the allowed range "
+                             f"[{lo:g}, {hi:g}]") from None
+        raise
 
 
 def run(args: argparse.Namespace) -> int:

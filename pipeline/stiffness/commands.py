@@ -11,6 +11,7 @@ import numpy as np
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
+from pipeline.validation import check_int_range
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -41,6 +42,7 @@ def write_stiffness(res: StiffnessResult, out: Path, title: str) -> list[Path]:
 
 
 def run(args: argparse.Namespace) -> int:
+    check_int_range("--harmonics", args.harmonics, 1, 1000)
     box = load(args)
     pair = box.require_pair()
     res = analyse_stiffness(pair, box.operation, box.stiffness,

@@ -218,6 +218,7 @@ class HerringbonePlanetaryModel:
         if self.groove is not None and np.ndim(self.groove) == 0:
             check_positive("groove", float(self.groove), "N m/rad")
 
+        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_planet_layout(self)
 
     @property

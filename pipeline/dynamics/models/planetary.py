@@ -147,6 +147,7 @@ class PlanetaryModel:
                     raise InputError(f"{f} has {len(v)} entries; need n_planets = {N}")
                 object.__setattr__(self, f, v)
 
+        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_planet_layout(self)
 
     @property

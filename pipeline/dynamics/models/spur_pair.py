@@ -85,6 +85,7 @@ class SpurPairModel:
             check_positive(f, getattr(self, f), u)
         check_range("bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
         check_range("bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
+        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
 
     @property
     def mesh_period(self) -> float:
