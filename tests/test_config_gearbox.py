@@ -229,3 +229,16 @@ def test_lumped_planetary_checks_planets_and_ring(tmp_path):
     small = base.replace("n_planets = 4", "n_planets = 4\nbase_radius_ring_mm = 10.0")
     with pytest.raises(InputError, match="base_radius_ring_mm = 10 mm"):
         gearbox_from_text(small)
+
+
+def test_wind_turbine_gearbox_file_matches_the_model_gears():
+    """The example file of Xu et al. (2020)'s stage derives the same planet phases as the
+    gears built in code for the dynamic model, and its [groove] names the sun."""
+    from pipeline.dynamics.models.wind_turbine_planetary import wind_turbine_planetary_set
+
+    box = load_gearbox(ROOT / "workflows/configs/wind_turbine_herringbone_planetary.toml")
+    ref = wind_turbine_planetary_set()
+    np.testing.assert_allclose(box.planetary.sun_phases, ref.sun_phases, atol=1e-12)
+    np.testing.assert_allclose(box.planetary.ring_phases, ref.ring_phases, atol=1e-12)
+    assert box.planetary.ring_sun_phase == pytest.approx(ref.ring_sun_phase, abs=1e-12)
+    assert box.groove.gear.teeth == 21 and box.groove.groove_bottom_diameter == 0.27
