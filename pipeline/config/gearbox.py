@@ -31,22 +31,22 @@ allowed range in that unit.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
 from pipeline.config import tables as T
-from pipeline.config.schema import build, read_table, restated, unknown, where_text
+from pipeline.config.schema import build, read_table, restated, unknown
 from pipeline.config.signals import signal_from_table
-from pipeline.config.toml_file import InputFile, parse_toml, read_input_file
+from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications
 from pipeline.dynamics.options import PairDynamicsOptions, ResponseOptions, SweepOptions
 from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.options import SectorFEOptions
-from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors, assemble
 from pipeline.geometry.body import GearBody
 from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
@@ -131,17 +131,12 @@ class Gearbox:
     @property
     def actual_pair(self) -> GearPair:
         """The pair as installed: at the centre distance the assembly errors give."""
-        pair = self.require_pair()
-        if self.assembly_errors.is_zero:
-            return pair
-        return AssembledPair(pair, self.assembly_errors).actual
+        return self.require_pair() if self.assembled is None else self.assembled.actual
 
-    @property
+    @cached_property
     def assembled(self) -> AssembledPair | None:
         """The assembly-error geometry, or ``None`` without errors."""
-        pair = self.require_pair()
-        return None if self.assembly_errors.is_zero else AssembledPair(pair,
-                                                                      self.assembly_errors)
+        return assemble(self.require_pair(), self.assembly_errors)
 
     def require_pair(self) -> GearPair:
         """The pair; a clear error when the file describes something else."""
@@ -307,8 +302,6 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         with restated("pair", T.PAIR, doc.get("pair", {})):
             kw["assembly_errors"] = AssemblyErrors(**values)
             kw["pair"] = GearPair(gears["pinion"], gears["gear"], cd)
-            if not kw["assembly_errors"].is_zero:
-                AssembledPair(kw["pair"], kw["assembly_errors"]).actual  # noqa: B018 (checks)
     elif "pair" in doc:
         raise InputError(f"[pair] belongs to a gear pair; this file describes a "
                          f"{_KIND_TEXT[kind]}")
@@ -321,8 +314,6 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "lumped":
         from pipeline.config.lumped import lumped_model
 
-        kw["lumped"] = lumped_model(doc["lumped_model"], base)
-    if kind == "lumped":
         for t in ("operation", "stiffness", "contact", "fe", "groove"):
             if t in doc:
                 raise InputError(f"[{t}] needs gear geometry; a [lumped_model] file has none "
@@ -332,7 +323,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
             raise InputError(f"dynamics.{extra[0]}: a [lumped_model] file takes only "
                              "[dynamics.response] and [dynamics.sweep]; the model's own keys "
                              "go into [lumped_model]")
-    return Gearbox(
+        kw["lumped"] = lumped_model(doc["lumped_model"], base)
+    box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
         gears=gears,
@@ -347,6 +339,10 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
     )
+    if kind == "pair":
+        with restated("pair", T.PAIR, doc.get("pair", {})):
+            box.actual_pair  # noqa: B018 - the displaced pair must still mesh (cached)
+    return box
 
 
 def load_gearbox(path: str | Path) -> Gearbox:
@@ -357,18 +353,9 @@ def load_gearbox(path: str | Path) -> Gearbox:
 
 def gearbox_from_text(text: str, name: str = "gearbox") -> Gearbox:
     """Build a :class:`Gearbox` from TOML text (tests, notebooks)."""
-    data = text.encode("utf-8")
-    doc = parse_toml(data, name)
-    import hashlib
-
-    src = InputFile(None, text, doc, hashlib.sha256(data).hexdigest())
-    return gearbox_from_dict(doc, name=name, source=src)
-
-
-def replace_options(box: Gearbox, **changes: Any) -> Gearbox:
-    """A copy of ``box`` with some stage inputs replaced (``dataclasses.replace``)."""
-    return dataclasses.replace(box, **changes)
+    src = parse_input(text.encode("utf-8"), name)
+    return gearbox_from_dict(src.document, name=name, source=src)
 
 
 __all__ = ["Carrier", "Gearbox", "contact_options_from_table", "gearbox_from_dict",
-           "gearbox_from_text", "load_gearbox", "replace_options", "where_text"]
+           "gearbox_from_text", "load_gearbox"]

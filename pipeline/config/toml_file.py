@@ -95,5 +95,10 @@ def read_input_file(path: str | Path) -> InputFile:
         data = path.read_bytes()
     except OSError as exc:
         raise InputError(f"{path}: cannot be read ({exc.strerror})") from None
-    doc = parse_toml(data, str(path))
+    return parse_input(data, str(path), path)
+
+
+def parse_input(data: bytes, name: str, path: Path | None = None) -> InputFile:
+    """Parse the bytes of an input file into an :class:`InputFile` (``name`` labels errors)."""
+    doc = parse_toml(data, name)
     return InputFile(path, data.decode("utf-8"), doc, hashlib.sha256(data).hexdigest())

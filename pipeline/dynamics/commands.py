@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from pipeline.commands_common import load, output_dir
+from pipeline.commands_common import add_common_arguments, load, output_dir
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
 from pipeline.dynamics.options import PairDynamicsOptions
@@ -23,8 +23,6 @@ from pipeline.validation import InputError
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
-    from pipeline.commands_common import add_common_arguments
-
     add_common_arguments(parser)
     parser.add_argument("--full", action="store_true", help="fine settings instead of coarse")
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors, assemble
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.profile import ToothProfile, tooth_profile
 
@@ -43,7 +43,6 @@ class GeometryResult:
 def analyse_geometry(pair: GearPair, assembly_errors: AssemblyErrors | None = None
                      ) -> GeometryResult:
     """Contact ratios, path of contact, exact tooth profiles and assembly-error geometry."""
-    errors = assembly_errors or AssemblyErrors()
-    assembled = None if errors.is_zero else AssembledPair(pair, errors)
+    assembled = assemble(pair, assembly_errors)
     return GeometryResult(pair, assembled, (tooth_profile(pair.pinion),
                                             tooth_profile(pair.gear)))

@@ -168,3 +168,8 @@ class AssembledPair:
             "double_contact_fraction": act.transverse_contact_ratio - 1.0,
             "roll_offset_um": self.roll_offset * 1e6,
         }
+
+
+def assemble(pair: GearPair, errors: AssemblyErrors | None) -> AssembledPair | None:
+    """The pair with its centres displaced by ``errors``, or ``None`` without errors."""
+    return None if errors is None or errors.is_zero else AssembledPair(pair, errors)

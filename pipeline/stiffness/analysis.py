@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
+from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors, assemble
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.iso6336 import ContactLineStiffness, IsoStiffness, contact_line_stiffness
@@ -107,8 +107,7 @@ def analyse_stiffness(
     model : prebuilt tooth models of the *actual* pair, to skip rebuilding them.
     """
     options = options or StiffnessOptions()
-    errors = assembly_errors or AssemblyErrors()
-    assembled = None if errors.is_zero else AssembledPair(pair, errors)
+    assembled = assemble(pair, assembly_errors)
     actual = pair if assembled is None else assembled.actual
     model = model or PairModel.build(actual)
     mesh = mesh_stiffness(
