@@ -19,6 +19,9 @@ from pipeline.validation import InputError
 
 # name -> (module, add-arguments function, run function, help)
 SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
+    "run": ("pipeline.run.commands", "add_arguments", "run",
+            "the whole pipeline: geometry, stiffness, FE-enriched loaded contact, dynamics "
+            "(modes, response, speed sweep), into one folder"),
     "geometry": ("pipeline.geometry.commands", "add_arguments", "run",
                  "tooth profiles, contact ratios and line of action"),
     "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",

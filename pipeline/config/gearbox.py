@@ -31,6 +31,7 @@ allowed range in that unit.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -90,7 +91,10 @@ class Gearbox:
     planetary : the planetary set (kind "planetary"), or ``None``.
     carrier : the carrier body (kind "planetary"), or ``None``.
     operation : load and speed of the driving gear.
-    stiffness, contact, fe : options of those stages (defaults when the table is absent).
+    stiffness, contact, fe : options of those stages (defaults when the table is absent);
+        ``fe`` is what ``gearpipe fe`` reads from ``[fe]``.
+    fe_source : settings of the FE compliance source ``[contact] compliance`` names
+        (``FE2DSettings`` / ``FE3DSettings`` from ``[fe]``), or ``None`` for "analytical".
     groove : relief-groove analysis of a herringbone gear (``[groove]``), or ``None``.
     dynamics : options of the pair's dynamic model (``[dynamics]``), or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
@@ -110,6 +114,7 @@ class Gearbox:
     stiffness: StiffnessOptions = field(default_factory=StiffnessOptions)
     contact: ContactOptions = field(default_factory=ContactOptions)
     fe: SectorFEOptions = field(default_factory=SectorFEOptions)
+    fe_source: Any = None
     groove: GrooveSpec | None = None
     dynamics: PairDynamicsOptions | None = None
     lumped: Any = None
@@ -248,6 +253,39 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
         return ContactOptions(modifications=FlankModifications(**mods), **values)
 
 
+def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOptions, Any]:
+    """``[fe]`` -> (``gearpipe fe`` options, settings of the contact's FE compliance source).
+
+    A key applies to ``gearpipe fe`` (:data:`FE_COMMAND_KEYS`) and/or to the FE source
+    the ``[contact]`` table chose (:data:`FE_SOURCE_FIELDS`); a key that applies to
+    neither is refused rather than ignored.
+    """
+    table = doc.get("fe", {})
+    values = read_table(table, T.FE, "fe")
+    command = {k: v for k, v in values.items() if k in T.FE_COMMAND_KEYS}
+    with restated("fe", T.FE, table):
+        sector = SectorFEOptions(**command)
+    mapping = T.FE_SOURCE_FIELDS.get(contact.compliance, {})
+    for k in values:
+        if k not in command and k not in mapping:
+            used = [c for c, m in T.FE_SOURCE_FIELDS.items() if k in m]
+            raise InputError(f"fe.{k} applies to [contact] compliance = "
+                             f"{' or '.join(repr(c) for c in used)} only; this file's contact "
+                             f"compliance is {contact.compliance!r}")
+    if not mapping:
+        return sector, None
+    from pipeline.contact.compliance import fe_settings
+    from pipeline.contact.fe2d_source import FE2DSettings
+    from pipeline.contact.fe3d_table import FE3DSettings
+
+    cls = FE2DSettings if contact.compliance == "fe2d" else FE3DSettings
+    keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE
+                 if k.name in mapping)
+    with restated("fe", keys, table):
+        source = cls(**{mapping[k]: v for k, v in values.items() if k in mapping})
+    return sector, fe_settings(contact.compliance, source, contact)
+
+
 def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec | None:
     if "groove" not in doc:
         return None
@@ -324,6 +362,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "[dynamics.response] and [dynamics.sweep]; the model's own keys "
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
+    contact = contact_options_from_table(doc.get("contact"))
+    fe, fe_source = _fe(doc, contact)
     box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
@@ -331,8 +371,9 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         bodies=bodies,
         operation=_operation(doc),
         stiffness=build(StiffnessOptions, doc.get("stiffness", {}), T.STIFFNESS, "stiffness"),
-        contact=contact_options_from_table(doc.get("contact")),
-        fe=build(SectorFEOptions, doc.get("fe", {}), T.FE, "fe"),
+        contact=contact,
+        fe=fe,
+        fe_source=fe_source,
         groove=_groove(doc, gears),
         dynamics=_dynamics(doc, base),
         source=source,

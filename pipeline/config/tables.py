@@ -85,6 +85,8 @@ STIFFNESS = (
 )
 
 CONTACT = (
+    Key("compliance", S, choices=("analytical", "fe2d", "fe3d"),
+        help="compliance source of the loaded contact ([fe] holds the FE settings)"),
     Key("positions", I),
     Key("slices", I),
     Key("local_contact", S, choices=("weber", "linear", "none")),
@@ -105,11 +107,23 @@ MODIFICATIONS = (
 """Keys of the ``[contact]`` table that set :class:`FlankModifications`."""
 
 FE = (
-    Key("teeth", I),
-    Key("points", I),
-    Key("refinement", N),
-    Key("kind", S, choices=("plane_strain", "plane_stress")),
+    Key("teeth", I, help="teeth in the FE model (default: gearpipe fe 5, contact sources "
+                         "the whole gear)"),
+    Key("points", I, help="tabulated points per flank (profile direction)"),
+    Key("refinement", N, help="mesh refinement: flank element size m_n / (12 refinement)"),
+    Key("kind", S, choices=("plane_strain", "plane_stress"), help="2D model"),
+    Key("face_points", I, help="3D: tabulated points across the face width"),
+    Key("ends", S, choices=("free", "sliding"), help="3D: end faces free or u_z = 0"),
+    Key("solver", S, help="3D: linear solver (pipeline.fem.solvers)"),
 )
+FE_COMMAND_KEYS = ("teeth", "points", "refinement", "kind")
+"""The ``[fe]`` keys ``gearpipe fe`` (2D sectors of each gear) reads."""
+FE_SOURCE_FIELDS = {
+    "fe2d": {"teeth": "teeth", "points": "radii", "refinement": "refinement", "kind": "kind"},
+    "fe3d": {"teeth": "teeth", "points": "radii", "refinement": "refinement",
+             "face_points": "face", "ends": "ends", "solver": "method"},
+}
+"""``[fe]`` key -> settings field of the contact compliance sources (``[contact] compliance``)."""
 
 GROOVE = (
     Key("gear", S, field="gear_role", help="the herringbone gear with the groove"),

@@ -1,6 +1,7 @@
 """``gearpipe contact CONFIG``: loaded tooth contact over a mesh cycle -> CSV/JSON/PNG/VTU.
 
-Composes :func:`pipeline.contact.analytical_compliance` and
+Composes :func:`pipeline.contact.compliance.compliance_source` (the source ``[contact]
+compliance`` names: analytical slices, FE 2D or FE 3D with the ``[fe]`` settings) and
 :func:`pipeline.contact.analyse_contact` on the gearbox file's pair, ``[operation]``,
 ``[stiffness]`` and ``[contact]`` tables; writes per-position results, per-point unit
 loads, the load map (PNG + VTU), a summary JSON and ``run.json`` to
@@ -17,8 +18,11 @@ import numpy as np
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.contact.analysis import TOOTH_MODELS, analyse_contact, analytical_compliance
+from pipeline.contact.compliance import compliance_source
 from pipeline.contact.loadmap import flank_load_map, write_load_map_vtu
+from pipeline.contact.options import ContactOptions
 from pipeline.contact.results import LoadedMeshCycle
+from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.mesh import stiffness_at
 
@@ -30,33 +34,44 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "clamped at the base circle (Yang et al. 2026, eqs. 11-13)")
 
 
-def write_cycle(cyc: LoadedMeshCycle, out: Path) -> list[Path]:
-    return [write_csv(out / "contact_cycle.csv", cyc.columns()),
-            write_csv(out / "contact_points.csv", cyc.point_columns())]
-
-
-def run(args: argparse.Namespace) -> int:
+def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
+                  k_slice: np.ndarray, title: str, out: Path, prefix: str = "") -> list[Path]:
+    """Cycle and point CSVs, the cycle plot (against the slice method's ``k_slice``, N/m)
+    and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG)."""
     from pipeline.viz import save
     from pipeline.viz.contact import plot_contact_cycle
     from pipeline.viz.loadmap import plot_load_map_2d, render_load_map
 
+    files = [write_csv(out / f"{prefix}contact_cycle.csv", cyc.columns()),
+             write_csv(out / f"{prefix}contact_points.csv", cyc.point_columns()),
+             save(plot_contact_cycle(cyc, k_slice, title), out / f"{prefix}contact_cycle.png")]
+    lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
+    files.append(save(plot_load_map_2d(lm, title), out / f"{prefix}load_map_2d.png"))
+    files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))
+    if opts.render:
+        files.append(save(render_load_map(pair, lm, title), out / f"{prefix}load_map.png"))
+    return files
+
+
+def contact_title(name: str, cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions) -> str:
+    """Plot title: gearbox, load, compliance, local contact model, helix angle."""
+    return (f"{name}: P = {cyc.load:.0f} N, {opts.compliance} compliance, local contact "
+            f"{opts.local_contact}, beta {math.degrees(pair.pinion.helix_angle):g} deg")
+
+
+def run(args: argparse.Namespace) -> int:
     box = load(args)
     pair, opts = box.actual_pair, box.contact
-    src = analytical_compliance(pair, box.operation, opts, box.stiffness,
-                                tooth_model=args.tooth_model)
+    slices = analytical_compliance(pair, box.operation, opts, box.stiffness,
+                                   tooth_model=args.tooth_model)
+    src = compliance_source(pair, box.operation, opts, box.stiffness, box.fe_source,
+                            model=slices.model)
     cyc = analyse_contact(src, box.operation, opts, show_progress=True)
     out = output_dir(args, "contact")
-    ref = stiffness_at(src.model, cyc.s0, opts.slices, src.friction, src.operating,
+    ref = stiffness_at(slices.model, cyc.s0, opts.slices, slices.friction, slices.operating,
                        box.stiffness.foundation_correction)
-    title = (f"{box.name}: P = {cyc.load:.0f} N, local contact {opts.local_contact}, "
-             f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
-    files = write_cycle(cyc, out)
-    files.append(save(plot_contact_cycle(cyc, ref.total, title), out / "contact_cycle.png"))
-    lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    files.append(save(plot_load_map_2d(lm, title), out / "load_map_2d.png"))
-    files.append(write_load_map_vtu(pair, lm, out / "load_map.vtu"))
-    if opts.render:
-        files.append(save(render_load_map(pair, lm, title), out / "load_map.png"))
+    files = write_contact(cyc, pair, opts, ref.total, contact_title(box.name, cyc, pair, opts),
+                          out)
     summary = {
         **cyc.summary(),
         "slice_method_mean_N_per_m": ref.mean,
@@ -66,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
         "max_unit_load_N_per_mm": float(cyc.max_unit_load.max() * 1e-3),
         "positions": len(cyc),
         "local_contact": opts.local_contact,
+        "compliance": opts.compliance,
     }
     if box.assembled is not None:
         summary["assembly_errors"] = box.assembled.summary()

@@ -2,6 +2,7 @@
 ``[contact]`` table (read by :mod:`pipeline.config`); its keys, units in the names::
 
     [contact]
+    compliance = "analytical"      # "analytical" (slices), "fe2d", "fe3d" (settings: [fe])
     positions = 60                 # mesh positions over one cycle
     slices = 30                    # slices across the face (helical gears)
     local_contact = "weber"        # "weber" (Yang et al. 2026, eq. 24), "linear", "none"
@@ -29,6 +30,9 @@ from pipeline.contact.ltca import LOCAL_MODELS
 from pipeline.contact.separations import FlankModifications
 from pipeline.validation import check_choice, check_int_range, check_range
 
+COMPLIANCES = ("analytical", "fe2d", "fe3d")
+"""Compliance sources of the loaded contact (:mod:`pipeline.contact.compliance`)."""
+
 
 @dataclass(frozen=True)
 class ContactOptions:
@@ -36,6 +40,8 @@ class ContactOptions:
 
     Attributes
     ----------
+    compliance : compliance source, "analytical", "fe2d" or "fe3d"
+        (:mod:`pipeline.contact.compliance`).
     positions : mesh positions per cycle (>= 2).
     slices : slices across the face of a helical gear (>= 1).
     local_contact : "weber", "linear" or "none".
@@ -45,6 +51,7 @@ class ContactOptions:
     render : write the pyvista PNG of the load map.
     """
 
+    compliance: str = "analytical"
     positions: int = 60
     slices: int = 30
     local_contact: str = "weber"
@@ -54,6 +61,7 @@ class ContactOptions:
     render: bool = True
 
     def __post_init__(self) -> None:
+        check_choice("contact.compliance", self.compliance, COMPLIANCES)
         check_int_range("contact.positions", self.positions, 2, 100_000)
         check_int_range("contact.slices", self.slices, 1, 10_000)
         check_choice("contact.local_contact", self.local_contact, LOCAL_MODELS)

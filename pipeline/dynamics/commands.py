@@ -18,7 +18,8 @@ from pipeline.commands_common import add_common_arguments, load, output_dir
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
 from pipeline.dynamics.options import PairDynamicsOptions
-from pipeline.io import to_jsonable, write_csv, write_json, write_run_record
+from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
+from pipeline.io import to_jsonable, write_json, write_run_record
 from pipeline.validation import InputError
 
 
@@ -81,13 +82,9 @@ def _emit(args, summary: dict, lines: list[str]) -> None:
 
 def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
-    from pipeline.viz import save
-    from pipeline.viz.dynamics import plot_mode_shapes
-
     box, model, out = _setup(args, "modes")
     res = analyse_modes(model)
-    files = [write_csv(out / "modes.csv", res.columns()),
-             save(plot_mode_shapes(res, count=16 if args.full else 8), out / "mode_shapes.png")]
+    files = write_modes(res, out, count=16 if args.full else 8)
     summary = {**res.summary(), "out": str(out)}
     write_run_record(out, box.to_dict(), files, f"gearpipe modes {args.config}")
     lines = [f"{len(res.dof_names)} DOF, results in {out}",
@@ -104,25 +101,11 @@ def run_modes(args) -> int:
 
 def run_response(args) -> int:
     """Steady dynamic response: DTE and mesh forces in time, DTE spectrum."""
-    from pipeline.viz import save
-    from pipeline.viz.dynamics import (
-        plot_harmonic_contributions,
-        plot_spectrum,
-        plot_time_history,
-    )
-
     box, model, out = _setup(args, "response")
     result = analyse_response(model, dynamics_options(box).response,
                               refine=2 if args.full else 1)
-    resp, hr = result.response, result.harmonic
-    files = [write_csv(out / "time_history.csv", result.columns())]
-    f, a = resp.dte_spectrum(0)
-    files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
-    fig = plot_time_history([resp], [box.name], title=f"{box.name}: {resp.mesh_names[0]}")
-    files.append(save(fig, out / "time_history.png"))
-    files.append(save(plot_spectrum([resp], [box.name]), out / "dte_spectrum.png"))
-    if hr is not None:
-        files.append(save(plot_harmonic_contributions([hr], [box.name]), out / "harmonics.png"))
+    resp = result.response
+    files = write_response(result, out, box.name)
     summary = {**result.summary(), "out": str(out)}
     write_json(out / "summary.json", summary)
     files.append(out / "summary.json")
@@ -141,18 +124,12 @@ def run_response(args) -> int:
 
 def run_sweep(args) -> int:
     """RMS dynamic mesh force against mesh frequency."""
-    from pipeline.viz import save
-    from pipeline.viz.dynamics import plot_sweep
-
     box, model, out = _setup(args, "sweep")
     res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
                         show_progress=not args.json)
     freqs = res.frequencies
-    files = [write_csv(out / "sweep.csv", res.columns())]
-    shown = [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
-        res.mesh_names[:2]
-    )
-    files.append(save(plot_sweep([res], [box.name], shown, title=box.name), out / "sweep.png"))
+    files = write_sweep(res, out, box.name)
+    shown = shown_meshes(res)
     peaks = {m: res.peaks(m) for m in shown}
     write_run_record(out, box.to_dict(), files, f"gearpipe sweep {args.config}")
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}

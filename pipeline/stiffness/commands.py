@@ -20,24 +20,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Fourier orders of k(t) written to the JSON (default 10)")
 
 
-def write_stiffness(res: StiffnessResult, out: Path, title: str) -> list[Path]:
-    """CSV of k(t), the stiffness and friction plots; returns the files written."""
+def write_stiffness(res: StiffnessResult, out: Path, title: str, prefix: str = "") -> list[Path]:
+    """CSV of k(t), the stiffness and friction plots (file names start with ``prefix``);
+    returns the files written."""
     from pipeline.viz import save
     from pipeline.viz.stiffness import plot_friction_coefficients, plot_stiffness_curves
 
     m = res.mesh
     deg = np.degrees(m.pinion_angle)
-    files = [write_csv(out / "mesh_stiffness.csv", res.columns())]
+    files = [write_csv(out / f"{prefix}mesh_stiffness.csv", res.columns())]
     ax = plot_stiffness_curves(
         [("potential energy (this model)", deg, m.total),
          ("contact-line method (ISO 6336)", deg, res.contact_line.total)],
         title=title, pairs=m.pairs, pairs_x=deg)
-    files.append(save(ax, out / "mesh_stiffness.png"))
+    files.append(save(ax, out / f"{prefix}mesh_stiffness.png"))
     if np.any(m.friction_stiffness != 0):
         files.append(save(plot_friction_coefficients(deg, m.friction_stiffness,
                                                      m.friction_torque_pinion,
                                                      m.friction_torque_gear, title),
-                          out / "friction_coefficients.png"))
+                          out / f"{prefix}friction_coefficients.png"))
     return files
 
 

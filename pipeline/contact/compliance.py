@@ -1,0 +1,89 @@
+"""The compliance source a gearbox file asks for: ``[contact] compliance``.
+
+* ``"analytical"`` - the potential-energy slice compliance
+  (:func:`pipeline.contact.analysis.analytical_compliance`; Yang et al. 2026, sec. 2).
+* ``"fe2d"`` - 2D FE influence coefficients of both whole gears
+  (:class:`pipeline.contact.fe2d_source.FE2DCompliance`), same-section coupling.
+* ``"fe3d"`` - 3D FE influence coefficients (:class:`pipeline.contact.fe3d_source.FE3DCompliance`),
+  coupling across the face.
+
+FE influence coefficients are for loads normal to the flank; with friction in
+``[stiffness]`` the slice model's friction change is added on their diagonal
+(:class:`pipeline.contact.source.FrictionCorrected`), so every source sees the same
+friction. The FE settings come from the ``[fe]`` table (:mod:`pipeline.config`), the
+slices across the face from ``[contact] slices`` for all three.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+from pipeline.contact.analysis import analytical_compliance
+from pipeline.contact.fe2d_source import FE2DCompliance, FE2DSettings
+from pipeline.contact.fe3d_table import FE3DSettings
+from pipeline.contact.options import COMPLIANCES, ContactOptions
+from pipeline.contact.source import ComplianceSource, FrictionCorrected
+from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
+from pipeline.stiffness.mesh import PairModel
+from pipeline.stiffness.options import StiffnessOptions
+from pipeline.validation import InputError, check_choice
+
+
+def fe_settings(compliance: str, fe: FE2DSettings | FE3DSettings | None,
+                contact: ContactOptions) -> FE2DSettings | FE3DSettings | None:
+    """The FE settings of ``compliance`` with the contact slices (``None`` for analytical)."""
+    check_choice("contact.compliance", compliance, COMPLIANCES)
+    if compliance == "analytical":
+        return None
+    kind = FE2DSettings if compliance == "fe2d" else FE3DSettings
+    if fe is None:
+        fe = kind()
+    if not isinstance(fe, kind):
+        raise InputError(f"contact.compliance = {compliance!r} needs {kind.__name__}, "
+                         f"got {type(fe).__name__}")
+    return dataclasses.replace(fe, slices=contact.slices)
+
+
+def compliance_source(
+    pair: GearPair,
+    operation: OperatingPoint,
+    contact: ContactOptions | None = None,
+    stiffness: StiffnessOptions | None = None,
+    fe: FE2DSettings | FE3DSettings | None = None,
+    *,
+    cache: bool = True,
+    cache_dir: str | Path | None = None,
+    tooth_model: str = "exact",
+    model: PairModel | None = None,
+) -> ComplianceSource:
+    """The compliance source ``contact.compliance`` names, for the installed ``pair``.
+
+    Parameters
+    ----------
+    pair : the actual pair (after assembly errors).
+    operation : driver, torque (N m), speed (rad/s).
+    contact : contact options; ``contact.compliance`` picks the source.
+    stiffness : friction model and foundation correction.
+    fe : FE settings of the chosen FE source (defaults if ``None``).
+    cache, cache_dir : on-disk cache of FE meshes and tables (default ``meshes/``).
+    tooth_model, model : tooth model of the analytical slices
+        (:func:`~pipeline.contact.analysis.analytical_compliance`); with an FE source they
+        give only the friction change.
+    """
+    contact = contact or ContactOptions()
+    slices = analytical_compliance(pair, operation, contact, stiffness,
+                                   tooth_model=tooth_model, model=model)
+    settings = fe_settings(contact.compliance, fe, contact)
+    if settings is None:
+        return slices
+    if isinstance(settings, FE2DSettings):
+        base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir)
+    else:
+        from pipeline.contact.fe3d_source import FE3DCompliance
+
+        base = FE3DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir)
+    if slices.friction.mu == 0.0 and slices.friction.kind == "constant":
+        return base
+    return FrictionCorrected(base, slices)

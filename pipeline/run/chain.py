@@ -1,0 +1,208 @@
+"""The whole pipeline on one gearbox: geometry -> stiffness -> compliance -> contact -> dynamics.
+
+:func:`run_pipeline` composes the stages' entry points for every mesh of a gearbox
+(a pair: one mesh; a planetary set: sun-planet and planet-ring) and returns a
+:class:`RunResult`; it writes nothing but the cache. The order, and what each step
+takes from the one before:
+
+1. geometry (:func:`pipeline.geometry.analysis.analyse_geometry`);
+2. analytical stiffness over a mesh cycle (:func:`pipeline.stiffness.analyse_stiffness`);
+3. the compliance source ``[contact] compliance`` names, with the ``[fe]`` settings
+   (:func:`pipeline.contact.compliance.compliance_source`; FE meshes and tables are
+   cached by content hash inside the FE stage);
+4. loaded contact over one mesh cycle at the operating torque
+   (:func:`pipeline.contact.analyse_contact`), cached by a content hash of everything
+   it depends on (:func:`pipeline.contact.cycle_io.cycle_cache_inputs`), so a rerun
+   that changes only a dynamics option reads it back instead of building the FE
+   source and solving the contact again;
+5. with a ``[dynamics]`` table (or a ``[lumped_model]``): the dynamic model
+   (:func:`pipeline.dynamics.build.dynamic_model`), its modes, the steady response at
+   the operating speed and a speed sweep (dynamic mesh forces, dynamic factor).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pipeline.config import Gearbox
+from pipeline.contact.analysis import analyse_contact
+from pipeline.contact.compliance import compliance_source
+from pipeline.contact.cycle_io import cycle_cache_inputs, load_cycle, save_cycle
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.fem.cache import cached_file
+from pipeline.geometry.analysis import GeometryResult, analyse_geometry
+from pipeline.geometry.assembly_errors import AssemblyErrors
+from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
+from pipeline.run.steps import StepLog
+from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
+from pipeline.validation import InputError
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How to run the pipeline (not what it computes: that is the gearbox file).
+
+    Attributes
+    ----------
+    full : fine settings of the dynamics (more harmonics, all sweep points).
+    cache : read and write the on-disk cache of FE tables and contact cycles.
+    cache_dir : cache folder (default :func:`pipeline.fem.cache.default_cache_dir`).
+    show_progress : a line per step and progress bars on stderr.
+    """
+
+    full: bool = False
+    cache: bool = True
+    cache_dir: Path | None = None
+    show_progress: bool = True
+
+
+@dataclass(frozen=True)
+class MeshCase:
+    """One gear mesh of the gearbox and its load.
+
+    Attributes
+    ----------
+    name : "mesh" for a pair; "sun_planet" / "planet_ring" for a planetary set.
+    pair : the nominal pair (pinion = the driving member of this mesh's pair).
+    assembly_errors : centre displacements, m.
+    operation : torque (N m) and speed (rad/s) of this pair's driving gear.
+    """
+
+    name: str
+    pair: GearPair
+    assembly_errors: AssemblyErrors
+    operation: OperatingPoint
+
+
+@dataclass(frozen=True)
+class MeshStages:
+    """What the static stages give for one mesh.
+
+    Attributes
+    ----------
+    case : the mesh and its load.
+    geometry : contact ratios, profiles, assembly-error geometry.
+    stiffness : analytical mesh stiffness (potential energy, ISO 6336, contact lines).
+    contact : loaded contact over one mesh cycle on the chosen compliance source.
+    compliance : the source's name ("analytical", "fe2d", "fe3d").
+    """
+
+    case: MeshCase
+    geometry: GeometryResult
+    stiffness: StiffnessResult
+    contact: LoadedMeshCycle
+    compliance: str
+
+    def summary(self) -> dict[str, Any]:
+        """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
+        st = self.stiffness.summary()
+        return {
+            "compliance": self.compliance,
+            "transverse_contact_ratio": st["transverse_contact_ratio"],
+            "overlap_ratio": st["overlap_ratio"],
+            "mesh_period_s": st["mesh_period_s"],
+            "analytical_stiffness": st["potential_energy"],
+            "iso6336_mesh_stiffness_N_per_m": st["iso6336"]["mesh_stiffness_N_per_m"],
+            "loaded_contact": self.contact.summary(),
+        }
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Everything one run computed.
+
+    Attributes
+    ----------
+    gearbox : the gearbox it ran on.
+    meshes : name -> the static stages of each mesh.
+    dynamics : the dynamics results (:class:`pipeline.run.dynamics.DynamicsStages`) or
+        ``None`` when the file asks for no dynamics.
+    log : step durations (s) and which steps came from the cache.
+    """
+
+    gearbox: Gearbox
+    meshes: dict[str, MeshStages]
+    dynamics: Any
+    log: StepLog = field(compare=False)
+
+    def summary(self) -> dict[str, Any]:
+        """One summary of the run (SI; keys carry units)."""
+        out: dict[str, Any] = {"gearbox": self.gearbox.name, "kind": self.gearbox.kind,
+                               "meshes": {k: v.summary() for k, v in self.meshes.items()}}
+        if self.dynamics is not None:
+            out["dynamics"] = self.dynamics.summary()
+        out["timing"] = self.log.summary()
+        return out
+
+
+def mesh_cases(box: Gearbox) -> list[MeshCase]:
+    """The meshes of a gearbox with their loads (a pair: one; a planetary set: two)."""
+    if box.kind == "pair":
+        return [MeshCase("mesh", box.pair, box.assembly_errors, box.operation)]
+    if box.kind == "planetary":
+        ops = box.planetary.mesh_operations(box.operation)
+        return [MeshCase("sun_planet", box.planetary.sun_planet, AssemblyErrors(),
+                         ops["sun_planet"]),
+                MeshCase("planet_ring", box.planetary.planet_ring, AssemblyErrors(),
+                         ops["planet_ring"])]
+    raise InputError(f"{box.name}: gearpipe run needs gears in mesh (a pair or a planetary "
+                     f"set); this file describes a {box.kind.replace('gear', 'single gear')}")
+
+
+def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
+                   options: RunOptions) -> tuple[LoadedMeshCycle, bool]:
+    """The loaded contact cycle of one mesh, from the cache when its inputs are unchanged.
+
+    Returns (cycle, True if read from the cache).
+    """
+    actual = stiffness.actual
+    inputs = cycle_cache_inputs(actual, case.operation, box.contact, box.stiffness,
+                                box.fe_source)
+
+    def build() -> LoadedMeshCycle:
+        source = compliance_source(actual, case.operation, box.contact, box.stiffness,
+                                   box.fe_source, cache=options.cache,
+                                   cache_dir=options.cache_dir, model=stiffness.model)
+        return analyse_contact(source, case.operation, box.contact,
+                               show_progress=options.show_progress)
+
+    cycle, _, hit = cached_file("contactcycle", inputs, build, load_cycle, save_cycle,
+                                options.cache_dir, options.cache)
+    return cycle, hit
+
+
+def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLog
+                  ) -> MeshStages:
+    """Geometry, analytical stiffness and loaded contact of one mesh."""
+    tag = "" if case.name == "mesh" else f" [{case.name}]"
+    with log.step(f"geometry{tag}"):
+        geometry = analyse_geometry(case.pair, case.assembly_errors)
+    with log.step(f"analytical stiffness{tag}") as note:
+        stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
+                                      assembly_errors=case.assembly_errors)
+        note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
+    with log.step(f"loaded contact ({box.contact.compliance}){tag}", long=True) as note:
+        cycle, hit = loaded_contact(box, case, stiffness, options)
+        note["cached"] = hit
+        note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
+                        f"{cycle.mesh_stiffness.mean():.4g} N/m")
+    return MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
+
+
+def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
+    """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
+    from pipeline.run.dynamics import dynamics_stages
+
+    options = options or RunOptions()
+    log = StepLog(show=options.show_progress)
+    meshes: dict[str, MeshStages] = {}
+    if box.kind != "lumped":
+        for case in mesh_cases(box):
+            meshes[case.name] = static_stages(box, case, options, log)
+    dynamics = None
+    if box.kind == "lumped" or box.dynamics is not None:
+        dynamics = dynamics_stages(box, meshes, options, log)
+    return RunResult(box, meshes, dynamics, log)

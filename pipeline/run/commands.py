@@ -1,0 +1,85 @@
+"""``gearpipe run CONFIG``: every stage the gearbox file asks for, into one results folder.
+
+Runs :func:`pipeline.run.chain.run_pipeline` and writes, to ``results/<file stem>/run/``
+(or ``--out``): per mesh the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
+contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
+``contact_points.csv``) and its load maps (``load_map_2d.png``, ``load_map.vtu``,
+``load_map.png``) - prefixed by the mesh name for a planetary set - then the dynamics
+(``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
+``sweep.csv/png``), one ``summary.json`` and ``run.json``. Each step prints a line with
+its time on stderr; FE tables and contact cycles come from the cache when their inputs
+are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the cache).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.io import write_json, write_run_record
+from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_common_arguments(parser)
+    parser.add_argument("--full", action="store_true",
+                        help="fine dynamics settings (more harmonics, all sweep points)")
+    parser.add_argument("--no-cache", action="store_true",
+                        help="recompute FE tables and contact cycles (neither read nor write "
+                             "the cache)")
+    parser.add_argument("--cache-dir", type=Path, default=None,
+                        help="cache folder (default: meshes/ of the source tree)")
+
+
+def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str) -> list[Path]:
+    from pipeline.contact.commands import contact_title, write_contact
+    from pipeline.stiffness.commands import write_stiffness
+    from pipeline.stiffness.mesh import stiffness_at
+
+    pair = st.stiffness.actual
+    title = (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
+             f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
+             f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
+    files = write_stiffness(st.stiffness, out, title, prefix=prefix)
+    model, opts = st.stiffness.model, box.contact
+    ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
+                       st.case.operation, box.stiffness.foundation_correction)
+    files += write_contact(st.contact, pair, opts, ref.total,
+                           contact_title(name, st.contact, pair, opts), out, prefix)
+    return files
+
+
+def write_run(result: RunResult, out: Path, full: bool = False) -> list[Path]:
+    """All files of a run (module docstring); returns them."""
+    from pipeline.dynamics.outputs import write_modes, write_response, write_sweep
+
+    box = result.gearbox
+    files: list[Path] = []
+    for name, st in result.meshes.items():
+        prefix = "" if name == "mesh" else f"{name}_"
+        label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
+        files += _write_mesh(label, st, box, out, prefix)
+    dyn = result.dynamics
+    if dyn is not None:
+        files += write_modes(dyn.modes, out, count=16 if full else 8)
+        files += write_response(dyn.response, out, box.name)
+        files += write_sweep(dyn.sweep, out, box.name)
+    return files
+
+
+def run(args: argparse.Namespace) -> int:
+    box = load(args)
+    options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
+                         show_progress=not args.json)
+    result = run_pipeline(box, options)
+    out = output_dir(args, "run")
+    with result.log.step("writing tables and figures", long=True):
+        files = write_run(result, out, args.full)
+    summary = result.summary()
+    files.append(write_json(out / "summary.json", summary))
+    write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
+                     f"gearpipe run {args.config}")
+    emit(args, summary, out)
+    return 0
