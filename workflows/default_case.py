@@ -1,10 +1,15 @@
-"""The main job: geometry -> analytical mesh stiffness for an embedded default spur pair.
+"""The main job: ``gearpipe run`` on an embedded default spur pair, geometry to dynamics.
 
 The default is the assembly-error paper base case (z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at
-2340 rpm) with EHL friction. Writes to results/default_case/: line of action and
-tooth profiles (PNG), the mesh stiffness over a mesh cycle with the ISO 6336
-contact-line comparison (CSV, JSON, PNG), friction stiffness/torque coefficients,
-and run.json with inputs, versions and the configuration hash.
+2340 rpm) with EHL friction, FE-enriched loaded contact (2D FE influence coefficients
+of both whole gears, ``[contact] compliance = "fe2d"``) and the 6-DOF lateral-torsional
+dynamic model excited by the loaded contact (loaded k(t), static transmission error and
+friction). Writes to results/default_case/: the gearbox file it ran, and in ``run/`` the
+line of action and tooth profiles, the analytical mesh stiffness with the ISO 6336
+comparison, the loaded contact cycle and load maps, modes, the response at 2340 rpm, a
+speed sweep with the dynamic factor, one ``summary.json`` and ``run.json`` (inputs,
+versions, configuration hash). FE tables and the contact cycle are cached in ``meshes/``:
+a second run reads them back.
 
     python workflows/default_case.py [--out DIR] [--config FILE.toml]
 """
@@ -38,6 +43,18 @@ speed_rpm = 2340.0
 friction = "ehl"
 roughness_um = 0.5
 viscosity_mPas = 20.0
+[contact]
+compliance = "fe2d"             # 2D FE of both whole gears ([fe]: its settings)
+positions = 60
+[dynamics]
+bearing_stiffness_N_per_m = 1.0e8
+bearing_damping_Ns_per_m = 100.0
+damping_ratio = 0.07
+excitation = "analytical"
+[dynamics.sweep]
+f_min_Hz = 200.0
+f_max_Hz = 6000.0
+points_coarse = 120
 """
 
 
@@ -51,11 +68,8 @@ def main(argv: list[str] | None = None) -> int:
     if config is None:
         config = args.out / "default_case.toml"
         config.write_text(DEFAULT, encoding="utf-8")
-    rc = 0
-    for command in ("geometry", "stiffness"):
-        print(f"== gearpipe {command} {config}")
-        rc |= cli([command, str(config), "--out", str(args.out / command)])
-    return rc
+    print(f"== gearpipe run {config}")
+    return cli(["run", str(config), "--out", str(args.out / "run")])
 
 
 if __name__ == "__main__":

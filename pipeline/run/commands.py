@@ -1,7 +1,8 @@
 """``gearpipe run CONFIG``: every stage the gearbox file asks for, into one results folder.
 
 Runs :func:`pipeline.run.chain.run_pipeline` and writes, to ``results/<file stem>/run/``
-(or ``--out``): per mesh the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
+(or ``--out``): per mesh the geometry (``line_of_action.png``, ``tooth_profiles.png``),
+the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
 contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 ``contact_points.csv``) and its load maps (``load_map_2d.png``, ``load_map.vtu``,
 ``load_map.png``) - prefixed by the mesh name for a planetary set - then the dynamics
@@ -35,6 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str) -> list[Path]:
     from pipeline.contact.commands import contact_title, write_contact
+    from pipeline.geometry.commands import write_geometry
     from pipeline.stiffness.commands import write_stiffness
     from pipeline.stiffness.mesh import stiffness_at
 
@@ -42,7 +44,8 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str) -> list[
     title = (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
              f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
-    files = write_stiffness(st.stiffness, out, title, prefix=prefix)
+    files = write_geometry(st.geometry, out, prefix)
+    files += write_stiffness(st.stiffness, out, title, prefix=prefix)
     model, opts = st.stiffness.model, box.contact
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
                        st.case.operation, box.stiffness.foundation_correction)
