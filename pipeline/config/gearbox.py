@@ -274,11 +274,9 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
                              f"compliance is {contact.compliance!r}")
     if not mapping:
         return sector, None
-    from pipeline.contact.compliance import fe_settings
-    from pipeline.contact.fe2d_source import FE2DSettings
-    from pipeline.contact.fe3d_table import FE3DSettings
+    from pipeline.contact.compliance import fe_settings, fe_settings_class
 
-    cls = FE2DSettings if contact.compliance == "fe2d" else FE3DSettings
+    cls = fe_settings_class(contact.compliance)
     keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE
                  if k.name in mapping)
     with restated("fe", keys, table):

@@ -34,9 +34,6 @@ from pipeline.contact.complementarity import (
     complementarity_residual,
     solve_contact,
 )
-from pipeline.contact.fe2d_source import FE2DCompliance, FE2DSettings
-from pipeline.contact.fe3d_source import FE3DCompliance
-from pipeline.contact.fe3d_table import FE3DSettings
 from pipeline.contact.hertz import (
     HertzLineContact,
     LinearLocalCompliance,
@@ -52,6 +49,22 @@ from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCy
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints, SliceCompliance
 from pipeline.contact.sweep import solve_positions
+
+# FE sources are imported on first use: they pull in scikit-fem and Gmsh (seconds)
+_FE_EXPORTS = {"FE2DCompliance": "pipeline.contact.fe2d_source",
+               "FE2DSettings": "pipeline.contact.fe2d_source",
+               "FE3DCompliance": "pipeline.contact.fe3d_source",
+               "FE3DSettings": "pipeline.contact.fe3d_table"}
+
+
+def __getattr__(name: str):
+    import importlib
+
+    module = _FE_EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'pipeline.contact' has no attribute {name!r}")
+    return getattr(importlib.import_module(module), name)
+
 
 __all__ = [
     "ContactOptions", "analyse_contact", "analytical_compliance", "line_of_action_load",

@@ -25,6 +25,7 @@ from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.mesh import stiffness_at
+from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,21 +36,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
-                  k_slice: np.ndarray, title: str, out: Path, prefix: str = "") -> list[Path]:
+                  k_slice: np.ndarray, title: str, out: Path, prefix: str = "",
+                  figures: FigureCache = NO_CACHE) -> list[Path]:
     """Cycle and point CSVs, the cycle plot (against the slice method's ``k_slice``, N/m)
     and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG)."""
-    from pipeline.viz import save
     from pipeline.viz.contact import plot_contact_cycle
     from pipeline.viz.loadmap import plot_load_map_2d, render_load_map
 
     files = [write_csv(out / f"{prefix}contact_cycle.csv", cyc.columns()),
              write_csv(out / f"{prefix}contact_points.csv", cyc.point_columns()),
-             save(plot_contact_cycle(cyc, k_slice, title), out / f"{prefix}contact_cycle.png")]
+             figures.save(out / f"{prefix}contact_cycle.png", plot_contact_cycle, cyc, k_slice,
+                          title)]
     lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    files.append(save(plot_load_map_2d(lm, title), out / f"{prefix}load_map_2d.png"))
+    files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm, title))
     files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))
     if opts.render:
-        files.append(save(render_load_map(pair, lm, title), out / f"{prefix}load_map.png"))
+        files.append(figures.save(out / f"{prefix}load_map.png", render_load_map, pair, lm,
+                                  title))
     return files
 
 

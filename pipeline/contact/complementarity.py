@@ -53,7 +53,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from pipeline.contact.active_set import ActiveSetError, solve_qp
 from pipeline.contact.hertz import LocalCompliance
@@ -207,6 +206,8 @@ def _line_search(local: _OnCandidates, GF: np.ndarray, Gd: np.ndarray, eps: np.n
     if slope(1.0) <= 0.0:
         return 1.0
     # the slope is increasing (convexity) and changes sign in (0, 1)
+    from scipy.optimize import brentq  # 0.6 s to import; only the line search needs it
+
     return float(brentq(slope, 0.0, 1.0, xtol=1e-14, rtol=1e-6, maxiter=200))
 
 

@@ -18,10 +18,9 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from pipeline.contact.analysis import analytical_compliance
-from pipeline.contact.fe2d_source import FE2DCompliance, FE2DSettings
-from pipeline.contact.fe3d_table import FE3DSettings
 from pipeline.contact.options import COMPLIANCES, ContactOptions
 from pipeline.contact.source import ComplianceSource, FrictionCorrected
 from pipeline.geometry.pair import GearPair
@@ -30,14 +29,29 @@ from pipeline.stiffness.mesh import PairModel
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, check_choice
 
+if TYPE_CHECKING:
+    from pipeline.contact.fe2d_source import FE2DSettings
+    from pipeline.contact.fe3d_table import FE3DSettings
 
-def fe_settings(compliance: str, fe: FE2DSettings | FE3DSettings | None,
-                contact: ContactOptions) -> FE2DSettings | FE3DSettings | None:
+
+def fe_settings_class(compliance: str) -> type:
+    """``FE2DSettings`` or ``FE3DSettings`` (imported here: the FE stage costs seconds)."""
+    if compliance == "fe2d":
+        from pipeline.contact.fe2d_source import FE2DSettings
+
+        return FE2DSettings
+    from pipeline.contact.fe3d_table import FE3DSettings
+
+    return FE3DSettings
+
+
+def fe_settings(compliance: str, fe: Any, contact: ContactOptions
+                ) -> FE2DSettings | FE3DSettings | None:
     """The FE settings of ``compliance`` with the contact slices (``None`` for analytical)."""
     check_choice("contact.compliance", compliance, COMPLIANCES)
     if compliance == "analytical":
         return None
-    kind = FE2DSettings if compliance == "fe2d" else FE3DSettings
+    kind = fe_settings_class(compliance)
     if fe is None:
         fe = kind()
     if not isinstance(fe, kind):
@@ -78,7 +92,9 @@ def compliance_source(
     settings = fe_settings(contact.compliance, fe, contact)
     if settings is None:
         return slices
-    if isinstance(settings, FE2DSettings):
+    if contact.compliance == "fe2d":
+        from pipeline.contact.fe2d_source import FE2DCompliance
+
         base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir)
     else:
         from pipeline.contact.fe3d_source import FE3DCompliance

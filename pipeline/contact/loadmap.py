@@ -139,6 +139,19 @@ def tooth_body_grid(gear: GearSpec, z: np.ndarray):
 
 
 def write_load_map_vtu(pair: GearPair, load_map: FlankLoadMap, path: str | Path) -> Path:
-    """Save the loaded flank as an unstructured VTU (coordinates in mm), atomically."""
-    grid = load_map_grid(pair, load_map).cast_to_unstructured_grid()
-    return atomic_write(path, lambda p: grid.save(p, binary=True))
+    """Save the loaded flank as an unstructured VTU of quads (coordinates in mm, point data
+    ``unit_load_N_per_mm`` and ``roll_coordinate_mm``), atomically.
+
+    Written with meshio (the same grid as :func:`load_map_grid` without importing pyvista,
+    which costs seconds).
+    """
+    import meshio
+
+    pts = flank_surface(pair, load_map) * 1e3  # (n_s, n_z, 3)
+    n_s, n_z = pts.shape[:2]
+    idx = np.arange(n_s * n_z).reshape(n_s, n_z)
+    quads = np.stack([idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]], axis=-1)
+    data = {"unit_load_N_per_mm": (load_map.unit_load * 1e-3).reshape(-1),
+            "roll_coordinate_mm": np.repeat(load_map.s[:, None] * 1e3, n_z, 1).reshape(-1)}
+    mesh = meshio.Mesh(pts.reshape(-1, 3), [("quad", quads.reshape(-1, 4))], point_data=data)
+    return atomic_write(path, lambda p: meshio.write(p, mesh, file_format="vtu"))

@@ -1,6 +1,7 @@
 """Files of the dynamics results: CSV tables and PNG figures (units in names and labels).
 
-Shared by ``gearpipe modes|response|sweep`` and ``gearpipe run``.
+Shared by ``gearpipe modes|response|sweep`` and ``gearpipe run``; figures go through a
+:class:`~pipeline.viz.figure_cache.FigureCache` (none by default).
 """
 
 from __future__ import annotations
@@ -11,20 +12,21 @@ from pipeline.dynamics.analysis import ResponseResult
 from pipeline.dynamics.modal import ModalResult
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.io import write_csv
+from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
-def write_modes(res: ModalResult, out: Path, count: int = 8) -> list[Path]:
+def write_modes(res: ModalResult, out: Path, count: int = 8,
+                figures: FigureCache = NO_CACHE) -> list[Path]:
     """``modes.csv`` and ``mode_shapes.png`` (the first ``count`` modes)."""
-    from pipeline.viz import save
     from pipeline.viz.dynamics import plot_mode_shapes
 
     return [write_csv(out / "modes.csv", res.columns()),
-            save(plot_mode_shapes(res, count=count), out / "mode_shapes.png")]
+            figures.save(out / "mode_shapes.png", plot_mode_shapes, res, count=count)]
 
 
-def write_response(result: ResponseResult, out: Path, name: str) -> list[Path]:
+def write_response(result: ResponseResult, out: Path, name: str,
+                   figures: FigureCache = NO_CACHE) -> list[Path]:
     """Time history, DTE spectrum (CSV + PNG) and harmonic contributions (PNG)."""
-    from pipeline.viz import save
     from pipeline.viz.dynamics import (
         plot_harmonic_contributions,
         plot_spectrum,
@@ -35,11 +37,12 @@ def write_response(result: ResponseResult, out: Path, name: str) -> list[Path]:
     files = [write_csv(out / "time_history.csv", result.columns())]
     f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
-    fig = plot_time_history([resp], [name], title=f"{name}: {resp.mesh_names[0]}")
-    files.append(save(fig, out / "time_history.png"))
-    files.append(save(plot_spectrum([resp], [name]), out / "dte_spectrum.png"))
+    files.append(figures.save(out / "time_history.png", plot_time_history, [resp], [name],
+                              title=f"{name}: {resp.mesh_names[0]}"))
+    files.append(figures.save(out / "dte_spectrum.png", plot_spectrum, [resp], [name]))
     if hr is not None:
-        files.append(save(plot_harmonic_contributions([hr], [name]), out / "harmonics.png"))
+        files.append(figures.save(out / "harmonics.png", plot_harmonic_contributions, [hr],
+                                  [name]))
     return files
 
 
@@ -49,10 +52,11 @@ def shown_meshes(res: SweepResult) -> list[str]:
         res.mesh_names[:2])
 
 
-def write_sweep(res: SweepResult, out: Path, name: str) -> list[Path]:
+def write_sweep(res: SweepResult, out: Path, name: str,
+                figures: FigureCache = NO_CACHE) -> list[Path]:
     """``sweep.csv`` and ``sweep.png``."""
-    from pipeline.viz import save
     from pipeline.viz.dynamics import plot_sweep
 
     return [write_csv(out / "sweep.csv", res.columns()),
-            save(plot_sweep([res], [name], shown_meshes(res), title=name), out / "sweep.png")]
+            figures.save(out / "sweep.png", plot_sweep, [res], [name], shown_meshes(res),
+                         title=name)]

@@ -19,22 +19,43 @@
 The FE compliance sources of the contact solver are in :mod:`pipeline.contact`.
 """
 
-from pipeline.fem.flank import FlankPoints, active_radii, flank_points
-from pipeline.fem.flank_grid import face_positions, flank_grid
-from pipeline.fem.influence import InfluenceMatrix, constrained_dofs, influence_matrix
-from pipeline.fem.linear_static import build_model, load_compliance, solve_static
-from pipeline.fem.options import SectorFEOptions
-from pipeline.fem.patch_loads import patch_loads
-from pipeline.fem.pmultigrid import PMultigridCG
-from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
-from pipeline.fem.sector3d import SectorMesh3D, SectorSettings3D, sector_mesh_3d
-from pipeline.fem.sector_analysis import SectorResult, analyse_sector
-from pipeline.fem.solvers import DirectSolver, solver_named
+import importlib
 
-__all__ = [
-    "DirectSolver", "FlankPoints", "InfluenceMatrix", "PMultigridCG", "SectorMesh2D",
-    "SectorMesh3D", "SectorSettings2D", "SectorSettings3D", "active_radii", "build_model",
-    "constrained_dofs", "face_positions", "flank_grid", "flank_points", "influence_matrix",
-    "load_compliance", "patch_loads", "sector_mesh_2d", "sector_mesh_3d", "solve_static",
-    "solver_named", "SectorFEOptions", "SectorResult", "analyse_sector",
-]
+# name -> module: imported on first use (the FE modules pull in scikit-fem, Gmsh and
+# SciPy, seconds that a run which finds its FE tables in the cache does not need)
+_EXPORTS = {
+    "FlankPoints": "pipeline.fem.flank",
+    "active_radii": "pipeline.fem.flank",
+    "flank_points": "pipeline.fem.flank",
+    "face_positions": "pipeline.fem.flank_grid",
+    "flank_grid": "pipeline.fem.flank_grid",
+    "InfluenceMatrix": "pipeline.fem.influence",
+    "constrained_dofs": "pipeline.fem.influence",
+    "influence_matrix": "pipeline.fem.influence",
+    "build_model": "pipeline.fem.linear_static",
+    "load_compliance": "pipeline.fem.linear_static",
+    "solve_static": "pipeline.fem.linear_static",
+    "SectorFEOptions": "pipeline.fem.options",
+    "patch_loads": "pipeline.fem.patch_loads",
+    "PMultigridCG": "pipeline.fem.pmultigrid",
+    "SectorMesh2D": "pipeline.fem.sector2d",
+    "SectorSettings2D": "pipeline.fem.sector2d",
+    "sector_mesh_2d": "pipeline.fem.sector2d",
+    "SectorMesh3D": "pipeline.fem.sector3d",
+    "SectorSettings3D": "pipeline.fem.sector3d",
+    "sector_mesh_3d": "pipeline.fem.sector3d",
+    "SectorResult": "pipeline.fem.sector_analysis",
+    "analyse_sector": "pipeline.fem.sector_analysis",
+    "DirectSolver": "pipeline.fem.solvers",
+    "solver_named": "pipeline.fem.solvers",
+}
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'pipeline.fem' has no attribute {name!r}")
+    return getattr(importlib.import_module(module), name)
+
+
+__all__ = sorted(_EXPORTS)

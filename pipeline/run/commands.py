@@ -19,8 +19,17 @@ import math
 from pathlib import Path
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.fem.cache import default_cache_dir
 from pipeline.io import write_json, write_run_record
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
+from pipeline.viz.figure_cache import NO_CACHE, FigureCache
+
+
+def figure_cache(options: RunOptions) -> FigureCache:
+    """Figures cached beside the FE tables and contact cycles (none with ``--no-cache``)."""
+    if not options.cache:
+        return NO_CACHE
+    return FigureCache(Path(options.cache_dir or default_cache_dir()) / "figures")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -34,7 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="cache folder (default: meshes/ of the source tree)")
 
 
-def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str) -> list[Path]:
+def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
+                figures: FigureCache) -> list[Path]:
     from pipeline.contact.commands import contact_title, write_contact
     from pipeline.geometry.commands import write_geometry
     from pipeline.stiffness.commands import write_stiffness
@@ -44,17 +54,18 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str) -> list[
     title = (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
              f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
-    files = write_geometry(st.geometry, out, prefix)
-    files += write_stiffness(st.stiffness, out, title, prefix=prefix)
+    files = write_geometry(st.geometry, out, prefix, figures)
+    files += write_stiffness(st.stiffness, out, title, prefix, figures)
     model, opts = st.stiffness.model, box.contact
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
                        st.case.operation, box.stiffness.foundation_correction)
     files += write_contact(st.contact, pair, opts, ref.total,
-                           contact_title(name, st.contact, pair, opts), out, prefix)
+                           contact_title(name, st.contact, pair, opts), out, prefix, figures)
     return files
 
 
-def write_run(result: RunResult, out: Path, full: bool = False) -> list[Path]:
+def write_run(result: RunResult, out: Path, full: bool = False,
+              figures: FigureCache = NO_CACHE) -> list[Path]:
     """All files of a run (module docstring); returns them."""
     from pipeline.dynamics.outputs import write_modes, write_response, write_sweep
 
@@ -63,12 +74,12 @@ def write_run(result: RunResult, out: Path, full: bool = False) -> list[Path]:
     for name, st in result.meshes.items():
         prefix = "" if name == "mesh" else f"{name}_"
         label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
-        files += _write_mesh(label, st, box, out, prefix)
+        files += _write_mesh(label, st, box, out, prefix, figures)
     dyn = result.dynamics
     if dyn is not None:
-        files += write_modes(dyn.modes, out, count=16 if full else 8)
-        files += write_response(dyn.response, out, box.name)
-        files += write_sweep(dyn.sweep, out, box.name)
+        files += write_modes(dyn.modes, out, 16 if full else 8, figures)
+        files += write_response(dyn.response, out, box.name, figures)
+        files += write_sweep(dyn.sweep, out, box.name, figures)
     return files
 
 
@@ -79,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     result = run_pipeline(box, options)
     out = output_dir(args, "run")
     with result.log.step("writing tables and figures", long=True):
-        files = write_run(result, out, args.full)
+        files = write_run(result, out, args.full, figure_cache(options))
     summary = result.summary()
     files.append(write_json(out / "summary.json", summary))
     write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,

@@ -12,6 +12,7 @@ from pipeline.commands_common import add_common_arguments, emit, load, output_di
 from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
 from pipeline.validation import check_int_range
+from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -20,25 +21,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Fourier orders of k(t) written to the JSON (default 10)")
 
 
-def write_stiffness(res: StiffnessResult, out: Path, title: str, prefix: str = "") -> list[Path]:
+def write_stiffness(res: StiffnessResult, out: Path, title: str, prefix: str = "",
+                    figures: FigureCache = NO_CACHE) -> list[Path]:
     """CSV of k(t), the stiffness and friction plots (file names start with ``prefix``);
     returns the files written."""
-    from pipeline.viz import save
     from pipeline.viz.stiffness import plot_friction_coefficients, plot_stiffness_curves
 
     m = res.mesh
     deg = np.degrees(m.pinion_angle)
     files = [write_csv(out / f"{prefix}mesh_stiffness.csv", res.columns())]
-    ax = plot_stiffness_curves(
+    files.append(figures.save(
+        out / f"{prefix}mesh_stiffness.png", plot_stiffness_curves,
         [("potential energy (this model)", deg, m.total),
          ("contact-line method (ISO 6336)", deg, res.contact_line.total)],
-        title=title, pairs=m.pairs, pairs_x=deg)
-    files.append(save(ax, out / f"{prefix}mesh_stiffness.png"))
+        title=title, pairs=m.pairs, pairs_x=deg))
     if np.any(m.friction_stiffness != 0):
-        files.append(save(plot_friction_coefficients(deg, m.friction_stiffness,
-                                                     m.friction_torque_pinion,
-                                                     m.friction_torque_gear, title),
-                          out / f"{prefix}friction_coefficients.png"))
+        files.append(figures.save(out / f"{prefix}friction_coefficients.png",
+                                  plot_friction_coefficients, deg, m.friction_stiffness,
+                                  m.friction_torque_pinion, m.friction_torque_gear, title))
     return files
 
 

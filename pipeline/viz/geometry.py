@@ -13,6 +13,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
+from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.profile import INVOLUTE, ToothProfile, gear_outline
 
@@ -85,3 +86,13 @@ def plot_profile(prof: ToothProfile, ax: Axes | None = None, teeth: int = 3) -> 
     ax.set_ylabel("y (mm)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax
+
+
+def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
+    """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
+    fig = Figure(figsize=(9, 4 * len(gears)))
+    axes = np.atleast_1d(fig.subplots(len(gears), 1))
+    for ax, g, prof in zip(axes, gears, profiles, strict=True):
+        plot_profile(prof, ax=ax)
+        ax.set_title(f"{g.name}: z = {g.teeth}, undercut = {prof.undercut}")
+    return fig

@@ -1,0 +1,108 @@
+"""Figures cached by a hash of what they show: a rerun copies unchanged figures.
+
+Drawing and rasterising a figure costs 0.2-1 s; a rerun of ``gearpipe run`` that
+changes only a dynamics option would spend most of its time redrawing the same
+stiffness, contact and load-map figures. :meth:`FigureCache.save` keys each PNG by
+the drawing function, the source of the module that defines it, and every argument
+it is drawn from (arrays by their bytes, dataclasses field by field), so a figure is
+redrawn exactly when its data or its drawing code changed. An argument the key
+cannot describe is an error rather than a silently stale figure.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import shutil
+import sys
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, fields, is_dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from pipeline.io import atomic_write
+from pipeline.viz.saving import save
+
+
+def _feed(h, obj: Any) -> None:
+    """Feed a canonical description of ``obj`` into the hash ``h``."""
+    if obj is None or isinstance(obj, (bool, int, float, str, complex)):
+        h.update(f"{type(obj).__name__}:{obj!r};".encode())
+    elif isinstance(obj, (np.ndarray, np.generic)):
+        a = np.ascontiguousarray(obj)
+        h.update(f"nd:{a.dtype.str}:{a.shape};".encode())
+        h.update(a.tobytes() if a.dtype != object else repr(a.tolist()).encode())
+    elif is_dataclass(obj) and not isinstance(obj, type):
+        h.update(f"dc:{type(obj).__module__}.{type(obj).__qualname__}(".encode())
+        for f in fields(obj):
+            h.update(f"{f.name}=".encode())
+            _feed(h, getattr(obj, f.name))
+        h.update(b")")
+    elif isinstance(obj, Mapping):
+        h.update(b"{")
+        for k in sorted(obj, key=str):
+            _feed(h, str(k))
+            _feed(h, obj[k])
+        h.update(b"}")
+    elif isinstance(obj, (list, tuple)):
+        h.update(f"seq{len(obj)}[".encode())
+        for v in obj:
+            _feed(h, v)
+        h.update(b"]")
+    elif isinstance(obj, Path):
+        _feed(h, str(obj))
+    else:
+        raise TypeError(f"figure cache: cannot key an argument of type {type(obj).__name__}")
+
+
+def data_hash(*objs: Any) -> str:
+    """SHA-256 (hex, 24 chars) of the canonical description of ``objs``."""
+    h = hashlib.sha256()
+    for o in objs:
+        _feed(h, o)
+    return h.hexdigest()[:24]
+
+
+def _code_hash(func: Callable) -> str:
+    """Hash of the source file of the module defining ``func`` (its drawing code)."""
+    path = inspect.getsourcefile(sys.modules[func.__module__]) or ""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
+
+
+@dataclass(frozen=True)
+class FigureCache:
+    """Where cached PNGs live; ``folder=None`` draws every figure (no cache).
+
+    Attributes
+    ----------
+    folder : cache folder (e.g. ``<cache>/figures``), or ``None``.
+    dpi : resolution, dots per inch (part of the key).
+    """
+
+    folder: Path | None = None
+    dpi: int = 130
+
+    def save(self, path: str | Path, draw: Callable[..., Any], *args: Any, **kwargs: Any
+             ) -> Path:
+        """Write ``draw(*args, **kwargs)`` as PNG to ``path``, or copy it from the cache."""
+        if self.folder is None:
+            return save(draw(*args, **kwargs), path, self.dpi)
+        key = data_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
+                        args, kwargs)
+        cached = Path(self.folder) / f"fig-{key}.png"
+        if cached.is_file() and cached.stat().st_size > 0:
+            return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+        out = save(draw(*args, **kwargs), path, self.dpi)
+        try:
+            atomic_write(cached, lambda p: shutil.copyfile(out, p))
+        except OSError:
+            pass  # a read-only or full cache only costs the next run a redraw
+        return out
+
+
+NO_CACHE = FigureCache()
+"""Draw every figure."""
+
+__all__ = ["NO_CACHE", "FigureCache", "data_hash"]
