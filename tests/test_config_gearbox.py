@@ -81,6 +81,13 @@ BAD_INPUTS = [
     ("syntax error", b"[pinion\nteeth = 3", ["TOML syntax error", "line 1"]),
     ("absurd nesting", b"a = " + b"[" * 5000 + b"]" * 5000, ["nested too deeply"]),
     ("deep tables", b"[a.b.c.d.e.f.g.h.i.j]\nx = 1\n", ["nested too deeply"]),
+    ("unknown compliance", (BASE + '[contact]\ncompliance = "fe"\n').encode(),
+     ["contact.compliance", '"fe"', "'analytical', 'fe2d', 'fe3d'"]),
+    ("fe key of another source", (BASE + '[fe]\nends = "sliding"\n').encode(),
+     ["fe.ends applies to [contact] compliance = 'fe3d' only", "'analytical'"]),
+    ("fe range of the 3D source", (BASE + '[contact]\ncompliance = "fe3d"\n'
+                                   '[fe]\nrefinement = 9.0\n').encode(),
+     ["fe.refinement = 9", "[0.2, 4]"]),
 ]
 
 
@@ -98,6 +105,21 @@ def test_bad_input_one_line(tmp_path, capsys, case, data, words):
     for w in words:
         assert w in err, (w, err)
     assert not out.exists()  # nothing written
+
+
+def test_fe_table_feeds_the_chosen_compliance_source():
+    """[fe] keys go to the FE source [contact] compliance names (points -> tabulated radii,
+    face_points -> face grid), the slices come from [contact], and gearpipe fe keeps its
+    own sector defaults for the keys the file leaves out."""
+    box = gearbox_from_text(BASE + '[contact]\ncompliance = "fe2d"\nslices = 3\n'
+                            '[fe]\npoints = 20\nrefinement = 1.5\n')
+    assert (box.fe_source.radii, box.fe_source.refinement, box.fe_source.slices) == (20, 1.5, 3)
+    assert box.fe_source.teeth is None          # contact sources: the whole gear
+    assert (box.fe.points, box.fe.teeth) == (20, 5)  # gearpipe fe: 5-tooth sector default
+    box3 = gearbox_from_text(BASE + '[contact]\ncompliance = "fe3d"\n'
+                             '[fe]\nface_points = 7\nends = "sliding"\n')
+    assert (box3.fe_source.face, box3.fe_source.ends) == (7, "sliding")
+    assert gearbox_from_text(BASE).fe_source is None
 
 
 def test_units_defined_once():
