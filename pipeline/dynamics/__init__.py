@@ -8,20 +8,25 @@ Package map (data flows top to bottom):
 - :mod:`.couplings` - springs, bearings, torsional shafts, gear meshes (with friction
   loads), matrix couplings (e.g. a groove stiffness), ties and external loads.
 - :mod:`.mesh_geometry` - line-of-action projections of cylindrical gear meshes.
-- :mod:`.excitation`, :mod:`.mesh_input` - mesh stiffness and transmission error as
-  periodic signals: idealised (rectangular, contact-line) or from the pipeline's
-  analytical stiffness (:func:`analytical_excitation`).
+- :mod:`.excitation`, :mod:`.mesh_input`, :mod:`.contact_excitation` - mesh stiffness,
+  transmission error and friction terms as periodic signals: idealised (rectangular,
+  contact-line), from the pipeline's analytical stiffness (:func:`analytical_excitation`)
+  or from the loaded tooth contact (:func:`excitation_from_contact`: tangent k(t), static
+  transmission error; the compliance it contains and what the models must not count
+  again are in that module).
 - :mod:`.assembly` - :class:`Assembly`: bodies + couplings + loads ->
   :class:`~.system.LinearPeriodicSystem` (:mod:`.system`: M, C, K(t), G, F(t)).
 - :mod:`.models` - ready-made gearboxes: spur pair (6 DOF), planar planetary set
   (Lin and Parker 1999), herringbone planetary (Xu et al. 2020), split-torque
-  transmission (Jin et al. 2018), and the published cases as inputs
+  transmission (Jin et al. 2018), planetary models from a set's gears
+  (``planetary_gears``), and the published cases as inputs
   (``wind_turbine_planetary``, ``split_torque_helicopter``).
 - :mod:`.modal` - natural frequencies, mode shapes and planetary mode types.
 - :mod:`.harmonic_balance` - periodic response by the Fourier series method (Hill's
   coupling or first order); :mod:`.multirate` superposes stages with incommensurate
   mesh frequencies.
-- :mod:`.integrate` - exact piecewise propagators, Floquet steady state.
+- :mod:`.integrate` - exact piecewise propagators, Floquet steady state, the zero-speed
+  limit (:func:`quasi_static_response`).
 - :mod:`.sweep` - mesh-force sweeps over speed (local or Dask executors), load sharing;
   :mod:`.peaks` refines peak frequencies.
 - :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
@@ -33,6 +38,7 @@ Package map (data flows top to bottom):
 
 from pipeline.dynamics.assembly import Assembly
 from pipeline.dynamics.bodies import Body
+from pipeline.dynamics.contact_excitation import excitation_from_contact
 from pipeline.dynamics.couplings import (
     Bearing,
     FrictionLoad,
@@ -44,7 +50,7 @@ from pipeline.dynamics.couplings import (
     TorsionalShaft,
 )
 from pipeline.dynamics.harmonic_balance import harmonic_balance
-from pipeline.dynamics.integrate import integrate, steady_state
+from pipeline.dynamics.integrate import integrate, quasi_static_response, steady_state
 from pipeline.dynamics.mesh_input import MeshExcitation, analytical_excitation
 from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
@@ -78,11 +84,13 @@ __all__ = [
     "Tie",
     "TorsionalShaft",
     "analytical_excitation",
+    "excitation_from_contact",
     "harmonic_balance",
     "integrate",
     "load_sharing_factor",
     "mesh_force_sweep",
     "modal_analysis",
+    "quasi_static_response",
     "steady_state",
     "superpose_stages",
 ]
