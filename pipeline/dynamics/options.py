@@ -147,7 +147,8 @@ class PlanetaryDynamicsOptions:
     excitation : "analytical" or "contact" (as for a pair), for every sun-planet and
         ring-planet mesh.
     sun_mesh_stiffness, ring_mesh_stiffness : an explicit k(tau) (N/m, transverse line of
-        action, one mesh; herringbone: one half) replacing the derived one, or ``None``.
+        action, one mesh; herringbone: one half; tau = 0 with the leading tooth pair at the
+        start of contact, as the derived ones) replacing the derived one, or ``None``.
     """
 
     sun_bearing_stiffness: float = 1.0e8
