@@ -37,10 +37,10 @@ from pipeline.dynamics.contact_excitation import (
     point_friction_coefficients,
 )
 from pipeline.dynamics.harmonic_balance import harmonic_balance
-from pipeline.dynamics.integrate import quasi_static_response
 from pipeline.dynamics.mesh_input import excitation_from_stiffness
 from pipeline.dynamics.models.spur_pair import spur_pair_model
 from pipeline.dynamics.options import PairDynamicsOptions
+from pipeline.dynamics.quasi_static import quasi_static_response
 from pipeline.stiffness.mesh import FrictionModel, PairModel, friction_coefficients, mesh_stiffness
 from pipeline.validation import InputError
 

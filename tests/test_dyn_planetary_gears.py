@@ -30,7 +30,6 @@ from pipeline.contact import analyse_contact, analytical_compliance
 from pipeline.contact.options import ContactOptions
 from pipeline.dynamics.analysis import analyse_modes
 from pipeline.dynamics.contact_excitation import excitation_from_contact
-from pipeline.dynamics.integrate import quasi_static_response
 from pipeline.dynamics.mesh_input import excitation_from_signal
 from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models import planetary_gears as pg
@@ -40,6 +39,7 @@ from pipeline.dynamics.models.wind_turbine_planetary import (
     wind_turbine_herringbone_model,
 )
 from pipeline.dynamics.options import PlanetaryDynamicsOptions
+from pipeline.dynamics.quasi_static import quasi_static_response
 from pipeline.geometry.body import GearBody
 from pipeline.geometry.involute import inv
 from pipeline.geometry.planetary import dec

@@ -25,8 +25,8 @@ Package map (data flows top to bottom):
 - :mod:`.harmonic_balance` - periodic response by the Fourier series method (Hill's
   coupling or first order); :mod:`.multirate` superposes stages with incommensurate
   mesh frequencies.
-- :mod:`.integrate` - exact piecewise propagators, Floquet steady state, the zero-speed
-  limit (:func:`quasi_static_response`).
+- :mod:`.integrate` - exact piecewise propagators, Floquet steady state;
+  :mod:`.quasi_static` - the zero-speed limit (:func:`quasi_static_response`).
 - :mod:`.sweep` - mesh-force sweeps over speed (local or Dask executors), load sharing;
   :mod:`.peaks` refines peak frequencies.
 - :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
@@ -50,7 +50,7 @@ from pipeline.dynamics.couplings import (
     TorsionalShaft,
 )
 from pipeline.dynamics.harmonic_balance import harmonic_balance
-from pipeline.dynamics.integrate import integrate, quasi_static_response, steady_state
+from pipeline.dynamics.integrate import integrate, steady_state
 from pipeline.dynamics.mesh_input import MeshExcitation, analytical_excitation
 from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
@@ -58,6 +58,7 @@ from pipeline.dynamics.models.planetary import PlanetaryModel
 from pipeline.dynamics.models.split_torque import SplitTorqueModel
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.multirate import superpose_stages
+from pipeline.dynamics.quasi_static import quasi_static_response
 from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
 from pipeline.dynamics.sweep import SweepResult, load_sharing_factor, mesh_force_sweep
 from pipeline.dynamics.system import LinearPeriodicSystem

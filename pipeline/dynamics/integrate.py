@@ -172,52 +172,6 @@ def static_state(system: LinearPeriodicSystem) -> np.ndarray:
     return np.concatenate([q, np.zeros_like(q)])
 
 
-def quasi_static_response(system: LinearPeriodicSystem,
-                          tau: np.ndarray | None = None) -> Response:
-    """The zero-speed limit: static equilibrium ``K(tau) q = F(tau)`` at each phase ``tau``.
-
-    Inertia, damping, gyroscopic and centripetal forces vanish with the speed, and so do
-    the damping forces of a transmission error (``c e'``); what remains at each phase is a
-    static problem with the stiffness and forces of that phase (rigid-body modes removed
-    first, :func:`reduce_rigid_body_modes`). It is the limit the steady response tends to
-    as the mesh frequency falls far below the natural frequencies.
-
-    Parameters
-    ----------
-    system : any system.
-    tau : system phases (-), shape (N,); default the finest sample grid of the periodic
-        coefficients, ``k / n`` for k = 0..n-1.
-
-    Returns
-    -------
-    :class:`Response` with ``method = "quasi-static"``, zero velocities, mesh forces
-    ``k (delta - e)`` (N) and DTE ``delta`` (m) at the phases ``tau`` (time ``tau T``).
-    """
-    red = replace(reduce_rigid_body_modes(system), carrier_speed=0.0)
-    if tau is None:
-        n = max([t.signal.values.size * t.order for t in red.terms] + [1])
-        tau = np.arange(n) / n
-    tau = np.atleast_1d(np.asarray(tau, dtype=float))
-    static = [f for f in red.forcing if not f.derivative]
-    q = np.empty((tau.size, red.n))
-    for i, t in enumerate(tau):
-        f = red.f0 + sum((g.vector * float(np.squeeze(g.signal(g.order * t - g.phase)))
-                          for g in static), np.zeros(red.n))
-        q[i] = np.linalg.solve(red.stiffness(float(t)), f)
-    V = np.array([ms.v for ms in red.meshes]).reshape(len(red.meshes), red.n)
-    dte = V @ q.T
-    force = np.zeros_like(dte)
-    for i, ms in enumerate(red.meshes):
-        term = red.terms[ms.term]
-        x = term.order * tau - term.phase
-        e = 0.0 if ms.transmission_error is None else ms.transmission_error(x)
-        force[i] = term.signal(x) * (dte[i] - e)
-    return Response(time=tau * red.period, q=red.expand(q), qd=np.zeros((tau.size,
-                    red.basis.shape[0])), dte=dte, mesh_force=force, dof_names=red.dof_names,
-                    mesh_names=tuple(ms.name for ms in red.meshes), period=red.period,
-                    method="quasi-static")
-
-
 def steady_state(
     system: LinearPeriodicSystem, segments: int | None = None, periods: int = 1
 ) -> Response:
