@@ -44,7 +44,12 @@ from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications
-from pipeline.dynamics.options import PairDynamicsOptions, ResponseOptions, SweepOptions
+from pipeline.dynamics.options import (
+    PairDynamicsOptions,
+    PlanetaryDynamicsOptions,
+    ResponseOptions,
+    SweepOptions,
+)
 from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.options import SectorFEOptions
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors, assemble
@@ -96,7 +101,8 @@ class Gearbox:
     fe_source : settings of the FE compliance source ``[contact] compliance`` names
         (``FE2DSettings`` / ``FE3DSettings`` from ``[fe]``), or ``None`` for "analytical".
     groove : relief-groove analysis of a herringbone gear (``[groove]``), or ``None``.
-    dynamics : options of the pair's dynamic model (``[dynamics]``), or ``None``.
+    dynamics : options of the pair's or the planetary set's dynamic model (``[dynamics]``),
+        or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
@@ -116,7 +122,7 @@ class Gearbox:
     fe: SectorFEOptions = field(default_factory=SectorFEOptions)
     fe_source: Any = None
     groove: GrooveSpec | None = None
-    dynamics: PairDynamicsOptions | None = None
+    dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
     lumped: Any = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
@@ -298,19 +304,24 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec
         return GrooveSpec(gear=gears[role], **values)
 
 
-def _dynamics(doc: Mapping[str, Any], base: Path | None) -> PairDynamicsOptions | None:
+def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
+              ) -> PairDynamicsOptions | PlanetaryDynamicsOptions | None:
+    """``[dynamics]``: a pair's options, or a planetary set's (its own keys)."""
     if "dynamics" not in doc:
         return None
     table = doc["dynamics"]
-    values = read_table(table, T.DYNAMICS, "dynamics", subtables=T.DYNAMICS_SUBTABLES)
+    planetary = kind == "planetary"
+    keys = T.DYNAMICS_PLANETARY if planetary else T.DYNAMICS
+    subtables = T.DYNAMICS_PLANETARY_SUBTABLES if planetary else T.DYNAMICS_SUBTABLES
+    values = read_table(table, keys, "dynamics", subtables=subtables)
     values["response"] = build(ResponseOptions, table.get("response", {}), T.RESPONSE,
                                "dynamics.response")
     values["sweep"] = build(SweepOptions, table.get("sweep", {}), T.SWEEP, "dynamics.sweep")
-    if "mesh_stiffness" in table:
-        values["mesh_stiffness"] = signal_from_table(table["mesh_stiffness"],
-                                                     "dynamics.mesh_stiffness", base)
-    with restated("dynamics", T.DYNAMICS, table):
-        return PairDynamicsOptions(**values)
+    for name in subtables:
+        if name.endswith("mesh_stiffness") and name in table:
+            values[name] = signal_from_table(table[name], f"dynamics.{name}", base)
+    with restated("dynamics", keys, table):
+        return (PlanetaryDynamicsOptions if planetary else PairDynamicsOptions)(**values)
 
 
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
@@ -373,7 +384,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         fe=fe,
         fe_source=fe_source,
         groove=_groove(doc, gears),
-        dynamics=_dynamics(doc, base),
+        dynamics=_dynamics(doc, base, kind),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,

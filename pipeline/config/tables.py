@@ -139,15 +139,42 @@ GROOVE = (
     Key("planets", I),
 )
 
+EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (
     Key("dofs", S, choices=("lateral_torsional", "torsional")),
     Key("bearing_stiffness_N_per_m", N),
     Key("bearing_damping_Ns_per_m", N),
     Key("damping_ratio", N),
-    Key("excitation", S, choices=("analytical",)),
+    Key("excitation", S, choices=EXCITATIONS,
+        help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
     Key("friction", B),
 )
+"""Keys of ``[dynamics]`` for a gear pair (:class:`PairDynamicsOptions`)."""
 DYNAMICS_SUBTABLES = ("mesh_stiffness", "response", "sweep")
+
+DYNAMICS_PLANETARY = (
+    Key("sun_bearing_stiffness_N_per_m", N),
+    Key("ring_bearing_stiffness_N_per_m", N),
+    Key("carrier_bearing_stiffness_N_per_m", N),
+    Key("planet_bearing_stiffness_N_per_m", N, help="radial and tangential, planet to carrier"),
+    Key("sun_torsional_stiffness_Nm_per_rad", N),
+    Key("ring_torsional_stiffness_Nm_per_rad", N),
+    Key("carrier_torsional_stiffness_Nm_per_rad", N),
+    Key("sun_axial_stiffness_N_per_m", N, help="herringbone sets"),
+    Key("ring_axial_stiffness_N_per_m", N, help="herringbone sets"),
+    Key("carrier_axial_stiffness_N_per_m", N, help="herringbone sets"),
+    Key("planet_axial_stiffness_N_per_m", N, help="herringbone sets"),
+    Key("groove_torsional_stiffness_Nm_per_rad", N, help="herringbone sun: groove torsion"),
+    Key("groove_lateral_stiffness_N_per_m", N, help="herringbone sun: groove x, y, z"),
+    Key("sun_load_side", S, choices=("both", "L", "R")),
+    Key("damping_ratio", N),
+    Key("modal_damping_ratio", N),
+    Key("excitation", S, choices=EXCITATIONS,
+        help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
+)
+"""Keys of ``[dynamics]`` for a planetary set (:class:`PlanetaryDynamicsOptions`)."""
+DYNAMICS_PLANETARY_SUBTABLES = ("sun_mesh_stiffness", "ring_mesh_stiffness", "response",
+                                "sweep")
 
 RESPONSE = (
     Key("method", S, choices=("harmonic_balance", "floquet", "time")),

@@ -8,20 +8,25 @@ Package map (data flows top to bottom):
 - :mod:`.couplings` - springs, bearings, torsional shafts, gear meshes (with friction
   loads), matrix couplings (e.g. a groove stiffness), ties and external loads.
 - :mod:`.mesh_geometry` - line-of-action projections of cylindrical gear meshes.
-- :mod:`.excitation`, :mod:`.mesh_input` - mesh stiffness and transmission error as
-  periodic signals: idealised (rectangular, contact-line) or from the pipeline's
-  analytical stiffness (:func:`analytical_excitation`).
+- :mod:`.excitation`, :mod:`.mesh_input`, :mod:`.contact_excitation` - mesh stiffness,
+  transmission error and friction terms as periodic signals: idealised (rectangular,
+  contact-line), from the pipeline's analytical stiffness (:func:`analytical_excitation`)
+  or from the loaded tooth contact (:func:`excitation_from_contact`: tangent k(t), static
+  transmission error; the compliance it contains and what the models must not count
+  again are in that module).
 - :mod:`.assembly` - :class:`Assembly`: bodies + couplings + loads ->
   :class:`~.system.LinearPeriodicSystem` (:mod:`.system`: M, C, K(t), G, F(t)).
 - :mod:`.models` - ready-made gearboxes: spur pair (6 DOF), planar planetary set
   (Lin and Parker 1999), herringbone planetary (Xu et al. 2020), split-torque
-  transmission (Jin et al. 2018), and the published cases as inputs
+  transmission (Jin et al. 2018), planetary models from a set's gears
+  (``planetary_gears``), and the published cases as inputs
   (``wind_turbine_planetary``, ``split_torque_helicopter``).
 - :mod:`.modal` - natural frequencies, mode shapes and planetary mode types.
 - :mod:`.harmonic_balance` - periodic response by the Fourier series method (Hill's
   coupling or first order); :mod:`.multirate` superposes stages with incommensurate
   mesh frequencies.
-- :mod:`.integrate` - exact piecewise propagators, Floquet steady state.
+- :mod:`.integrate` - exact piecewise propagators, Floquet steady state;
+  :mod:`.quasi_static` - the zero-speed limit (:func:`quasi_static_response`).
 - :mod:`.sweep` - mesh-force sweeps over speed (local or Dask executors), load sharing;
   :mod:`.peaks` refines peak frequencies.
 - :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
@@ -33,6 +38,7 @@ Package map (data flows top to bottom):
 
 from pipeline.dynamics.assembly import Assembly
 from pipeline.dynamics.bodies import Body
+from pipeline.dynamics.contact_excitation import excitation_from_contact
 from pipeline.dynamics.couplings import (
     Bearing,
     FrictionLoad,
@@ -52,6 +58,7 @@ from pipeline.dynamics.models.planetary import PlanetaryModel
 from pipeline.dynamics.models.split_torque import SplitTorqueModel
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.multirate import superpose_stages
+from pipeline.dynamics.quasi_static import quasi_static_response
 from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
 from pipeline.dynamics.sweep import SweepResult, load_sharing_factor, mesh_force_sweep
 from pipeline.dynamics.system import LinearPeriodicSystem
@@ -78,11 +85,13 @@ __all__ = [
     "Tie",
     "TorsionalShaft",
     "analytical_excitation",
+    "excitation_from_contact",
     "harmonic_balance",
     "integrate",
     "load_sharing_factor",
     "mesh_force_sweep",
     "modal_analysis",
+    "quasi_static_response",
     "steady_state",
     "superpose_stages",
 ]

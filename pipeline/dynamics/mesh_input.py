@@ -1,23 +1,38 @@
-"""Mesh excitation of the dynamic models from the pipeline's analytical stiffness.
+"""Mesh excitation of the dynamic models: :class:`MeshExcitation` and its sources.
 
-The stiffness stage (:mod:`pipeline.stiffness.mesh`) gives, over one mesh
-cycle, the mesh stiffness k(t), the friction stiffness K_f(t) and the friction
-torque coefficients KT_f1, KT_f2 of Jin et al. (2018), eqs. 15-17. This module turns them
-into the periodic signals a :class:`~pipeline.dynamics.couplings.GearMesh` takes.
+A :class:`MeshExcitation` holds, over one mesh period and along the transverse line
+of action, the mesh stiffness k(t), the displacement excitation (transmission error)
+e(t), the friction stiffness K_f(t) and the friction torque coefficients KT_f1, KT_f2
+of Jin et al. (2018), eqs. 15-17: the periodic signals a
+:class:`~pipeline.dynamics.couplings.GearMesh` takes (mesh force
+``F = k (delta - e)``, friction force ``K_f (delta - e)``, friction torques
+``KT_fi (delta - e)``). Sources:
+
+* the analytical stiffness stage (:mod:`pipeline.stiffness.mesh`):
+  :func:`excitation_from_stiffness`, :func:`analytical_excitation` (no transmission
+  error: the unloaded flanks are perfect);
+* the loaded tooth contact (:mod:`pipeline.contact`):
+  :func:`pipeline.dynamics.contact_excitation.excitation_from_contact` (loaded k(t),
+  static transmission error, friction of the loaded points);
+* a given k(t): :func:`excitation_from_signal`.
 
 Sign conventions (the dynamics' own, see :mod:`pipeline.dynamics.mesh_geometry`
 and :func:`pipeline.dynamics.excitation.constant_pair_excitation`): the friction
 force acts along +n on the pinion (n = line of action turned by +90 deg) with
 coefficient K_f, and the friction torques are positive in each gear's own sense
-of rotation. The stiffness stage writes KT_f2 positive when the friction torque
-on the driven gear acts *with the load torque*, i.e. against the gear's own
-rotation, so its sign is flipped here; K_f and KT_f1 carry over unchanged.
+of rotation. The stiffness stage (:mod:`pipeline.stiffness.friction`) writes KT_f2
+positive when the friction torque on the driven gear acts *with the load torque*,
+i.e. against the gear's own rotation, so its sign is flipped here, in
+:func:`friction_signals`, for every source; K_f and KT_f1 carry over unchanged.
 """
 
 from __future__ import annotations
 
 import importlib.util
+import math
 from dataclasses import dataclass
+
+import numpy as np
 
 from pipeline.geometry.pair import GearPair
 from pipeline.signals import PeriodicSignal
@@ -29,12 +44,16 @@ from pipeline.stiffness.mesh import (
     mesh_stiffness,
 )
 from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
-from pipeline.validation import check_int_range
+from pipeline.validation import InputError, check_int_range
 
 
 @dataclass(frozen=True)
 class MeshExcitation:
-    """Periodic mesh inputs of one gear mesh over one mesh period.
+    """Periodic mesh inputs of one gear mesh over one mesh period (transverse line of action).
+
+    All signals are sampled at the same ``n`` phases ``tau_k = k / n`` of one mesh period,
+    ``tau = 0`` at the first position of the source's mesh cycle (the leading tooth pair
+    at the start of contact, :meth:`GearPair.mesh_cycle`).
 
     Attributes
     ----------
@@ -43,8 +62,15 @@ class MeshExcitation:
     friction_torque_pinion, friction_torque_gear : KT_f(tau), N m/m, positive in each
         gear's own sense of rotation.
     mesh_period : s, at the operating speed of the stiffness computation.
-    tooth_model : "exact" (involute + trochoid fillet) or "classical" (involute to the
-        base circle, used while the exact profile module is not available).
+    tooth_model : the model behind the signals: "exact" (involute + trochoid fillet) or
+        "classical" (involute to the base circle) for the analytical stiffness, the local
+        contact model for a contact excitation.
+    transmission_error : e(tau), m, the displacement excitation along the line of action
+        (a positive e unloads the mesh, :class:`~pipeline.dynamics.couplings.GearMesh`),
+        or ``None`` (perfect flanks, e = 0).
+    load : P, N, the static mesh load the signals belong to (the contact analysis' load
+        along the transverse line of action), or ``None`` when they do not depend on it.
+    source : where the signals come from: "analytical", "contact" or "given".
     """
 
     stiffness: PeriodicSignal
@@ -52,7 +78,22 @@ class MeshExcitation:
     friction_torque_pinion: PeriodicSignal
     friction_torque_gear: PeriodicSignal
     mesh_period: float
-    tooth_model: str
+    tooth_model: str = "exact"
+    transmission_error: PeriodicSignal | None = None
+    load: float | None = None
+    source: str = "analytical"
+
+    def __post_init__(self) -> None:
+        n = self.stiffness.values.size
+        for name in ("friction_stiffness", "friction_torque_pinion", "friction_torque_gear",
+                     "transmission_error"):
+            sig = getattr(self, name)
+            if sig is not None and sig.values.size != n:
+                raise InputError(f"mesh excitation: {name} has {sig.values.size} samples; "
+                                 f"the stiffness has {n}")
+        if np.any(self.stiffness.values <= 0.0):
+            raise InputError("mesh excitation: the mesh stiffness must be > 0 N/m at every "
+                             f"sample (min {self.stiffness.values.min():.6g} N/m)")
 
     @property
     def has_friction(self) -> bool:
@@ -89,17 +130,63 @@ def pair_model(pair: GearPair, n_sections: int = 3000) -> tuple[PairModel, str]:
     )
 
 
+def friction_signals(
+    friction_stiffness: np.ndarray,
+    friction_torque_pinion: np.ndarray,
+    friction_torque_gear: np.ndarray,
+    period: float,
+) -> tuple[PeriodicSignal, PeriodicSignal, PeriodicSignal]:
+    """K_f, KT_f1, KT_f2 in the stiffness stage's signs -> the dynamics' signals.
+
+    Parameters
+    ----------
+    friction_stiffness : shape (n,), K_f = sum lam mu k, N/m (:mod:`pipeline.stiffness.friction`).
+    friction_torque_pinion, friction_torque_gear : shape (n,), KT_f,i = sum lam mu k rho_i,
+        N m/m, positive when the torque acts with the driving (pinion) or the load (gear)
+        torque.
+    period : mesh period, s.
+
+    Returns
+    -------
+    (K_f, KT_f1, KT_f2) as :class:`PeriodicSignal`, torques positive in each gear's own sense
+    of rotation: KT_f2 changes sign (module docstring), the others do not.
+    """
+    return (PeriodicSignal(friction_stiffness, period),
+            PeriodicSignal(friction_torque_pinion, period),
+            PeriodicSignal(-np.asarray(friction_torque_gear, dtype=float), period))
+
+
 def excitation_from_stiffness(ms: MeshStiffness, tooth_model: str = "exact") -> MeshExcitation:
     """Convert a :class:`MeshStiffness` (stiffness-stage signs) to a :class:`MeshExcitation`."""
     T = ms.mesh_period
+    kf, kt1, kt2 = friction_signals(ms.friction_stiffness, ms.friction_torque_pinion,
+                                    ms.friction_torque_gear, T)
     return MeshExcitation(
         stiffness=PeriodicSignal(ms.total, T),
-        friction_stiffness=PeriodicSignal(ms.friction_stiffness, T),
-        friction_torque_pinion=PeriodicSignal(ms.friction_torque_pinion, T),
-        friction_torque_gear=PeriodicSignal(-ms.friction_torque_gear, T),
+        friction_stiffness=kf,
+        friction_torque_pinion=kt1,
+        friction_torque_gear=kt2,
         mesh_period=T,
         tooth_model=tooth_model,
+        source="analytical",
     )
+
+
+def excitation_from_signal(
+    stiffness: PeriodicSignal,
+    transmission_error: PeriodicSignal | None = None,
+    mesh_period: float = math.nan,
+) -> MeshExcitation:
+    """A given k(tau) (N/m) and optional e(tau) (m) without friction, as a :class:`MeshExcitation`.
+
+    ``transmission_error`` must have as many samples as ``stiffness``; ``mesh_period`` in s
+    (NaN when the signals are used in phase only).
+    """
+    zero = PeriodicSignal(np.zeros(stiffness.values.size), mesh_period)
+    return MeshExcitation(stiffness=stiffness, friction_stiffness=zero,
+                          friction_torque_pinion=zero, friction_torque_gear=zero,
+                          mesh_period=mesh_period, transmission_error=transmission_error,
+                          source="given")
 
 
 def analytical_excitation(

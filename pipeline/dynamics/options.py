@@ -1,5 +1,5 @@
-"""Options of the dynamics stage: the lumped model of a gear pair, the response solver,
-the frequency sweep (all SI)."""
+"""Options of the dynamics stage: the lumped model of a gear pair or a planetary set, the
+response solver, the frequency sweep (all SI)."""
 
 from __future__ import annotations
 
@@ -11,6 +11,10 @@ from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 RESPONSE_METHODS = ("harmonic_balance", "floquet", "time")
+EXCITATIONS = ("analytical", "contact")
+"""Sources of the mesh excitation: the potential-energy stiffness stage, or the loaded
+tooth contact (:func:`pipeline.dynamics.contact_excitation.excitation_from_contact`)."""
+SUN_LOAD_SIDES = ("both", "L", "R")
 
 
 @dataclass(frozen=True)
@@ -83,8 +87,10 @@ class PairDynamicsOptions:
     bearing_stiffness : N/m in x and y for both gears, in [0, 1e14].
     bearing_damping : N s/m in x and y, in [0, 1e9].
     damping_ratio : mesh damping ratio zeta, in [0, 1].
-    excitation : where k(t) and the friction terms come from: "analytical" (the
-        potential-energy stiffness of the pair at the operating point).
+    excitation : where k(t), e(t) and the friction terms come from: "analytical" (the
+        potential-energy stiffness of the pair at the operating point; e = 0) or
+        "contact" (the loaded tooth contact of the pair at the operating torque: tangent
+        k(t), static transmission error, friction of the loaded points).
     mesh_stiffness : an explicit k(tau) over one mesh period (N/m) replacing the derived
         one, or ``None``.
     friction : include the friction stiffness and torques of the stiffness stage.
@@ -105,6 +111,104 @@ class PairDynamicsOptions:
         check_range("dynamics.bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
         check_range("dynamics.bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
         check_range("dynamics.damping_ratio", self.damping_ratio, 0.0, 1.0)
-        check_choice("dynamics.excitation", self.excitation, ("analytical",))
+        check_choice("dynamics.excitation", self.excitation, EXCITATIONS)
         if self.mesh_stiffness is not None and np.any(self.mesh_stiffness.values <= 0):
             raise InputError("dynamics.mesh_stiffness must be > 0 N/m everywhere")
+
+
+@dataclass(frozen=True)
+class PlanetaryDynamicsOptions:
+    """The lumped model of a planetary set (everything not derived from the gears).
+
+    Supports act on the rigid gear bodies at their bores (the ring: outside its rim), in
+    the carrier frame; see :mod:`pipeline.dynamics.contact_excitation` for what the mesh
+    stiffness already contains.
+
+    Attributes
+    ----------
+    sun_bearing_stiffness, ring_bearing_stiffness, carrier_bearing_stiffness : N/m, x and
+        y of each central member, in [0, 1e14].
+    planet_bearing_stiffness : N/m, radial and tangential, planet to carrier, in [0, 1e14].
+    sun_torsional_stiffness, carrier_torsional_stiffness : N m/rad, rotation to ground,
+        in [0, 1e14] (0: free, the drive path).
+    ring_torsional_stiffness : N m/rad, in (0, 1e14], or ``None``: 1e9 N/m at the ring's
+        base circle, ``1e9 r_b,ring^2`` (Lin and Parker 1999, Table 1).
+    sun_axial_stiffness, ring_axial_stiffness, carrier_axial_stiffness,
+    planet_axial_stiffness : N/m (herringbone sets), in [0, 1e14], or ``None``: the
+        member's bearing stiffness.
+    groove_torsional_stiffness : N m/rad, torsion of a herringbone sun's relief groove
+        between the halves (Xu et al. 2020, K_j / l), in (0, 1e14], or ``None``: halves tied.
+    groove_lateral_stiffness : N/m, x, y, z of the groove joint (with
+        ``groove_torsional_stiffness``), in (0, 1e14], or ``None``: tied.
+    sun_load_side : "both" halves of a herringbone sun take the sun torque, or only the
+        "L" or "R" half (the other half is loaded through the groove).
+    damping_ratio : mesh damping ratio zeta, in [0, 1].
+    modal_damping_ratio : constant modal damping (Xu et al. 2020), in [0, 1].
+    excitation : "analytical" or "contact" (as for a pair), for every sun-planet and
+        ring-planet mesh.
+    sun_mesh_stiffness, ring_mesh_stiffness : an explicit k(tau) (N/m, transverse line of
+        action, one mesh; herringbone: one half; tau = 0 with the leading tooth pair at the
+        start of contact, as the derived ones) replacing the derived one, or ``None``.
+    """
+
+    sun_bearing_stiffness: float = 1.0e8
+    ring_bearing_stiffness: float = 1.0e8
+    carrier_bearing_stiffness: float = 1.0e8
+    planet_bearing_stiffness: float = 1.0e8
+    sun_torsional_stiffness: float = 0.0
+    ring_torsional_stiffness: float | None = None
+    carrier_torsional_stiffness: float = 0.0
+    sun_axial_stiffness: float | None = None
+    ring_axial_stiffness: float | None = None
+    carrier_axial_stiffness: float | None = None
+    planet_axial_stiffness: float | None = None
+    groove_torsional_stiffness: float | None = None
+    groove_lateral_stiffness: float | None = None
+    sun_load_side: str = "both"
+    damping_ratio: float = 0.05
+    modal_damping_ratio: float = 0.0
+    excitation: str = "analytical"
+    sun_mesh_stiffness: PeriodicSignal | None = None
+    ring_mesh_stiffness: PeriodicSignal | None = None
+    response: ResponseOptions = field(default_factory=ResponseOptions)
+    sweep: SweepOptions = field(default_factory=SweepOptions)
+
+    def __post_init__(self) -> None:
+        for name in ("sun_bearing_stiffness", "ring_bearing_stiffness",
+                     "carrier_bearing_stiffness", "planet_bearing_stiffness",
+                     "sun_torsional_stiffness", "carrier_torsional_stiffness",
+                     "sun_axial_stiffness", "ring_axial_stiffness", "carrier_axial_stiffness",
+                     "planet_axial_stiffness"):
+            value = getattr(self, name)
+            if value is not None:
+                unit = "N m/rad" if "torsional" in name else "N/m"
+                check_range(f"dynamics.{name}", value, 0.0, 1e14, unit=unit)
+        for name, unit in (("ring_torsional_stiffness", "N m/rad"),
+                           ("groove_torsional_stiffness", "N m/rad"),
+                           ("groove_lateral_stiffness", "N/m")):
+            value = getattr(self, name)
+            if value is not None:
+                check_range(f"dynamics.{name}", value, 0.0, 1e14, lo_open=True, unit=unit)
+        if self.groove_lateral_stiffness is not None and self.groove_torsional_stiffness is None:
+            raise InputError("dynamics.groove_lateral_stiffness needs "
+                             "dynamics.groove_torsional_stiffness (without it the halves of "
+                             "the sun are tied)")
+        check_choice("dynamics.sun_load_side", self.sun_load_side, SUN_LOAD_SIDES)
+        check_range("dynamics.damping_ratio", self.damping_ratio, 0.0, 1.0)
+        check_range("dynamics.modal_damping_ratio", self.modal_damping_ratio, 0.0, 1.0)
+        check_choice("dynamics.excitation", self.excitation, EXCITATIONS)
+        for name in ("sun_mesh_stiffness", "ring_mesh_stiffness"):
+            sig = getattr(self, name)
+            if sig is not None and np.any(sig.values <= 0):
+                raise InputError(f"dynamics.{name} must be > 0 N/m everywhere")
+
+    @property
+    def herringbone_keys(self) -> tuple[str, ...]:
+        """The options that only a herringbone set uses, as given (not ``None``/default)."""
+        given = [n for n in ("sun_axial_stiffness", "ring_axial_stiffness",
+                             "carrier_axial_stiffness", "planet_axial_stiffness",
+                             "groove_torsional_stiffness", "groove_lateral_stiffness")
+                 if getattr(self, n) is not None]
+        if self.sun_load_side != "both":
+            given.append("sun_load_side")
+        return tuple(given)

@@ -7,8 +7,9 @@ a polygon (area and polar moment about the axis by the shoelace formulas), times
 face width; the bore (external gears) is a disc removed, the rim of an internal gear is
 the annulus out to ``rim_outer_radius`` minus the tooth outline. A web thinner than the
 face removes the annulus between the hub and the rim on the missing width. A
-herringbone gear adds its relief groove as a cylinder of the root radius (the groove
-bottom is not part of the gear description; the error is that of the groove depth).
+herringbone gear adds its relief groove as a cylinder of the root radius less the bore
+(a ring: the rim from its root circle out), the groove bottom not being part of the gear
+description (the error is that of the groove depth).
 
 The polygon has 60 involute points per flank; its area differs from the exact curve
 by < 1e-5 relative (measured against 480 points).
@@ -107,7 +108,8 @@ class GearBody:
         area, polar = self.section
         mass, inertia = rho * g.face_width * area, rho * g.face_width * polar
         if g.herringbone and g.groove_width > 0:
-            a, j = annulus_section(g.root_radius, g.bore_radius)
+            a, j = (annulus_section(g.bore_radius, g.root_radius) if g.internal
+                    else annulus_section(g.root_radius, g.bore_radius))
             mass += rho * g.groove_width * a
             inertia += rho * g.groove_width * j
         if self.web_width is not None:

@@ -125,6 +125,8 @@ class HerringbonePlanetaryModel:
     phase_lr : extra phase of the right sun meshes, mesh periods (Xu et al. 2020, lambda_LR).
     damping_ratio, sun_torque, carrier_speed, mesh_period : as in the planar model.
     modal_damping_ratio : constant modal damping of Xu et al. (2020) (-), see :class:`Assembly`.
+    e_sun_mesh, e_ring_mesh : transmission error of one half (normal direction, m) over one
+        mesh period, one signal or a (left, right) pair, or ``None`` (perfect flanks).
     """
 
     n_planets: int = 4
@@ -173,6 +175,8 @@ class HerringbonePlanetaryModel:
     sun_torque: float = 0.0
     carrier_speed: float = 0.0
     mesh_period: float = 1e-3
+    e_sun_mesh: object = None
+    e_ring_mesh: object = None
 
     def __post_init__(self) -> None:
         N = check_int_range("n_planets", self.n_planets, 1, 64)
@@ -315,6 +319,7 @@ class HerringbonePlanetaryModel:
                         k_sun,
                         self.damping_ratio,
                         phase=float(ph_s[n] + lr),
+                        transmission_error=self._side(self.e_sun_mesh, side),
                     ),
                     GearMesh(
                         f"r-p{n + 1}{side}",
@@ -322,6 +327,7 @@ class HerringbonePlanetaryModel:
                         self._side(self.k_ring_mesh, side),
                         self.damping_ratio,
                         phase=float(ph_r[n]),
+                        transmission_error=self._side(self.e_ring_mesh, side),
                     ),
                     Spring(
                         f"{p.name}.bearing.radial",

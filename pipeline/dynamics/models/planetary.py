@@ -76,10 +76,14 @@ class PlanetaryModel:
     planet_angles : shape (N,), psi_n in rad (default equally spaced, psi_1 = 0).
     phase_sun, phase_ring : shape (N,), mesh phases in mesh periods (default zeros).
     damping_ratio : mesh damping ratio.
+    modal_damping_ratio : constant modal damping (-), see :class:`Assembly` (default none).
     sun_torque : torque on the sun, N m (the carrier takes the balancing torque when
         the sun-carrier path has a rigid-body mode; otherwise it reacts on the supports).
     carrier_speed : Omega_c, rad/s.
     mesh_period : T_m in s.
+    e_sun_mesh, e_ring_mesh : transmission error e(tau) of every sun-planet / ring-planet
+        mesh over one mesh period (m, shifted by the mesh phases like the stiffness), or
+        ``None`` (perfect flanks).
     """
 
     n_planets: int = 4
@@ -110,9 +114,12 @@ class PlanetaryModel:
     phase_sun: tuple[float, ...] | None = None
     phase_ring: tuple[float, ...] | None = None
     damping_ratio: float = 0.0
+    modal_damping_ratio: float = 0.0
     sun_torque: float = 0.0
     carrier_speed: float = 0.0
     mesh_period: float = 1e-3
+    e_sun_mesh: PeriodicSignal | None = None
+    e_ring_mesh: PeriodicSignal | None = None
     extra: dict = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
@@ -148,6 +155,7 @@ class PlanetaryModel:
                 object.__setattr__(self, f, v)
 
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
+        check_range("modal_damping_ratio", self.modal_damping_ratio, 0.0, 1.0)
         check_planet_layout(self)
 
     @property
@@ -211,10 +219,12 @@ class PlanetaryModel:
             )
             couplings += [
                 GearMesh(
-                    f"s-{name}", sun_m, self.k_sun_mesh, self.damping_ratio, phase=float(ph_s[n])
+                    f"s-{name}", sun_m, self.k_sun_mesh, self.damping_ratio, phase=float(ph_s[n]),
+                    transmission_error=self.e_sun_mesh,
                 ),
                 GearMesh(
-                    f"r-{name}", ring_m, self.k_ring_mesh, self.damping_ratio, phase=float(ph_r[n])
+                    f"r-{name}", ring_m, self.k_ring_mesh, self.damping_ratio,
+                    phase=float(ph_r[n]), transmission_error=self.e_ring_mesh,
                 ),
                 Spring(
                     f"{name}.bearing.radial",
@@ -238,6 +248,7 @@ class PlanetaryModel:
             loads,
             period=self.mesh_period,
             carrier_speed=self.carrier_speed,
+            modal_damping_ratio=self.modal_damping_ratio,
             name=f"planetary-{self.n_planets}",
         )
 

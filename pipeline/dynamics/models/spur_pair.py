@@ -151,19 +151,23 @@ def spur_pair_model(
         geometry unless overridden).
     operation : pinion torque (N m) and speed (rad/s); the pinion must drive.
     options : bearings, damping, degrees of freedom, an optional explicit k(tau).
-    excitation : k(tau) and the friction terms of the mesh (from the stiffness stage,
-        :func:`pipeline.dynamics.mesh_input.excitation_from_stiffness`); needed unless
-        ``options.mesh_stiffness`` is given.
+    excitation : k(tau), the transmission error e(tau) and the friction terms of the mesh
+        (from the stiffness stage, :func:`pipeline.dynamics.mesh_input.excitation_from_stiffness`,
+        or the loaded contact,
+        :func:`pipeline.dynamics.contact_excitation.excitation_from_contact`); needed unless
+        ``options.mesh_stiffness`` is given. Its e(tau) belongs to its k(tau) (the static
+        state ``k (x_s - e) = P``), so an explicit ``options.mesh_stiffness`` drops it.
     """
     if operation.driver != "pinion":
         raise InputError("operation.driver = 'gear': the pair dynamic model drives the pinion; "
                          "set [operation] driver = \"pinion\"")
     k = options.mesh_stiffness
+    te = None
     if k is None:
         if excitation is None:
             raise InputError("the pair dynamic model needs a mesh excitation or an explicit "
                              "[dynamics.mesh_stiffness]")
-        k = excitation.stiffness
+        k, te = excitation.stiffness, excitation.transmission_error
     friction = options.friction and excitation is not None and excitation.has_friction
     pb, gb = bodies
     return SpurPairModel(
@@ -180,6 +184,7 @@ def spur_pair_model(
         damping_ratio=options.damping_ratio,
         torque=operation.torque,
         speed=operation.speed,
+        transmission_error=te,
         friction_stiffness=excitation.friction_stiffness if friction else None,
         friction_torque_pinion=excitation.friction_torque_pinion if friction else None,
         friction_torque_gear=excitation.friction_torque_gear if friction else None,
