@@ -18,9 +18,9 @@ import json
 from pipeline.commands_common import add_common_arguments, load, output_dir
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
-from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
 from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.io import to_jsonable, write_json, write_run_record
+from pipeline.run.dynamics import dynamics_options
 from pipeline.validation import InputError
 
 
@@ -34,84 +34,26 @@ add_response_arguments = _common
 add_sweep_arguments = _common
 
 
-def dynamics_options(box: Gearbox) -> PairDynamicsOptions | PlanetaryDynamicsOptions:
-    """The ``[dynamics]`` options of a gearbox (defaults of its kind when the table is absent)."""
-    if box.dynamics is not None:
-        return box.dynamics
-    return PlanetaryDynamicsOptions() if box.kind == "planetary" else PairDynamicsOptions()
-
-
-def mesh_excitation(box: Gearbox, pair, operation, excitation: str, *, assembly_errors=None):
-    """The excitation of one mesh of ``box``: ``"analytical"`` (stiffness stage) or
-    ``"contact"`` (analytical slice compliance, loaded contact of the ``[contact]`` options).
-
-    ``pair`` is the nominal pair (with ``assembly_errors``) for the stiffness stage and
-    the pair as installed for the contact analysis.
-    """
-    if excitation == "contact":
-        from pipeline.contact import analyse_contact, analytical_compliance
-        from pipeline.dynamics.contact_excitation import excitation_from_contact
-
-        source = analytical_compliance(pair, operation, box.contact, box.stiffness)
-        cycle = analyse_contact(source, operation, box.contact)
-        return excitation_from_contact(cycle, pair, operation, box.stiffness.friction_model)
-    from pipeline.dynamics.mesh_input import excitation_from_stiffness
-    from pipeline.stiffness.analysis import analyse_stiffness
-
-    stiff = analyse_stiffness(pair, operation, box.stiffness, assembly_errors=assembly_errors)
-    return excitation_from_stiffness(stiff.mesh)
-
-
-def _planetary_model(box: Gearbox):
-    from pipeline.dynamics.mesh_input import excitation_from_signal
-    from pipeline.dynamics.models import planetary_gears as pg
-
-    opts = dynamics_options(box)
-    ps = box.planetary
-    halves = 2 if ps.sun.herringbone else 1
-    ops = pg.mesh_operations(ps, box.operation, halves)
-    excitations = []
-    for pair, op, given in ((ps.sun_planet, ops[0], opts.sun_mesh_stiffness),
-                            (ps.planet_ring, ops[1], opts.ring_mesh_stiffness)):
-        if given is not None:
-            excitations.append(excitation_from_signal(given))
-        else:
-            excitations.append(mesh_excitation(box, pg.helical_half(pair), op, opts.excitation))
-    build = (pg.herringbone_planetary_model_from_gears if halves == 2
-             else pg.planetary_model_from_gears)
-    return build(ps, box.bodies, box.carrier, box.operation, opts, *excitations)
-
-
 def dynamic_model(box: Gearbox):
-    """The dynamic model a gearbox file describes (composition of geometry, stiffness or
-    contact, dynamics).
+    """The dynamic model a gearbox file describes, excited by its static stages.
 
-    A pair: :func:`~pipeline.dynamics.models.spur_pair.spur_pair_model` excited by the
-    analytical stiffness or the loaded contact of the installed pair; a planetary set:
-    :func:`~pipeline.dynamics.models.planetary_gears.planetary_model_from_gears` (or the
-    herringbone model) excited by one sun-planet and one planet-ring mesh; a
-    ``[lumped_model]``: that model.
+    The same composition as ``gearpipe run`` (:func:`pipeline.run.dynamics.dynamic_model`):
+    the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
+    its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
+    when ``gearpipe run`` or an earlier command computed it).
     """
-    from pipeline.dynamics.models.spur_pair import spur_pair_model
+    from pipeline.run.chain import RunOptions, mesh_stages
+    from pipeline.run.dynamics import dynamic_model as model_of
+    from pipeline.run.dynamics import needs_contact
+    from pipeline.run.steps import StepLog
 
-    if box.kind == "lumped":
-        return box.lumped
     if box.kind == "gear":
         raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
                          "a gear pair ([pinion] and [gear]), a planetary set or a "
                          "[lumped_model]")
-    if box.kind == "planetary":
-        return _planetary_model(box)
-    opts = dynamics_options(box)
-    excitation = None
-    if opts.mesh_stiffness is None or opts.friction:
-        if opts.excitation == "contact":
-            excitation = mesh_excitation(box, box.actual_pair, box.operation, "contact")
-        else:
-            excitation = mesh_excitation(box, box.pair, box.operation, "analytical",
-                                         assembly_errors=box.assembly_errors)
-    return spur_pair_model(box.actual_pair, (box.bodies["pinion"], box.bodies["gear"]),
-                           box.operation, opts, excitation)
+    meshes = mesh_stages(box, RunOptions(show_progress=False), StepLog(show=False),
+                         contact=needs_contact(box))
+    return model_of(box, meshes)[0]
 
 
 def _setup(args, command: str):

@@ -25,7 +25,6 @@ import numpy as np
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError, check_int_range
 
 
@@ -136,31 +135,6 @@ class PlanetarySet:
         if rel == 0:
             raise InputError("sun and carrier speeds are equal: there is no meshing")
         return 2 * math.pi / (rel * self.sun.teeth)
-
-    def mesh_operations(self, sun: OperatingPoint) -> dict[str, OperatingPoint]:
-        """Load and speed of each planet's two meshes, ring fixed, sun driving.
-
-        ``sun`` gives the sun's torque (N m, shared by the planets) and its speed (rad/s).
-        Speeds are relative to the carrier (what the meshing sees):
-        omega_s - omega_c = omega_s z_r / (z_s + z_r), and the planet turns at
-        (omega_s - omega_c) z_s / z_p. Sun-planet: the sun drives with T_s / N. Planet-ring:
-        the planet drives the ring with the same tangential force,
-        T_s r_bp / (N r_bs).
-
-        Returns
-        -------
-        {"sun_planet": ..., "planet_ring": ...}, each with the pair's pinion driving.
-        """
-        if sun.driver != "pinion":
-            raise InputError("operation.driver: in a planetary set [operation] gives the "
-                             "driving sun's torque and speed (driver = \"pinion\")")
-        rel = sun.speed * self.ring.teeth / (self.sun.teeth + self.ring.teeth)
-        t = sun.torque / self.n_planets
-        return {
-            "sun_planet": OperatingPoint(t, rel, "pinion"),
-            "planet_ring": OperatingPoint(t * self.planet.base_radius / self.sun.base_radius,
-                                          rel * self.sun.teeth / self.planet.teeth, "pinion"),
-        }
 
     @cached_property
     def sun_phases(self) -> np.ndarray:

@@ -16,7 +16,7 @@ takes from the one before:
    that changes only a dynamics option reads it back instead of building the FE
    source and solving the contact again;
 5. with a ``[dynamics]`` table (or a ``[lumped_model]``): the dynamic model
-   (:func:`pipeline.dynamics.build.dynamic_model`), its modes, the steady response at
+   (:func:`pipeline.run.dynamics.dynamic_model`), its modes, the steady response at
    the operating speed and a speed sweep (dynamic mesh forces, dynamic factor).
 """
 
@@ -66,7 +66,8 @@ class MeshCase:
     Attributes
     ----------
     name : "mesh" for a pair; "sun_planet" / "planet_ring" for a planetary set.
-    pair : the nominal pair (pinion = the driving member of this mesh's pair).
+    pair : the nominal pair (pinion = the driving member of this mesh's pair; one helical
+        half of a herringbone set, loaded with half the mesh force).
     assembly_errors : centre displacements, m.
     operation : torque (N m) and speed (rad/s) of this pair's driving gear.
     """
@@ -86,28 +87,31 @@ class MeshStages:
     case : the mesh and its load.
     geometry : contact ratios, profiles, assembly-error geometry.
     stiffness : analytical mesh stiffness (potential energy, ISO 6336, contact lines).
-    contact : loaded contact over one mesh cycle on the chosen compliance source.
+    contact : loaded contact over one mesh cycle on the chosen compliance source, or
+        ``None`` when it was not asked for (a dynamics command with analytical excitation).
     compliance : the source's name ("analytical", "fe2d", "fe3d").
     """
 
     case: MeshCase
     geometry: GeometryResult
     stiffness: StiffnessResult
-    contact: LoadedMeshCycle
+    contact: LoadedMeshCycle | None
     compliance: str
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
         st = self.stiffness.summary()
-        return {
+        out = {
             "compliance": self.compliance,
             "transverse_contact_ratio": st["transverse_contact_ratio"],
             "overlap_ratio": st["overlap_ratio"],
             "mesh_period_s": st["mesh_period_s"],
             "analytical_stiffness": st["potential_energy"],
             "iso6336_mesh_stiffness_N_per_m": st["iso6336"]["mesh_stiffness_N_per_m"],
-            "loaded_contact": self.contact.summary(),
         }
+        if self.contact is not None:
+            out["loaded_contact"] = self.contact.summary()
+        return out
 
 
 @dataclass(frozen=True)
@@ -143,11 +147,13 @@ def mesh_cases(box: Gearbox) -> list[MeshCase]:
     if box.kind == "pair":
         return [MeshCase("mesh", box.pair, box.assembly_errors, box.operation)]
     if box.kind == "planetary":
-        ops = box.planetary.mesh_operations(box.operation)
-        return [MeshCase("sun_planet", box.planetary.sun_planet, AssemblyErrors(),
-                         ops["sun_planet"]),
-                MeshCase("planet_ring", box.planetary.planet_ring, AssemblyErrors(),
-                         ops["planet_ring"])]
+        from pipeline.dynamics.models.planetary_gears import helical_half, mesh_operations
+
+        ps = box.planetary
+        ops = mesh_operations(ps, box.operation, 2 if ps.sun.herringbone else 1)
+        return [MeshCase(name, helical_half(pair), AssemblyErrors(), op) for name, pair, op
+                in (("sun_planet", ps.sun_planet, ops[0]), ("planet_ring", ps.planet_ring,
+                                                             ops[1]))]
     raise InputError(f"{box.name}: gearpipe run needs gears in mesh (a pair or a planetary "
                      f"set); this file describes a {box.kind.replace('gear', 'single gear')}")
 
@@ -174,9 +180,9 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
     return cycle, hit
 
 
-def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLog
-                  ) -> MeshStages:
-    """Geometry, analytical stiffness and loaded contact of one mesh."""
+def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLog,
+                  contact: bool = True) -> MeshStages:
+    """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh."""
     tag = "" if case.name == "mesh" else f" [{case.name}]"
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -184,12 +190,23 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
         stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
                                       assembly_errors=case.assembly_errors)
         note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
-    with log.step(f"loaded contact ({box.contact.compliance}){tag}", long=True) as note:
-        cycle, hit = loaded_contact(box, case, stiffness, options)
-        note["cached"] = hit
-        note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
-                        f"{cycle.mesh_stiffness.mean():.4g} N/m")
+    cycle = None
+    if contact:
+        with log.step(f"loaded contact ({box.contact.compliance}){tag}", long=True) as note:
+            cycle, hit = loaded_contact(box, case, stiffness, options)
+            note["cached"] = hit
+            note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
+                            f"{cycle.mesh_stiffness.mean():.4g} N/m")
     return MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
+
+
+def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool = True
+                ) -> dict[str, MeshStages]:
+    """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``)."""
+    if box.kind == "lumped":
+        return {}
+    return {case.name: static_stages(box, case, options, log, contact)
+            for case in mesh_cases(box)}
 
 
 def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
@@ -198,10 +215,7 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
 
     options = options or RunOptions()
     log = StepLog(show=options.show_progress)
-    meshes: dict[str, MeshStages] = {}
-    if box.kind != "lumped":
-        for case in mesh_cases(box):
-            meshes[case.name] = static_stages(box, case, options, log)
+    meshes = mesh_stages(box, options, log)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)

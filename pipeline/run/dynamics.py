@@ -10,6 +10,7 @@ over the static mesh load of the contact stage.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,8 +23,14 @@ from pipeline.dynamics.analysis import (
     analyse_response,
     analyse_sweep,
 )
+from pipeline.dynamics.contact_excitation import excitation_from_contact
+from pipeline.dynamics.mesh_input import (
+    MeshExcitation,
+    excitation_from_signal,
+    excitation_from_stiffness,
+)
 from pipeline.dynamics.modal import ModalResult
-from pipeline.dynamics.options import PairDynamicsOptions
+from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.run.steps import StepLog
 
@@ -72,19 +79,57 @@ class DynamicsStages:
         }
 
 
-def dynamic_model(box: Gearbox, meshes: dict) -> tuple[Any, str]:
-    """The dynamic model of a gearbox excited by the run's static stages.
+def dynamics_options(box: Gearbox) -> PairDynamicsOptions | PlanetaryDynamicsOptions:
+    """The ``[dynamics]`` options of a gearbox (defaults of its kind when the table is absent)."""
+    if box.dynamics is not None:
+        return box.dynamics
+    return PlanetaryDynamicsOptions() if box.kind == "planetary" else PairDynamicsOptions()
 
-    Returns (model, excitation name).
+
+def needs_contact(box: Gearbox) -> bool:
+    """True when the dynamic model takes its mesh excitation from the loaded contact."""
+    return box.kind != "lumped" and dynamics_options(box).excitation == "contact"
+
+
+def mesh_excitation(stages, friction, excitation: str) -> MeshExcitation:
+    """The excitation of one mesh from its static stages: its loaded contact cycle
+    (``excitation = "contact"``: loaded k(t), static TE, friction of the loaded points) or
+    its analytical stiffness (``"analytical"``)."""
+    if excitation == "contact":
+        return excitation_from_contact(stages.contact, stages.stiffness.actual,
+                                       stages.case.operation, friction)
+    return excitation_from_stiffness(stages.stiffness.mesh)
+
+
+def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
+    """The dynamic model of a gearbox excited by the static stages of its meshes.
+
+    A pair: :func:`~pipeline.dynamics.models.spur_pair.spur_pair_model`; a planetary set:
+    :func:`~pipeline.dynamics.models.planetary_gears.planetary_model_from_gears` (or its
+    herringbone variant) with one sun-planet and one planet-ring excitation (an explicit
+    ``[dynamics.sun_mesh_stiffness]`` / ``ring_mesh_stiffness`` replaces it); a
+    ``[lumped_model]``: that model. Returns (model, excitation name).
     """
-    from pipeline.dynamics.mesh_input import excitation_from_stiffness
+    from pipeline.dynamics.models import planetary_gears as pg
     from pipeline.dynamics.models.spur_pair import spur_pair_model
 
     if box.kind == "lumped":
         return box.lumped, "lumped"
-    opts = box.dynamics or PairDynamicsOptions()
+    opts = dynamics_options(box)
+    friction = box.stiffness.friction_model
+    if box.kind == "planetary":
+        excitations = [excitation_from_signal(given) if given is not None
+                       else mesh_excitation(meshes[name], friction, opts.excitation)
+                       for name, given in (("sun_planet", opts.sun_mesh_stiffness),
+                                           ("planet_ring", opts.ring_mesh_stiffness))]
+        build = (pg.herringbone_planetary_model_from_gears if box.planetary.sun.herringbone
+                 else pg.planetary_model_from_gears)
+        return (build(box.planetary, box.bodies, box.carrier, box.operation, opts,
+                      *excitations), opts.excitation)
     stages = meshes["mesh"]
-    excitation = excitation_from_stiffness(stages.stiffness.mesh)
+    excitation = None
+    if opts.mesh_stiffness is None or opts.friction:
+        excitation = mesh_excitation(stages, friction, opts.excitation)
     model = spur_pair_model(stages.stiffness.actual, (box.bodies["pinion"], box.bodies["gear"]),
                             box.operation, opts, excitation)
     return model, opts.excitation
@@ -92,7 +137,7 @@ def dynamic_model(box: Gearbox, meshes: dict) -> tuple[Any, str]:
 
 def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> DynamicsStages:
     """Model, modes, response at the operating speed and speed sweep."""
-    opts = box.dynamics or PairDynamicsOptions()
+    opts = dynamics_options(box)
     with log.step("dynamic model"):
         model, excitation = dynamic_model(box, meshes)
     with log.step("modes") as note:
