@@ -41,6 +41,17 @@ if TYPE_CHECKING:
 CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
 # outline points closer than this (times m_n) are one point: Gmsh cannot mesh a zero-length curve
 MERGE_TOL = 1e-6
+# graded meshes (SectorSettings2D.graded): unloaded-tooth outline size and largest size in
+# m_n, size growth per distance (module docstring, "Graded meshes")
+GRADED_TOOTH = 0.6
+GRADED_BODY = 4.0
+GRADED_GROWTH = 0.5
+THIN = 4  # outline point stride on unloaded teeth of graded meshes
+# FE memory per unknown of a 2D P2 model (stiffness, CHOLMOD factor, loads; peak RSS of
+# whole-gear builds of 97k-526k unknowns rose by 2.8 kB per unknown), and the largest
+# model accepted (about 14 GiB on a 24 GiB machine)
+BYTES_PER_DOF = 3500
+MAX_DOF = 4_000_000
 
 
 @dataclass(frozen=True)
@@ -49,12 +60,18 @@ class SectorSettings2D:
 
     Attributes
     ----------
-    teeth : consecutive teeth in the sector (>= 1, < z/2).
-    size_flank : element size on the tooth outline, m.
-    size_body : element size in the rim and far from the outline, m.
-    grading : distance from the outline over which the size grows, m.
+    teeth : consecutive teeth in the sector (>= 1, < z/2, or z for the whole gear).
+    size_flank : element size on the outline of the loaded teeth, m.
+    size_body : largest element size (rim, body far from the outline), m.
+    grading : distance from the outline at which the size reaches ``size_body``, m (it is
+        ``size_flank`` up to ``size_flank / 2`` away, then grows linearly; the same growth
+        rate holds from the outline of the other teeth).
     profile_points : involute points of the profile polyline (the fillet gets as many).
     inner_radius : bore (hub) radius of the mesh, m; None uses :func:`inner_radius`.
+    loaded : sector teeth meshed at ``size_flank`` (whole outline: both flanks and
+        fillets), or None for all teeth.
+    size_tooth : element size on the outline of the other teeth, m (None:
+        ``size_flank``); from there the size grows at the same rate.
     """
 
     teeth: int = 3
@@ -63,6 +80,8 @@ class SectorSettings2D:
     grading: float = 3e-3
     profile_points: int = 60
     inner_radius: float | None = None
+    loaded: tuple[int, ...] | None = None
+    size_tooth: float | None = None
 
     def __post_init__(self) -> None:
         check_int_range("sector.teeth", self.teeth, 1, 1000)
@@ -70,6 +89,16 @@ class SectorSettings2D:
         check_range("sector.size_body", self.size_body, self.size_flank, 10.0, unit="m")
         check_range("sector.grading", self.grading, 0.0, 10.0, unit="m")
         check_int_range("sector.profile_points", self.profile_points, 8, 10000)
+        if self.loaded is not None:
+            loaded = tuple(sorted({int(k) for k in self.loaded}))
+            if not loaded:
+                raise InputError("sector.loaded: give at least one tooth, or None for all")
+            for k in loaded:
+                check_int_range("sector.loaded", k, 0, self.teeth - 1)
+            object.__setattr__(self, "loaded", loaded)
+        if self.size_tooth is not None:
+            check_range("sector.size_tooth", self.size_tooth, self.size_flank, self.size_body,
+                        unit="m")
 
     @classmethod
     def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0
@@ -80,6 +109,24 @@ class SectorSettings2D:
         return cls(teeth=teeth, size_flank=m / (12.0 * refinement),
                    size_body=max(m / 2.5 / math.sqrt(refinement), m / (12.0 * refinement)),
                    grading=1.2 * m, profile_points=max(60, int(40 * refinement)))
+
+    @classmethod
+    def graded(cls, gear: GearSpec, teeth: int, loaded: tuple[int, ...],
+               refinement: float = 1.0, *, tooth: float = GRADED_TOOTH,
+               body: float = GRADED_BODY, growth: float = GRADED_GROWTH) -> SectorSettings2D:
+        """Graded from the ``loaded`` teeth: flank size m_n / (12 refinement) on their
+        outline, ``tooth`` m_n on the other teeth, growing at ``growth`` (m of size per m
+        of distance) up to ``body`` m_n (module docstring: "Graded meshes")."""
+        check_range("sector.refinement", refinement, 0.05, 100.0)
+        check_range("sector.tooth", tooth, 0.01, 10.0, unit="m_n")
+        check_range("sector.body", body, tooth, 100.0, unit="m_n")
+        check_range("sector.growth", growth, 0.01, 2.0)
+        m = gear.module
+        h = m / (12.0 * refinement)
+        return cls(teeth=teeth, size_flank=h, size_body=max(body * m, h),
+                   grading=0.5 * h + max(body * m - h, 0.0) / growth,
+                   profile_points=max(60, int(40 * refinement)), loaded=tuple(loaded),
+                   size_tooth=min(max(tooth * m, h), max(body * m, h)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,6 +222,67 @@ def outline_pieces(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, n
     return pieces
 
 
+def estimated_size(gear: GearSpec, settings: SectorSettings2D) -> tuple[int, float]:
+    """(unknowns, memory in bytes) of the FE model of the mesh ``settings`` would give,
+    estimated before meshing (within about 30 %, see :data:`BYTES_PER_DOF`).
+
+    Triangles: the band within ``size/2`` of the outline at its size, the band over which
+    the size grows linearly (``int dd / (A_eq h(d)^2)`` per unit outline length), the rest
+    of the area at ``size_body``; ``A_eq = sqrt(3)/4 h^2``; two P2 nodes and four unknowns
+    per triangle.
+    """
+    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
+    keep = (None if settings.loaded is None
+            else {f"{side}{k}" for k in settings.loaded for side in ("right", "left")})
+    length = {True: 0.0, False: 0.0}
+    for name, seg in pieces:
+        length[keep is None or name in keep] += float(np.hypot(*np.diff(seg, axis=0).T).sum())
+    h0, hb = settings.size_flank, settings.size_body
+    rate = (hb - h0) / max(settings.grading - 0.5 * h0, 1e-12)
+    a_eq = math.sqrt(3.0) / 4.0
+    r_in = inner_radius(gear, settings)
+    area = math.pi * abs(gear.tip_radius_**2 - r_in**2) * settings.teeth / gear.teeth
+    tri = area / (a_eq * hb * hb)
+    for fine, size in ((True, h0), (False, settings.size_tooth or h0)):
+        band = 0.5 / (a_eq * size) + (1.0 / size - 1.0 / hb) / (a_eq * max(rate, 1e-12))
+        tri += length[fine] * band
+    tri = min(tri, area / (a_eq * h0 * h0))
+    dof = int(4 * tri)
+    return dof, dof * BYTES_PER_DOF
+
+
+def check_size(gear: GearSpec, settings: SectorSettings2D, max_dof: int = MAX_DOF) -> int:
+    """Refuse (InputError) a mesh whose FE model would exceed ``max_dof`` unknowns; returns
+    the estimate."""
+    dof, mem = estimated_size(gear, settings)
+    if dof > max_dof:
+        raise InputError(
+            f"the 2D mesh of {gear.name or 'the gear'} (flank element {settings.size_flank:.3g} m, "
+            f"{settings.teeth} teeth) would have about {dof / 1e6:.1f} million unknowns and "
+            f"need about {mem / 2**30:.0f} GiB; the limit is {max_dof / 1e6:.1f} million "
+            f"unknowns: use a smaller refinement (or fewer teeth)")
+    return dof
+
+
+def _thin_unloaded(pieces: list[tuple[str, np.ndarray]], settings: SectorSettings2D
+                   ) -> list[tuple[str, np.ndarray]]:
+    """Every ``THIN``-th outline point (and the ends) on the pieces of unloaded teeth.
+
+    Their elements are ``size_tooth`` (several times ``size_flank``) long, so the spline
+    through a quarter of the points is still far more accurate than the P2 edges on it,
+    and Gmsh's 1D meshing (which evaluates the size field along every spline) speeds up.
+    """
+    if settings.loaded is None:
+        return pieces
+    keep = {f"{side}{k}" for k in settings.loaded for side in ("right", "left")}
+    out = []
+    for name, seg in pieces:
+        if name not in keep and len(seg) > 2 * THIN:
+            seg = np.vstack([seg[:-1:THIN], seg[-1:]])
+        out.append((name, seg))
+    return out
+
+
 def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshData:
     """Mesh the sector in Gmsh (quadratic triangles); returns 2D data (see module docstring)."""
     full = settings.teeth == gear.teeth
@@ -182,7 +290,8 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
         raise InputError(f"sector.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
                          f"or = z (whole gear)")
     r_in = inner_radius(gear, settings)
-    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
+    pieces = _thin_unloaded(outline_pieces(gear, settings.teeth, settings.profile_points),
+                            settings)
     with gmsh_session() as gmsh:
         geo = gmsh.model.geo
         first = geo.addPoint(*pieces[0][1][0], 0.0)
@@ -204,10 +313,12 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
                       for a in (0.0, 2 * math.pi / 3, 4 * math.pi / 3)]
             bore_arcs = [geo.addCircleArc(circle[i], centre, circle[(i + 1) % 3])
                          for i in range(3)]
-            surf = geo.addPlaneSurface([geo.addCurveLoop(loop), geo.addCurveLoop(bore_arcs)])
+            # the first loop is the outer boundary: the rim circle of an internal gear
+            loops = [geo.addCurveLoop(loop), geo.addCurveLoop(bore_arcs)]
+            surf = geo.addPlaneSurface(loops[::-1] if gear.internal else loops)
             geo.synchronize()
             curves["bore"] = bore_arcs
-            return _mesh_and_extract(gmsh, curves, surf, outline_curves, settings)
+            return _mesh_and_extract(gmsh, curves, outline_curves, settings)
         end = pieces[-1][1][-1]
         a_end, a_start = math.atan2(end[1], end[0]), math.atan2(*pieces[0][1][0][::-1])
         p_end = geo.addPoint(r_in * math.cos(a_end), r_in * math.sin(a_end), 0.0)
@@ -219,29 +330,54 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
         surf = geo.addPlaneSurface([geo.addCurveLoop(loop)])
         geo.synchronize()
         curves.update({"cut_left": [cut_left], "bore": [bore], "cut_right": [cut_right]})
-        return _mesh_and_extract(gmsh, curves, surf, outline_curves, settings)
+        return _mesh_and_extract(gmsh, curves, outline_curves, settings)
 
 
-def _mesh_and_extract(gmsh, curves: dict[str, list[int]], surf: int, outline_curves: list[int],
-                      settings: SectorSettings2D) -> TetMeshData:
-    """Physical groups, size field (fine on the outline), P2 mesh -> 2D data."""
-    for name, tags in curves.items():
-        gmsh.model.addPhysicalGroup(1, tags, name=name)
-    gmsh.model.addPhysicalGroup(2, [surf], name="sector")
-    fld = gmsh.model.mesh.field
+def _threshold(fld, curves: list[int], size: float, settings: SectorSettings2D,
+               sampling: int = 400) -> int:
+    """Size field: ``size`` on ``curves`` (distance sampled at ``sampling`` points per curve),
+    growing linearly with the distance at the rate of ``settings`` up to ``size_body``."""
     dist = fld.add("Distance")
-    fld.setNumbers(dist, "CurvesList", outline_curves)
-    fld.setNumber(dist, "Sampling", 400)
+    fld.setNumbers(dist, "CurvesList", curves)
+    fld.setNumber(dist, "Sampling", sampling)
     thr = fld.add("Threshold")
+    h0, h1 = settings.size_flank, settings.size_body
+    ramp = max(settings.grading - 0.5 * h0, 1e-12)  # size_flank -> size_body over this
     fld.setNumber(thr, "InField", dist)
-    fld.setNumber(thr, "SizeMin", settings.size_flank)
-    fld.setNumber(thr, "SizeMax", settings.size_body)
-    fld.setNumber(thr, "DistMin", 0.5 * settings.size_flank)
-    fld.setNumber(thr, "DistMax", settings.grading)
-    fld.setAsBackgroundMesh(thr)
+    fld.setNumber(thr, "SizeMin", size)
+    fld.setNumber(thr, "SizeMax", h1)
+    fld.setNumber(thr, "DistMin", 0.5 * size)
+    fld.setNumber(thr, "DistMax", 0.5 * size + ramp * (h1 - size) / max(h1 - h0, 1e-30))
+    return thr
+
+
+def _mesh_and_extract(gmsh, curves: dict[str, list[int]], outline_curves: list[int],
+                      settings: SectorSettings2D) -> TetMeshData:
+    """Size field (fine on the loaded teeth' outline), P2 mesh -> 2D data (the groups are
+    read per curve: no physical groups, whose creation cost 1 ms each on a whole gear)."""
+    fld = gmsh.model.mesh.field
+    if settings.loaded is None:
+        fine, other = outline_curves, []
+    else:
+        names = {f"{side}{k}" for k in settings.loaded for side in ("right", "left")}
+        fine = [c for name in sorted(names) for c in curves[name]]
+        other = [c for c in outline_curves if c not in set(fine)]
+    fields = [_threshold(fld, fine, settings.size_flank, settings)]
+    if other:
+        # coarse teeth: a few samples per element along their curves are enough
+        fields.append(_threshold(fld, other, settings.size_tooth or settings.size_flank,
+                                 settings, sampling=40))
+    if len(fields) > 1:
+        low = fld.add("Min")
+        fld.setNumbers(low, "FieldsList", fields)
+        fields = [low]
+    fld.setAsBackgroundMesh(fields[0])
     for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber(f"Mesh.{opt}", 0)
     gmsh.option.setNumber("Mesh.Algorithm", 6)
+    # Gmsh integrates 1/size along each curve to place the 1D nodes; its default precision
+    # (1e-9) made 1D meshing of the whole-gear splines take 1.3 s instead of 0.09 s
+    gmsh.option.setNumber("Mesh.LcIntegrationPrecision", 1e-5)
     gmsh.model.mesh.generate(2)
     gmsh.model.mesh.setOrder(2)
     return _extract_tri_mesh(gmsh, curves)
@@ -301,6 +437,7 @@ def sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D | None = None, cac
     """The (cached) 2D sector mesh of ``gear``; see the module docstring for the groups."""
     settings = settings or SectorSettings2D.for_gear(gear)
     r_in = inner_radius(gear, settings)
+    check_size(gear, settings)
     inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in}
     data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh_2d(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
