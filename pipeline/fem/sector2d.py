@@ -5,9 +5,20 @@ The sector is bounded by the tooth outline of ``teeth`` consecutive teeth
 root and tip circles), two radial *cut* lines through the middles of the outer
 tooth spaces, and the *bore* circle (external gear: ``gear.bore_radius``; a
 solid gear gets a hub circle, see :func:`inner_radius`; internal gear: the outer
-rim circle ``gear.bore_radius``). Quadratic (6-node) triangles, graded from
-``size_flank`` on the whole tooth outline to ``size_body`` a distance
-``grading`` away, so flanks and fillets are refined.
+rim circle ``gear.bore_radius``, the outer boundary of a whole ring). Quadratic
+(6-node) triangles, graded from ``size_flank`` on the tooth outline to ``size_body`` a
+distance ``grading`` away, so flanks and fillets are refined.
+
+Graded meshes (:meth:`SectorSettings2D.graded`): only the ``loaded`` teeth get
+``size_flank`` on their outline, the others ``size_tooth``; from either the size grows
+linearly with the distance up to ``size_body``. A whole gear then has most of its
+unknowns where the loads are (the assembly-error paper's gear: 20k unknowns instead of
+221k, mesh stiffness within 0.3 %: :mod:`pipeline.contact.fe2d_source`). The outline of
+unloaded teeth is thinned to every ``THIN``-th profile point.
+
+Size guard: :func:`check_size` estimates the unknowns of the FE model before meshing
+(:func:`estimated_size`, within about 30 %) and refuses meshes above ``MAX_DOF`` (about
+14 GiB of FE memory) with the estimate, instead of running out of memory.
 
 Tooth ``k`` (``k = 0 .. teeth-1``) is centred on the polar angle
 ``pi/2 + (k - (teeth-1)/2) 2 pi/z``: tooth 0 is the most clockwise. Its *right*
@@ -25,33 +36,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from skfem import MeshTri2
 
 from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
+from pipeline.fem.outline2d import inner_radius, outline_pieces
+from pipeline.fem.sector2d_size import check_size
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
-if TYPE_CHECKING:
-    from pipeline.fem.sector3d import SectorSettings3D
-
-CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
-# outline points closer than this (times m_n) are one point: Gmsh cannot mesh a zero-length curve
-MERGE_TOL = 1e-6
 # graded meshes (SectorSettings2D.graded): unloaded-tooth outline size and largest size in
 # m_n, size growth per distance (module docstring, "Graded meshes")
 GRADED_TOOTH = 0.6
 GRADED_BODY = 4.0
 GRADED_GROWTH = 0.5
 THIN = 4  # outline point stride on unloaded teeth of graded meshes
-# FE memory per unknown of a 2D P2 model (stiffness, CHOLMOD factor, loads; peak RSS of
-# whole-gear builds of 97k-526k unknowns rose by 2.8 kB per unknown), and the largest
-# model accepted (about 14 GiB on a 24 GiB machine)
-BYTES_PER_DOF = 3500
-MAX_DOF = 4_000_000
 
 
 @dataclass(frozen=True)
@@ -158,112 +159,6 @@ class SectorMesh2D:
         return int(self.mesh.doflocs.shape[1])
 
 
-def inner_radius(gear: GearSpec, settings: SectorSettings2D | SectorSettings3D) -> float:
-    """Radius of the sector's inner (external gear) or outer (internal gear) boundary, m.
-
-    ``settings.inner_radius`` if given, else ``gear.bore_radius`` if > 0, else (solid
-    external gear) a hub at ``max(0.25 r_f, r_f - 6 m_n)``: a solid gear has no
-    bore, and a sector cannot reach the centre.
-    """
-    if settings.inner_radius is not None:
-        r = settings.inner_radius
-    elif gear.bore_radius > 0:
-        r = gear.bore_radius
-    else:
-        r = max(0.25 * gear.root_radius, gear.root_radius - 6.0 * gear.module)
-    rf = gear.root_radius
-    if gear.internal and r <= rf * 1.001:
-        raise InputError(f"sector rim radius {r:.6g} m must exceed the root radius {rf:.6g} m")
-    if not gear.internal and r >= rf * 0.999:
-        raise InputError(f"sector bore radius {r:.6g} m must be below the root radius {rf:.6g} m")
-    return float(r)
-
-
-def _drop_repeated(pts: np.ndarray, tol: float) -> np.ndarray:
-    """``pts`` (m, 2) without the points closer than ``tol`` (m) to their predecessor.
-
-    The profile repeats points where a feature has zero length: when the cutter tip
-    round fills the whole rack tooth space (e.g. h_f* = 1.55 with the largest
-    rho_a0*), the root circle land shrinks to the middle of the tooth space, and its
-    ``max(4, n // 6)`` points (twice, from both flanks) coincide. Splines and lines
-    through such points have zero length, which Gmsh cannot mesh (it hangs on the
-    whole gear with "Impossible to recover edge", or returns no triangles).
-    """
-    step = np.hypot(*np.diff(pts, axis=0).T)
-    return pts[np.r_[True, step > tol]]
-
-
-def outline_pieces(gear: GearSpec, teeth: int, points: int) -> list[tuple[str, np.ndarray]]:
-    """The outline as (group name, (m, 2) polyline) pieces, CCW, split at flank ends/corners."""
-    from pipeline.geometry.profile import gear_outline
-
-    pts = _drop_repeated(gear_outline(gear, teeth=teeth, points=points),
-                         MERGE_TOL * gear.module)
-    z = gear.teeth
-    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
-    cuts = [0]
-    names = []
-    for k in range(teeth):
-        centre = math.pi / 2 + (k - (teeth - 1) / 2.0) * 2.0 * math.pi / z
-        i_tip = int(np.argmin(np.abs(ang - centre)))
-        i_end = int(np.argmin(np.abs(ang - (centre + math.pi / z))))
-        cuts += [i_tip, i_end]
-        names += [f"right{k}", f"left{k}"]
-    pieces = []
-    for (a, b), name in zip(zip(cuts[:-1], cuts[1:], strict=True), names, strict=True):
-        seg = pts[a:b + 1]
-        # split further at sharp corners (tip corner) so splines do not overshoot
-        d = np.diff(seg, axis=0)
-        turn = np.abs(np.degrees(np.diff(np.unwrap(np.arctan2(d[:, 1], d[:, 0])))))
-        corners = [0, *(np.flatnonzero(turn > CORNER_DEG) + 1).tolist(), len(seg) - 1]
-        for c0, c1 in zip(corners[:-1], corners[1:], strict=True):
-            if c1 > c0:
-                pieces.append((name, seg[c0:c1 + 1]))
-    return pieces
-
-
-def estimated_size(gear: GearSpec, settings: SectorSettings2D) -> tuple[int, float]:
-    """(unknowns, memory in bytes) of the FE model of the mesh ``settings`` would give,
-    estimated before meshing (within about 30 %, see :data:`BYTES_PER_DOF`).
-
-    Triangles: the band within ``size/2`` of the outline at its size, the band over which
-    the size grows linearly (``int dd / (A_eq h(d)^2)`` per unit outline length), the rest
-    of the area at ``size_body``; ``A_eq = sqrt(3)/4 h^2``; two P2 nodes and four unknowns
-    per triangle.
-    """
-    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
-    keep = (None if settings.loaded is None
-            else {f"{side}{k}" for k in settings.loaded for side in ("right", "left")})
-    length = {True: 0.0, False: 0.0}
-    for name, seg in pieces:
-        length[keep is None or name in keep] += float(np.hypot(*np.diff(seg, axis=0).T).sum())
-    h0, hb = settings.size_flank, settings.size_body
-    rate = (hb - h0) / max(settings.grading - 0.5 * h0, 1e-12)
-    a_eq = math.sqrt(3.0) / 4.0
-    r_in = inner_radius(gear, settings)
-    area = math.pi * abs(gear.tip_radius_**2 - r_in**2) * settings.teeth / gear.teeth
-    tri = area / (a_eq * hb * hb)
-    for fine, size in ((True, h0), (False, settings.size_tooth or h0)):
-        band = 0.5 / (a_eq * size) + (1.0 / size - 1.0 / hb) / (a_eq * max(rate, 1e-12))
-        tri += length[fine] * band
-    tri = min(tri, area / (a_eq * h0 * h0))
-    dof = int(4 * tri)
-    return dof, dof * BYTES_PER_DOF
-
-
-def check_size(gear: GearSpec, settings: SectorSettings2D, max_dof: int = MAX_DOF) -> int:
-    """Refuse (InputError) a mesh whose FE model would exceed ``max_dof`` unknowns; returns
-    the estimate."""
-    dof, mem = estimated_size(gear, settings)
-    if dof > max_dof:
-        raise InputError(
-            f"the 2D mesh of {gear.name or 'the gear'} (flank element {settings.size_flank:.3g} m, "
-            f"{settings.teeth} teeth) would have about {dof / 1e6:.1f} million unknowns and "
-            f"need about {mem / 2**30:.0f} GiB; the limit is {max_dof / 1e6:.1f} million "
-            f"unknowns: use a smaller refinement (or fewer teeth)")
-    return dof
-
-
 def _thin_unloaded(pieces: list[tuple[str, np.ndarray]], settings: SectorSettings2D
                    ) -> list[tuple[str, np.ndarray]]:
     """Every ``THIN``-th outline point (and the ends) on the pieces of unloaded teeth.
@@ -315,7 +210,7 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
                          for i in range(3)]
             # the first loop is the outer boundary: the rim circle of an internal gear
             loops = [geo.addCurveLoop(loop), geo.addCurveLoop(bore_arcs)]
-            surf = geo.addPlaneSurface(loops[::-1] if gear.internal else loops)
+            geo.addPlaneSurface(loops[::-1] if gear.internal else loops)
             geo.synchronize()
             curves["bore"] = bore_arcs
             return _mesh_and_extract(gmsh, curves, outline_curves, settings)
@@ -327,7 +222,7 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
         bore = geo.addCircleArc(p_end, centre, p_start)
         cut_right = geo.addLine(p_start, first)
         loop += [cut_left, bore, cut_right]
-        surf = geo.addPlaneSurface([geo.addCurveLoop(loop)])
+        geo.addPlaneSurface([geo.addCurveLoop(loop)])
         geo.synchronize()
         curves.update({"cut_left": [cut_left], "bore": [bore], "cut_right": [cut_right]})
         return _mesh_and_extract(gmsh, curves, outline_curves, settings)

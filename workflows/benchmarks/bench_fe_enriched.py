@@ -101,7 +101,7 @@ def cold_and_warm(settings: dict, repeat: int) -> dict:
 
 def fit_limit(levels: list[float], values: list[float]) -> tuple[float, float]:
     """(k_inf, p) of ``k = k_inf + C h^p`` through the three finest levels (h = 1/level)."""
-    (h1, k1), (h2, k2), (h3, k3) = sorted(zip(1.0 / np.asarray(levels), values))[:3]
+    (h1, k1), (h2, k2), (h3, k3) = sorted(zip(1.0 / np.asarray(levels), values, strict=True))[:3]
     r = (k3 - k2) / (k2 - k1)  # = ((h3^p - h2^p) / (h2^p - h1^p))
     p = float(np.log(r) / np.log(h3 / h2)) if h3 / h2 == h2 / h1 else _solve_p(h1, h2, h3, r)
     c = (k2 - k1) / (h2**p - h1**p)
