@@ -57,14 +57,13 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
     for gear, r in ((pair.pinion, r1), (pair.gear, r2)):
         angle, h_c, _ = load_geometry(gear, r)
         depths.append(np.abs(h_c / np.cos(angle)))
+    radius_1, radius_2 = rho1, rho2
     if pair.gear.internal:
-        # concave ring flank: only R = rho1 rho2 / (rho1 + rho2) enters the Hertz terms;
-        # pass the convex radius with the same effective radius
-        r_eff = rho1 * np.abs(rho2) / (np.abs(rho2) - rho1)
-        radius_2 = r_eff * rho1 / (rho1 - r_eff)
-    else:
-        radius_2 = rho2
-    return HertzLineContact(points.width, rho1, radius_2, depths[0], depths[1],
+        # Convex pinion flank in the concave ring flank: the Hertz half-width and pressure
+        # depend on the radii only through R = rho1 |rho2| / (|rho2| - rho1) (> rho1), and
+        # HertzLineContact takes two convex radii; two equal radii 2R have that R.
+        radius_1 = radius_2 = 2.0 * rho1 * np.abs(rho2) / (np.abs(rho2) - rho1)
+    return HertzLineContact(points.width, radius_1, radius_2, depths[0], depths[1],
                             pair.pinion.material, pair.gear.material)
 
 

@@ -82,9 +82,12 @@ class GearSpec:
     addendum_coef : h_a* (-), tip height over m_n (reference profile), default 1.
     dedendum_coef : h_f* (-), root depth over m_n, default 1.25.
     cutter_tip_radius_coef : rho_a0* (-), tip radius of the rack cutter over m_n.
-        Determines the trochoidal fillet. Default (``None``): ISO 53 profile A's
-        0.38, or the largest radius that fits the rack tooth space when that is
-        smaller (e.g. 0.318 at 25 deg with h_f* = 1.25).
+        Determines the trochoidal fillet (internal gears: the circular root fillet).
+        Default (``None``): ISO 53 profile A's 0.38, or the largest radius that fits
+        the rack tooth space when that is smaller (e.g. 0.318 at 25 deg with
+        h_f* = 1.25); for an internal gear also at most the largest fillet that fits
+        its own tooth space at the root (:attr:`ring_fillet_limit`, e.g. 0.287 for
+        95 teeth at 25 deg).
     bore_radius : radius of the bore in m for an external gear (0 for a solid
         disc); for an internal gear the *outer* radius of the ring rim.
     internal : True for an internal (ring) gear.
@@ -132,6 +135,12 @@ class GearSpec:
         check_range(f"{p}.profile_shift", self.profile_shift, -1.5, 1.5)
         check_range(f"{p}.addendum_coef", self.addendum_coef, 0.3, 2.0)
         check_range(f"{p}.dedendum_coef", self.dedendum_coef, self.addendum_coef, 2.5)
+        if self.internal and self.half_tooth_angle(self.root_radius) >= math.pi / self.teeth:
+            raise InputError(
+                f"{p}: the tooth spaces of the internal gear close before its root circle "
+                f"(root radius {self.root_radius:.6g} m); reduce {p}.dedendum_coef = "
+                f"{self.dedendum_coef} or raise {p}.profile_shift = {self.profile_shift}"
+            )
         if self.cutter_tip_radius_coef is None:
             object.__setattr__(self, "cutter_tip_radius_coef",
                                min(0.38, self.max_cutter_tip_radius_coef))
@@ -167,10 +176,53 @@ class GearSpec:
     # ---- basic derived quantities -------------------------------------------------------
     @property
     def max_cutter_tip_radius_coef(self) -> float:
-        """Largest rack tip radius (over m_n) that fits the rack tooth space (ISO 53)."""
+        """Largest cutter tip radius (over m_n) that fits the tooth space.
+
+        The rack tooth space (ISO 53) for every gear; for an internal gear also the ring's
+        own tooth space at its root, which is narrower than the rack's (see
+        :attr:`ring_fillet_limit`).
+        """
         a = self.pressure_angle
         e = math.pi / 4 - self.dedendum_coef * math.tan(a)  # half space width at tip line / m
-        return max(0.0, e * math.cos(a) / (1.0 - math.sin(a)))
+        rack = max(0.0, e * math.cos(a) / (1.0 - math.sin(a)))
+        return min(rack, self.ring_fillet_limit / self.module) if self.internal else rack
+
+    @cached_property
+    def ring_fillet_limit(self) -> float:
+        """Internal gears: the largest root fillet radius that fits the tooth space, m.
+
+        The ring's fillet is the arc of radius rho tangent to the root circle (centre at
+        ``r_f - rho``) and to the involute (:mod:`pipeline.geometry.profile`). Tangent to the
+        involute at radius R, its centre lies on the involute's normal, the line tangent to
+        the base circle, ``rho`` from the flank towards the base tangent point; so
+        ``r_b^2 + (r_b tan a_R - rho)^2 = (r_f - rho)^2``, i.e.
+        ``rho(R) = (r_f^2 - R^2) / (2 (r_f - r_b tan a_R))``, and the centre's polar angle
+        from the tooth centre line is ``psi(R) + a_R - atan(tan a_R - rho / r_b)``. The
+        fillet fits while that angle is at most ``pi / z`` (the middle of the space; at the
+        limit the two fillets of a space meet on the root circle). ``inf`` for external gears.
+        """
+        if not self.internal:
+            return math.inf
+        rb, rf = self.base_radius, self.root_radius
+        half_space = math.pi / self.teeth
+
+        def rho(r: float) -> float:
+            return (rf * rf - r * r) / (2.0 * (rf - math.sqrt(r * r - rb * rb)))
+
+        def excess(r: float) -> float:
+            t = math.sqrt(r * r - rb * rb) / rb
+            return self.half_tooth_angle(r) + math.atan(t) - math.atan(t - rho(r) / rb) \
+                - half_space
+
+        lo, hi = max(self.tip_radius_, rb * (1.0 + 1e-12)), rf
+        if excess(hi) >= 0.0:
+            return 0.0  # the spaces close before the root circle (refused in __post_init__)
+        if excess(lo) <= 0.0:
+            return rho(lo)
+        for _ in range(80):  # bisection: the centre moves into the space as R falls
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if excess(mid) > 0.0 else (lo, mid)
+        return rho(hi)
 
     @cached_property
     def transverse_module(self) -> float:

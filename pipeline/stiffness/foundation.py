@@ -65,11 +65,10 @@ def sainsot_polynomials(h_f: ArrayLike, theta_f: ArrayLike) -> np.ndarray:
 
 def foundation_coefficients(root_radius: float, body_radius: float, theta_f: float
                             ) -> FoundationCoefficients:
-    """Coefficients for a gear with root radius ``r_f`` and bore radius ``r_int`` (m).
+    """Coefficients for an external gear with root radius ``r_f`` and bore radius ``r_int`` (m).
 
-    For an internal (ring) gear pass the rim outer radius as ``body_radius``; the
-    ratio is then taken as ``r_rim / r_f`` (an approximation: Sainsot's fit is for
-    external gear bodies).
+    Sainsot's fit is for external gear bodies; ring gears have their own body term
+    (:mod:`pipeline.stiffness.ring_body`).
     """
     if body_radius <= 0:
         h_f = H_F_RANGE[1]  # solid disc: the fit saturates; use its upper end

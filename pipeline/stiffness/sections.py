@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pipeline.geometry.gear import GearSpec
+from pipeline.geometry.profile import ToothProfile
 
 
 @dataclass(frozen=True)
@@ -104,26 +105,71 @@ def _graded(n: int) -> np.ndarray:
 
 
 def involute_sections(gear: GearSpec, n: int = 4000) -> ToothSections:
-    """Sections of the classical model: pure involute, clamped at the base circle.
+    """Sections of the classical model: the pure involute, sections normal to the centreline.
 
-    This is the textbook model behind the closed-form integrals of Yang et al. (2026)
-    (eqs. 11-13): the tooth is cut off at the base circle and its sections are
-    chords perpendicular to the centreline. Used as an exact reference for the
-    numerical integration; the pipeline's default uses the exact profile.
+    External gears (the textbook model behind the closed-form integrals of Yang et al.
+    (2026), eqs. 11-13): the tooth is cut off at the base circle and clamped there.
+    Internal gears (the ring tooth of Chen and Shao (2013) and Liang et al. (2014)): the
+    involute runs from the tip circle out to the root circle, and the tooth is clamped at
+    the chord through the two root-circle points of its flanks, at the centreline
+    distance ``r_f cos(psi_f)`` from the gear centre (``psi_f`` the half tooth angle on
+    the root circle). Used as an exact reference for the numerical integration; the
+    pipeline's default uses the exact profile (:func:`exact_sections`).
     """
-    if gear.internal:
-        raise ValueError("involute_sections models external teeth only")
-    rb = gear.base_radius
-    psi_b = gear.half_tooth_angle(rb)  # half angle at the base circle (Yang et al.: alpha_2)
-    ra = gear.tip_radius_
-    r = rb + (ra - rb) * _graded(n)
+    r0, r1 = (gear.base_radius, gear.tip_radius_) if not gear.internal else (
+        gear.root_radius, gear.tip_radius_)
+    psi_0 = gear.half_tooth_angle(r0)  # half angle at the clamp (Yang et al.: alpha_2)
+    r = r0 + (r1 - r0) * _graded(n)
     psi = _half_angles(gear, r)
     x = r * np.sin(psi)
     y = r * np.cos(psi)
-    y0 = rb * math.cos(psi_b)
-    # y(r) increases monotonically on the involute for tooth shapes of interest
-    order = np.argsort(y)
-    return ToothSections.from_half_thickness(y[order] - y0, x[order], clamp_radius=y0)
+    y0 = r0 * math.cos(psi_0)
+    # y(r) is monotonic on the involute for tooth shapes of interest (checked by ToothSections)
+    eta = np.abs(y - y0)
+    order = np.argsort(eta)
+    return ToothSections.from_half_thickness(eta[order], x[order], clamp_radius=y0,
+                                             internal=gear.internal)
+
+
+def exact_sections(profile: ToothProfile, theta_f: float, n: int = 3000) -> ToothSections:
+    """Sections of the exact tooth profile (involute + fillet), clamped at the root.
+
+    External gears: the clamp is the section at the root radius ``r_f`` on the centreline
+    and the sections run up to the tip corner.
+
+    Internal gears: the tooth hangs from the rim (the root circle is its *largest*
+    radius) and points inwards. It is clamped at the chord through the two points where
+    its fillets leave the root circle, at ``y_0 = r_f cos(theta_f)`` from the gear centre;
+    the sections run inwards to the tip corner, and their half thickness is read on the
+    part of the flank that falls monotonically from the top of the fillet to the tip
+    (above that top a horizontal cut lies in the rim, not in the tooth). Between the
+    tip corners and the tip circle on the centreline (``r_a`` vs ``r_a cos(psi_a)``,
+    0.02 % of the tooth height for 60 teeth) the two tip horns are counted as one section
+    of the flank's width, as the external model counts the tip cap.
+
+    Parameters
+    ----------
+    profile : the exact profile (:func:`pipeline.geometry.profile.tooth_profile`).
+    theta_f : half angle of the tooth where its fillet leaves the root circle, rad.
+    n : tabulated sections, graded towards the clamp.
+    """
+    gear = profile.gear
+    rf = gear.root_radius
+    u = _graded(n)
+    if not gear.internal:
+        y = rf + (float(np.max(profile.y)) - rf) * u
+        h = np.asarray(profile.half_thickness(y), dtype=float)
+        keep = h > 0
+        return ToothSections.from_half_thickness(y[keep] - rf, h[keep], clamp_radius=rf)
+    top = int(np.argmax(profile.y))
+    yb, xb = profile.y[top:][::-1], profile.x[top:][::-1]  # tip corner -> top of the fillet
+    if np.any(np.diff(yb) <= 0):
+        raise ValueError(f"{gear.name}: the ring tooth flank is not monotonic from its tip "
+                         "to the top of its fillet")
+    y0 = rf * math.cos(theta_f)
+    y = y0 - (y0 - yb[0]) * u
+    h = np.interp(y, yb, xb)
+    return ToothSections.from_half_thickness(y0 - y, h, clamp_radius=y0, internal=True)
 
 
 def _half_angles(gear: GearSpec, r: np.ndarray) -> np.ndarray:
@@ -133,6 +179,6 @@ def _half_angles(gear: GearSpec, r: np.ndarray) -> np.ndarray:
     at = gear.transverse_pressure_angle
     a = np.arccos(np.clip(gear.base_radius / r, -1.0, 1.0))
     psi_ref = gear.reference_tooth_thickness / (2.0 * gear.reference_radius)
-    if gear.internal:
-        return psi_ref - (inv(a) - inv(at))
+    if gear.internal:  # the ring tooth widens towards its root (GearSpec.half_tooth_angle)
+        return psi_ref + inv(a) - inv(at)
     return psi_ref + inv(at) - inv(a)

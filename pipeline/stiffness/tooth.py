@@ -11,9 +11,16 @@ root circle (sections from :mod:`pipeline.stiffness.sections`):
 
 (the assembly-error paper; Yang et al. 2026, eqs. 1-3 and 21-23), where ``eta_c`` is the load
 point's centreline distance from the clamp and ``h_c`` its half thickness. The body
-(fillet-foundation) term is Sainsot's (:mod:`pipeline.stiffness.foundation`),
-applied to the resultant of normal load and friction. All compliances here are
-*per unit face width* (m^2/N): divide by the face width (m) for m/N.
+(fillet-foundation) term is Sainsot's (:mod:`pipeline.stiffness.foundation`) for
+external gears and its refit for ring rims (:mod:`pipeline.stiffness.ring_body`) for
+internal gears, applied to the resultant of normal load and friction. All compliances
+here are *per unit face width* (m^2/N): divide by the face width (m) for m/N.
+
+Internal (ring) teeth are the same cantilever turned round: the root circle is the
+tooth's *largest* radius, the clamp is the chord through the points where its fillets
+leave the root circle, and ``eta`` runs inwards to the tip
+(:func:`pipeline.stiffness.sections.exact_sections`). The load geometry is derived in
+:func:`load_geometry`; with it the integrals above hold unchanged.
 """
 
 from __future__ import annotations
@@ -31,7 +38,8 @@ from pipeline.stiffness.foundation import (
     foundation_compliance,
 )
 from pipeline.stiffness.friction import load_components
-from pipeline.stiffness.sections import ToothSections, _half_angles
+from pipeline.stiffness.ring_body import ring_coefficients
+from pipeline.stiffness.sections import ToothSections, _half_angles, exact_sections
 
 
 @dataclass(frozen=True)
@@ -68,23 +76,26 @@ class ToothCompliance:
 
 
 def tooth_model(gear: GearSpec, n_sections: int = 3000) -> ToothModel:
-    """Tooth model on the exact profile (involute + trochoidal fillet), clamped at the root."""
+    """Tooth model on the exact profile (involute + fillet), clamped at the root.
+
+    External and internal teeth alike (:func:`pipeline.stiffness.sections.exact_sections`);
+    the body term is :func:`pipeline.stiffness.foundation.body_coefficients`.
+    """
     from pipeline.geometry.profile import tooth_profile
 
     prof = tooth_profile(gear)
     rf = gear.root_radius
-    # centreline coordinates from the root circle to the tip, graded towards the root
-    y_tip = float(np.max(prof.y)) if not gear.internal else float(np.min(prof.y))
-    u = np.linspace(0.0, 1.0, n_sections) ** 1.5
-    y = rf + (y_tip - rf) * u
-    h = np.asarray(prof.half_thickness(y), dtype=float)
-    keep = h > 0
-    sections = ToothSections.from_half_thickness(
-        np.abs(y[keep] - rf), h[keep], clamp_radius=rf, internal=gear.internal
-    )
     theta_f = _root_half_angle(prof.x, prof.y, rf, gear)
-    coef = foundation_coefficients(rf, gear.bore_radius, theta_f)
+    sections = exact_sections(prof, theta_f, n_sections)
+    coef = body_coefficients(gear, theta_f)
     return ToothModel(gear, sections, coef, 2.0 * rf * theta_f)
+
+
+def body_coefficients(gear: GearSpec, theta_f: float) -> FoundationCoefficients:
+    """Body-term coefficients: Sainsot's for external gears, the ring fit for internal ones."""
+    if gear.internal:
+        return ring_coefficients(gear, theta_f)
+    return foundation_coefficients(gear.root_radius, gear.bore_radius, theta_f)
 
 
 def _root_half_angle(x: np.ndarray, y: np.ndarray, rf: float, gear: GearSpec) -> float:
@@ -99,21 +110,39 @@ def _root_half_angle(x: np.ndarray, y: np.ndarray, rf: float, gear: GearSpec) ->
 
 
 def classical_tooth_model(gear: GearSpec, n_sections: int = 4000) -> ToothModel:
-    """The textbook model (pure involute clamped at the base circle, Yang et al. 2026, eqs. 11-13).
+    """The textbook model: pure involute, no fillet.
 
-    Kept as an exact reference for the numerical integration; the foundation uses
-    ``theta_f`` = half tooth angle at the base circle and the root radius.
+    External teeth are clamped at the base circle (Yang et al. 2026, eqs. 11-13), internal
+    teeth at the chord between their flanks' root-circle points (Chen and Shao 2013); see
+    :func:`pipeline.stiffness.sections.involute_sections`. Kept as an exact reference for
+    the numerical integration; the body term uses ``theta_f`` = half tooth angle at the
+    clamp circle (base circle, or root circle of a ring).
     """
     from pipeline.stiffness.sections import involute_sections
 
     sections = involute_sections(gear, n_sections)
-    theta_f = float(gear.half_tooth_angle(gear.base_radius))
-    coef = foundation_coefficients(gear.root_radius, gear.bore_radius, theta_f)
+    clamp = gear.root_radius if gear.internal else gear.base_radius
+    theta_f = float(gear.half_tooth_angle(clamp))
+    coef = body_coefficients(gear, theta_f)
     return ToothModel(gear, sections, coef, 2.0 * gear.root_radius * theta_f)
 
 
 def load_geometry(gear: GearSpec, contact_radius: ArrayLike) -> tuple[np.ndarray, ...]:
     """Load point geometry on the involute at radius ``R`` (m), any shape.
+
+    Tooth frame: centre line along +y, the loaded (right) flank at x > 0, the flank point
+    at polar angle ``psi`` (half tooth angle) from +y, ``e_r = (sin psi, cos psi)``,
+    ``e_t = (cos psi, -sin psi)``. The involute's normal at radius R is tangent to the base
+    circle, at the profile angle ``alpha = acos(r_b / R)`` to ``e_t``. External tooth
+    (narrowing outwards): outward flank normal ``cos(alpha) e_t + sin(alpha) e_r``, so the
+    normal load ``-F n`` has ``F cos(alpha - psi)`` along -x (bending) and
+    ``F sin(alpha - psi)`` along -y, towards the root (compression). Internal tooth
+    (widening outwards, root at the larger radius): outward normal
+    ``cos(alpha) e_t - sin(alpha) e_r``, so ``F cos(alpha + psi)`` along -x and
+    ``F sin(alpha + psi)`` along +y, again towards the root. Either way the load angle
+    ``a`` (to the normal of the centre line) enters :func:`load_components` and the
+    section moment is ``F_b (eta_c - eta) - F_a h_c`` with ``eta`` measured from the
+    clamp towards the tip.
 
     Returns
     -------
@@ -150,8 +179,10 @@ def tooth_compliance(model: ToothModel, contact_radius: ArrayLike, mu: ArrayLike
     axial = fa * fa * a0 / mat.youngs_modulus
     # Body: the resultant of normal load and friction, at its own angle and line.
     a_eff = np.arctan2(fa, fb)
-    cross = y_c + h_c * np.tan(a_eff) if g.internal else y_c - h_c * np.tan(a_eff)
-    u_f = np.abs(cross - g.root_radius)
+    if g.internal:  # signed, from the clamped root chord towards the tip (ring_body)
+        u_f = model.sections.clamp_radius - (y_c + h_c * np.tan(a_eff))
+    else:
+        u_f = np.abs(y_c - h_c * np.tan(a_eff) - g.root_radius)
     found = (fa * fa + fb * fb) * foundation_compliance(
         model.foundation, u_f, model.root_thickness, a_eff, mat.youngs_modulus
     )
