@@ -13,7 +13,7 @@ Graded meshes (:meth:`SectorSettings2D.graded`): only the ``loaded`` teeth get
 ``size_flank`` on their outline, the others ``size_tooth``; from either the size grows
 linearly with the distance up to ``size_body``. A whole gear then has most of its
 unknowns where the loads are (the assembly-error paper's gear: 20k unknowns instead of
-221k, mesh stiffness within 0.3 %: :mod:`pipeline.contact.fe2d_source`). The outline of
+221k, mesh stiffness within 0.4 %: :mod:`pipeline.contact.fe2d_source`). The outline of
 unloaded teeth is thinned to every ``THIN``-th profile point.
 
 Size guard: :func:`check_size` estimates the unknowns of the FE model before meshing
