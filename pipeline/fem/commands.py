@@ -24,7 +24,8 @@ import numpy as np
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
-from pipeline.fem.sector_analysis import SectorResult, analyse_sector
+from pipeline.fem.sector2d_size import check_size
+from pipeline.fem.sector_analysis import SectorResult, analyse_sector, sector_settings
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.validation import InputError
@@ -87,6 +88,8 @@ def run(args: argparse.Namespace) -> int:
     pair = box.require_pair()
     opts = options(box.fe, args)
     out = output_dir(args, "fe")
+    for gear in (pair.pinion, pair.gear):  # refuse models too big for the machine up front
+        check_size(gear, sector_settings(gear, opts))
     summary, files = {}, []
     for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)), "2D sector FE"):
         res = analyse_sector(gear, opts)
