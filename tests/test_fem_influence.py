@@ -136,7 +136,8 @@ def test_whole_gear_mesh_and_fe_source(spur_pair_z50):
     The FE source satisfies the ComplianceSource protocol; G is symmetric, positive, with
     rim coupling between the two tooth pairs; its diagonal lies within 20 % of the
     analytical slice compliance (bending + shear + axial + foundation of both teeth):
-    measured -4 % over the mesh cycle (whole the assembly-error paper gears, plane stress, ~18 s).
+    measured -4 % over the mesh cycle (whole gears of the assembly-error paper, graded, plane
+    stress).
     """
     from pipeline.contact import FE2DCompliance, FE2DSettings
     from pipeline.contact.source import ComplianceSource, SliceCompliance

@@ -8,7 +8,10 @@ the structural influence matrix of ``--points`` points per flank on every tooth
 along the profile against the analytical tooth compliance (bending + shear +
 axial + Sainsot foundation, :mod:`pipeline.stiffness.tooth`), PNGs of the mesh
 and of the sector deformed by a unit load at the pitch radius. Writes CSV/JSON/PNG
-and ``run.json`` to ``results/<config>/fe/``.
+and ``run.json`` to ``results/<config>/fe/``. Works for internal gears (ring sectors:
+teeth pointing inwards, clamped on the rim circle ``rim_outer_radius``). A refinement
+whose model would not fit the machine is refused before meshing with its estimated
+size (:mod:`pipeline.fem.sector2d_size`).
 """
 
 from __future__ import annotations
@@ -21,8 +24,10 @@ import numpy as np
 
 from pipeline.commands_common import add_common_arguments, emit, load, output_dir
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
-from pipeline.fem.sector_analysis import SectorResult, analyse_sector
+from pipeline.fem.sector2d_size import check_size
+from pipeline.fem.sector_analysis import SectorResult, analyse_sector, sector_settings
 from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.progress import progress
 from pipeline.validation import InputError
 
 
@@ -83,8 +88,10 @@ def run(args: argparse.Namespace) -> int:
     pair = box.require_pair()
     opts = options(box.fe, args)
     out = output_dir(args, "fe")
+    for gear in (pair.pinion, pair.gear):  # refuse models too big for the machine up front
+        check_size(gear, sector_settings(gear, opts))
     summary, files = {}, []
-    for tag, gear in (("pinion", pair.pinion), ("gear", pair.gear)):
+    for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)), "2D sector FE"):
         res = analyse_sector(gear, opts)
         summary[tag] = res.summary()
         files += write_gear(res, out, tag)

@@ -137,14 +137,19 @@ def patch_halfplane_compliance(separation: np.ndarray, depth: np.ndarray, half_w
 
 
 def nearfield_halfplane(points: FlankPoints, half_width: float, material: Material,
-                        kind: str = "plane_strain") -> np.ndarray:
+                        kind: str = "plane_strain", panels: int = 200) -> np.ndarray:
     """(n, n) ``H`` of the 2D ``points`` (module docstring), m^2/N: same-flank pairs, separated
-    by their arc coordinates, at the geometric mean of their depths; zero elsewhere."""
+    by their arc coordinates, at the geometric mean of their depths; zero elsewhere.
+
+    ``panels`` of the product integration: 200 differ from 800 by 2e-5 of the largest
+    entry (30 points per flank, 0.1 m_n patches; measured), far below the FE error, at a
+    quarter of the cost.
+    """
     H = np.zeros((len(points), len(points)))
     ii, jj = np.nonzero(points.same_flank())
     h = np.sqrt(points.depth[ii] * points.depth[jj])
     H[ii, jj] = patch_halfplane_compliance(points.arc[ii] - points.arc[jj], h, half_width,
-                                           material, kind)
+                                           material, kind, panels)
     return H
 
 

@@ -5,7 +5,9 @@ along the local inward normal on the facets of its flank (group ``right{k}`` /
 ``left{k}`` of the sector mesh), as consistent nodal forces of the P2 displacement.
 
 * 2D: ``q(t) = cos^2(pi t / 2c) / c`` over the arc coordinate ``t`` (``|t| < c``), a
-  unit line load (N/m) integrated with scikit-fem's ``FacetBasis``.
+  unit line load (N/m) integrated on the isoparametric 3-node boundary edges directly
+  (scikit-fem's ``FacetBasis`` gives the same forces to 1e-13 but inverts the curved
+  triangle map by a Newton iteration that fails on small elements of large gears).
 * 3D: ``cos^2(pi t / 2c) cos^2(pi w / 2c)`` in the profile (``t``) and face (``w``)
   directions of the flank frame (:mod:`pipeline.fem.flank_grid`), scaled so that its
   resultant is 1 N (the scale is integrated on the curved facets, so a patch cut by an
@@ -20,7 +22,6 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import ElementTriP2, FacetBasis
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTri
 
@@ -46,6 +47,38 @@ def flank_names(points: FlankPoints) -> list[str]:
             for k, s in zip(points.tooth, points.side, strict=True)]
 
 
+def boundary_edges_2d(sector: SectorMesh2D, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Scalar P2 DOFs (3, nf) of the facets of group ``name`` (end vertices, then the edge
+    node) and the coordinates (2, 3, nf) of those nodes, m."""
+    mesh = sector.mesh
+    f = sector.facets[name]
+    dofs = np.vstack([mesh.facets[:, f], mesh.nvertices + f])
+    return dofs, mesh.doflocs[:, dofs]
+
+
+def _edge_frames(sector: SectorMesh2D, name: str, order: int
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Quadrature on the curved 3-node edges of group ``name``: scalar DOFs (3, nf), shape
+    values (3, nq), points X (2, nf, nq), outward unit normals (2, nf, nq), length weights
+    (nf, nq) in m."""
+    dofs, xe = boundary_edges_2d(sector, name)
+    g, w = np.polynomial.legendre.leggauss(order // 2 + 1)
+    xi, w = 0.5 * (g + 1.0), 0.5 * w
+    N = np.array([(1 - xi) * (1 - 2 * xi), xi * (2 * xi - 1), 4 * xi * (1 - xi)])
+    dN = np.array([4 * xi - 3, 4 * xi - 1, 4 - 8 * xi])
+    X = np.einsum("cnf,nq->cfq", xe, N)
+    T = np.einsum("cnf,nq->cfq", xe, dN)
+    jac = np.hypot(T[0], T[1])
+    nrm = np.array([T[1], -T[0]]) / jac
+    # outward: away from the third vertex of the triangle that owns the facet
+    mesh = sector.mesh
+    cell = mesh.f2t[0, sector.facets[name]]
+    inside = mesh.doflocs[:, mesh.t[:3, cell]].mean(axis=1)  # (2, nf) vertex centroid
+    out = np.einsum("cf,cf->f", nrm.mean(axis=2), xe[:, 2] - inside) > 0
+    nrm = np.where(out[None, :, None], nrm, -nrm)
+    return dofs, N, X, nrm, jac * w
+
+
 def _patch_loads_2d(sector: SectorMesh2D, points: FlankPoints, c: float,
                     intorder: int = 12) -> sp.csc_matrix:
     """Consistent nodal forces (2 N_nodes, n) of unit cos^2 pressure patches, N per (N/m).
@@ -53,9 +86,14 @@ def _patch_loads_2d(sector: SectorMesh2D, points: FlankPoints, c: float,
     Column ``j``: the pressure ``q_j(t) = cos^2(pi t / 2c) / c`` (t: distance from the
     patch centre along the flank tangent, |t| < c) acting along the inward normal on
     the facets of the flank of point ``j``; its resultant is a unit load (N/m).
+    Integrated (Gauss-Legendre, exact to degree ``intorder``) on the isoparametric
+    3-node boundary edges directly, where the P2 basis is the quadratic Lagrange basis
+    of the edge: no inverse mapping of the curved triangles (scikit-fem's Newton
+    inversion of ``FacetBasis`` stops at an absolute tolerance that round-off of
+    coordinates ~ r_a exceeds once elements are ~1e-3 r_a small: the 104-tooth gear
+    at refinement 2, the 50-tooth gear at refinement 4).
     """
-    mesh = sector.mesh
-    n_scalar = mesh.doflocs.shape[1]
+    n_scalar = sector.mesh.doflocs.shape[1]
     cols = flank_names(points)
     for name in set(cols):
         if name not in sector.facets:
@@ -63,11 +101,7 @@ def _patch_loads_2d(sector: SectorMesh2D, points: FlankPoints, c: float,
     rows_all, cols_all, vals_all = [], [], []
     for name in sorted(set(cols)):
         idx = [j for j, nm in enumerate(cols) if nm == name]
-        fb = FacetBasis(mesh, ElementTriP2(), facets=sector.facets[name], intorder=intorder)
-        X = np.asarray(fb.global_coordinates())  # (2, nf, nq)
-        nrm = fb.normals  # outward (2, nf, nq)
-        phi = np.stack([np.asarray(fb.basis[a][0]) for a in range(fb.Nbfun)])  # (a, nf, nq)
-        dofs = fb.element_dofs  # (a, nf)
+        dofs, N, X, nrm, dx = _edge_frames(sector, name, intorder)
         for j in idx:
             t = ((X[0] - points.position[j, 0]) * points.tangent[j, 0]
                  + (X[1] - points.position[j, 1]) * points.tangent[j, 1])
@@ -75,11 +109,12 @@ def _patch_loads_2d(sector: SectorMesh2D, points: FlankPoints, c: float,
             # the flank bending away (tip land) by requiring the normal to agree.
             agree = (nrm[0] * points.normal[j, 0] + nrm[1] * points.normal[j, 1]) > 0.5
             q = np.where((np.abs(t) < c) & agree, np.cos(0.5 * np.pi * t / c) ** 2 / c, 0.0)
-            w = q * fb.dx
+            hit = np.flatnonzero(q.any(axis=1))
+            w = q[hit] * dx[hit]
             for comp in range(2):
-                f = np.einsum("afq,fq->af", phi, -nrm[comp] * w)
-                rows_all.append((2 * dofs + comp).ravel())
-                cols_all.append(np.full(dofs.size, j))
+                f = np.einsum("aq,fq->af", N, -nrm[comp][hit] * w)
+                rows_all.append((2 * dofs[:, hit] + comp).ravel())
+                cols_all.append(np.full(f.size, j))
                 vals_all.append(f.ravel())
     F = sp.coo_matrix((np.concatenate(vals_all), (np.concatenate(rows_all),
                                                  np.concatenate(cols_all))),

@@ -91,6 +91,11 @@ class SectorResult:
                             constrained_dofs(self.sector, model)).displacements[:, 0]
 
 
+def sector_settings(gear: GearSpec, options: SectorFEOptions) -> SectorSettings2D:
+    """Mesh settings of ``gear``'s sector for ``options`` (every tooth at the flank size)."""
+    return SectorSettings2D.for_gear(gear, options.teeth, options.refinement)
+
+
 def analyse_sector(gear: GearSpec, options: SectorFEOptions | None = None) -> SectorResult:
     """Mesh a 2D sector of ``gear``, compute its flank influence matrix and compare the
     middle tooth's compliance with the analytical tooth model."""
@@ -98,7 +103,7 @@ def analyse_sector(gear: GearSpec, options: SectorFEOptions | None = None) -> Se
 
     options = options or SectorFEOptions()
     n = options.teeth
-    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, n, options.refinement))
+    sec = sector_mesh_2d(gear, sector_settings(gear, options))
     r = active_radii(gear, options.points)
     pts = flank_points(gear, n, np.repeat(np.arange(n), r.size), np.tile(r, n))
     G = influence_matrix(sec, pts, kind=options.kind)

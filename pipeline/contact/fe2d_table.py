@@ -1,0 +1,125 @@
+"""Structural flank tables of one gear's 2D model (for the 2D FE compliance source).
+
+The tables of :class:`~pipeline.contact.fe2d_source.FE2DCompliance`: for each gear one
+structural influence matrix (:func:`pipeline.fem.influence.influence_matrix`, FE minus
+the half-plane near field, m^2/N per unit face width) on ``radii`` points of the right
+flank of every tooth that a tooth pair in contact can reach, from one factorisation.
+
+Profile points are equally spaced in the arc coordinate of the involute between the
+form (or base) circle and the tip, ``0.11 m_n`` of arc inside both ends (the load patch,
+half-width ``0.1 m_n``, stays on the involute).
+
+Tables are cached on disk by a content hash of the gear, the mesh settings, the points
+and the boundary conditions (``meshes/fe2dtable-<hash>.npz``, written atomically by
+:func:`pipeline.fem.cache.cached_file`; an unreadable file is rebuilt), so a warm build
+reads two small files and neither meshes nor solves.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.flank import FlankPoints, active_radii, flank_points
+from pipeline.fem.influence import InfluenceMatrix, influence_matrix
+from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
+from pipeline.geometry.gear import GearSpec
+
+if TYPE_CHECKING:
+    from pipeline.contact.fe2d_source import FE2DSettings
+
+# Bump when the same inputs would give a different table.
+TABLE_FORMAT = 1
+_TIMING_KEYS = ("mesh", "assembly", "loads", "factor", "solve", "nearfield", "total")
+
+
+def sector_teeth(gear: GearSpec, settings: FE2DSettings) -> int:
+    """Teeth of the meshed model: ``settings.teeth``, or z (the whole gear)."""
+    return gear.teeth if settings.teeth is None else settings.teeth
+
+
+def sector_settings(gear: GearSpec, settings: FE2DSettings, loaded: np.ndarray
+                    ) -> SectorSettings2D:
+    """Mesh settings of ``gear``'s model: graded from the ``loaded`` sector teeth, or
+    uniform (every tooth at the flank size) for ``settings.mesh = "uniform"``."""
+    n = sector_teeth(gear, settings)
+    if settings.mesh == "uniform":
+        return SectorSettings2D.for_gear(gear, n, settings.refinement)
+    return SectorSettings2D.graded(gear, n, tuple(int(k) for k in loaded), settings.refinement,
+                                   tooth=settings.tooth_size, body=settings.body_size,
+                                   growth=settings.growth)
+
+
+def table_radii(gear: GearSpec, n: int) -> np.ndarray:
+    """``n`` tabulated involute radii (m), ascending: as close to both ends of the involute
+    as the load patch (0.1 m_n) allows."""
+    from pipeline.geometry.profile import tooth_profile
+
+    form = tooth_profile(gear).form_radius
+    if gear.internal:
+        return active_radii(gear, n, hi=min(form, gear.root_radius), margin=0.11 * gear.module)
+    return active_radii(gear, n, lo=max(form, gear.base_radius), margin=0.11 * gear.module)
+
+
+def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> FlankPoints:
+    """Right-flank points: ``settings.radii`` radii on each of ``teeth`` (ascending)."""
+    r = table_radii(gear, settings.radii)
+    return flank_points(gear, sector_teeth(gear, settings), np.repeat(teeth, r.size),
+                        np.tile(r, teeth.size))
+
+
+def _save(path: Path, G: InfluenceMatrix) -> Path:
+    return save_arrays(path, {
+        "fe": G.fe, "local": G.local, "patch_half_width": G.patch_half_width,
+        "kind": G.kind, "n_dof": G.n_dof, "n_free": G.n_free, "method": G.method,
+        "timings": np.array([G.timings.get(k, 0.0) for k in _TIMING_KEYS])})
+
+
+def _load(path: Path, points: FlankPoints) -> InfluenceMatrix:
+    z = load_arrays(path)
+    n = len(points)
+    if z["fe"].shape != (n, n) or z["local"].shape != (n, n):
+        raise ValueError(f"{path}: table of shape {z['fe'].shape}, expected {(n, n)}")
+    return InfluenceMatrix(points, z["fe"], z["local"], float(z["patch_half_width"]),
+                           str(z["kind"]), int(z["n_dof"]), int(z["n_free"]),
+                           str(z["method"]), 0,
+                           dict(zip(_TIMING_KEYS, z["timings"].tolist(), strict=True)))
+
+
+def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
+               cache: bool = True, cache_dir: str | Path | None = None
+               ) -> tuple[InfluenceMatrix, dict]:
+    """Influence matrix of the right-flank points of the sector teeth ``teeth`` (consecutive
+    indices, ascending) of ``gear``, from the cache or built (mesh, FE, near field).
+
+    Returns the matrix (``timings`` of the build that made it, s, with ``"mesh"``) and an
+    ``info`` dict: ``cached`` (read from the cache), ``seconds`` (wall time of this call),
+    ``dof``, ``free_dof``, ``solver``, ``sector`` (mesh settings).
+    """
+    t0 = time.perf_counter()
+    teeth = np.asarray(teeth, dtype=int)
+    ss = sector_settings(gear, settings, teeth)
+    pts = table_points(gear, settings, teeth)
+    inputs = {"gear": asdict(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
+              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
+              "format": TABLE_FORMAT}
+
+    def build() -> InfluenceMatrix:
+        t = time.perf_counter()
+        sec = sector_mesh_2d(gear, ss, cache=cache, cache_dir=cache_dir)
+        t_mesh = time.perf_counter() - t
+        G = influence_matrix(sec, pts, kind=settings.kind, cuts=settings.cuts)
+        G.timings["mesh"] = t_mesh
+        G.timings["total"] += t_mesh
+        return G
+
+    G, _, hit = cached_file("fe2dtable", inputs, build, lambda p: _load(p, pts), _save,
+                            cache_dir=cache_dir, enabled=cache)
+    info = {"cached": hit, "seconds": time.perf_counter() - t0, "dof": G.n_dof,
+            "free_dof": G.n_free, "solver": G.method, "sector": asdict(ss)}
+    return G, info
