@@ -144,7 +144,7 @@ def exact_sections(profile: ToothProfile, theta_f: float, n: int = 3000) -> Toot
     part of the flank that falls monotonically from the top of the fillet to the tip
     (above that top a horizontal cut lies in the rim, not in the tooth). Between the
     tip corners and the tip circle on the centreline (``r_a`` vs ``r_a cos(psi_a)``,
-    0.02 % of the tooth height for 60 teeth) the two tip horns are counted as one section
+    0.16 % of the tooth height for 60 teeth) the two tip horns are counted as one section
     of the flank's width, as the external model counts the tip cap.
 
     Parameters
