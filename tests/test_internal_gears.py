@@ -337,6 +337,18 @@ def test_ring_body_term_values_and_thin_rim_refused():
         tooth_model(ring(80, rim_modules=0.8))
 
 
+def test_assembly_errors_of_an_internal_pair_are_refused_in_one_line(tmp_path):
+    """Centre displacements are modelled for external pairs (the assembly-error paper): an
+    internal pair file with them is one InputError line from the command, exit status 2."""
+    text = (CONFIGS / "planet_ring_pair.toml").read_text() + (
+        "\n[pair]\nassembly_error_gear_um = [10.0, 10.0]\n")
+    path = tmp_path / "ring_errors.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match="assembly errors are modelled for external pairs"):
+        load_gearbox(path)
+    assert main(["stiffness", str(path), "--out", str(tmp_path / "out")]) == 2
+
+
 # ---- ISO 6336 and the external pair with the same planet --------------------------------------
 
 @pytest.mark.parametrize(("z_planet", "z_ring", "measured"), [
