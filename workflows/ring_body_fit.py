@@ -4,8 +4,8 @@ Sainsot et al. (2004) fitted their body-term coefficients L*, M*, P*, Q* for *ex
 gear bodies (an annulus between bore and root circle). A ring tooth hangs from a rim
 outside its root circle, clamped at the rim's outer surface, and that formula does not
 carry over: mapped to h_f = r_rim / r_f it is extrapolated far below its fitted range
-(h_f >= 1.4), and tooth + body compliance came out 1.15-4.5 times the FE's on the rings
-below (FE / analytical 0.22-0.87, refinement 0.5). This study does for rings what
+(h_f >= 1.4), and tooth + body compliance came out 1.15-4.5 times the FE's on the
+coarse set of rings below (FE / analytical 0.22-0.87). This study does for rings what
 Sainsot et al. did for external bodies: the same functional form,
 
     lambda_f E / cos^2(a) = L (u_f/S_f)^2 + M (u_f/S_f) + P0 + P1 ln(t_R / S_f),
@@ -60,26 +60,41 @@ def ring(z: int, alpha_deg: float, rim_modules: float) -> GearSpec:
 
 
 def samples(cases, refinement: float, radii: int, show_progress: bool = True) -> dict:
-    """FE and analytical quantities at ``radii`` flank points of each ring, flattened."""
-    cols: dict[str, list] = {k: [] for k in (
-        "teeth", "alpha_n_deg", "rim_over_m", "radius_m", "fe_m2_per_N", "tooth_m2_per_N",
-        "load_angle_rad", "u_over_S", "t_over_S", "theta_f_rad")}
+    """FE flank compliance at ``radii`` points of each ring, with the analytical columns."""
+    cols: dict[str, list] = {k: [] for k in ("teeth", "alpha_n_deg", "rim_over_m", "radius_m",
+                                             "fe_m2_per_N")}
     for z, a, t in progress(cases, "ring FE", enabled=show_progress):
         g = ring(z, a, t)
         tab = gear_table(g, FE2DSettings(teeth=None, radii=radii, refinement=refinement,
                                          kind="plane_stress"), np.array([0]))
         r = tab.points.radius
+        for k, v in (("teeth", z), ("alpha_n_deg", a), ("rim_over_m", t), ("radius_m", r),
+                     ("fe_m2_per_N", np.diag(tab.structural))):
+            cols[k].append(np.broadcast_to(v, r.shape).astype(float))
+    return with_analytical({k: np.concatenate(v) for k, v in cols.items()})
+
+
+def with_analytical(data: dict) -> dict:
+    """Add the analytical tooth compliance and the body-term variables to FE samples."""
+    out = {k: data[k] for k in ("teeth", "alpha_n_deg", "rim_over_m", "radius_m",
+                                "fe_m2_per_N")}
+    extra: dict[str, list] = {k: [] for k in ("tooth_m2_per_N", "load_angle_rad", "u_over_S",
+                                              "t_over_S", "theta_f_rad")}
+    keys = np.column_stack([data["teeth"], data["alpha_n_deg"], data["rim_over_m"]])
+    _, first = np.unique(keys, axis=0, return_index=True)
+    order = np.sort(first)
+    for i, j in zip(order, np.r_[order[1:], len(keys)], strict=True):
+        g = ring(int(keys[i, 0]), float(keys[i, 1]), float(keys[i, 2]))
+        r = data["radius_m"][i:j]
         model = tooth_model(g)
         la, h_c, y_c = load_geometry(g, r)
         u = (model.sections.clamp_radius - (y_c + h_c * np.tan(la))) / model.root_thickness
-        for k, v in (("teeth", z), ("alpha_n_deg", a), ("rim_over_m", t), ("radius_m", r),
-                     ("fe_m2_per_N", np.diag(tab.structural)),
-                     ("tooth_m2_per_N", tooth_compliance(model, r).tooth),
+        for k, v in (("tooth_m2_per_N", tooth_compliance(model, r).tooth),
                      ("load_angle_rad", la), ("u_over_S", u),
                      ("t_over_S", (g.bore_radius - g.root_radius) / model.root_thickness),
                      ("theta_f_rad", model.foundation.theta_f)):
-            cols[k].append(np.broadcast_to(v, r.shape).astype(float))
-    return {k: np.concatenate(v) for k, v in cols.items()}
+            extra[k].append(np.broadcast_to(v, r.shape).astype(float))
+    return out | {k: np.concatenate(v) for k, v in extra.items()}
 
 
 def fit(data: dict) -> dict:
@@ -115,27 +130,29 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true", help="32 rings at refinement 1.0")
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "ring_body_fit")
-    ap.add_argument("--samples", type=Path, help="refit the samples.csv of an earlier run")
+    ap.add_argument("--samples", type=Path, help="refit the FE samples of an earlier run "
+                    "(samples.csv) with the current analytical tooth model")
     args = ap.parse_args(argv)
-    if args.samples is not None:
-        for k, v in fit(read_samples(args.samples)).items():
-            print(f"{k}: {v}")
-        return 0
-    if args.full:
-        cases = [(z, a, t) for z in (40, 60, 100, 160) for a in (20.0, 25.0)
-                 for t in (2.5, 4.0, 7.0, 12.0)]
-        refinement, radii = 1.0, 9
+    if args.samples is not None:  # the FE columns of an earlier run, analytical ones anew
+        data = with_analytical(read_samples(args.samples))
+        result, inputs = fit(data), {"samples": str(args.samples)}
     else:
-        cases = [(z, a, t) for z in (60, 100) for a in (20.0, 25.0) for t in (3.0, 8.0)]
-        refinement, radii = 0.5, 7
-    data = samples(cases, refinement, radii)
-    result = fit(data)
-    result.update(refinement=refinement, cases=len(cases))
+        if args.full:
+            cases = [(z, a, t) for z in (40, 60, 100, 160) for a in (20.0, 25.0)
+                     for t in (2.5, 4.0, 7.0, 12.0)]
+            refinement, radii = 1.0, 9
+        else:
+            cases = [(z, a, t) for z in (60, 100) for a in (20.0, 25.0) for t in (3.0, 8.0)]
+            refinement, radii = 0.5, 7
+        data = samples(cases, refinement, radii)
+        result = fit(data)
+        result.update(refinement=refinement, cases=len(cases))
+        inputs = {"cases": cases, "refinement": refinement, "radii": radii}
     args.out.mkdir(parents=True, exist_ok=True)
     files = [write_csv(args.out / "samples.csv", data),
              write_json(args.out / "fit.json", result)]
-    write_run_record(args.out, {"cases": cases, "refinement": refinement, "radii": radii},
-                     files, "python workflows/ring_body_fit.py" + (" --full" if args.full else ""))
+    write_run_record(args.out, inputs, files, "python workflows/ring_body_fit.py "
+                     + " ".join(argv if argv is not None else sys.argv[1:]))
     for k, v in result.items():
         print(f"{k}: {v}")
     return 0

@@ -12,7 +12,9 @@ Internal (ring) gears are cut by a pinion-type shaper whose size is not part of
 :class:`~pipeline.geometry.gear.GearSpec`; their fillet is taken as the circular
 arc of the cutter tip radius rho_a0* m_n tangent to the involute and the root
 circle, which is what a shaper with many teeth produces in the limit. This is
-a documented modelling choice, not an envelope.
+a documented modelling choice, not an envelope. A ring's tooth space is narrower at
+its root than the rack's, so the fillet radius is at most the one whose arcs from both
+flanks meet on the root circle (:attr:`~pipeline.geometry.gear.GearSpec.ring_fillet_limit`).
 
 Frame: origin at the gear centre, tooth centre line along +y, transverse plane,
 lengths in m, angles in rad.
@@ -67,10 +69,17 @@ class ToothProfile:
     def half_thickness(self, y: ArrayLike) -> np.ndarray:
         """Half chordal thickness (m) at centre-line height ``y`` (m from the gear centre).
 
-        Zero outside the flank's height range (below its first or above its last point).
+        External gears: zero outside the flank's height range (below its first or above its
+        last point). Internal gears: read on the part of the flank that falls monotonically
+        from the top of the fillet (the highest profile point; a horizontal cut above it
+        lies in the rim) to the tip corner; zero outside that range.
         """
         y = np.asarray(y, dtype=float)
-        ys, xs = (self.y, self.x) if not self.gear.internal else (self.y[::-1], self.x[::-1])
+        if self.gear.internal:
+            top = int(np.argmax(self.y))
+            ys, xs = self.y[top:][::-1], self.x[top:][::-1]
+        else:
+            ys, xs = self.y, self.x
         ys = np.maximum.accumulate(ys)  # guard against round-off reversals
         return np.interp(y, ys, xs, left=0.0, right=0.0)
 

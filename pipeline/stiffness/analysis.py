@@ -64,6 +64,7 @@ class StiffnessResult:
             "overlap_ratio": self.actual.overlap_ratio,
             "mesh_period_s": m.mesh_period,
             "fourier_N_per_m": {"mean": fs.mean, "amplitude": fs.amplitude, "phase_rad": fs.phase},
+            # body-term fit ranges: Sainsot's for external gears, the ring fit for rings
             "sainsot_fit_range_ok": {
                 "pinion": self.model.pinion.foundation.in_fit_range,
                 "gear": self.model.gear.foundation.in_fit_range,

@@ -17,6 +17,16 @@ there is no friction. With the pinion driving, approach is ``s < s_pitch``.
   approach and softens them in the recess (Yang et al. 2026, figs. 6-7). The assembly-error
   paper prints the opposite pairing of signs; its text and Yang et al. (2026) agree on the physics
   used here.
+* Internal pairs keep the convention. Both gears turn the same way and the base tangent
+  points T1, T2 lie on the same side of the contact (``rho2 = -(s + T1T2)``), so the
+  surface speeds along the common tangent are ``u1 = w1 s`` and ``u2 = w2 (s + T1T2)`` in
+  the same direction and ``u1 - u2 = (w1 - w2)(s - s_pitch)``, negative in the approach as
+  in an external pair. Friction on the pinion then points towards its root, and its
+  reaction on the ring towards the ring's root (the ring's radius grows along it, its
+  centre lying on the pinion's side): the ring tooth, loaded at angle ``alpha + psi``
+  (:func:`pipeline.stiffness.tooth.load_geometry`), is compressed more and bent less in
+  the approach, with the same ``lam``. Checked from rigid-body kinematics in
+  tests/test_internal_gears.py.
 * Friction stiffness and torque coefficients (Jin et al. 2018, eqs. 15-17):
   ``K_f = lam mu k`` is positive when the friction force on the pinion points in
   the approach direction of sliding, and ``KT_f,i = lam mu k rho_i`` is positive

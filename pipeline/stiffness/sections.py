@@ -144,7 +144,7 @@ def exact_sections(profile: ToothProfile, theta_f: float, n: int = 3000) -> Toot
     part of the flank that falls monotonically from the top of the fillet to the tip
     (above that top a horizontal cut lies in the rim, not in the tooth). Between the
     tip corners and the tip circle on the centreline (``r_a`` vs ``r_a cos(psi_a)``,
-    0.02 % of the tooth height for 60 teeth) the two tip horns are counted as one section
+    0.16 % of the tooth height for 60 teeth) the two tip horns are counted as one section
     of the flank's width, as the external model counts the tip cap.
 
     Parameters
@@ -161,14 +161,10 @@ def exact_sections(profile: ToothProfile, theta_f: float, n: int = 3000) -> Toot
         h = np.asarray(profile.half_thickness(y), dtype=float)
         keep = h > 0
         return ToothSections.from_half_thickness(y[keep] - rf, h[keep], clamp_radius=rf)
-    top = int(np.argmax(profile.y))
-    yb, xb = profile.y[top:][::-1], profile.x[top:][::-1]  # tip corner -> top of the fillet
-    if np.any(np.diff(yb) <= 0):
-        raise ValueError(f"{gear.name}: the ring tooth flank is not monotonic from its tip "
-                         "to the top of its fillet")
     y0 = rf * math.cos(theta_f)
-    y = y0 - (y0 - yb[0]) * u
-    h = np.interp(y, yb, xb)
+    y = y0 - (y0 - float(profile.y[-1])) * u
+    y[-1] = profile.y[-1]  # the tip corner exactly (round-off would put it off the flank)
+    h = np.asarray(profile.half_thickness(y), dtype=float)
     return ToothSections.from_half_thickness(y0 - y, h, clamp_radius=y0, internal=True)
 
 

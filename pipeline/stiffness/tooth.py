@@ -101,7 +101,9 @@ def body_coefficients(gear: GearSpec, theta_f: float) -> FoundationCoefficients:
 def _root_half_angle(x: np.ndarray, y: np.ndarray, rf: float, gear: GearSpec) -> float:
     """theta_f: half angle of the tooth where its fillet leaves the root circle (rad)."""
     r = np.hypot(x, y)
-    on_root = np.abs(r - rf) <= 1e-6 * rf
+    # A ring's root arc is exact to round-off, while the start of its circular fillet stays
+    # within 1e-6 r_f of the root circle over several points (a small fillet on a large ring)
+    on_root = np.abs(r - rf) <= (1e-12 if gear.internal else 1e-6) * rf
     ang = np.arctan2(np.abs(x), np.abs(y))
     if np.any(on_root):
         # the fillet end on the root circle closest to the tooth
