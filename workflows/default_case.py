@@ -50,7 +50,7 @@ positions = 60
 bearing_stiffness_N_per_m = 1.0e8
 bearing_damping_Ns_per_m = 100.0
 damping_ratio = 0.07
-excitation = "contact"              # loaded k(t), static TE and friction of the FE-enriched contact
+excitation = "contact"          # loaded k(t), static TE, friction of the FE-enriched contact
 [dynamics.sweep]
 f_min_Hz = 200.0
 f_max_Hz = 6000.0
