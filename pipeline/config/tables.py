@@ -112,6 +112,8 @@ FE = (
     Key("points", I, help="tabulated points per flank (profile direction)"),
     Key("refinement", N, help="mesh refinement: flank element size m_n / (12 refinement)"),
     Key("kind", S, choices=("plane_strain", "plane_stress"), help="2D model"),
+    Key("mesh", S, choices=("graded", "uniform"),
+        help="2D source: graded from the loaded teeth (default) or uniform"),
     Key("face_points", I, help="3D: tabulated points across the face width"),
     Key("ends", S, choices=("free", "sliding"), help="3D: end faces free or u_z = 0"),
     Key("solver", S, help="3D: linear solver (pipeline.fem.solvers)"),
@@ -119,7 +121,8 @@ FE = (
 FE_COMMAND_KEYS = ("teeth", "points", "refinement", "kind")
 """The ``[fe]`` keys ``gearpipe fe`` (2D sectors of each gear) reads."""
 FE_SOURCE_FIELDS = {
-    "fe2d": {"teeth": "teeth", "points": "radii", "refinement": "refinement", "kind": "kind"},
+    "fe2d": {"teeth": "teeth", "points": "radii", "refinement": "refinement", "kind": "kind",
+             "mesh": "mesh"},
     "fe3d": {"teeth": "teeth", "points": "radii", "refinement": "refinement",
              "face_points": "face", "ends": "ends", "solver": "method"},
 }

@@ -71,6 +71,7 @@ def compliance_source(
     cache_dir: str | Path | None = None,
     tooth_model: str = "exact",
     model: PairModel | None = None,
+    show_progress: bool = False,
 ) -> ComplianceSource:
     """The compliance source ``contact.compliance`` names, for the installed ``pair``.
 
@@ -85,6 +86,7 @@ def compliance_source(
     tooth_model, model : tooth model of the analytical slices
         (:func:`~pipeline.contact.analysis.analytical_compliance`); with an FE source they
         give only the friction change.
+    show_progress : progress of the FE build on stderr.
     """
     contact = contact or ContactOptions()
     slices = analytical_compliance(pair, operation, contact, stiffness,
@@ -95,11 +97,13 @@ def compliance_source(
     if contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 
-        base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir)
+        base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
+                                    show_progress=show_progress)
     else:
         from pipeline.contact.fe3d_source import FE3DCompliance
 
-        base = FE3DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir)
+        base = FE3DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
+                                    progress=show_progress)
     if slices.friction.mu == 0.0 and slices.friction.kind == "constant":
         return base
     return FrictionCorrected(base, slices)

@@ -171,7 +171,8 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
     def build() -> LoadedMeshCycle:
         source = compliance_source(actual, case.operation, box.contact, box.stiffness,
                                    box.fe_source, cache=options.cache,
-                                   cache_dir=options.cache_dir, model=stiffness.model)
+                                   cache_dir=options.cache_dir, model=stiffness.model,
+                                   show_progress=options.show_progress)
         return analyse_contact(source, case.operation, box.contact,
                                show_progress=options.show_progress)
 
