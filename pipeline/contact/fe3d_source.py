@@ -114,34 +114,43 @@ class FE3DCompliance:
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE3DSettings | None = None, cache: bool = True,
-              cache_dir: str | Path | None = None) -> FE3DCompliance:
-        """Mesh and solve (or read from the cache) both gears' tables, once."""
+              cache_dir: str | Path | None = None, progress: bool = True) -> FE3DCompliance:
+        """Mesh and solve (or read from the cache) both gears' tables, once.
+
+        ``progress`` reports every step longer than a second (mesh, assembly,
+        factorisation, solves) on stderr; the tables' ``info["timings_s"]`` keep the
+        breakdown (:meth:`summary`).
+        """
         settings = settings or FE3DSettings()
         if pair.pinion.herringbone or pair.gear.herringbone:
             raise InputError("fe3d source: analyse one helical half of a herringbone pair")
         if pair.gear.internal:
-            raise InputError("fe3d source: internal gears are not supported (3D sectors "
+            raise InputError("fe3d source: internal gears are not supported (3D models "
                              "are external only)")
         k = touching_pairs(pair)
-        teeth = cls._teeth(pair, settings)
-        mid = teeth // 2
-        if np.abs(k).max() > mid or teeth - 1 - mid < np.abs(k).max():
+        teeth = cls._model_teeth(pair, settings)
+        if settings.body == "sector" and (np.abs(k).max() > teeth[0] // 2
+                                          or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
             raise InputError(f"fe3d.teeth = {settings.teeth} does not cover tooth pairs "
                              f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
-        tables = [flank_table(g, teeth, np.sort(mid + sign * k), settings, cache, cache_dir)
-                  for g, sign in ((pair.pinion, -1), (pair.gear, 1))]
+        tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache, cache_dir,
+                              progress)
+                  for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
         return cls(pair, settings, *tables)
 
     @staticmethod
-    def _teeth(pair: GearPair, settings: FE3DSettings) -> int:
-        if settings.teeth is not None:
-            return settings.teeth
-        return 2 * int(np.abs(touching_pairs(pair)).max()) + 1
+    def _model_teeth(pair: GearPair, settings: FE3DSettings) -> tuple[int, int]:
+        """Teeth of the pinion's and the gear's 3D models."""
+        if settings.body == "whole":
+            return pair.pinion.teeth, pair.gear.teeth
+        n = (settings.teeth if settings.teeth is not None
+             else 2 * int(np.abs(touching_pairs(pair)).max()) + 1)
+        return n, n
 
     @property
-    def sector_teeth(self) -> int:
-        """Teeth of both 3D sectors."""
-        return self._teeth(self.pair, self.settings)
+    def model_teeth(self) -> tuple[int, int]:
+        """Teeth of the pinion's and the gear's 3D models (z1, z2 for whole gears)."""
+        return self._model_teeth(self.pair, self.settings)
 
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
@@ -170,14 +179,14 @@ class FE3DCompliance:
         z = pts.z[:, None] + pts.width[:, None] * u[None, :]
         s = np.clip(pts.s[:, None] + (z - pts.z[:, None]) * tb, pair.s_start, pair.s_end)
         rho1, rho2 = pair.curvature_radii(s)
-        mid = self.sector_teeth // 2
+        mid1, mid2 = (n // 2 for n in self.model_teeth)
         b = pair.face_width
         out = []
         # z' = b - z for a right-hand pinion / left-hand gear (module docstring)
         flips = (helix_sign(pair.pinion) > 0, helix_sign(pair.gear) < 0)
         for table, gear, rho, tooth, flip in (
-                (self.pinion_table, pair.pinion, rho1, mid - pts.pair, flips[0]),
-                (self.gear_table, pair.gear, rho2, mid + pts.pair, flips[1])):
+                (self.pinion_table, pair.pinion, rho1, mid1 - pts.pair, flips[0]),
+                (self.gear_table, pair.gear, rho2, mid2 + pts.pair, flips[1])):
             zs = (b - z if flip else z) + 0.5 * (table.width - b)
             arc = np.asarray(rho) ** 2 / (2 * gear.base_radius)
             out.append((np.repeat(tooth[:, None], samples, axis=1), arc, zs))
@@ -204,8 +213,9 @@ class FE3DCompliance:
         return G / math.cos(self.pair.pinion.base_helix_angle) ** 2
 
     def summary(self) -> dict:
-        """Sector teeth, grid sizes and the FE figures of both tables."""
-        return {"sector_teeth": self.sector_teeth, "tooth_pairs": touching_pairs(self.pair),
-                "settings": asdict(self.settings),
+        """Model teeth, settings and the FE figures of both tables (DOFs, solver, timing
+        breakdown in s, cache use)."""
+        return {"body": self.settings.body, "model_teeth": self.model_teeth,
+                "tooth_pairs": touching_pairs(self.pair), "settings": asdict(self.settings),
                 "pinion": {"teeth": self.pinion_table.teeth, **self.pinion_table.info},
                 "gear": {"teeth": self.gear_table.teeth, **self.gear_table.info}}
