@@ -37,8 +37,12 @@ BETA = math.radians(15)
 PINION = GearSpec(face_width=12e-3, helix_angle=BETA, hand="right", name="p", **KW)
 GEAR = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", name="g", **KW)
 HELICAL_PAIR = GearPair(PINION, GEAR)
-# coarse: 10k DOF per gear; c = 0.6 m_n spans ~1 flank element (fe3d_table docstring)
-COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
+# coarse whole gears (the default body): 25k DOF per gear; c = 0.6 m_n spans ~1 flank
+# element (fe3d_table docstring)
+COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8)
+# the same as 3-tooth sectors clamped at their cuts: 10k DOF per gear
+SECTOR = FE3DSettings(body="sector", radii=4, refinement=0.6, patch=0.6, slices=8,
+                      method="splu")
 
 
 @pytest.fixture(scope="module")
@@ -75,7 +79,7 @@ def test_unsupported_pairs_and_small_sectors_are_rejected():
     wide = GearPair(GearSpec(face_width=60e-3, helix_angle=BETA, hand="right", **KW),
                     GearSpec(face_width=60e-3, helix_angle=BETA, hand="left", **KW))
     with pytest.raises(InputError, match="fe3d.teeth"):
-        FE3DCompliance.build(wide, FE3DSettings(teeth=3))
+        FE3DCompliance.build(wide, FE3DSettings(body="sector", teeth=3))
 
 
 # ---- mapping and interpolation -------------------------------------------------------------
@@ -86,9 +90,10 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
     s0 = HELICAL_PAIR.mesh_cycle(4)[2]
     pts = helical.points(s0)
     sel = pts.pair == 0
-    for gear, (tooth, arc, zs) in zip((PINION, GEAR), helical.flank_coordinates(pts),
-                                      strict=True):
-        sec = sector_mesh_3d(gear, _sector_settings(gear, helical), cache_dir=cache)
+    for gear, table, (tooth, arc, zs) in zip((PINION, GEAR), (helical.pinion_table,
+                                             helical.gear_table),
+                                             helical.flank_coordinates(pts), strict=True):
+        sec = sector_mesh_3d(gear, _model_settings(gear, table), cache_dir=cache)
         rb = gear.base_radius
         r = np.sqrt(2 * rb * arc[sel, 0] + rb * rb)
         for z, tol in ((zs[sel, 0], 1e-9), (gear.face_width - zs[sel, 0], None)):
@@ -105,10 +110,10 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
                 assert off > 1e-5
 
 
-def _sector_settings(gear, src):
+def _model_settings(gear, table):
     from pipeline.contact.fe3d_table import _sector_settings
 
-    return _sector_settings(gear, src.sector_teeth, src.settings)
+    return _sector_settings(gear, table.info["model_teeth"], COARSE, table.teeth)
 
 
 def test_interpolation_reproduces_table_at_nodes(helical):
@@ -200,7 +205,8 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
     spur = GearSpec(face_width=6e-3, name="s", **KW)
     pair = GearPair(spur, spur)
-    fe3 = FE3DCompliance.build(pair, FE3DSettings(teeth=5, radii=5, refinement=0.6, ends="sliding",
+    fe3 = FE3DCompliance.build(pair, FE3DSettings(body="sector", teeth=5, radii=5,
+                                                  refinement=0.6, ends="sliding",
                                                   method="splu"), cache_dir=cache)
     fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, radii=12, refinement=1.0,
                                                     kind="plane_strain"))
@@ -218,17 +224,17 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
 # ---- LTCA ------------------------------------------------------------------------------------
 def test_ltca_with_3d_source(helical):
-    """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact): converged (residual
-    within tolerance, measured 5e-17 m), every position carries P, and the tangent mesh
-    stiffness lies within [-30 %, +40 %] of the slice method's on the same points.
+    """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact) on the coarse
+    whole gears: converged (residual within tolerance), every position carries P, and the
+    tangent mesh stiffness lies within [-20 %, +20 %] of the slice method's on the same
+    points.
 
-    Measured: 3D / slice = 1.15 .. 1.28 (mean 1.22; 305 vs 252 N/um). The 3D model is
-    stiffer for known reasons: a 3-tooth sector clamped at its cuts and bore (the 2D study
-    found a clamped 5-tooth sector +55 % stiffer than the slice model on the assembly-error paper's
-    pair, whose foundation term assumes a whole gear body) and the coarse mesh (refinement 0.6: ~5
-    %
-    too stiff, test above); the free tooth ends and the face coupling make it softer where
-    a contact line reaches an end face."""
+    Measured: 3D / slice = 0.89 .. 1.07 (mean 0.97; 243.5 vs 251.5 N/um). The 3-tooth
+    sectors clamped at their cuts gave 1.15 .. 1.28 (mean 1.22) here: the clamped cuts,
+    not the 3D model, made the old figures an upper bound. The whole gear has the body
+    compliance that the slice method's Sainsot term approximates, so the two may differ
+    by the face coupling, the free tooth ends and the coarse mesh (refinement 0.6: a few
+    % too stiff, tests/test_fem_whole3d.py), not by the +20 % of a clamped sector."""
     P = 4000.0
     fe = loaded_mesh_cycle(helical, P, positions=8)
     sl = loaded_mesh_cycle(SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices), P,
@@ -238,7 +244,7 @@ def test_ltca_with_3d_source(helical):
     ratio = fe.mesh_stiffness / sl.mesh_stiffness
     print("k_fe3d / k_slice", ratio.min(), ratio.mean(), ratio.max(), fe.mesh_stiffness.mean(),
           sl.mesh_stiffness.mean(), fe.residual.max())
-    assert np.all((ratio > 0.7) & (ratio < 1.4))
+    assert np.all((ratio > 0.8) & (ratio < 1.2))
 
 
 # ---- slow: fe3d workflow (Yang et al. 2026 pair) at its coarsest
@@ -291,7 +297,8 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
     from pipeline.contact import FE2DCompliance, FE2DSettings
 
     P = 4000.0
-    kw = dict(teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
+    kw = dict(body="sector", teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8,
+              method="splu")
     k = {}
     for name, src in {
         "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache_dir=cache),
@@ -301,7 +308,7 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
             teeth=5, radii=12, slices=8, kind="plane_strain")),
         "stress": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, radii=12, slices=8, kind="plane_stress")),
-        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache),
+        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, SECTOR, cache_dir=cache),
     }.items():
         cyc = loaded_mesh_cycle(src, P, positions=8)
         assert np.all(cyc.residual <= cyc.tolerance)

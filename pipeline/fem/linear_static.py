@@ -179,7 +179,8 @@ def load_compliance(
     if loads.shape[0] != model.n_dof:
         raise InputError(f"loads have {loads.shape[0]} rows, the model has {model.n_dof} DOFs")
     steps = Steps("", enabled=False) if steps is None else steps
-    with steps.step("factorise"):
+    # a sparse Cholesky of a large 3D model holds the GIL for seconds: announce it at once
+    with steps.step("factorise", announce=model.n_dof >= 50_000):
         free, factor = _set_up(model, clamped_dofs, solver)
     if block is None:
         block = int(np.clip(24e6 / (8 * free.size), 16, 256))

@@ -1,4 +1,4 @@
-"""3D helical (or spur, or herringbone-half) gear sectors and whole gears: P2 tetrahedra, named flanks.
+"""3D helical (or spur, or herringbone-half) gear sectors and whole gears: P2 tetrahedra.
 
 Geometry. The transverse section is the 2D sector of :mod:`pipeline.fem.sector2d`
 (``teeth`` consecutive teeth with the exact involute and trochoidal fillet of
