@@ -251,11 +251,12 @@ def test_ltca_with_3d_source(helical):
 # ---------------------------------------------
 @pytest.mark.slow
 def test_fe3d_helical_workflow_coarse(tmp_path):
-    """workflows/fe3d_helical_stiffness.py on Yang et al. (2026)'s pair at refinement 0.4 (35k DOF
-    per gear, 3 x 6 grid), 4 positions, without the 2D references: writes its files, both LTCA
-    runs converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6]
-    (measured 1.42 with a 4 x 8 grid; the workflow's default at refinement 0.6 gives 1.38:
-    the clamped 5-tooth sectors, see the workflow's 2D references)."""
+    """workflows/fe3d_helical_stiffness.py on Yang et al. (2026)'s pair, whole gears at
+    refinement 0.3 (38.5k DOF pinion), 3 x 6 grid, 4 positions, without the 2D references:
+    writes its files, both LTCA runs converge and carry P, and the 3D / slice mean
+    stiffness ratio lies in [0.8, 1.05] (measured 0.921, 100 s; the workflow's default at
+    refinement 0.6 gives 0.895, the 2D whole gears 0.891 in plane strain and 0.847 in
+    plane stress: the body coupling of the pairs in contact, fe3d_source docstring)."""
     import importlib.util
     import json
     import sys
@@ -267,7 +268,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
     sys.modules["fe3d_helical_stiffness"] = mod
     spec.loader.exec_module(mod)
     out = tmp_path / "out"
-    s = mod.run(out, refinement=0.4, radii=3, face=6, slices=12, positions=4,
+    s = mod.run(out, refinement=0.3, radii=3, face=6, slices=12, positions=4,
                 cache_dir=tmp_path / "cache", references=False)
     for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
         assert (out / name).is_file()
@@ -276,7 +277,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
         assert s["max_load_balance_error_N"][src] < 1e-6 * s["load_N"]
         assert s["max_residual_m"][src] < 1e-9
     print(s["fe3d_vs_slice_percent"], s["fe3d_model"]["pinion"]["dof"], s["fe3d_build_s"])
-    assert 0.8 < s["fe3d"]["mean_N_per_m"] / s["slice"]["mean_N_per_m"] < 1.6
+    assert 0.8 < s["fe3d"]["mean_N_per_m"] / s["slice"]["mean_N_per_m"] < 1.05
 
 
 @pytest.mark.slow
@@ -318,3 +319,37 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
     assert k["free"] < 0.95 * k["sliding"]
     assert k["free"] < k["stress"]
     assert k["three_teeth"] > 1.05 * k["free"]
+
+
+@pytest.mark.slow
+def test_whole_gears_against_2d_limits(helical, cache):
+    """Coarse 3D whole gears (b = 4 m_n, free end faces) against the 2D whole gears (same
+    bores clamped, same slices, no face coupling), LTCA at 8 positions, P = 4 kN.
+
+    * Spur pair: the load is uniform across the face, so plane stress (thin face) and
+      plane strain (sliding ends) bound the 3D model; its mean mesh stiffness must lie
+      above the plane-stress one and at most the coarse mesh's few % above the
+      plane-strain one (measured: 3D / stress 1.043, 3D / strain 0.993).
+    * Helical pair (beta 15 deg): measured 3D / stress 0.93, 3D / strain 0.88, *below*
+      both: the contact lines cross the face obliquely, so one end of each line sits near
+      a tooth tip at a free end face (a plate corner, much softer than the same load
+      spread over a whole face, which is what a 2D slice assumes); the face coupling of
+      the 3D model spreads the rest. This is the 3D effect the slices lack.
+    """
+    from pipeline.contact import FE2DCompliance, FE2DSettings
+
+    P = 4000.0
+    spur = GearSpec(face_width=12e-3, name="s", **KW)
+    out = {}
+    for name, pair, src3 in (
+            ("spur", GearPair(spur, spur), None), ("helical", HELICAL_PAIR, helical)):
+        src3 = src3 or FE3DCompliance.build(pair, COARSE, cache_dir=cache)
+        k = {"3d": loaded_mesh_cycle(src3, P, positions=8).mesh_stiffness.mean()}
+        for kind in ("strain", "stress"):
+            src = FE2DCompliance.build(pair, FE2DSettings(radii=12, slices=COARSE.slices,
+                                                          kind=f"plane_{kind}"))
+            k[kind] = loaded_mesh_cycle(src, P, positions=8).mesh_stiffness.mean()
+        out[name] = (k["3d"] / k["stress"], k["3d"] / k["strain"])
+    print("3D / plane stress, 3D / plane strain", out)
+    assert 1.0 < out["spur"][0] and out["spur"][1] < 1.05
+    assert out["helical"][0] < 0.97

@@ -1,10 +1,13 @@
 """3D FE influence coefficients of a helical pair as a compliance source for the contact solver.
 
 :class:`FE3DCompliance` implements :class:`pipeline.contact.source.ComplianceSource`
-from the 3D sector influence matrices of :func:`pipeline.fem.influence.influence_matrix`,
+from the 3D influence matrices of :func:`pipeline.fem.influence.influence_matrix`,
 one per gear (an adapter of the FE stage to the contact solver's protocol), so the
 loaded-contact solver (Yang et al. 2026, eqs. 27-29, local approach eq. 24) sees the face-width
-coupling of the teeth that the slice method neglects.
+coupling of the teeth that the slice method neglects. By default each gear is its whole
+body (``FE3DSettings.body = "whole"``: all teeth, the body down to the clamped bore, the
+full face; :mod:`pipeline.fem.whole3d`), as the 2D source's whole gears are; ``"sector"``
+keeps the few-tooth sector clamped at its cut faces (an upper bound on stiffness).
 
 Method
 ------
@@ -31,8 +34,9 @@ Method
 
 Mapping (sign conventions)
 --------------------------
-* Teeth: as in :mod:`pipeline.contact.fe2d_source`, tooth pair ``k`` is pinion sector tooth
-  ``mid - k`` and gear sector tooth ``mid + k`` (``mid = teeth // 2``), loads on the
+* Teeth: as in :mod:`pipeline.contact.fe2d_source`, tooth pair ``k`` is pinion model tooth
+  ``mid - k`` and gear model tooth ``mid + k`` (``mid = teeth // 2`` of each gear's model:
+  its ``z`` for a whole gear), loads on the
   right flanks (the flank that faces clockwise seen from +z): the pinion turns
   clockwise and drives, the gear turns counter-clockwise.
 * Profile: arc coordinate ``t = rho^2 / (2 r_b)`` with ``rho_1 = s`` on the pinion and
@@ -51,18 +55,37 @@ Mapping (sign conventions)
   normal.) Gears of different width are centred on each other (``z'`` shifted by
   half the difference).
 
+Verification and what remains
+-----------------------------
+tests/test_fem_whole3d.py climbs the ladder against the 2D whole gear of
+:mod:`pipeline.fem.sector2d` (same bore clamp): a spur gear with sliding end faces is
+plane strain (3D / 2D 0.99 for the rim coupling and 0.96 for the loaded tooth at
+refinement 0.6, converging with refinement), a thin one with free faces plane stress
+(0.996-0.997 at b = m_n / 3). On the pair of Yang et al. (2026)
+(workflows/fe3d_helical_stiffness.py, refinement 0.6, 87k / 188k DOF) the whole-gear 3D
+LTCA mesh stiffness is 10.5 % below the slice method's, +0.4 % above the 2D plane-strain
+whole gears and 5.7 % above the 2D plane-stress ones (-10.9 % and -15.3 % vs slice). The
+130 mm face is 17.7 m_n wide, so most of it is in plane strain; what is left between 3D
+and 2D plane strain is a balance of (i) the coarse 3D mesh, a few % stiffer (the spur
+ladder above), (ii) the free end faces, softer where a contact line reaches them, and
+(iii) the face coupling of the helical contact lines, which the 2D slices lack; none of
+them exceeds a few %. The 10 % to the slice method is the body: the whole-gear FE (2D
+and 3D) couples the two or three tooth pairs in contact through the rim and web (README,
+"FE tooth stiffness"), which the slice method's Sainsot foundation term, per pair, does
+not. The 3-tooth sectors of ``body = "sector"`` came out 38 % stiffer than the slice
+method on the same pair, because of their clamped cuts.
+
 Limits
 ------
-* External pairs only (the 3D sector has no internal gears), no herringbone (analyse
-  one helical half, as the other sources); the loaded flanks are all right flanks,
-  which by the 180 deg turn about a radial axis covers the opposite rotation as well.
-* The sector is clamped at its bore (or at ``r_f - hub_depth m_n`` if ``hub_depth``
-  is given) and, by default, at its radial cuts: stiffer than a whole gear body, so
-  the body/foundation part of the compliance is low; the tooth part is what the 3D
-  model adds. workflows/validate_stiffness.py found a clamped 5-tooth 2D sector +55 %
-  stiffer than the slice model on the assembly-error study; here (tests, z 30 helical pair) the
-  default 3-tooth sector gave a 16 % higher LTCA mesh stiffness than a 5-tooth one.
-  Use ``teeth`` = 2 max|k| + 3 or more where the budget allows.
+* External pairs only (no internal 3D gears), no herringbone (analyse one helical half,
+  as the other sources); the loaded flanks are all right flanks, which by the 180 deg
+  turn about a radial axis covers the opposite rotation as well.
+* A gear is clamped at its bore (or at ``r_f - hub_depth m_n`` if ``hub_depth`` is
+  given); a sector also at its radial cuts (``cuts``): stiffer than a whole gear body.
+  workflows/validate_stiffness.py found a clamped 5-tooth 2D sector +55 % stiffer than
+  the slice model on the assembly-error study; here (tests, z 30 helical pair) the
+  3-tooth sector gave a 22 % higher LTCA mesh stiffness than the slice method, the
+  whole gears 3 % lower.
 * Friction is not in the FE loads; wrap the source in
   :class:`~pipeline.contact.source.FrictionCorrected` to add the slice model's
   friction effect.
