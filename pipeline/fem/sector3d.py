@@ -32,7 +32,8 @@ geometry is built by :mod:`pipeline.fem.whole3d`, the groups are the same less t
 Mesh. Curved quadratic tetrahedra (Gmsh places mid-edge nodes on the CAD
 surfaces), graded from ``size_flank`` on the tooth sides of the ``loaded`` teeth
 (all teeth of a sector if None) to ``size_body`` a distance ``grading`` away; the
-sides of the other teeth get ``size_tooth`` (:func:`tooth_size_field`). Meshes are
+sides of the other teeth get ``size_tooth``
+(:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are
 cached in ``meshes/`` by a hash of the gear and the settings
 (:mod:`pipeline.fem.cache`). Lengths in m.
 """
@@ -127,7 +128,8 @@ class SectorSettings3D:
         beta = gear.helix_angle
         # ~8 sections per angular pitch of twist: the loft then strays ~3e-7 rad from the
         # exact helix (measured at the tip land, z 30, beta 15 deg)
-        turn = math.tan(beta) * _width(gear) / gear.reference_radius * gear.teeth / (2 * math.pi)
+        turn = (math.tan(beta) * meshed_width(gear) / gear.reference_radius * gear.teeth
+                / (2 * math.pi))
         return cls(teeth=teeth, size_flank=sf, size_body=max(m / math.sqrt(refinement), sf),
                    grading=1.5 * m, profile_points=max(30, int(30 * refinement)),
                    loft_sections=2 if beta == 0 else max(5, int(math.ceil(8 * turn)) + 1),
@@ -148,13 +150,14 @@ class SectorSettings3D:
         m, root = gear.module, math.sqrt(refinement)
         # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
         # cells spanning the face would be poorly shaped
-        body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * _width(gear)), s.size_flank)
+        body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
         return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
                        size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
                        size_body=body, grading=WHOLE_GRADING * body)
 
 
-def _width(gear: GearSpec) -> float:
+def meshed_width(gear: GearSpec) -> float:
+    """Meshed face width, m: ``face_width``, half of it for a herringbone half."""
     return gear.face_width / 2 if gear.herringbone else gear.face_width
 
 
@@ -231,7 +234,7 @@ def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshD
     """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
     check_sector_teeth(gear, settings)
     r_in = inner_radius(gear, settings)
-    b = _width(gear)
+    b = meshed_width(gear)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
     names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
@@ -245,6 +248,8 @@ def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshD
         missing = [n for n in names + ["end0", "end1"] if not groups.get(n)]
         if missing:
             raise RuntimeError(f"sector3d: surfaces not found after lofting: {missing}")
+        from pipeline.fem.grading3d import tooth_size_field
+
         tooth_size_field(gmsh, settings, groups, gear.root_radius)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
@@ -317,49 +322,6 @@ def _classify_surfaces(gmsh, vol: int, pieces, r_in: float, b: float, rate: floa
     return groups
 
 
-def tooth_size_field(gmsh, settings: SectorSettings3D, groups: dict[str, list[int]],
-                     root_radius: float, extent: float | None = None) -> None:
-    """Background size (Gmsh fields, their minimum): ``size_flank`` on the sides of the
-    loaded teeth growing linearly to ``size_body`` a distance ``grading`` away
-    (Distance + Threshold), and, if some teeth are not loaded, ``size_tooth`` outside
-    the root circle (``root_radius``, m) growing to ``size_body`` at ``grading`` below
-    it (a radial MathEval + Threshold: a Distance field to the sides of every tooth of
-    a whole gear made Gmsh's 1D meshing take 30 s). Gmsh samples the loaded sides at
-    20 points per parametric direction for the distances, or, given the largest
-    surface ``extent`` (m), at about two points per flank element (a coarse sampling
-    leaves the fine zone ragged along a wide face)."""
-    loaded = range(settings.teeth) if settings.loaded is None else settings.loaded
-    fine = [s for k in loaded for side in ("right", "left") for s in groups[f"{side}{k}"]]
-    fld = gmsh.model.mesh.field
-    dist = fld.add("Distance")
-    fld.setNumbers(dist, "SurfacesList", fine)
-    if extent is not None:
-        n = int(min(400, max(20, math.ceil(2 * extent / settings.size_flank))))
-        fld.setNumber(dist, "Sampling", n)
-    fields = [(dist, settings.size_flank, 0.25 * settings.size_flank)]
-    if len(loaded) < settings.teeth:
-        depth = fld.add("MathEval")
-        fld.setString(depth, "F", f"{root_radius!r} - Sqrt(x * x + y * y)")
-        fields.append((depth, settings.size_tooth or settings.size_flank, 0.0))
-    thresholds = []
-    for f, size, d_min in fields:
-        thr = fld.add("Threshold")
-        fld.setNumber(thr, "InField", f)
-        fld.setNumber(thr, "SizeMin", size)
-        fld.setNumber(thr, "SizeMax", settings.size_body)
-        fld.setNumber(thr, "DistMin", d_min)
-        fld.setNumber(thr, "DistMax", settings.grading)
-        thresholds.append(thr)
-    if len(thresholds) > 1:
-        smallest = fld.add("Min")
-        fld.setNumbers(smallest, "FieldsList", thresholds)
-        thresholds = [smallest]
-    fld.setAsBackgroundMesh(thresholds[0])
-    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{opt}", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size_body)
-
-
 def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cache: bool = True,
                    cache_dir=None) -> SectorMesh3D:
     """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
@@ -379,7 +341,7 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     tets = to_skfem(data)
     _check_cells(tets.mesh)
-    return SectorMesh3D(tets, gear, settings, r_in, _width(gear), rate)
+    return SectorMesh3D(tets, gear, settings, r_in, meshed_width(gear), rate)
 
 
 def _check_cells(mesh) -> None:

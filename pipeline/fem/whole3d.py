@@ -14,7 +14,7 @@ Surface groups: ``right{k}`` / ``left{k}`` (k = 0 .. z-1), ``bore``, ``end0`` (z
 and ``end1`` (z = b). Boundary conditions are those of the 2D whole gear
 (:func:`pipeline.fem.influence.constrained_dofs`): the bore is clamped; nothing else.
 
-Mesh. One P2 tetrahedral mesh graded by :func:`pipeline.fem.sector3d.tooth_size_field`:
+Mesh. One P2 tetrahedral mesh graded by :func:`pipeline.fem.grading3d.tooth_size_field`:
 ``size_flank`` on both sides of the *loaded* teeth (those whose flanks carry grid
 points), ``size_tooth`` on the other teeth, growing to ``size_body`` in the rim,
 web and far teeth (:meth:`~pipeline.fem.sector3d.SectorSettings3D.whole_gear`).
@@ -28,14 +28,9 @@ import math
 import numpy as np
 
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
+from pipeline.fem.grading3d import tooth_size_field
 from pipeline.fem.sector2d import inner_radius, outline_pieces
-from pipeline.fem.sector3d import (
-    SectorSettings3D,
-    _width,
-    check_sector_teeth,
-    helix_sign,
-    tooth_size_field,
-)
+from pipeline.fem.sector3d import SectorSettings3D, check_sector_teeth, helix_sign, meshed_width
 from pipeline.geometry.gear import GearSpec
 
 HIGH_ORDER_OPTIMIZE = 1
@@ -45,7 +40,7 @@ def build_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetM
     """Loft, cut the bore and mesh the whole gear in Gmsh (module docstring)."""
     check_sector_teeth(gear, settings)
     r_in = inner_radius(gear, settings)
-    b = _width(gear)
+    b = meshed_width(gear)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     pieces = outline_pieces(gear, gear.teeth, settings.profile_points)
     with gmsh_session() as gmsh:
