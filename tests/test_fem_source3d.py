@@ -37,8 +37,12 @@ BETA = math.radians(15)
 PINION = GearSpec(face_width=12e-3, helix_angle=BETA, hand="right", name="p", **KW)
 GEAR = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", name="g", **KW)
 HELICAL_PAIR = GearPair(PINION, GEAR)
-# coarse: 10k DOF per gear; c = 0.6 m_n spans ~1 flank element (fe3d_table docstring)
-COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
+# coarse whole gears (the default body): 25k DOF per gear; c = 0.6 m_n spans ~1 flank
+# element (fe3d_table docstring)
+COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8)
+# the same as 3-tooth sectors clamped at their cuts: 10k DOF per gear
+SECTOR = FE3DSettings(body="sector", radii=4, refinement=0.6, patch=0.6, slices=8,
+                      method="splu")
 
 
 @pytest.fixture(scope="module")
@@ -75,7 +79,7 @@ def test_unsupported_pairs_and_small_sectors_are_rejected():
     wide = GearPair(GearSpec(face_width=60e-3, helix_angle=BETA, hand="right", **KW),
                     GearSpec(face_width=60e-3, helix_angle=BETA, hand="left", **KW))
     with pytest.raises(InputError, match="fe3d.teeth"):
-        FE3DCompliance.build(wide, FE3DSettings(teeth=3))
+        FE3DCompliance.build(wide, FE3DSettings(body="sector", teeth=3))
 
 
 # ---- mapping and interpolation -------------------------------------------------------------
@@ -86,9 +90,10 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
     s0 = HELICAL_PAIR.mesh_cycle(4)[2]
     pts = helical.points(s0)
     sel = pts.pair == 0
-    for gear, (tooth, arc, zs) in zip((PINION, GEAR), helical.flank_coordinates(pts),
-                                      strict=True):
-        sec = sector_mesh_3d(gear, _sector_settings(gear, helical), cache_dir=cache)
+    for gear, table, (tooth, arc, zs) in zip((PINION, GEAR), (helical.pinion_table,
+                                             helical.gear_table),
+                                             helical.flank_coordinates(pts), strict=True):
+        sec = sector_mesh_3d(gear, _model_settings(gear, table), cache_dir=cache)
         rb = gear.base_radius
         r = np.sqrt(2 * rb * arc[sel, 0] + rb * rb)
         for z, tol in ((zs[sel, 0], 1e-9), (gear.face_width - zs[sel, 0], None)):
@@ -105,10 +110,10 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
                 assert off > 1e-5
 
 
-def _sector_settings(gear, src):
+def _model_settings(gear, table):
     from pipeline.contact.fe3d_table import _sector_settings
 
-    return _sector_settings(gear, src.sector_teeth, src.settings)
+    return _sector_settings(gear, table.info["model_teeth"], COARSE, table.teeth)
 
 
 def test_interpolation_reproduces_table_at_nodes(helical):
@@ -200,7 +205,8 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
     spur = GearSpec(face_width=6e-3, name="s", **KW)
     pair = GearPair(spur, spur)
-    fe3 = FE3DCompliance.build(pair, FE3DSettings(teeth=5, radii=5, refinement=0.6, ends="sliding",
+    fe3 = FE3DCompliance.build(pair, FE3DSettings(body="sector", teeth=5, radii=5,
+                                                  refinement=0.6, ends="sliding",
                                                   method="splu"), cache_dir=cache)
     fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, radii=12, refinement=1.0,
                                                     kind="plane_strain"))
@@ -218,17 +224,17 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
 # ---- LTCA ------------------------------------------------------------------------------------
 def test_ltca_with_3d_source(helical):
-    """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact): converged (residual
-    within tolerance, measured 5e-17 m), every position carries P, and the tangent mesh
-    stiffness lies within [-30 %, +40 %] of the slice method's on the same points.
+    """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact) on the coarse
+    whole gears: converged (residual within tolerance), every position carries P, and the
+    tangent mesh stiffness lies within [-20 %, +20 %] of the slice method's on the same
+    points.
 
-    Measured: 3D / slice = 1.15 .. 1.28 (mean 1.22; 305 vs 252 N/um). The 3D model is
-    stiffer for known reasons: a 3-tooth sector clamped at its cuts and bore (the 2D study
-    found a clamped 5-tooth sector +55 % stiffer than the slice model on the assembly-error paper's
-    pair, whose foundation term assumes a whole gear body) and the coarse mesh (refinement 0.6: ~5
-    %
-    too stiff, test above); the free tooth ends and the face coupling make it softer where
-    a contact line reaches an end face."""
+    Measured: 3D / slice = 0.89 .. 1.07 (mean 0.97; 243.5 vs 251.5 N/um). The 3-tooth
+    sectors clamped at their cuts gave 1.15 .. 1.28 (mean 1.22) here: the clamped cuts,
+    not the 3D model, made the old figures an upper bound. The whole gear has the body
+    compliance that the slice method's Sainsot term approximates, so the two may differ
+    by the face coupling, the free tooth ends and the coarse mesh (refinement 0.6: a few
+    % too stiff, tests/test_fem_whole3d.py), not by the +20 % of a clamped sector."""
     P = 4000.0
     fe = loaded_mesh_cycle(helical, P, positions=8)
     sl = loaded_mesh_cycle(SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices), P,
@@ -238,18 +244,19 @@ def test_ltca_with_3d_source(helical):
     ratio = fe.mesh_stiffness / sl.mesh_stiffness
     print("k_fe3d / k_slice", ratio.min(), ratio.mean(), ratio.max(), fe.mesh_stiffness.mean(),
           sl.mesh_stiffness.mean(), fe.residual.max())
-    assert np.all((ratio > 0.7) & (ratio < 1.4))
+    assert np.all((ratio > 0.8) & (ratio < 1.2))
 
 
 # ---- slow: fe3d workflow (Yang et al. 2026 pair) at its coarsest
 # ---------------------------------------------
 @pytest.mark.slow
 def test_fe3d_helical_workflow_coarse(tmp_path):
-    """workflows/fe3d_helical_stiffness.py on Yang et al. (2026)'s pair at refinement 0.4 (35k DOF
-    per gear, 3 x 6 grid), 4 positions, without the 2D references: writes its files, both LTCA
-    runs converge and carry P, and the 3D/slice mean stiffness ratio lies in [0.8, 1.6]
-    (measured 1.42 with a 4 x 8 grid; the workflow's default at refinement 0.6 gives 1.38:
-    the clamped 5-tooth sectors, see the workflow's 2D references)."""
+    """workflows/fe3d_helical_stiffness.py on Yang et al. (2026)'s pair, whole gears at
+    refinement 0.3 (38.5k DOF pinion), 3 x 6 grid, 4 positions, without the 2D references:
+    writes its files, both LTCA runs converge and carry P, and the 3D / slice mean
+    stiffness ratio lies in [0.8, 1.05] (measured 0.921, 100 s; the workflow's default at
+    refinement 0.6 gives 0.895, the 2D whole gears 0.891 in plane strain and 0.847 in
+    plane stress: the body coupling of the pairs in contact, fe3d_source docstring)."""
     import importlib.util
     import json
     import sys
@@ -261,7 +268,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
     sys.modules["fe3d_helical_stiffness"] = mod
     spec.loader.exec_module(mod)
     out = tmp_path / "out"
-    s = mod.run(out, refinement=0.4, radii=3, face=6, slices=12, positions=4,
+    s = mod.run(out, refinement=0.3, radii=3, face=6, slices=12, positions=4,
                 cache_dir=tmp_path / "cache", references=False)
     for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
         assert (out / name).is_file()
@@ -270,7 +277,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
         assert s["max_load_balance_error_N"][src] < 1e-6 * s["load_N"]
         assert s["max_residual_m"][src] < 1e-9
     print(s["fe3d_vs_slice_percent"], s["fe3d_model"]["pinion"]["dof"], s["fe3d_build_s"])
-    assert 0.8 < s["fe3d"]["mean_N_per_m"] / s["slice"]["mean_N_per_m"] < 1.6
+    assert 0.8 < s["fe3d"]["mean_N_per_m"] / s["slice"]["mean_N_per_m"] < 1.05
 
 
 @pytest.mark.slow
@@ -291,7 +298,8 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
     from pipeline.contact import FE2DCompliance, FE2DSettings
 
     P = 4000.0
-    kw = dict(teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8, method="splu")
+    kw = dict(body="sector", teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8,
+              method="splu")
     k = {}
     for name, src in {
         "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache_dir=cache),
@@ -301,7 +309,7 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
             teeth=5, radii=12, slices=8, kind="plane_strain")),
         "stress": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, radii=12, slices=8, kind="plane_stress")),
-        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache),
+        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, SECTOR, cache_dir=cache),
     }.items():
         cyc = loaded_mesh_cycle(src, P, positions=8)
         assert np.all(cyc.residual <= cyc.tolerance)
@@ -311,3 +319,37 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
     assert k["free"] < 0.95 * k["sliding"]
     assert k["free"] < k["stress"]
     assert k["three_teeth"] > 1.05 * k["free"]
+
+
+@pytest.mark.slow
+def test_whole_gears_against_2d_limits(helical, cache):
+    """Coarse 3D whole gears (b = 4 m_n, free end faces) against the 2D whole gears (same
+    bores clamped, same slices, no face coupling), LTCA at 8 positions, P = 4 kN.
+
+    * Spur pair: the load is uniform across the face, so plane stress (thin face) and
+      plane strain (sliding ends) bound the 3D model; its mean mesh stiffness must lie
+      above the plane-stress one and at most the coarse mesh's few % above the
+      plane-strain one (measured: 3D / stress 1.043, 3D / strain 0.993).
+    * Helical pair (beta 15 deg): measured 3D / stress 0.93, 3D / strain 0.88, *below*
+      both: the contact lines cross the face obliquely, so one end of each line sits near
+      a tooth tip at a free end face (a plate corner, much softer than the same load
+      spread over a whole face, which is what a 2D slice assumes); the face coupling of
+      the 3D model spreads the rest. This is the 3D effect the slices lack.
+    """
+    from pipeline.contact import FE2DCompliance, FE2DSettings
+
+    P = 4000.0
+    spur = GearSpec(face_width=12e-3, name="s", **KW)
+    out = {}
+    for name, pair, src3 in (
+            ("spur", GearPair(spur, spur), None), ("helical", HELICAL_PAIR, helical)):
+        src3 = src3 or FE3DCompliance.build(pair, COARSE, cache_dir=cache)
+        k = {"3d": loaded_mesh_cycle(src3, P, positions=8).mesh_stiffness.mean()}
+        for kind in ("strain", "stress"):
+            src = FE2DCompliance.build(pair, FE2DSettings(radii=12, slices=COARSE.slices,
+                                                          kind=f"plane_{kind}"))
+            k[kind] = loaded_mesh_cycle(src, P, positions=8).mesh_stiffness.mean()
+        out[name] = (k["3d"] / k["stress"], k["3d"] / k["strain"])
+    print("3D / plane stress, 3D / plane strain", out)
+    assert 1.0 < out["spur"][0] and out["spur"][1] < 1.05
+    assert out["helical"][0] < 0.97

@@ -285,8 +285,11 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
     cls = fe_settings_class(contact.compliance)
     keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE
                  if k.name in mapping)
+    kw = {mapping[k]: v for k, v in values.items() if k in mapping}
+    if contact.compliance == "fe3d" and "teeth" in kw:
+        kw["body"] = "sector"  # a tooth count in 3D asks for a sector, not the whole gear
     with restated("fe", keys, table):
-        source = cls(**{mapping[k]: v for k, v in values.items() if k in mapping})
+        source = cls(**kw)
     return sector, fe_settings(contact.compliance, source, contact)
 
 

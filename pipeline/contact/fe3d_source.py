@@ -1,10 +1,13 @@
 """3D FE influence coefficients of a helical pair as a compliance source for the contact solver.
 
 :class:`FE3DCompliance` implements :class:`pipeline.contact.source.ComplianceSource`
-from the 3D sector influence matrices of :func:`pipeline.fem.influence.influence_matrix`,
+from the 3D influence matrices of :func:`pipeline.fem.influence.influence_matrix`,
 one per gear (an adapter of the FE stage to the contact solver's protocol), so the
 loaded-contact solver (Yang et al. 2026, eqs. 27-29, local approach eq. 24) sees the face-width
-coupling of the teeth that the slice method neglects.
+coupling of the teeth that the slice method neglects. By default each gear is its whole
+body (``FE3DSettings.body = "whole"``: all teeth, the body down to the clamped bore, the
+full face; :mod:`pipeline.fem.whole3d`), as the 2D source's whole gears are; ``"sector"``
+keeps the few-tooth sector clamped at its cut faces (an upper bound on stiffness).
 
 Method
 ------
@@ -31,8 +34,9 @@ Method
 
 Mapping (sign conventions)
 --------------------------
-* Teeth: as in :mod:`pipeline.contact.fe2d_source`, tooth pair ``k`` is pinion sector tooth
-  ``mid - k`` and gear sector tooth ``mid + k`` (``mid = teeth // 2``), loads on the
+* Teeth: as in :mod:`pipeline.contact.fe2d_source`, tooth pair ``k`` is pinion model tooth
+  ``mid - k`` and gear model tooth ``mid + k`` (``mid = teeth // 2`` of each gear's model:
+  its ``z`` for a whole gear), loads on the
   right flanks (the flank that faces clockwise seen from +z): the pinion turns
   clockwise and drives, the gear turns counter-clockwise.
 * Profile: arc coordinate ``t = rho^2 / (2 r_b)`` with ``rho_1 = s`` on the pinion and
@@ -51,18 +55,37 @@ Mapping (sign conventions)
   normal.) Gears of different width are centred on each other (``z'`` shifted by
   half the difference).
 
+Verification and what remains
+-----------------------------
+tests/test_fem_whole3d.py climbs the ladder against the 2D whole gear of
+:mod:`pipeline.fem.sector2d` (same bore clamp): a spur gear with sliding end faces is
+plane strain (3D / 2D 0.99 for the rim coupling and 0.96 for the loaded tooth at
+refinement 0.6, converging with refinement), a thin one with free faces plane stress
+(0.996-0.997 at b = m_n / 3). On the pair of Yang et al. (2026)
+(workflows/fe3d_helical_stiffness.py, refinement 0.6, 87k / 188k DOF) the whole-gear 3D
+LTCA mesh stiffness is 10.5 % below the slice method's, +0.4 % above the 2D plane-strain
+whole gears and 5.7 % above the 2D plane-stress ones (-10.9 % and -15.3 % vs slice). The
+130 mm face is 17.7 m_n wide, so most of it is in plane strain; what is left between 3D
+and 2D plane strain is a balance of (i) the coarse 3D mesh, a few % stiffer (the spur
+ladder above), (ii) the free end faces, softer where a contact line reaches them, and
+(iii) the face coupling of the helical contact lines, which the 2D slices lack; none of
+them exceeds a few %. The 10 % to the slice method is the body: the whole-gear FE (2D
+and 3D) couples the two or three tooth pairs in contact through the rim and web (README,
+"FE tooth stiffness"), which the slice method's Sainsot foundation term, per pair, does
+not. The 3-tooth sectors of ``body = "sector"`` came out 38 % stiffer than the slice
+method on the same pair, because of their clamped cuts.
+
 Limits
 ------
-* External pairs only (the 3D sector has no internal gears), no herringbone (analyse
-  one helical half, as the other sources); the loaded flanks are all right flanks,
-  which by the 180 deg turn about a radial axis covers the opposite rotation as well.
-* The sector is clamped at its bore (or at ``r_f - hub_depth m_n`` if ``hub_depth``
-  is given) and, by default, at its radial cuts: stiffer than a whole gear body, so
-  the body/foundation part of the compliance is low; the tooth part is what the 3D
-  model adds. workflows/validate_stiffness.py found a clamped 5-tooth 2D sector +55 %
-  stiffer than the slice model on the assembly-error study; here (tests, z 30 helical pair) the
-  default 3-tooth sector gave a 16 % higher LTCA mesh stiffness than a 5-tooth one.
-  Use ``teeth`` = 2 max|k| + 3 or more where the budget allows.
+* External pairs only (no internal 3D gears), no herringbone (analyse one helical half,
+  as the other sources); the loaded flanks are all right flanks, which by the 180 deg
+  turn about a radial axis covers the opposite rotation as well.
+* A gear is clamped at its bore (or at ``r_f - hub_depth m_n`` if ``hub_depth`` is
+  given); a sector also at its radial cuts (``cuts``): stiffer than a whole gear body.
+  workflows/validate_stiffness.py found a clamped 5-tooth 2D sector +55 % stiffer than
+  the slice model on the assembly-error study; here (tests, z 30 helical pair) the
+  3-tooth sector gave a 22 % higher LTCA mesh stiffness than the slice method, the
+  whole gears 3 % lower.
 * Friction is not in the FE loads; wrap the source in
   :class:`~pipeline.contact.source.FrictionCorrected` to add the slice model's
   friction effect.
@@ -114,34 +137,43 @@ class FE3DCompliance:
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE3DSettings | None = None, cache: bool = True,
-              cache_dir: str | Path | None = None) -> FE3DCompliance:
-        """Mesh and solve (or read from the cache) both gears' tables, once."""
+              cache_dir: str | Path | None = None, progress: bool = True) -> FE3DCompliance:
+        """Mesh and solve (or read from the cache) both gears' tables, once.
+
+        ``progress`` reports every step longer than a second (mesh, assembly,
+        factorisation, solves) on stderr; the tables' ``info["timings_s"]`` keep the
+        breakdown (:meth:`summary`).
+        """
         settings = settings or FE3DSettings()
         if pair.pinion.herringbone or pair.gear.herringbone:
             raise InputError("fe3d source: analyse one helical half of a herringbone pair")
         if pair.gear.internal:
-            raise InputError("fe3d source: internal gears are not supported (3D sectors "
+            raise InputError("fe3d source: internal gears are not supported (3D models "
                              "are external only)")
         k = touching_pairs(pair)
-        teeth = cls._teeth(pair, settings)
-        mid = teeth // 2
-        if np.abs(k).max() > mid or teeth - 1 - mid < np.abs(k).max():
+        teeth = cls._model_teeth(pair, settings)
+        if settings.body == "sector" and (np.abs(k).max() > teeth[0] // 2
+                                          or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
             raise InputError(f"fe3d.teeth = {settings.teeth} does not cover tooth pairs "
                              f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
-        tables = [flank_table(g, teeth, np.sort(mid + sign * k), settings, cache, cache_dir)
-                  for g, sign in ((pair.pinion, -1), (pair.gear, 1))]
+        tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache, cache_dir,
+                              progress)
+                  for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
         return cls(pair, settings, *tables)
 
     @staticmethod
-    def _teeth(pair: GearPair, settings: FE3DSettings) -> int:
-        if settings.teeth is not None:
-            return settings.teeth
-        return 2 * int(np.abs(touching_pairs(pair)).max()) + 1
+    def _model_teeth(pair: GearPair, settings: FE3DSettings) -> tuple[int, int]:
+        """Teeth of the pinion's and the gear's 3D models."""
+        if settings.body == "whole":
+            return pair.pinion.teeth, pair.gear.teeth
+        n = (settings.teeth if settings.teeth is not None
+             else 2 * int(np.abs(touching_pairs(pair)).max()) + 1)
+        return n, n
 
     @property
-    def sector_teeth(self) -> int:
-        """Teeth of both 3D sectors."""
-        return self._teeth(self.pair, self.settings)
+    def model_teeth(self) -> tuple[int, int]:
+        """Teeth of the pinion's and the gear's 3D models (z1, z2 for whole gears)."""
+        return self._model_teeth(self.pair, self.settings)
 
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
@@ -170,14 +202,14 @@ class FE3DCompliance:
         z = pts.z[:, None] + pts.width[:, None] * u[None, :]
         s = np.clip(pts.s[:, None] + (z - pts.z[:, None]) * tb, pair.s_start, pair.s_end)
         rho1, rho2 = pair.curvature_radii(s)
-        mid = self.sector_teeth // 2
+        mid1, mid2 = (n // 2 for n in self.model_teeth)
         b = pair.face_width
         out = []
         # z' = b - z for a right-hand pinion / left-hand gear (module docstring)
         flips = (helix_sign(pair.pinion) > 0, helix_sign(pair.gear) < 0)
         for table, gear, rho, tooth, flip in (
-                (self.pinion_table, pair.pinion, rho1, mid - pts.pair, flips[0]),
-                (self.gear_table, pair.gear, rho2, mid + pts.pair, flips[1])):
+                (self.pinion_table, pair.pinion, rho1, mid1 - pts.pair, flips[0]),
+                (self.gear_table, pair.gear, rho2, mid2 + pts.pair, flips[1])):
             zs = (b - z if flip else z) + 0.5 * (table.width - b)
             arc = np.asarray(rho) ** 2 / (2 * gear.base_radius)
             out.append((np.repeat(tooth[:, None], samples, axis=1), arc, zs))
@@ -204,8 +236,9 @@ class FE3DCompliance:
         return G / math.cos(self.pair.pinion.base_helix_angle) ** 2
 
     def summary(self) -> dict:
-        """Sector teeth, grid sizes and the FE figures of both tables."""
-        return {"sector_teeth": self.sector_teeth, "tooth_pairs": touching_pairs(self.pair),
-                "settings": asdict(self.settings),
+        """Model teeth, settings and the FE figures of both tables (DOFs, solver, timing
+        breakdown in s, cache use)."""
+        return {"body": self.settings.body, "model_teeth": self.model_teeth,
+                "tooth_pairs": touching_pairs(self.pair), "settings": asdict(self.settings),
                 "pinion": {"teeth": self.pinion_table.teeth, **self.pinion_table.info},
                 "gear": {"teeth": self.gear_table.teeth, **self.gear_table.info}}

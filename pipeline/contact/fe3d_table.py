@@ -1,10 +1,13 @@
-"""Structural flank tables of one gear's 3D sector (for the 3D FE compliance source).
+"""Structural flank tables of one gear's 3D FE model (for the 3D FE compliance source).
 
 The tables of :class:`~pipeline.contact.fe3d_source.FE3DCompliance`.
 For each gear one structural influence matrix ``S`` (m/N: normal approach
 per unit normal load, FE minus the Boussinesq near field) is computed once, on a
-grid of ``radii x face`` points on the right flank of every sector tooth that a
-tooth pair in contact can reach over a mesh cycle (one solver set-up per gear).
+grid of ``radii x face`` points on the right flank of every tooth that a tooth pair
+in contact can reach over a mesh cycle (one solver set-up per gear). The FE model is
+the whole gear body (``body = "whole"``, default: all teeth, body down to the bore,
+full face width, mesh graded from the loaded teeth, :mod:`pipeline.fem.whole3d`) or a
+sector of a few teeth clamped at its cut faces (``body = "sector"``).
 Profile points are equally spaced in the arc coordinate of the involute between the
 form (or base) circle and the tip, ``c`` of arc inside both ends (``c`` the load
 patch half-width: the patch reaches the tip corner but does not cross it); face
@@ -15,6 +18,10 @@ positive semidefinite matrices (negative eigenvalues, discretisation error of
 ``G``; the change is recorded in the table's ``info``). Tables are cached on
 disk by a content hash of the gear, mesh settings, grid and boundary conditions
 (``meshes/fe3dtable-<hash>.npz``, written atomically), like the meshes themselves.
+
+Progress of the mesh, assembly, factorisation and solves goes to stderr
+(:class:`pipeline.progress.Steps`); each table's ``info["timings_s"]`` keeps the wall
+times of the build that computed it (also when it is read back from the cache).
 
 Discretisation: the default 3D meshes are coarse (flank elements ``m_n / (3
 refinement)``); a displacement FE model is stiffer than the real tooth (a few %
@@ -40,11 +47,14 @@ from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
 from pipeline.fem.solvers import SOLVERS, solver_named
 from pipeline.geometry.gear import GearSpec
+from pipeline.progress import Steps
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 # Bump when the same inputs would give a different table.
-TABLE_FORMAT = 2  # 2: tables on sector_mesh_3d's own meshes (no cleaned-outline copy)
-_STORED = ("structural", "dof", "free_dof", "solver", "seconds")  # arrays in the cache file
+TABLE_FORMAT = 3  # 3: whole-gear bodies, timings stored
+_STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
+           "timing_values", "symmetry_error")  # arrays in the cache file
+BODIES = ("whole", "sector")
 
 
 @dataclass(frozen=True)
@@ -53,13 +63,18 @@ class FE3DSettings:
 
     Attributes
     ----------
-    teeth : teeth per sector (3..99, odd values centre the loaded teeth), or None for
-        the fewest that hold the tooth pairs in contact (``2 max|k| + 1``).
+    body : "whole" (default): each gear's whole body (all teeth, body down to the bore,
+        full face width; bore clamped, as the 2D whole gear), graded from the loaded
+        teeth (:mod:`pipeline.fem.whole3d`); "sector": a sector of ``teeth`` teeth
+        clamped at its bore and cut faces (stiffer than the gear: an upper bound).
+    teeth : "sector" only: teeth per sector (3..99, odd values centre the loaded teeth),
+        or None for the fewest that hold the tooth pairs in contact (``2 max|k| + 1``).
     radii : flank grid points along the profile (2..200).
     face : flank grid points across the face width (1..200), or None for a spacing of
         about one patch half-width (the structural kernel then varies little between
         nodes; coarser face grids blur its peak at the diagonal).
-    refinement : mesh refinement (:meth:`SectorSettings3D.for_gear`), 0.2..4.
+    refinement : mesh refinement, 0.2..4: loaded flanks ``m_n / (3 refinement)``
+        (:meth:`SectorSettings3D.for_gear`, :meth:`SectorSettings3D.whole_gear`).
     patch : load patch half-width c in normal modules (0.1..2). Default 0.5, wider than
         the 3D default 0.3 of :func:`pipeline.fem.influence.influence_matrix`: the
         near-field subtraction needs the patch resolved by the mesh (0.3 m_n needs
@@ -69,14 +84,15 @@ class FE3DSettings:
         largest); at c = 0.5-0.6 m_n: -0.2 to -0.4 %.
     face_margin : distance of the outer face grid points from the end faces, in
         patch half-widths (0..10; 1 keeps every patch whole on the flank).
-    cuts : "clamped" or "free" sector cut faces.
+    cuts : "clamped" or "free" sector cut faces (a whole gear has none).
     ends : "free" or "sliding" (u_z = 0) end faces.
     slices : slices across the face width of a helical pair (spur: 1).
-    hub_depth : if given, the sector is clamped at ``max(bore, r_f - hub_depth m_n)``
+    hub_depth : if given, the body is clamped at ``max(bore, r_f - hub_depth m_n)``
         instead of the bore (1..100 modules): a shallower body for deep gears.
     method : solver (:func:`pipeline.fem.solvers.solver_named`, 3D).
     """
 
+    body: str = "whole"
     teeth: int | None = None
     radii: int = 8
     face: int | None = None
@@ -90,7 +106,11 @@ class FE3DSettings:
     method: str = "auto"
 
     def __post_init__(self) -> None:
+        check_choice("fe3d.body", self.body, BODIES)
         if self.teeth is not None:
+            if self.body == "whole":
+                raise InputError(f"fe3d.teeth = {self.teeth} applies to body = 'sector' only "
+                                 "(a whole gear has all its teeth)")
             check_int_range("fe3d.teeth", self.teeth, 3, 99)
         check_int_range("fe3d.radii", self.radii, 2, 200)
         if self.face is not None:
@@ -108,19 +128,22 @@ class FE3DSettings:
 
 @dataclass(frozen=True, eq=False)
 class FlankTable3D:
-    """Structural compliance on the right-flank grid of some teeth of one gear's 3D sector.
+    """Structural compliance on the right-flank grid of some teeth of one gear's 3D model.
 
     Attributes
     ----------
-    teeth : (n_t,) sector tooth indices of the grid, ascending.
+    teeth : (n_t,) tooth indices of the grid in the model (sector or whole gear), ascending.
     arc : (n_p,) arc coordinates of the profile points, m (ascending).
     z : (n_f,) face positions in the sector frame, m (ascending).
     structural : (N, N) structural compliance, m/N (symmetric, semidefinite: module
         docstring), N = n_t n_f n_p, points
         ordered by tooth (outer), face position, then profile (inner).
-    width : meshed face width of the sector, m.
-    info : DOFs, solver, timings (s) of the FE solve and whether the table was read
-        from the cache.
+    width : meshed face width of the model, m.
+    info : "body", "model_teeth" (teeth of the mesh), "dof", "free_dof", "solver",
+        "seconds" (wall time of the build that computed the table), "timings_s" (its
+        breakdown: mesh, assembly, loads, factorise, solve, near field, s), "cached"
+        (read from the cache), "wall_s" (this call), "symmetry_error", and the
+        positive-semidefinite projection figures (:func:`_table`).
     """
 
     teeth: np.ndarray
@@ -161,8 +184,14 @@ class FlankTable3D:
         return W
 
 
-def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings) -> SectorSettings3D:
-    s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
+def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings,
+                     loaded: np.ndarray | None = None) -> SectorSettings3D:
+    """Mesh settings: a sector of ``teeth`` teeth, or the whole gear (``teeth = z``)
+    graded from the ``loaded`` teeth."""
+    if teeth == gear.teeth:
+        s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement)
+    else:
+        s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
     if settings.hub_depth is not None:
         r = max(gear.bore_radius, gear.root_radius - settings.hub_depth * gear.module)
         s3 = replace(s3, inner_radius=r)
@@ -185,20 +214,23 @@ def _grid(gear: GearSpec, sector_width: float, settings: FE3DSettings
     return r, z, c
 
 
-def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings: FE3DSettings,
-                cache: bool = True, cache_dir: str | Path | None = None) -> FlankTable3D:
-    """The (cached) structural table of ``gear``'s right flanks on sector teeth ``loaded``.
+def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: FE3DSettings,
+                cache: bool = True, cache_dir: str | Path | None = None,
+                progress: bool = True) -> FlankTable3D:
+    """The (cached) structural table of ``gear``'s right flanks on teeth ``loaded``.
 
     Parameters
     ----------
     gear : an external, non-herringbone gear.
-    sector_teeth : teeth of the 3D sector.
-    loaded : sector tooth indices whose right flanks carry grid points (ascending).
+    model_teeth : teeth of the 3D model: ``gear.teeth`` for the whole gear, else a sector.
+    loaded : tooth indices of the model whose right flanks carry grid points.
     settings : grid, mesh and boundary-condition settings.
     cache, cache_dir : on-disk cache of tables and meshes (default ``meshes/``).
+    progress : report the steps on stderr (:class:`pipeline.progress.Steps`).
     """
+    t_call = time.perf_counter()
     loaded = np.unique(np.asarray(loaded, dtype=int))
-    s3 = _sector_settings(gear, sector_teeth, settings)
+    s3 = _sector_settings(gear, model_teeth, settings, loaded)
     width = gear.face_width
     r, z, c = _grid(gear, width, settings)
     rb = gear.base_radius
@@ -207,25 +239,36 @@ def flank_table(gear: GearSpec, sector_teeth: int, loaded: np.ndarray, settings:
            "sector": asdict(s3), "inner_radius": inner_radius(gear, s3),
            "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
            "ends": settings.ends}
+    body = "whole" if model_teeth == gear.teeth else "sector"
+    steps = Steps(f"fe3d {gear.name} ({body}, {model_teeth} teeth)", enabled=progress)
 
     def build() -> dict:
         t0 = time.perf_counter()
-        sector = sector_mesh_3d(gear, s3, cache=cache, cache_dir=cache_dir)
+        with steps.step("mesh"):
+            sector = sector_mesh_3d(gear, s3, cache=cache, cache_dir=cache_dir)
         pts = flank_grid(sector, loaded, r, z)
         res = influence_matrix(sector, pts, patch_half_width=c,
                                solver=solver_named(settings.method, dim=3),
-                               cuts=settings.cuts, ends=settings.ends)
+                               cuts=settings.cuts, ends=settings.ends, steps=steps)
+        seconds = time.perf_counter() - t0
+        timings = {**steps.timings, "total": seconds}
         return {"structural": res.structural, "dof": res.n_dof, "free_dof": res.n_free,
-                "solver": res.method, "seconds": time.perf_counter() - t0,
-                "timings_s": res.timings, "symmetry_error": res.symmetry_error()}
+                "solver": res.method, "seconds": seconds,
+                "timing_names": np.array(list(timings)),
+                "timing_values": np.array(list(timings.values())),
+                "symmetry_error": res.symmetry_error()}
 
     def save(path: Path, v: dict) -> Path:
         return save_arrays(path, {k: v[k] for k in _STORED})
 
     v, _, hit = cached_file("fe3dtable", key, build, load_arrays, save, cache_dir, cache)
-    info = {"dof": int(v["dof"]), "free_dof": int(v["free_dof"]), "solver": str(v["solver"]),
-            "seconds": float(v["seconds"]), "cached": hit,
-            **{k: v[k] for k in ("timings_s", "symmetry_error") if k in v}}
+    timings = {str(n): float(t) for n, t in zip(v["timing_names"], v["timing_values"],
+                                               strict=True)}
+    info = {"body": body, "model_teeth": int(model_teeth), "dof": int(v["dof"]),
+            "free_dof": int(v["free_dof"]), "solver": str(v["solver"]),
+            "seconds": float(v["seconds"]), "timings_s": timings, "cached": hit,
+            "wall_s": time.perf_counter() - t_call,
+            "symmetry_error": float(v["symmetry_error"])}
     S = v["structural"]
     return _table(loaded, arc, z, S, width, info)
 

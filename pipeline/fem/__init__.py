@@ -9,7 +9,8 @@
   big solve.
 * ``linear_static`` - assemble + clamp + one solver set-up for all load cases.
 * ``sector2d`` / ``sector3d`` - 2D sectors (or whole gears) and 3D helical (or spur, or
-  herringbone-half) sectors: ``sector_mesh_2d`` / ``sector_mesh_3d``.
+  herringbone-half) sectors: ``sector_mesh_2d`` / ``sector_mesh_3d``; ``teeth = z`` gives a
+  whole gear in both (3D geometry in ``whole3d``, size grading in ``grading3d``).
 * ``flank`` / ``flank_grid`` - ``FlankPoints`` of 2D profiles and 3D profile x face grids.
 * ``patch_loads`` / ``influence`` - one influence routine for 2D and 3D: patch loads,
   constraints, one solver set-up, blocks of right-hand sides, minus the near field of

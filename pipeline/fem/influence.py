@@ -69,6 +69,7 @@ from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorMesh2D
 from pipeline.fem.sector3d import SectorMesh3D
 from pipeline.fem.solvers import Solver, solver_named
+from pipeline.progress import Steps
 from pipeline.validation import InputError, check_choice, check_positive
 
 CUTS = ("clamped", "free")
@@ -127,7 +128,7 @@ class InfluenceMatrix:
 def constrained_dofs(sector: SectorMesh2D | SectorMesh3D, model: ElasticModel,
                      cuts: str = "clamped", ends: str = "free") -> np.ndarray:
     """DOFs held at zero: bore (all), cut faces (all, unless ``cuts`` is "free"; a whole
-    2D gear has none), end faces of a 3D sector (axial component, if ``ends`` is
+    gear, 2D or 3D, has none), end faces of a 3D sector (axial component, if ``ends`` is
     "sliding")."""
     check_choice("influence.cuts", cuts, CUTS)
     check_choice("influence.ends", ends, ENDS)
@@ -163,7 +164,7 @@ def influence_matrix(
     sector: SectorMesh2D | SectorMesh3D, points: FlankPoints,
     patch_half_width: float | None = None, *, kind: str | None = None,
     solver: Solver | None = None, cuts: str = "clamped", ends: str = "free",
-    block: int | None = None, model: ElasticModel | None = None,
+    block: int | None = None, model: ElasticModel | None = None, steps: Steps | None = None,
 ) -> InfluenceMatrix:
     """Structural flank compliance matrix of ``points`` on ``sector`` (one solver set-up).
 
@@ -181,25 +182,31 @@ def influence_matrix(
     block : right-hand sides solved together (default:
         :func:`pipeline.fem.linear_static.load_compliance`).
     model : a prebuilt P2 model of ``sector`` (reuse across calls), else assembled here.
+    steps : progress and wall time of each step (assembly, loads, factorise, solve, near
+        field) on stderr (:class:`pipeline.progress.Steps`); default silent.
     """
     dim = points.dim
     kind = KINDS[dim][0] if kind is None else kind
     check_choice("influence.kind", kind, KINDS[dim])
     gear = sector.gear
     c = _patch_half_width(sector, points, patch_half_width)
+    if model is not None and model.kind != kind:
+        raise InputError(f"model kind {model.kind!r} differs from influence.kind {kind!r}")
+    steps = Steps("", enabled=False) if steps is None else steps
     t0 = time.perf_counter()
     if model is None:
-        model = build_model(sector.mesh, gear.material, order=2, kind=kind)
-    elif model.kind != kind:
-        raise InputError(f"model kind {model.kind!r} differs from influence.kind {kind!r}")
+        with steps.step("assembly"):
+            model = build_model(sector.mesh, gear.material, order=2, kind=kind)
     t1 = time.perf_counter()
-    F = patch_loads(sector, points, c)
+    with steps.step("loads"):
+        F = patch_loads(sector, points, c)
     t2 = time.perf_counter()
     fe = load_compliance(model, F, constrained_dofs(sector, model, cuts, ends),
-                         solver_named("auto", dim) if solver is None else solver, block)
+                         solver_named("auto", dim) if solver is None else solver, block, steps)
     t3 = time.perf_counter()
-    local = (nearfield_halfplane(points, c, gear.material, kind) if dim == 2
-             else nearfield_halfspace(points, c, gear.material))
+    with steps.step("near field"):
+        local = (nearfield_halfplane(points, c, gear.material, kind) if dim == 2
+                 else nearfield_halfspace(points, c, gear.material))
     t4 = time.perf_counter()
     timings = {"assembly": t1 - t0, "loads": t2 - t1, "factor": fe.factor_seconds,
                "solve": fe.solve_seconds, "nearfield": t4 - t3, "total": t4 - t0}

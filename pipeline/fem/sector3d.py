@@ -1,4 +1,4 @@
-"""3D helical (or spur, or herringbone-half) gear sectors: quadratic tetrahedra, named flanks.
+"""3D helical (or spur, or herringbone-half) gear sectors and whole gears: P2 tetrahedra.
 
 Geometry. The transverse section is the 2D sector of :mod:`pipeline.fem.sector2d`
 (``teeth`` consecutive teeth with the exact involute and trochoidal fillet of
@@ -25,16 +25,23 @@ the end faces ``end0`` (z = 0) and ``end1`` (z = b). Each lofted face is named b
 mapping one of its interior points back to mid-face (turning it by ``-theta(z)``)
 and taking the nearest 2D boundary piece.
 
+Whole gears. ``teeth = z`` meshes the whole gear body (all teeth, the body down to
+the bore, the full face width; no cut faces), as ``sector2d`` does in 2D; the
+geometry is built by :mod:`pipeline.fem.whole3d`, the groups are the same less the cuts.
+
 Mesh. Curved quadratic tetrahedra (Gmsh places mid-edge nodes on the CAD
-surfaces), graded from ``size_flank`` on all tooth sides to ``size_body`` a
-distance ``grading`` away. Meshes are cached in ``meshes/`` by a hash of the
-gear and the settings (:mod:`pipeline.fem.cache`). Lengths in m.
+surfaces), graded from ``size_flank`` on the tooth sides of the ``loaded`` teeth
+(all teeth of a sector if None) to ``size_body`` a distance ``grading`` away; the
+sides of the other teeth get ``size_tooth``
+(:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are
+cached in ``meshes/`` by a hash of the gear and the settings
+(:mod:`pipeline.fem.cache`). Lengths in m.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 from skfem import Basis, ElementTetP0
@@ -47,7 +54,11 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
 # Part of the cache key: bump when the same inputs would now give a different mesh.
-GEOMETRY_VERSION = 1
+GEOMETRY_VERSION = 2  # 2: curved cells untangled (Mesh.HighOrderOptimize)
+# Whole-gear element sizes in normal modules (over sqrt(refinement)), and the grading
+# distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
+WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
+WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
 
 
 @dataclass(frozen=True)
@@ -67,6 +78,9 @@ class SectorSettings3D:
         second (opposite hand); each is ``face_width / 2`` wide.
     inner_radius : bore radius of the mesh, m; None as in
         :func:`pipeline.fem.sector2d.inner_radius`.
+    loaded : tooth indices (0 .. teeth-1) whose sides get ``size_flank``; None: all.
+    size_tooth : element size on the sides of the other teeth, m (size_flank ..
+        size_body); None: ``size_flank``.
     """
 
     teeth: int = 3
@@ -77,9 +91,20 @@ class SectorSettings3D:
     loft_sections: int = 7
     half: int = 0
     inner_radius: float | None = None
+    loaded: tuple[int, ...] | None = None
+    size_tooth: float | None = None
 
     def __post_init__(self) -> None:
         check_int_range("sector3d.teeth", self.teeth, 1, 1000)
+        if self.loaded is not None:
+            object.__setattr__(self, "loaded", tuple(sorted({int(k) for k in self.loaded})))
+            if not self.loaded:
+                raise InputError("sector3d.loaded = () must name at least one tooth (or None)")
+            for k in self.loaded:
+                check_int_range("sector3d.loaded", k, 0, self.teeth - 1)
+        if self.size_tooth is not None:
+            check_range("sector3d.size_tooth", self.size_tooth, self.size_flank, self.size_body,
+                        unit="m")
         check_range("sector3d.size_flank", self.size_flank, 1e-6, 1.0, unit="m")
         check_range("sector3d.size_body", self.size_body, self.size_flank, 10.0, unit="m")
         check_range("sector3d.grading", self.grading, 0.0, 10.0, unit="m")
@@ -103,14 +128,36 @@ class SectorSettings3D:
         beta = gear.helix_angle
         # ~8 sections per angular pitch of twist: the loft then strays ~3e-7 rad from the
         # exact helix (measured at the tip land, z 30, beta 15 deg)
-        turn = math.tan(beta) * _width(gear) / gear.reference_radius * gear.teeth / (2 * math.pi)
+        turn = (math.tan(beta) * meshed_width(gear) / gear.reference_radius * gear.teeth
+                / (2 * math.pi))
         return cls(teeth=teeth, size_flank=sf, size_body=max(m / math.sqrt(refinement), sf),
                    grading=1.5 * m, profile_points=max(30, int(30 * refinement)),
                    loft_sections=2 if beta == 0 else max(5, int(math.ceil(8 * turn)) + 1),
                    half=half)
 
+    @classmethod
+    def whole_gear(cls, gear: GearSpec, loaded, refinement: float = 1.0, half: int = 0
+                   ) -> SectorSettings3D:
+        """Whole-gear settings (``teeth = z``) graded from the ``loaded`` teeth.
 
-def _width(gear: GearSpec) -> float:
+        The loaded teeth's sides get the sector's flank size ``m_n / (3 refinement)``;
+        the other teeth ``WHOLE_TOOTH m_n / sqrt(refinement)``; the body grows to
+        ``WHOLE_BODY m_n / sqrt(refinement)`` over ``WHOLE_GRADING`` times that distance
+        (a growth rate Gmsh meshes with well-shaped cells). See
+        :mod:`pipeline.fem.whole3d` for the measured DOF counts and convergence.
+        """
+        s = cls.for_gear(gear, 1, refinement, half)
+        m, root = gear.module, math.sqrt(refinement)
+        # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
+        # cells spanning the face would be poorly shaped
+        body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
+        return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
+                       size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
+                       size_body=body, grading=WHOLE_GRADING * body)
+
+
+def meshed_width(gear: GearSpec) -> float:
+    """Meshed face width, m: ``face_width``, half of it for a herringbone half."""
     return gear.face_width / 2 if gear.herringbone else gear.face_width
 
 
@@ -174,14 +221,20 @@ def section_area(gear: GearSpec, teeth: int, points: int, r_in: float) -> float:
     return shoelace - 0.5 * r_in**2 * (th - math.sin(th))  # the bore arc, not its chord
 
 
-def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
-    """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
+def check_sector_teeth(gear: GearSpec, settings: SectorSettings3D) -> None:
+    """External gears only; ``teeth`` < z/2 (a sector) or = z (the whole gear)."""
     if gear.internal:
         raise InputError(f"{gear.name}: the 3D sector mesh supports external gears only")
-    if 2 * settings.teeth >= gear.teeth:
-        raise InputError(f"sector3d.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g}")
+    if 2 * settings.teeth >= gear.teeth and settings.teeth != gear.teeth:
+        raise InputError(f"sector3d.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
+                         f"or = z (whole gear)")
+
+
+def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
+    """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
+    check_sector_teeth(gear, settings)
     r_in = inner_radius(gear, settings)
-    b = _width(gear)
+    b = meshed_width(gear)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
     names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
@@ -195,13 +248,17 @@ def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshD
         missing = [n for n in names + ["end0", "end1"] if not groups.get(n)]
         if missing:
             raise RuntimeError(f"sector3d: surfaces not found after lofting: {missing}")
-        _size_field(gmsh, settings, [s for n, tags in groups.items()
-                                     if n.startswith(("right", "left")) for s in tags])
+        from pipeline.fem.grading3d import tooth_size_field
+
+        tooth_size_field(gmsh, settings, groups, gear.root_radius)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)
         gmsh.option.setNumber("Mesh.Optimize", 1)
+        # untangle curved cells that came out inverted (found: one in a 5-tooth sector at
+        # refinement 0.6, which a factorisation reports only as "not positive definite")
+        gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
         gmsh.model.mesh.generate(3)
         return extract_tet_mesh(gmsh, 2, groups, {"sector": [vol]})
 
@@ -268,22 +325,6 @@ def _classify_surfaces(gmsh, vol: int, pieces, r_in: float, b: float, rate: floa
     return groups
 
 
-def _size_field(gmsh, settings: SectorSettings3D, tooth_surfaces: list[int]) -> None:
-    fld = gmsh.model.mesh.field
-    dist = fld.add("Distance")
-    fld.setNumbers(dist, "SurfacesList", tooth_surfaces)
-    thr = fld.add("Threshold")
-    fld.setNumber(thr, "InField", dist)
-    fld.setNumber(thr, "SizeMin", settings.size_flank)
-    fld.setNumber(thr, "SizeMax", settings.size_body)
-    fld.setNumber(thr, "DistMin", 0.25 * settings.size_flank)
-    fld.setNumber(thr, "DistMax", settings.grading)
-    fld.setAsBackgroundMesh(thr)
-    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{opt}", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size_body)
-
-
 def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cache: bool = True,
                    cache_dir=None) -> SectorMesh3D:
     """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
@@ -293,7 +334,30 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     r_in = inner_radius(gear, settings)
     inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in,
               "version": GEOMETRY_VERSION}
-    data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build_sector_mesh_3d(gear, settings),
+    check_sector_teeth(gear, settings)
+    if settings.teeth == gear.teeth:
+        from pipeline.fem.whole3d import build_whole_gear_mesh_3d as build
+    else:
+        build = build_sector_mesh_3d
+    data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
-    return SectorMesh3D(to_skfem(data), gear, settings, r_in, _width(gear), rate)
+    tets = to_skfem(data)
+    _check_cells(tets.mesh)
+    return SectorMesh3D(tets, gear, settings, r_in, meshed_width(gear), rate)
+
+
+def _check_cells(mesh) -> None:
+    """Every curved cell must map one-to-one (det J > 0 at the quadrature points of the
+    assembly): an inverted cell makes the stiffness matrix indefinite, which the solver
+    would report only as 'not positive definite'."""
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefTet
+
+    from pipeline.fem.elasticity import default_intorder
+
+    X, _ = get_quadrature(RefTet, default_intorder(mesh, 2))
+    worst = mesh.mapping().detDF(X).min(axis=1)
+    if np.any(worst <= 0):
+        raise RuntimeError(f"sector3d: {int(np.sum(worst <= 0))} curved cell(s) are inverted "
+                           "(det J <= 0); change the mesh sizes or refinement")
