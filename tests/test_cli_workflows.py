@@ -140,3 +140,19 @@ def test_validate_stiffness_helical(tmp_path):
     assert row["fe_vs_analytical_max_percent"] > -24.0
     assert row["fe_enriched_mean_N_per_m"] == pytest.approx(2.193e9, rel=0.03)
     assert (tmp_path / "helical.png").stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_excitation_comparison_workflow(tmp_path):
+    """Coarse run without the 3D case (about 30 s). What the README states: the loaded
+    contact's static TE raises the DTE above k(t) alone; the FE whole gears are softer in
+    double contact, so their mean stiffness, TE and DTE fall below the analytical LTCA's."""
+    s = load_workflow("excitation_comparison").main(
+        ["--no-3d", "--out", str(tmp_path), "--cache-dir", str(tmp_path / "cache")])
+    k, ltca, fe = s["analytical k(t)"], s["analytical LTCA"], s["FE 2D LTCA"]
+    dte = "DTE_peak_to_peak_2340rpm [m]"
+    assert ltca[dte] > 1.2 * k[dte]
+    assert fe["mesh_stiffness_mean [N/m]"] < 0.9 * ltca["mesh_stiffness_mean [N/m]"]
+    assert fe["static_TE_peak_to_peak [m]"] < ltca["static_TE_peak_to_peak [m]"]
+    assert fe[dte] < ltca[dte]
+    assert (tmp_path / "summary.csv").read_text().splitlines()[1].startswith("analytical k(t)")
