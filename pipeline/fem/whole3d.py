@@ -30,10 +30,14 @@ import numpy as np
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
 from pipeline.fem.sector2d import inner_radius, outline_pieces
-from pipeline.fem.sector3d import SectorSettings3D, check_sector_teeth, helix_sign, meshed_width
+from pipeline.fem.sector3d import (
+    SectorSettings3D,
+    check_sector_teeth,
+    generate_curved_tets,
+    helix_sign,
+    meshed_width,
+)
 from pipeline.geometry.gear import GearSpec
-
-HIGH_ORDER_OPTIMIZE = 1
 
 
 def build_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
@@ -59,14 +63,7 @@ def build_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetM
         if missing:
             raise RuntimeError(f"whole3d: surfaces not found after lofting: {missing[:6]}")
         tooth_size_field(gmsh, settings, groups, gear.root_radius, extent=b)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-        gmsh.option.setNumber("Mesh.Algorithm", 6)
-        gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-        gmsh.option.setNumber("Mesh.Optimize", 1)
-        # large curved cells on the fillets of the coarse teeth can come out inverted
-        gmsh.option.setNumber("Mesh.HighOrderOptimize", HIGH_ORDER_OPTIMIZE)
-        gmsh.model.mesh.generate(3)
+        generate_curved_tets(gmsh)
         return extract_tet_mesh(gmsh, 2, groups, {"gear": [vol]})
 
 
