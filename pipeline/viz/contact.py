@@ -13,7 +13,7 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
     load sharing over the cycle, three panels; returns the figure."""
     if fig is None:
-        fig = Figure(figsize=(7, 8))
+        fig = Figure(figsize=(7, 8), layout="constrained")
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
     ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, label="LTCA tangent dP/dx")
@@ -29,5 +29,5 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     ax[2].set_ylabel("load share [-]")
     ax[2].set_xlabel("pinion angle [deg]")
     ax[2].legend(fontsize=8)
-    ax[0].set_title(title)
+    fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title
     return fig
