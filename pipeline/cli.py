@@ -43,22 +43,28 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
 }
 
 
-def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None
-                 ) -> argparse.ArgumentParser:
+def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None, *,
+                 command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every subcommand; with ``command``, only that one's arguments are
+    added (its module imported), the rest are listed for ``--help`` alone - importing all
+    command modules costs a second or more that a single command does not need."""
     parser = argparse.ArgumentParser(prog="gearpipe", description=__doc__.split("\n\n")[0])
     parser.add_argument("--version", action="version", version=f"gearpipe {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     for name, (mod, add, run, help_) in (available or SUBCOMMANDS).items():
         p = sub.add_parser(name, help=help_, description=help_)
-        module = importlib.import_module(mod)
-        getattr(module, add)(p)
-        p.set_defaults(_run=getattr(module, run))
+        if command is None or name == command:
+            module = importlib.import_module(mod)
+            getattr(module, add)(p)
+            p.set_defaults(_run=getattr(module, run))
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; exit status 0 on success, 2 on an input error (one line on stderr)."""
-    args = build_parser().parse_args(argv)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
+    args = build_parser(command=command).parse_args(argv)
     try:
         return int(args._run(args) or 0)
     except InputError as exc:

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from pipeline.contact.fe3d_source import FE3DCompliance, touching_pairs
-from pipeline.contact.fe3d_table import FE3DSettings
+from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import ComplianceSource, SliceCompliance
 from pipeline.fem.flank_grid import flank_grid

@@ -41,7 +41,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from pipeline.contact.fe2d_source import FE2DSettings, gear_table  # noqa: E402
+from pipeline.contact.fe2d_source import gear_table  # noqa: E402
+from pipeline.contact.fe_settings import FE2DSettings  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402
 from pipeline.io import write_csv, write_json, write_run_record  # noqa: E402
 from pipeline.progress import progress  # noqa: E402

@@ -18,9 +18,10 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from pipeline.contact.analysis import analytical_compliance
+from pipeline.contact.fe_settings import FE2DSettings, FE3DSettings
 from pipeline.contact.options import COMPLIANCES, ContactOptions
 from pipeline.contact.source import ComplianceSource, FrictionCorrected
 from pipeline.geometry.pair import GearPair
@@ -29,20 +30,10 @@ from pipeline.stiffness.mesh import PairModel
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, check_choice
 
-if TYPE_CHECKING:
-    from pipeline.contact.fe2d_source import FE2DSettings
-    from pipeline.contact.fe3d_table import FE3DSettings
-
 
 def fe_settings_class(compliance: str) -> type:
-    """``FE2DSettings`` or ``FE3DSettings`` (imported here: the FE stage costs seconds)."""
-    if compliance == "fe2d":
-        from pipeline.contact.fe2d_source import FE2DSettings
-
-        return FE2DSettings
-    from pipeline.contact.fe3d_table import FE3DSettings
-
-    return FE3DSettings
+    """``FE2DSettings`` for ``"fe2d"``, ``FE3DSettings`` for ``"fe3d"``."""
+    return FE2DSettings if compliance == "fe2d" else FE3DSettings
 
 
 def fe_settings(compliance: str, fe: Any, contact: ContactOptions

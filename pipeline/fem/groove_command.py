@@ -17,9 +17,8 @@ import json
 import numpy as np
 
 from pipeline.commands_common import add_common_arguments, load, output_dir
-from pipeline.fem.groove.coupling import COUPLINGS
 from pipeline.fem.groove.result import DOF_NAMES
-from pipeline.fem.groove.spec import TEETH_MODELS, GrooveSpec
+from pipeline.fem.groove.spec import COUPLINGS, TEETH_MODELS, GrooveSpec
 from pipeline.fem.groove.study import analyse_groove
 from pipeline.io import to_jsonable, write_csv, write_run_record
 from pipeline.validation import InputError

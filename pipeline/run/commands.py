@@ -23,6 +23,7 @@ from pipeline.fem.cache import default_cache_dir
 from pipeline.io import write_json, write_run_record
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
+from pipeline.viz.figure_queue import parallel_figures
 
 
 def figure_cache(options: RunOptions) -> FigureCache:
@@ -89,8 +90,9 @@ def run(args: argparse.Namespace) -> int:
                          show_progress=not args.json)
     result = run_pipeline(box, options)
     out = output_dir(args, "run")
-    with result.log.step("writing tables and figures", long=True):
-        files = write_run(result, out, args.full, figure_cache(options))
+    with result.log.step("writing tables and figures", long=True), \
+            parallel_figures(figure_cache(options)) as figures:
+        files = write_run(result, out, args.full, figures)
     summary = result.summary()
     files.append(write_json(out / "summary.json", summary))
     write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
