@@ -40,6 +40,9 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
                  "steady dynamic response: DTE, mesh forces, spectrum"),
     "sweep": ("pipeline.dynamics.commands", "add_sweep_arguments", "run_sweep",
               "RMS dynamic mesh force against mesh frequency"),
+    "study": ("pipeline.study.commands", "add_arguments", "run",
+              "design study: a base gearbox file over design axes, KPIs per point, on Dask "
+              "(STUDY.toml instead of a gearbox file)"),
 }
 
 

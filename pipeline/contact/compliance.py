@@ -63,6 +63,7 @@ def compliance_source(
     tooth_model: str = "exact",
     model: PairModel | None = None,
     show_progress: bool = False,
+    prebuilt: Any = None,
 ) -> ComplianceSource:
     """The compliance source ``contact.compliance`` names, for the installed ``pair``.
 
@@ -78,6 +79,9 @@ def compliance_source(
         (:func:`~pipeline.contact.analysis.analytical_compliance`); with an FE source they
         give only the friction change.
     show_progress : progress of the FE build on stderr.
+    prebuilt : an FE source of the same gears and settings built earlier (a design study
+        ships it to its workers): its tables are used for ``pair`` instead of building or
+        reading them.
     """
     contact = contact or ContactOptions()
     slices = analytical_compliance(pair, operation, contact, stiffness,
@@ -85,7 +89,9 @@ def compliance_source(
     settings = fe_settings(contact.compliance, fe, contact)
     if settings is None:
         return slices
-    if contact.compliance == "fe2d":
+    if prebuilt is not None:
+        base = dataclasses.replace(prebuilt, pair=pair)
+    elif contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 
         base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
