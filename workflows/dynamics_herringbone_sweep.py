@@ -70,7 +70,8 @@ from pipeline.dynamics.models.wind_turbine_planetary import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import mesh_force_sweep
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.provenance import write_run_record
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_sweep
 

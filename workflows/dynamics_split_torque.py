@@ -36,7 +36,8 @@ from pipeline.dynamics.models.split_torque_helicopter import (
     split_torque_helicopter_model,
 )
 from pipeline.dynamics.multirate import superpose_stages
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.provenance import write_run_record
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_harmonic_contributions
 

@@ -32,7 +32,8 @@ from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.geometry.pair import GearPair
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import FrictionModel
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_spectrum, plot_time_history

@@ -48,7 +48,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.config import gearbox_from_dict
-from pipeline.io import atomic_write, write_run_record
+from pipeline.io import atomic_write
+from pipeline.provenance import write_run_record
 from pipeline.run import RunOptions, run_pipeline
 from pipeline.viz import save
 

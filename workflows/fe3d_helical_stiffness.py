@@ -48,7 +48,8 @@ from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import FrictionModel, PairModel
 
 HERE = Path(__file__).resolve().parent

@@ -25,8 +25,9 @@ sys.path.insert(0, str(ROOT))
 
 from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
-from pipeline.io import write_csv, write_run_record  # noqa: E402
+from pipeline.io import write_csv  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
+from pipeline.provenance import write_run_record  # noqa: E402
 from pipeline.viz import save  # noqa: E402
 
 CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"

@@ -20,8 +20,9 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config import load_gearbox
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.mesh import PairModel
 from pipeline.viz import save

@@ -43,8 +43,9 @@ sys.path.insert(0, str(ROOT))
 
 from pipeline.contact.fe2d_source import FE2DSettings, gear_table  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402
-from pipeline.io import write_csv, write_json, write_run_record  # noqa: E402
+from pipeline.io import write_csv, write_json  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
+from pipeline.provenance import write_run_record  # noqa: E402
 from pipeline.stiffness.tooth import load_geometry, tooth_compliance, tooth_model  # noqa: E402
 
 STEEL = Material(youngs_modulus=2.0e11, poisson_ratio=0.3, density=7850.0)

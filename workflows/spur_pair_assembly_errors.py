@@ -19,8 +19,9 @@ import numpy as np
 
 from pipeline.config import load_gearbox
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.viz import save
 from pipeline.viz.stiffness import plot_stiffness_curves

@@ -78,8 +78,9 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz import save
 
