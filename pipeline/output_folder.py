@@ -4,12 +4,13 @@ new one, never a mix.
 :func:`staged_output` hands the caller a fresh hidden staging folder beside the target
 (``.<target>.staging-<pid>-<random>``, on the same filesystem). When the caller's block
 succeeds, the staging folder is flushed to disk (its files were flushed as they were
-written, :func:`pipeline.io.atomic_write`), the previous folder is renamed away
-(``.<target>.old-<pid>-<random>``), the new one renamed in, the parent flushed and the
-old one deleted. When the block fails, the staging folder and any parent folder made for
-it are removed, so a failed run changes nothing. A process killed while writing leaves
-its staging folder hidden; the next run for the same target removes it, and when the
-kill came between the two renames it first puts the previous result back.
+written, :func:`pipeline.io.atomic_write`) and swapped in: on Linux in one atomic step
+(``renameat2`` with ``RENAME_EXCHANGE``), elsewhere by renaming the previous folder away
+(``.<target>.old-<pid>-<random>``) and the new one in; then the parent is flushed and the
+previous result deleted. When the block fails, the staging folder and any parent folder
+made for it are removed, so a failed run changes nothing. A process killed while writing
+leaves its staging folder hidden; the next run for the same target removes it, and when
+the kill came between the two renames it first puts the previous result back.
 
 A target must be new, empty, or a previous result (a folder whose ``run.json`` lists
 every file in it): a folder holding anything else (``--out .`` in a project folder) is
@@ -19,6 +20,7 @@ naming the folder; the command line prints it without a traceback.
 
 from __future__ import annotations
 
+import ctypes
 import errno
 import json
 import os
@@ -113,10 +115,30 @@ def _aside(target: Path) -> Path:
     return target.parent / f".{target.name}.old-{os.getpid()}-{secrets.token_hex(4)}"
 
 
+def exchange(a: Path, b: Path) -> bool:
+    """Swap two existing paths atomically (Linux ``renameat2(RENAME_EXCHANGE)``); False
+    where the system or the filesystem cannot."""
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (AttributeError, OSError):
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(a), None, str(b))
+
+
 def _commit(staging: Path, target: Path) -> None:
     """Swap the finished staging folder in for ``target`` (see the module docstring)."""
     os.chmod(staging, 0o777 & ~process_umask())
     fsync_path(staging, directory=True)
+    if target.is_dir() and exchange(staging, target):  # staging now holds the old result
+        fsync_path(target.parent, directory=True)
+        shutil.rmtree(staging, ignore_errors=True)
+        return
     olds: list[Path] = []
     for attempt in range(5):
         if target.exists():
