@@ -8,8 +8,8 @@ package source), the versions of Python, the numerical libraries, the sparse sol
 and the BLAS, the start time, the run time and the output files. Its ``hash`` (SHA-256,
 16 hex digits) covers everything that determines the numbers (the command, inputs,
 options, the input and referenced files' contents, the code and the versions) and
-nothing that does not (times, folders, the platform string), so two runs with the same
-hash computed the same thing.
+nothing that does not (times, folders, the platform string, which libraries the run
+happened to load), so two runs with the same hash computed the same thing.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from typing import Any, Protocol
 
 from pipeline.io import content_hash, to_jsonable, write_json
 
+_UNHASHED = ("platform", "sparse_cholesky", "blas")  # machine, or what the run imported
 _TRACKED = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib",
             "cholespy", "scikit-sparse", "pyamg", "threadpoolctl")
 _PACKAGE = Path(__file__).resolve().parent
@@ -86,17 +87,18 @@ def library_versions() -> dict[str, Any]:
     """Versions of Python, the numerical libraries, the sparse solvers and the BLAS.
 
     ``sparse_cholesky`` is the factorisation the FE solvers use by default ("cholmod",
-    "cholespy" or none); ``blas`` lists the BLAS/OpenMP libraries loaded in the process.
+    "cholespy" or "none"; "not loaded" when the run did no FE); ``blas`` lists the
+    BLAS/OpenMP libraries loaded in the process. These two depend on what the run
+    imported, so they are recorded but not hashed (the package versions are).
     """
-    from pipeline.fem.solvers import sparse_cholesky
-
     out: dict[str, Any] = {"python": sys.version.split()[0], "platform": platform.platform()}
     for name in ("gearpipe",) + _TRACKED:
         try:
             out[name] = metadata.version(name)
         except metadata.PackageNotFoundError:
             out[name] = "not installed"
-    out["sparse_cholesky"] = sparse_cholesky() or "none"
+    solvers = sys.modules.get("pipeline.fem.solvers")  # importing it costs 0.5 s
+    out["sparse_cholesky"] = (solvers.sparse_cholesky() or "none") if solvers else "not loaded"
     try:
         from threadpoolctl import threadpool_info
 
@@ -142,7 +144,7 @@ def run_record(inputs: Any, outputs: Iterable[str | os.PathLike], command: str, 
         "sources": [s["sha256"] for s in srcs],
         "referenced": {k: v["sha256"] for k, v in files.items()},
         "code": code["source_sha256"],
-        "versions": {k: v for k, v in versions.items() if k != "platform"},
+        "versions": {k: v for k, v in versions.items() if k not in _UNHASHED},
     }
     return to_jsonable({
         "command": command,
