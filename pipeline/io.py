@@ -2,8 +2,10 @@
 
 A half-written file is never left under its final name: data go to a hidden
 temporary file in the same directory, are flushed to disk (``fsync``) and moved
-into place with ``os.replace`` (atomic on POSIX), and the directory entry is
-flushed too. Temporary files carry the writer's process id
+into place with ``os.replace`` (atomic on POSIX): after a crash the name holds the
+old or the new complete file, never an empty one. (The folder itself is flushed
+once, when a result folder is swapped in, :mod:`pipeline.output_folder`, rather than
+after every file.) Temporary files carry the writer's process id
 (``.<name>.tmp-<pid>-<random><suffix>``), so the next write into the same folder
 removes those a killed process left behind. Files get the permissions the
 process umask gives a new file (``0o666 & ~umask``), not ``mkstemp``'s 0600.
@@ -107,6 +109,15 @@ def atomic_write(path: str | os.PathLike, writer: Callable[[str], None]) -> Path
     writers such as ``np.save`` and ``savefig`` rely on); it is flushed to disk and
     given the umask's permissions before the rename. Stale temporary files of dead
     processes in the folder are removed first.
+
+    Parameters
+    ----------
+    path : the file to write; its folder is created if missing.
+    writer : called with the temporary file's path (a ``str``); writes the whole file.
+
+    Returns
+    -------
+    Path : ``path``.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -123,7 +134,6 @@ def atomic_write(path: str | os.PathLike, writer: Callable[[str], None]) -> Path
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
-    fsync_path(path.parent, directory=True)
     return path
 
 

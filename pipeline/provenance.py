@@ -166,8 +166,13 @@ def run_record(inputs: Any, outputs: Iterable[str | os.PathLike], command: str, 
 def write_run_record(outdir: str | os.PathLike, inputs: Any,
                      outputs: Iterable[str | os.PathLike], command: str,
                      **kwargs: Any) -> Path:
-    """Write ``run.json`` (:func:`run_record`; keyword arguments as there) into ``outdir``."""
-    return write_json(Path(outdir) / "run.json", run_record(inputs, outputs, command, **kwargs))
+    """Write ``run.json`` (:func:`run_record`; keyword arguments as there) into ``outdir``,
+    the run's last file: its outputs are ``outputs`` and whatever else the folder holds
+    (so that a rerun recognises the folder as one result, :mod:`pipeline.output_folder`)."""
+    outdir = Path(outdir)
+    present = [p for p in os.listdir(outdir) if not p.startswith(".") and p != "run.json"]
+    return write_json(outdir / "run.json",
+                      run_record(inputs, [*outputs, *present], command, **kwargs))
 
 
 __all__ = ["code_revision", "file_sha256", "library_versions", "run_record",
