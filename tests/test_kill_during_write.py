@@ -9,7 +9,9 @@ next run puts the previous result back); the next uninterrupted run leaves no hi
 staging folder or temporary file in the results or the cache, and its files are
 bit-identical to those of an uninterrupted run (``run.json`` differs in its times, and
 ``summary.json`` in its ``timing`` section, only). The figures of a rerun come from the
-figure cache; a slow case checks that figures drawn afresh are bit-identical as well.
+figure cache; the second case checks that figures drawn afresh are bit-identical as
+well. Both are marked slow (five and three processes of ``gearpipe run``); the default
+suite covers the same clean-up with simulated leftovers (``test_output_folder.py``).
 """
 
 from __future__ import annotations
@@ -80,6 +82,7 @@ def _temps(folder: Path) -> list[str]:
     return sorted(str(p.relative_to(folder)) for p in folder.rglob(".*"))
 
 
+@pytest.mark.slow  # 14 s of CPU in five processes; 30-55 s on the shared 2-core machine
 def test_a_killed_run_leaves_one_complete_result(tmp_path):
     cfg = tmp_path / "small.toml"
     cfg.write_text(SMALL, encoding="utf-8")
