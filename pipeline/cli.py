@@ -2,10 +2,12 @@
 
 Every subcommand takes a gearbox file (TOML, units in the key names;
 :mod:`pipeline.config`); everything inside is SI. Each writes CSV/JSON data, PNG
-plots and a ``run.json`` record (inputs, versions, configuration hash) to
-``results/<file stem>/<command>/`` unless ``--out`` says otherwise; ``--json``
-prints the summary to stdout. An input error is one line on stderr,
-``gearpipe <command>: error: ...``, with exit status 2.
+plots and a ``run.json`` record (:mod:`pipeline.provenance`) to
+``results/<file stem>/<command>/`` unless ``--out`` says otherwise, as a unit
+(:mod:`pipeline.output_folder`); ``--json`` prints the summary to stdout. An input error
+is one line on stderr, ``gearpipe <command>: error: ...``, with exit status 2; an output
+folder that cannot be written (a file in the way, a full or read-only disk) is one such
+line with exit status 1, and the folder keeps its previous result.
 """
 
 from __future__ import annotations
@@ -13,8 +15,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import time
 
 from pipeline import __version__
+from pipeline.output_folder import OutputError
 from pipeline.validation import InputError
 
 # name -> (module, add-arguments function, run function, help)
@@ -64,15 +68,21 @@ def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None, 
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; exit status 0 on success, 2 on an input error (one line on stderr)."""
+    """Run one command; exit status 0 on success, 2 on an input error, 1 when the results
+    cannot be written (one line on stderr)."""
+    started = time.time()
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
     args = build_parser(command=command).parse_args(argv)
+    args._argv, args._started = argv, started  # for the run record
     try:
         return int(args._run(args) or 0)
     except InputError as exc:
         print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except OutputError as exc:
+        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

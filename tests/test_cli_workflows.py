@@ -29,7 +29,7 @@ def test_geometry_command(tmp_path):
     data = json.loads((tmp_path / "geometry.json").read_text())
     assert data["transverse_contact_ratio"] == pytest.approx(1.754673, abs=1e-6)
     run = json.loads((tmp_path / "run.json").read_text())
-    assert len(run["config_hash"]) == 16 and "numpy" in run["versions"]
+    assert len(run["hash"]) == 16 and "numpy" in run["versions"]
     assert (tmp_path / "line_of_action.png").stat().st_size > 10_000
     assert (tmp_path / "tooth_profiles.png").stat().st_size > 10_000
 

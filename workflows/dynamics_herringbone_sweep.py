@@ -70,7 +70,9 @@ from pipeline.dynamics.models.wind_turbine_planetary import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import mesh_force_sweep
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_sweep
 
@@ -275,7 +277,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    res = run(a.full, a.out)
+    with staged_output(Path(a.out or "results/dynamics_herringbone_sweep")) as out:
+        res = run(a.full, out)
     t = res["groove_peaks"]
     print("K_j [N m^2]  k L/R      peak1 L / R [Hz]   (equal sides)      peak2 L / R [Hz]")
     for i, kj in enumerate(t["K_j [N m^2]"]):

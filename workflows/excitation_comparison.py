@@ -54,7 +54,9 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.config import gearbox_from_dict
-from pipeline.io import atomic_write, write_run_record
+from pipeline.io import atomic_write
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.run import RunOptions, run_pipeline
 from pipeline.viz import save
 
@@ -154,7 +156,6 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--out", type=Path, default=Path("results/excitation_comparison"))
     ap.add_argument("--cache-dir", type=Path, default=None)
     args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
     options = RunOptions(full=args.full, cache_dir=args.cache_dir)
     runs = {}
     for label, (compliance, excitation) in CASES.items():
@@ -162,40 +163,41 @@ def main(argv: list[str] | None = None) -> dict:
             continue
         print(f"== {label}", file=sys.stderr)
         runs[label] = run_pipeline(gearbox(compliance, excitation, args.full), options)
-    title = "assembly-error paper pair, 340 N m: mesh excitation"
-    files = [save(plot_excitations(runs, title), args.out / "excitation.png"),
-             save(plot_sweeps(runs, title), args.out / "sweep.png"),
-             save(plot_spectrum([r.dynamics.response.response for r in runs.values()],
-                                list(runs), title="DTE spectrum at 2340 rpm"),
-                  args.out / "dte_spectrum.png")]
-    rows = {k: [] for k in ("case", "mesh_stiffness_mean [N/m]",
-                            "mesh_stiffness_peak_to_peak [N/m]", "static_TE_peak_to_peak [m]",
-                            "DTE_peak_to_peak_2340rpm [m]", "rms_force_2340rpm [N]",
-                            "dynamic_factor_2340rpm [-]", "max_dynamic_factor [-]",
-                            "max_dynamic_factor_at [Hz]")}
-    summary = {}
-    for i, (label, res) in enumerate(runs.items()):
-        st, dyn = res.meshes["mesh"], res.dynamics.summary()
-        op = dyn["response_at_operating_speed"]["meshes"]["mesh"]
-        k = (st.stiffness.mesh.total if res.gearbox.dynamics.excitation == "analytical"
-             else st.contact.mesh_stiffness)
-        te = 0.0 if res.gearbox.dynamics.excitation == "analytical" \
-            else float(np.ptp(st.contact.transmission_error))
-        vals = [i, float(k.mean()), float(np.ptp(k)), te, op["dte_peak_to_peak_m"],
-                op["rms_force_N"], op["dynamic_factor"],
-                dyn["sweep"]["max_dynamic_factor"]["mesh"],
-                dyn["sweep"]["max_dynamic_factor_at_Hz"]["mesh"]]
-        for key, v in zip(rows, vals, strict=True):
-            rows[key].append(v)
-        summary[label] = dict(zip(list(rows)[1:], vals[1:], strict=True))
-        print(f"{label:18s} k {vals[1] * 1e-6:7.1f} N/um, TE p-p {te * 1e6:6.2f} um, "
-              f"DTE p-p {vals[4] * 1e6:6.2f} um, DF {vals[6]:5.2f} at 2340 rpm; "
-              f"max DF {vals[7]:5.2f} at {vals[8]:.0f} Hz")
-    rows["case"] = list(runs)
-    files.append(write_table(args.out / "summary.csv", rows))
-    write_run_record(args.out, {"cases": {k: CASES[k] for k in runs}, "full": args.full,
-                                "config": CONFIG.read_text(encoding="utf-8")},
-                     files, "workflows/excitation_comparison.py")
+    with staged_output(args.out) as out:
+        title = "assembly-error paper pair, 340 N m: mesh excitation"
+        files = [save(plot_excitations(runs, title), out / "excitation.png"),
+                 save(plot_sweeps(runs, title), out / "sweep.png"),
+                 save(plot_spectrum([r.dynamics.response.response for r in runs.values()],
+                                    list(runs), title="DTE spectrum at 2340 rpm"),
+                      out / "dte_spectrum.png")]
+        rows = {k: [] for k in ("case", "mesh_stiffness_mean [N/m]",
+                                "mesh_stiffness_peak_to_peak [N/m]", "static_TE_peak_to_peak [m]",
+                                "DTE_peak_to_peak_2340rpm [m]", "rms_force_2340rpm [N]",
+                                "dynamic_factor_2340rpm [-]", "max_dynamic_factor [-]",
+                                "max_dynamic_factor_at [Hz]")}
+        summary = {}
+        for i, (label, res) in enumerate(runs.items()):
+            st, dyn = res.meshes["mesh"], res.dynamics.summary()
+            op = dyn["response_at_operating_speed"]["meshes"]["mesh"]
+            k = (st.stiffness.mesh.total if res.gearbox.dynamics.excitation == "analytical"
+                 else st.contact.mesh_stiffness)
+            te = 0.0 if res.gearbox.dynamics.excitation == "analytical" \
+                else float(np.ptp(st.contact.transmission_error))
+            vals = [i, float(k.mean()), float(np.ptp(k)), te, op["dte_peak_to_peak_m"],
+                    op["rms_force_N"], op["dynamic_factor"],
+                    dyn["sweep"]["max_dynamic_factor"]["mesh"],
+                    dyn["sweep"]["max_dynamic_factor_at_Hz"]["mesh"]]
+            for key, v in zip(rows, vals, strict=True):
+                rows[key].append(v)
+            summary[label] = dict(zip(list(rows)[1:], vals[1:], strict=True))
+            print(f"{label:18s} k {vals[1] * 1e-6:7.1f} N/um, TE p-p {te * 1e6:6.2f} um, "
+                  f"DTE p-p {vals[4] * 1e6:6.2f} um, DF {vals[6]:5.2f} at 2340 rpm; "
+                  f"max DF {vals[7]:5.2f} at {vals[8]:.0f} Hz")
+        rows["case"] = list(runs)
+        files.append(write_table(out / "summary.csv", rows))
+        write_run_record(out, {"cases": {k: CASES[k] for k in runs}, "full": args.full,
+                               "config": CONFIG.read_text(encoding="utf-8")},
+                         files, "workflows/excitation_comparison.py")
     return summary
 
 

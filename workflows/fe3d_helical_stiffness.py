@@ -48,7 +48,9 @@ from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import FrictionModel, PairModel
 
 HERE = Path(__file__).resolve().parent
@@ -167,8 +169,8 @@ def main(argv: list[str] | None = None) -> dict:
                     help=f"{FULL} instead of {COARSE}")
     ap.add_argument("--out", type=Path, default=Path("results/fe3d_helical_stiffness"))
     args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    summary = run(args.out, **(FULL if args.full else COARSE))
+    with staged_output(args.out) as out:
+        summary = run(out, **(FULL if args.full else COARSE))
     for name in (n for n in ("slice", "fe3d", "fe2d_strain", "fe2d_stress") if n in summary):
         row = summary[name]
         print(f"{name:11s} " + "  ".join(f"{k} {v:.4g}" for k, v in row.items()))

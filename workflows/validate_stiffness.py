@@ -78,8 +78,10 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import atomic_write, write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz import save
 
@@ -211,7 +213,8 @@ def main(argv: list[str] | None = None) -> dict:
     args = ap.parse_args(argv)
     # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe2d_source docs)
     fe = FE2DSettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
-    table = run(args.out, args.positions, fe, args.only)
+    with staged_output(args.out) as out:
+        table = run(out, args.positions, fe, args.only)
     for name, row in table.items():
         print(f"{name:22s} mean: analytical {row['analytical_mean_N_per_m']:.4e}  "
               f"optimised {row['optimised_slice_mean_N_per_m']:.4e}  "

@@ -18,9 +18,10 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
 from pipeline.fem.cache import default_cache_dir
-from pipeline.io import write_json, write_run_record
+from pipeline.io import write_json
+from pipeline.output_folder import staged_output
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 from pipeline.viz.figure_queue import parallel_figures
@@ -86,16 +87,16 @@ def write_run(result: RunResult, out: Path, full: bool = False,
 
 def run(args: argparse.Namespace) -> int:
     box = load(args)
+    target = output_dir(args, "run")
     options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
-    out = output_dir(args, "run")
-    with result.log.step("writing tables and figures", long=True), \
-            parallel_figures(figure_cache(options)) as figures:
-        files = write_run(result, out, args.full, figures)
-    summary = result.summary()
-    files.append(write_json(out / "summary.json", summary))
-    write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
-                     f"gearpipe run {args.config}")
-    emit(args, summary, out)
+    with staged_output(target) as out:
+        with result.log.step("writing tables and figures", long=True), \
+                parallel_figures(figure_cache(options)) as figures:
+            files = write_run(result, out, args.full, figures)
+        summary = result.summary()
+        files.append(write_json(out / "summary.json", summary))
+        record(out, args, box, files)
+    emit(args, summary, target)
     return 0

@@ -33,7 +33,8 @@ sys.path.insert(0, str(HERE / "workflows"))
 
 from default_case import DEFAULT  # noqa: E402
 
-from pipeline.io import library_versions, write_json  # noqa: E402
+from pipeline.io import write_json  # noqa: E402
+from pipeline.provenance import library_versions  # noqa: E402
 
 
 def one_run(config: Path, out: Path, cache: Path) -> dict:
