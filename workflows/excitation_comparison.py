@@ -48,7 +48,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.config import gearbox_from_dict
-from pipeline.io import atomic_write, write_run_record
+from pipeline.io import write_csv, write_run_record
 from pipeline.run import RunOptions, run_pipeline
 from pipeline.viz import save
 
@@ -61,20 +61,6 @@ CASES = {
     "FE 2D LTCA": ("fe2d", "contact"),
     "FE 3D LTCA": ("fe3d", "contact"),
 }
-
-
-def write_table(path: Path, columns: dict[str, list]) -> Path:
-    """CSV with a text first column (the case) and numbers (units in the headers)."""
-    import csv
-
-    def write(tmp: str) -> None:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh)
-            w.writerow(columns)
-            for row in zip(*columns.values(), strict=True):
-                w.writerow([row[0]] + [f"{v:.6g}" for v in row[1:]])
-
-    return atomic_write(path, write)
 
 
 def gearbox(compliance: str, excitation: str, full: bool):
@@ -183,7 +169,7 @@ def main(argv: list[str] | None = None) -> dict:
               f"DTE p-p {vals[4] * 1e6:6.2f} um, DF {vals[6]:5.2f} at 2340 rpm; "
               f"max DF {vals[7]:5.2f} at {vals[8]:.0f} Hz")
     rows["case"] = list(runs)
-    files.append(write_table(args.out / "summary.csv", rows))
+    files.append(write_csv(args.out / "summary.csv", rows))
     write_run_record(args.out, {"cases": {k: CASES[k] for k in runs}, "full": args.full,
                                 "config": CONFIG.read_text(encoding="utf-8")},
                      files, "workflows/excitation_comparison.py")

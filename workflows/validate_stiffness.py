@@ -78,7 +78,7 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz import save
@@ -153,12 +153,10 @@ def table_row(res: dict) -> dict:
 
 
 def write_summary_csv(path: Path, table: dict) -> Path:
-    """One row per case (name in the first column, quoted), the :func:`table_row` columns."""
+    """One row per case (its name in the first column), the :func:`table_row` columns."""
     cols = list(next(iter(table.values())))
-    lines = [",".join(["case"] + cols)]
-    lines += [",".join([f'"{name}"'] + [f"{row[c]:.9g}" for c in cols])
-              for name, row in table.items()]
-    return atomic_write(path, lambda p: Path(p).write_text("\n".join(lines) + "\n"))
+    return write_csv(path, {"case": list(table),
+                            **{c: [row[c] for row in table.values()] for c in cols}})
 
 
 def plot_case(name: str, res: dict):
