@@ -51,6 +51,7 @@ from pipeline.config import gearbox_from_dict
 from pipeline.io import write_csv, write_run_record
 from pipeline.run import RunOptions, run_pipeline
 from pipeline.viz import save
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 CONFIG = Path(__file__).resolve().parent / "configs" / "spur_pair_assembly_errors.toml"
 
@@ -88,11 +89,11 @@ def plot_excitations(runs: dict, title: str) -> Figure:
                              res.gearbox.dynamics.excitation)
         k = ex.stiffness.values
         tau = np.arange(k.size) / k.size
-        ax[0].plot(tau, k * 1e-6, label=label, lw=1.2)
+        ax[0].plot(tau, stiffness_in_plot_unit(k), label=label, lw=1.2)
         e = (ex.transmission_error.values if ex.transmission_error is not None
              else np.zeros_like(k))
         ax[1].plot(tau, e * 1e6, label=label, lw=1.2)
-    ax[0].set_ylabel("mesh stiffness k [N/um]")
+    ax[0].set_ylabel(stiffness_label("mesh stiffness k"))
     ax[1].set_ylabel("TE excitation e [um]")
     ax[1].set_xlabel("mesh cycle [-]")
     for a in ax:

@@ -82,6 +82,7 @@ from pipeline.io import write_csv, write_json, write_run_record
 from pipeline.progress import progress
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz import save
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 HERE = Path(__file__).resolve().parent
 UM = 1e-6
@@ -163,11 +164,11 @@ def plot_case(name: str, res: dict):
     fig = Figure(figsize=(8, 4))
     ax = fig.subplots()
     deg = np.degrees(res["pinion_angle"])
-    ax.plot(deg, res["analytical"] * 1e-8, label="analytical (slice potential energy)")
-    ax.plot(deg, res["optimised_slice"] * 1e-8, "--", label="optimised slice (LTCA, eq. 24)")
-    ax.plot(deg, res["fe_enriched"] * 1e-8, "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
+    ax.plot(deg, stiffness_in_plot_unit(res["analytical"]), label="analytical (slice potential energy)")
+    ax.plot(deg, stiffness_in_plot_unit(res["optimised_slice"]), "--", label="optimised slice (LTCA, eq. 24)")
+    ax.plot(deg, stiffness_in_plot_unit(res["fe_enriched"]), "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
     ax.set_xlabel("pinion rotation over one mesh cycle [deg]")
-    ax.set_ylabel("mesh stiffness [1e8 N/m]")
+    ax.set_ylabel(stiffness_label())
     ax.set_title(f"{name}: analytical vs FE-enriched mesh stiffness")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
