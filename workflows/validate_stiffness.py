@@ -164,9 +164,10 @@ def plot_case(name: str, res: dict):
     fig = Figure(figsize=(8, 4))
     ax = fig.subplots()
     deg = np.degrees(res["pinion_angle"])
-    ax.plot(deg, stiffness_in_plot_unit(res["analytical"]), label="analytical (slice potential energy)")
-    ax.plot(deg, stiffness_in_plot_unit(res["optimised_slice"]), "--", label="optimised slice (LTCA, eq. 24)")
-    ax.plot(deg, stiffness_in_plot_unit(res["fe_enriched"]), "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
+    k = stiffness_in_plot_unit
+    ax.plot(deg, k(res["analytical"]), label="analytical (slice potential energy)")
+    ax.plot(deg, k(res["optimised_slice"]), "--", label="optimised slice (LTCA, eq. 24)")
+    ax.plot(deg, k(res["fe_enriched"]), "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
     ax.set_xlabel("pinion rotation over one mesh cycle [deg]")
     ax.set_ylabel(stiffness_label())
     ax.set_title(f"{name}: analytical vs FE-enriched mesh stiffness")

@@ -117,7 +117,8 @@ def run_sweep(args) -> int:
     res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
                         show_progress=not args.json)
     freqs = res.frequencies
-    files = write_sweep(res, out, box.name)
+    files = write_sweep(res, out, box.name,
+                        natural_frequencies=analyse_modes(model).frequencies)
     shown = shown_meshes(res)
     peaks = {m: res.peaks(m) for m in shown}
     write_run_record(out, box.to_dict(), files, f"gearpipe sweep {args.config}")

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from pipeline.dynamics.analysis import ResponseResult
 from pipeline.dynamics.modal import ModalResult
 from pipeline.dynamics.sweep import SweepResult
@@ -47,16 +49,20 @@ def write_response(result: ResponseResult, out: Path, name: str,
 
 
 def shown_meshes(res: SweepResult) -> list[str]:
-    """The meshes a sweep plot shows: the pair's mesh, or the first planet's sun mesh."""
-    return [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
-        res.mesh_names[:2])
+    """The meshes a sweep plot shows: the pair's mesh, or the first planet's sun mesh (both
+    halves of a herringbone set)."""
+    first = ("mesh", "s-p1", "s-p1L", "s-p1R")
+    return [m for m in res.mesh_names if m in first] or list(res.mesh_names[:2])
 
 
 def write_sweep(res: SweepResult, out: Path, name: str,
-                figures: FigureCache = NO_CACHE) -> list[Path]:
-    """``sweep.csv`` and ``sweep.png``."""
+                figures: FigureCache = NO_CACHE,
+                natural_frequencies: np.ndarray | None = None) -> list[Path]:
+    """``sweep.csv`` (every mesh: RMS, max, mean and alternating RMS force in N, dynamic
+    factor) and ``sweep.png`` (RMS force of :func:`shown_meshes`, with the model's
+    ``natural_frequencies`` in Hz marked)."""
     from pipeline.viz.dynamics import plot_sweep
 
     return [write_csv(out / "sweep.csv", res.columns()),
             figures.save(out / "sweep.png", plot_sweep, [res], [name], shown_meshes(res),
-                         title=name)]
+                         title=name, natural_frequencies=natural_frequencies)]

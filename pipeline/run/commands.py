@@ -79,7 +79,8 @@ def write_run(result: RunResult, out: Path, full: bool = False,
     if dyn is not None:
         files += write_modes(dyn.modes, out, 16 if full else 8, figures)
         files += write_response(dyn.response, out, box.name, figures)
-        files += write_sweep(dyn.sweep, out, box.name, figures)
+        files += write_sweep(dyn.sweep, out, box.name, figures,
+                             natural_frequencies=dyn.modes.frequencies)
     return files
 
 

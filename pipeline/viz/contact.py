@@ -17,9 +17,10 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
         fig = Figure(figsize=(7, 8), layout="constrained")
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
-    ax[0].plot(deg, stiffness_in_plot_unit(cyc.mesh_stiffness), label="LTCA tangent dP/dx")
-    ax[0].plot(deg, stiffness_in_plot_unit(cyc.mesh_stiffness_secant), "--", label="LTCA secant P/x")
-    ax[0].plot(deg, stiffness_in_plot_unit(k_slice), ":", label="slice method (pipeline.stiffness)")
+    k = stiffness_in_plot_unit
+    ax[0].plot(deg, k(cyc.mesh_stiffness), label="LTCA tangent dP/dx")
+    ax[0].plot(deg, k(cyc.mesh_stiffness_secant), "--", label="LTCA secant P/x")
+    ax[0].plot(deg, k(k_slice), ":", label="slice method (pipeline.stiffness)")
     ax[0].set_ylabel(stiffness_label())
     ax[0].legend(fontsize=8)
     ax[1].plot(deg, cyc.transmission_error * 1e6)

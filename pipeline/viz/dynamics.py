@@ -52,21 +52,67 @@ def plot_time_history(
     return fig
 
 
+def shown_orders(amplitudes: np.ndarray, threshold: float = 0.01, at_least: int = 10) -> int:
+    """Highest harmonic order a spectrum plot shows.
+
+    Parameters
+    ----------
+    amplitudes : shape (..., H), amplitudes (any unit) of orders 1..H; leading axes are
+        several curves (meshes, cases), all judged together.
+    threshold : orders whose amplitude is at least ``threshold`` times the largest one are
+        all shown, wherever they lie (a planetary set's order 7 can be as large as order 1).
+    at_least : the plot shows orders 1..``at_least`` in any case (within 1..H).
+
+    Returns
+    -------
+    The highest order shown, in [1, H].
+    """
+    a = np.abs(np.atleast_2d(np.asarray(amplitudes, dtype=float)))
+    h = a.shape[-1]
+    big = np.flatnonzero((a >= threshold * a.max()).any(axis=tuple(range(a.ndim - 1))))
+    last = int(big[-1]) + 1 if a.max() > 0 and big.size else 0
+    return max(1, min(h, max(at_least, last)))
+
+
+def _order_axis(ax: Axes, max_order: int) -> None:
+    """x from order 1 to ``max_order``: a tick at every order (every 2nd, 5th, ... when many)."""
+    step = next(s for s in (1, 2, 5, 10, 20, 50, 100, 10**9) if max_order / s <= 20)
+    ax.set_xticks(np.r_[1, np.arange(step, max_order + 1, step)] if step > 1
+                  else np.arange(1, max_order + 1))
+    ax.set_xlim(0.4, max_order + 0.6)
+
+
 def plot_spectrum(
     responses: Sequence[Response],
     labels: Sequence[str],
     mesh: str | None = None,
-    max_order: int = 8,
+    max_order: int | None = None,
     title: str = "",
     ax: Axes | None = None,
 ) -> Axes:
-    """DTE amplitude spectrum (um) against frequency in multiples of the mesh frequency."""
+    """DTE amplitude spectrum (um) against frequency in multiples of the mesh frequency.
+
+    ``mesh`` names the mesh (default: the first of each response); ``max_order`` the
+    highest order drawn (default: :func:`shown_orders` over all responses, so every
+    component of at least 1 % of the largest is shown, and at least orders 1-10). The
+    title names the mesh.
+    """
     ax = _axes(ax)
     width = 0.8 / max(len(responses), 1)
-    for j, (r, lab) in enumerate(zip(responses, labels, strict=True)):
+    spectra = []
+    for r in responses:
         i = 0 if mesh is None else r.mesh(mesh)
         f, a = r.dte_spectrum(i)
-        order = f * r.period
+        spectra.append((f * r.period, a))
+    if max_order is None:
+        top = max(int(np.floor(o.max() + 0.5)) for o, _ in spectra)
+        binned = np.zeros((len(spectra), max(top, 1)))
+        for j, (o, a) in enumerate(spectra):
+            k = np.floor(o + 0.5).astype(int)
+            ok = (k >= 1) & (k <= binned.shape[1])
+            np.maximum.at(binned[j], k[ok] - 1, a[ok])
+        max_order = shown_orders(binned)
+    for j, ((order, a), lab) in enumerate(zip(spectra, labels, strict=True)):
         keep = (order > 0.5) & (order <= max_order + 0.5)
         ax.bar(
             order[keep] + (j - (len(responses) - 1) / 2) * width,
@@ -74,9 +120,11 @@ def plot_spectrum(
             width=width,
             label=lab,
         )
-    ax.set_xlabel("frequency / mesh frequency")
+    names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
+    ax.set_xlabel("frequency / mesh frequency (mesh order) [-]")
     ax.set_ylabel("DTE amplitude [um]")
-    ax.set_title(title or "DTE spectrum")
+    ax.set_title(title or f"DTE spectrum, mesh {', '.join(names)}")
+    _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return ax
@@ -86,14 +134,22 @@ def plot_harmonic_contributions(
     results: Sequence[HarmonicResponse],
     labels: Sequence[str],
     mesh: int = 0,
-    max_order: int = 6,
+    max_order: int | None = None,
     title: str = "",
     ax: Axes | None = None,
 ) -> Axes:
-    """Share of each harmonic order in the DTE (the "contribution proportion" of
-    Jin et al. 2018)."""
+    """Share of each harmonic order in the DTE of mesh row ``mesh`` (the "contribution
+    proportion" of Jin et al. 2018).
+
+    ``max_order`` is the highest order drawn (default: :func:`shown_orders`, every order
+    with at least 1 % of the largest share, and at least orders 1-10). The title names
+    the mesh.
+    """
     ax = _axes(ax)
     width = 0.8 / max(len(results), 1)
+    if max_order is None:
+        h = min(hr.dte_contribution.shape[1] for hr in results)
+        max_order = shown_orders(np.array([hr.dte_contribution[mesh, :h] for hr in results]))
     for j, (hr, lab) in enumerate(zip(results, labels, strict=True)):
         o = np.arange(1, min(max_order, hr.dte_contribution.shape[1]) + 1)
         ax.bar(
@@ -102,9 +158,11 @@ def plot_harmonic_contributions(
             width=width,
             label=lab,
         )
-    ax.set_xlabel("harmonic order")
+    names = sorted({hr.response.mesh_names[mesh] for hr in results})
+    ax.set_xlabel("harmonic order (multiple of the mesh frequency) [-]")
     ax.set_ylabel("contribution to DTE [-]")
-    ax.set_title(title)
+    ax.set_title(title or f"harmonic contributions to the DTE, mesh {', '.join(names)}")
+    _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return ax
@@ -112,20 +170,48 @@ def plot_harmonic_contributions(
 
 def plot_sweep(
     sweeps: Sequence, labels: Sequence[str], meshes: Sequence[str], title: str = "",
-    fig: Figure | None = None,
+    natural_frequencies: np.ndarray | None = None, fig: Figure | None = None,
 ) -> Figure:
-    """RMS dynamic mesh force (kN) against mesh frequency, one panel per mesh."""
+    """RMS dynamic mesh force (kN, solid) and its alternating part (RMS of the force minus
+    its mean, dashed) against mesh frequency (Hz), one panel per mesh.
+
+    Every y axis starts at 0. ``natural_frequencies`` (Hz, the undamped modes of the
+    model) are marked as vertical lines where the mesh frequency equals them (first-order
+    resonance). A panel whose curves equal those of an earlier panel to 1e-9 says so (the
+    left and right halves of a symmetric herringbone set carry equal forces).
+    """
     fig, ax = _panels(fig, len(meshes), 1, (8, 3.2 * len(meshes)))
+    fmin = min(float(sw.frequencies[0]) for sw in sweeps)
+    fmax = max(float(sw.frequencies[-1]) for sw in sweeps)
+    fn = np.asarray([] if natural_frequencies is None else natural_frequencies, dtype=float)
+    fn = np.unique(np.round(fn[(fn > 0) & (fn >= fmin) & (fn <= fmax)], 6))
+    curves: list[np.ndarray] = []
     for k, m in enumerate(meshes):
-        for sw, lab in zip(sweeps, labels, strict=True):
-            ax[k, 0].plot(
-                sw.frequencies, sw.rms_force[sw.mesh_names.index(m)] / 1e3, label=lab, lw=1
-            )
-        ax[k, 0].set_ylabel(f"RMS force {m} [kN]")
-        ax[k, 0].grid(alpha=0.3)
+        a = ax[k, 0]
+        for j, f in enumerate(fn):
+            a.axvline(f, color="0.55", ls=":", lw=0.8,
+                      label="natural frequencies (undamped)" if j == 0 else None)
+        y = np.concatenate([sw.rms_force[sw.mesh_names.index(m)] for sw in sweeps])
+        for c, (sw, lab) in enumerate(zip(sweeps, labels, strict=True)):
+            i = sw.mesh_names.index(m)
+            a.plot(sw.frequencies, sw.rms_force[i] / 1e3, color=f"C{c}", lw=1.2,
+                   label=f"{lab}: RMS")
+            a.plot(sw.frequencies, sw.rms_alternating[i] / 1e3, color=f"C{c}", lw=1, ls="--",
+                   label=f"{lab}: alternating RMS (mean removed)")
+        same = [meshes[i] for i, c in enumerate(curves)
+                if np.allclose(c, y, rtol=1e-9, atol=1e-9 * np.abs(y).max())]
+        curves.append(y)
+        a.set_ylabel(f"mesh force {m} [kN]")
+        if same:
+            a.set_title(f"{m}: equal to {same[0]} (symmetric model)", fontsize=9)
+        a.set_ylim(bottom=0.0, top=1.08 * float(y.max()) / 1e3)
+        a.set_xlim(fmin, fmax)
+        a.grid(alpha=0.3)
     ax[-1, 0].set_xlabel("mesh frequency [Hz]")
-    ax[0, 0].legend(fontsize=8)
-    ax[0, 0].set_title(title)
+    handles, names = ax[0, 0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="outside lower center", fontsize=8,
+               ncol=2 if len(names) > 3 else len(names))
+    fig.suptitle(title)
     return fig
 
 

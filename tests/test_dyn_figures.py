@@ -1,0 +1,131 @@
+"""Dynamics figures and files: spectra keep every large order, sweeps start at 0 and mark the
+natural frequencies, sweep.csv has every computed column, left/right herringbone halves."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pipeline.dynamics.excitation import rectangular_mesh_stiffness
+from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
+from pipeline.dynamics.outputs import shown_meshes, write_sweep
+from pipeline.dynamics.results import HarmonicResponse, Response
+from pipeline.dynamics.sweep import mesh_force_sweep
+from pipeline.viz.dynamics import (
+    plot_harmonic_contributions,
+    plot_spectrum,
+    plot_sweep,
+    shown_orders,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _response(orders_amplitudes: dict[int, float], n: int = 256, T: float = 1e-3) -> Response:
+    t = np.linspace(0.0, T, n + 1)
+    d = sum(a * np.cos(2 * np.pi * h * t / T) for h, a in orders_amplitudes.items())
+    d = np.atleast_2d(d)
+    z = np.zeros((n + 1, 1))
+    return Response(t, z, z, d, d, ("p.theta",), ("s-p1",), T)
+
+
+def test_shown_orders_keeps_every_large_order():
+    a = np.array([1.0, 0.2, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.02, 0.001])
+    assert shown_orders(a) == 12  # order 12 is 2 % of the largest
+    assert shown_orders(a, threshold=0.05) == 10  # at least 1-10
+    assert shown_orders(a[:5]) == 5  # never beyond H
+    assert shown_orders(np.zeros(4)) == 4
+
+
+def test_spectrum_shows_order_7_and_names_the_mesh():
+    """A DTE with order 7 as large as order 1 (the old plot stopped at 8, harmonics at 6)."""
+    r = _response({1: 2e-6, 7: 2e-6, 13: 0.5e-6})
+    ax = plot_spectrum([r], ["case"])
+    heights = {round(p.get_x() + p.get_width() / 2): p.get_height() for p in ax.patches}
+    assert heights[7] == pytest.approx(2.0, rel=1e-9) and heights[1] == pytest.approx(2.0)
+    assert heights[13] == pytest.approx(0.5, rel=1e-9)
+    assert max(heights) == 13 and "s-p1" in ax.get_title()
+    assert ax.get_xlim()[1] == pytest.approx(13.6)
+
+
+def test_harmonic_contributions_keep_order_7():
+    r = _response({1: 1e-6})
+    share = np.zeros((1, 20))
+    share[0, [0, 1, 6]] = [0.45, 0.1, 0.45]
+    hr = HarmonicResponse(r, np.arange(21), np.zeros((1, 21)), share, np.zeros((41, 1)))
+    ax = plot_harmonic_contributions([hr], ["case"])
+    heights = [p.get_height() for p in ax.patches]
+    assert len(heights) == 10 and heights[6] == pytest.approx(0.45)
+    assert ax.get_title() == "harmonic contributions to the DTE, mesh s-p1"
+
+
+def _lumped(**kw):
+    k = rectangular_mesh_stiffness(2.0e8, 3.0e8, 1.5, 120)
+    return HerringbonePlanetaryModel(
+        base_helix_angle=np.radians(8.0), k_sun_mesh=k, k_ring_mesh=k, groove=3.0e6,
+        sun_torque=200.0, mesh_period=1 / 1500.0, damping_ratio=0.05,
+        phase_sun=(0.0, 0.25, 0.5, 0.75), phase_ring=(0.1, 0.35, 0.6, 0.85), **kw,
+    ).assembly().assemble()
+
+
+@pytest.fixture(scope="module")
+def herringbone_sweeps():
+    f = np.linspace(300.0, 4000.0, 6)
+    return {side: mesh_force_sweep(_lumped(sun_load_side=side), f, n_harmonics=8,
+                                   executor=None)
+            for side in ("both", "R")}
+
+
+def test_left_right_equal_only_for_the_symmetric_set(herringbone_sweeps):
+    """The left and right sun meshes of a herringbone set are mirror images when the sun
+    torque acts on both halves and the right meshes have no extra phase (the lumped
+    example file): their forces agree to round-off, so the sweep's L and R panels are
+    equal. With the torque on the right half only (Xu et al. 2020: the output shaft),
+    the left half's torque passes through the groove and the two sides differ."""
+    sym, asym = herringbone_sweeps["both"], herringbone_sweeps["R"]
+    i, j = sym.mesh_names.index("s-p1L"), sym.mesh_names.index("s-p1R")
+    np.testing.assert_allclose(sym.rms_force[i], sym.rms_force[j], rtol=1e-9)
+    np.testing.assert_allclose(sym.mean_force[i], sym.mean_force[j], rtol=1e-9)
+    diff = np.abs(asym.rms_alternating[i] - asym.rms_alternating[j]) / asym.rms_alternating[i]
+    assert diff.max() > 0.05
+    fig = plot_sweep([sym], ["sym"], shown_meshes(sym))
+    assert fig.axes[1].get_title() == "s-p1R: equal to s-p1L (symmetric model)"
+    fig = plot_sweep([asym], ["asym"], shown_meshes(asym))
+    assert fig.axes[1].get_title() == ""
+
+
+def test_sweep_plot_from_zero_with_natural_frequencies(herringbone_sweeps):
+    sw = herringbone_sweeps["R"]
+    fn = np.array([0.0, 150.0, 700.0, 700.0, 2500.0, 9000.0])
+    fig = plot_sweep([sw], ["x"], ["s-p1L", "s-p1R"], natural_frequencies=fn)
+    for ax in fig.axes:
+        assert ax.get_ylim()[0] == 0.0
+        marks = sorted(line.get_xdata()[0] for line in ax.lines if line.get_linestyle() == ":")
+        assert marks == [700.0, 2500.0]  # in range, rigid modes and duplicates dropped
+        assert ax.get_ylabel().endswith("[kN]")
+
+
+def test_sweep_csv_has_every_column_with_units(tmp_path, herringbone_sweeps):
+    sw = herringbone_sweeps["R"]
+    write_sweep(sw, tmp_path, "x", natural_frequencies=np.array([700.0]))
+    with open(tmp_path / "sweep.csv", newline="") as fh:
+        rows = list(csv.reader(fh))
+    head = rows[0]
+    assert len(head) == 1 + 5 * len(sw.mesh_names) and all(len(r) == len(head) for r in rows)
+    data = np.array(rows[1:], dtype=float)
+    k = sw.mesh_names.index("s-p1R")
+    for name, ref in (("mean force s-p1R [N]", sw.mean_force[k]),
+                      ("alternating rms force s-p1R [N]", sw.rms_alternating[k]),
+                      ("dynamic factor s-p1R [-]", sw.max_force[k] / sw.mean_force[k])):
+        assert data[:, head.index(name)] == pytest.approx(ref, rel=1e-8)
+    assert (tmp_path / "sweep.png").stat().st_size > 0
+
+
+def test_shown_meshes_are_the_first_planet_only():
+    class _S:
+        mesh_names = tuple(f"s-p{n}" for n in range(1, 12)) + ("r-p1",)
+
+    assert shown_meshes(_S()) == ["s-p1"]
