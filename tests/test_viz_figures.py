@@ -12,6 +12,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 from pipeline.viz.stiffness import plot_friction_coefficients, plot_stiffness_curves
 from pipeline.viz.units import STIFFNESS_UNIT, stiffness_in_plot_unit, stiffness_label
@@ -66,3 +67,18 @@ def test_fe3d_workflow_plot_labels_match_its_numbers():
     fig = wf.plot(np.array([0.0, 1.0]), {"slice": cyc}, "t")
     assert fig.axes[0].get_ylabel() == "mesh stiffness dP/dx [N/um]"
     assert fig.axes[0].lines[0].get_ydata() == pytest.approx([1100.0, 1200.0])
+
+
+def test_contact_lines_equal_axes_and_legend_beside_them(helical_traction_pair):
+    """The plane of action at equal scale, the legend outside it (it covered the lines)."""
+    from pipeline.viz.geometry import plot_contact_lines
+
+    ax = plot_contact_lines(helical_traction_pair)
+    fig = ax.figure
+    FigureCanvasAgg(fig).draw()
+    assert ax.get_aspect() == 1.0
+    legend = ax.get_legend().get_window_extent()
+    frame = ax.get_window_extent()
+    assert legend.x0 > frame.x1  # entirely to the right of the axes
+    lo, hi = ax.get_xlim()
+    assert lo < helical_traction_pair.s_start * 1e3 and hi > helical_traction_pair.s_end * 1e3
