@@ -129,3 +129,75 @@ def test_shown_meshes_are_the_first_planet_only():
         mesh_names = tuple(f"s-p{n}" for n in range(1, 12)) + ("r-p1",)
 
     assert shown_meshes(_S()) == ["s-p1"]
+
+
+def _read_shapes(path):
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    head = rows[0]
+    modes = [j for j, h in enumerate(head) if h.startswith("mode ")]
+    phi = np.array([[float(r[j]) for j in modes] for r in rows[1:]])
+    return head, [r[0] for r in rows[1:]], [r[1] for r in rows[1:]], phi
+
+
+def test_mode_shape_csv_holds_the_mass_normalised_eigenvectors(tmp_path):
+    """Lin and Parker (1999)'s planetary set: mode_shapes.csv read back with csv.reader
+    gives the model's eigenvectors (9 digits), one row per named coordinate with its
+    unit, and they are mass-normalised: phi^T M phi = I on the model's mass matrix."""
+    from pipeline.dynamics.analysis import analyse_modes
+    from pipeline.dynamics.layout import model_layout
+    from pipeline.dynamics.models.planetary import PlanetaryModel
+    from pipeline.dynamics.outputs import write_modes
+
+    model = PlanetaryModel()
+    res = analyse_modes(model)
+    files = write_modes(res, tmp_path, model_layout(model))
+    head, dofs, units, phi = _read_shapes(tmp_path / "mode_shapes.csv")
+    assert dofs == list(res.dof_names) and len(dofs) == 3 * (3 + 4)
+    assert units == ["rad/(kg m^2)^0.5" if d.endswith(".theta") else "m/kg^0.5" for d in dofs]
+    assert phi.shape == res.shapes.shape
+    np.testing.assert_allclose(phi, res.shapes, rtol=1e-8, atol=1e-8 * np.abs(phi).max())
+    system = model.assembly().assemble()
+    red = np.linalg.lstsq(system.basis, phi, rcond=None)[0]
+    np.testing.assert_allclose(red.T @ system.M @ red, np.eye(phi.shape[1]), atol=1e-7)
+    assert head[3 + 1] == f"mode 1 {res.frequencies[1]:.6g} Hz [row unit]"
+    pngs = sorted(p.name for p in files if p.suffix == ".png")
+    assert pngs == ["mode_shapes.png", "mode_shapes_2.png"]  # 20 elastic modes, 12 a page
+
+
+def test_every_mode_of_the_herringbone_set_is_drawn(tmp_path):
+    """28 elastic modes of the lumped herringbone set on 3 pages (the old figure had 8 bar
+    charts with 56 tick labels each); panels carry no tick labels."""
+    from pipeline.config import load_gearbox
+    from pipeline.dynamics.analysis import analyse_modes
+    from pipeline.dynamics.layout import model_layout
+    from pipeline.viz.modes import mode_pages, plot_mode_shapes
+
+    box = load_gearbox(ROOT / "workflows/configs/herringbone_planetary_lumped.toml")
+    model = box.lumped
+    res = analyse_modes(model)
+    pages = mode_pages(res)
+    elastic = [k for k in range(res.frequencies.size) if res.frequencies[k] > 0]
+    assert len(elastic) == 28 and sum(pages, []) == elastic and len(pages) == 3
+    fig = plot_mode_shapes(res, model_layout(model), pages[0])
+    drawn = [a for a in fig.axes if a.get_title()]
+    assert len(drawn) == 12 and not any(a.axison for a in fig.axes)
+    assert drawn[0].get_title().startswith(f"mode {pages[0][0]}: {res.frequencies[1]:.1f} Hz")
+
+
+def test_layouts_put_the_gears_where_they_are():
+    from pipeline.dynamics.layout import model_layout
+    from pipeline.dynamics.models.planetary import PlanetaryModel
+    from pipeline.dynamics.models.spur_pair import SpurPairModel
+
+    m = PlanetaryModel(planet_angles=tuple(np.radians([0.0, 80.0, 180.0, 270.0])))
+    lay = model_layout(m)
+    p2 = lay.place("p2")
+    assert np.hypot(*p2.centre) == pytest.approx(m.carrier_radius)
+    assert np.degrees(np.arctan2(p2.centre[1], p2.centre[0])) == pytest.approx(80.0)
+    assert p2.frame_angle == pytest.approx(np.radians(80.0)) and p2.role == "planet"
+    assert lay.place("r").radius == m.base_radius_ring and not lay.schematic
+    pair = model_layout(SpurPairModel(rectangular_mesh_stiffness(2e8, 3e8, 1.6, 60)))
+    p, g = pair.place("pinion"), pair.place("gear")
+    assert np.hypot(p.centre[0] - g.centre[0], p.centre[1] - g.centre[1]) == pytest.approx(
+        p.radius + g.radius)  # base circles touch on the line of action (the x axis)

@@ -18,6 +18,7 @@ import json
 from pipeline.commands_common import add_common_arguments, load, output_dir
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
+from pipeline.dynamics.layout import model_layout
 from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.io import to_jsonable, write_json, write_run_record
 from pipeline.run.dynamics import dynamics_options
@@ -73,7 +74,7 @@ def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
     box, model, out = _setup(args, "modes")
     res = analyse_modes(model)
-    files = write_modes(res, out, count=16 if args.full else 8)
+    files = write_modes(res, out, model_layout(model), title=box.name)
     summary = {**res.summary(), "out": str(out)}
     write_run_record(out, box.to_dict(), files, f"gearpipe modes {args.config}")
     lines = [f"{len(res.dof_names)} DOF, results in {out}",

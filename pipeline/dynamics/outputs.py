@@ -11,19 +11,30 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.dynamics.analysis import ResponseResult
+from pipeline.dynamics.layout import ModelLayout
 from pipeline.dynamics.modal import ModalResult
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.io import write_csv
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
-def write_modes(res: ModalResult, out: Path, count: int = 8,
-                figures: FigureCache = NO_CACHE) -> list[Path]:
-    """``modes.csv`` and ``mode_shapes.png`` (the first ``count`` modes)."""
-    from pipeline.viz.dynamics import plot_mode_shapes
+def write_modes(res: ModalResult, out: Path, layout: ModelLayout,
+                figures: FigureCache = NO_CACHE, title: str = "") -> list[Path]:
+    """``modes.csv`` (frequencies, multiplicities, kinds), ``mode_shapes.csv`` (the
+    eigenvectors, one row per coordinate with its unit) and the mode shapes drawn on
+    ``layout``: every elastic mode, 12 per page, ``mode_shapes.png`` then
+    ``mode_shapes_2.png``, ... (:func:`pipeline.viz.modes.mode_pages`)."""
+    from pipeline.viz.modes import mode_pages, plot_mode_shapes
 
-    return [write_csv(out / "modes.csv", res.columns()),
-            figures.save(out / "mode_shapes.png", plot_mode_shapes, res, count=count)]
+    files = [write_csv(out / "modes.csv", res.columns()),
+             write_csv(out / "mode_shapes.csv", res.shape_columns())]
+    pages = mode_pages(res)
+    for n, page in enumerate(pages, start=1):
+        name = "mode_shapes.png" if n == 1 else f"mode_shapes_{n}.png"
+        head = f"{title}: " if title else ""
+        files.append(figures.save(out / name, plot_mode_shapes, res, layout, page,
+                                  title=f"{head}mode shapes, page {n} of {len(pages)}"))
+    return files
 
 
 def write_response(result: ResponseResult, out: Path, name: str,

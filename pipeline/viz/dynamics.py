@@ -1,4 +1,5 @@
-"""Dynamic results: time histories, spectra, harmonic contributions, sweeps, mode shapes.
+"""Dynamic results: time histories, spectra, harmonic contributions, sweeps (mode shapes:
+:mod:`pipeline.viz.modes`).
 
 Units on the axes: time in mesh periods, DTE in um, forces in kN, frequencies in
 Hz. Every function draws into ``ax`` (or ``fig`` for several panels) when given
@@ -13,7 +14,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
+from pipeline.dynamics.results import HarmonicResponse, Response
 
 
 def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
@@ -212,42 +213,4 @@ def plot_sweep(
     fig.legend(handles, names, loc="outside lower center", fontsize=8,
                ncol=2 if len(names) > 3 else len(names))
     fig.suptitle(title)
-    return fig
-
-
-def plot_mode_shapes(
-    result: ModalResult, count: int = 8, skip_rigid: bool = True, fig: Figure | None = None
-) -> Figure:
-    """Bar charts of the first ``count`` mode shapes.
-
-    Each coordinate is shown as its kinetic-energy amplitude ``sqrt(m_i) phi_i`` (so
-    rotations and translations compare), normalised to the largest entry.
-    """
-    idx = [
-        k
-        for k in range(result.frequencies.size)
-        if not (skip_rigid and result.frequencies[k] == 0.0)
-    ][:count]
-    cols = 2
-    rows = max(1, (len(idx) + 1) // cols)
-    n = len(result.dof_names)
-    fig, ax = _panels(fig, rows, cols, (12, 2.6 * rows))
-    for j, k in enumerate(idx):
-        a = ax[j // cols, j % cols]
-        phi = result.shapes[:, k].real
-        if result.weights is not None:
-            phi = phi * result.weights
-        a.bar(np.arange(n), phi / np.abs(phi).max(), color="tab:blue")
-        kind = result.kinds[k] if result.kinds[k] else ""
-        a.set_title(
-            f"{result.frequencies[k]:.1f} Hz {kind} (x{result.multiplicity[k]})", fontsize=9
-        )
-        a.set_xticks(np.arange(n))
-        a.set_xticklabels(result.dof_names, rotation=90, fontsize=5 if n > 30 else 7)
-        a.set_ylim(-1.05, 1.05)
-        if j % cols == 0:
-            a.set_ylabel("sqrt(m) phi, normalised [-]", fontsize=8)
-        a.grid(alpha=0.3)
-    for j in range(len(idx), rows * cols):
-        ax[j // cols, j % cols].axis("off")
     return fig
