@@ -201,3 +201,13 @@ def test_layouts_put_the_gears_where_they_are():
     p, g = pair.place("pinion"), pair.place("gear")
     assert np.hypot(p.centre[0] - g.centre[0], p.centre[1] - g.centre[1]) == pytest.approx(
         p.radius + g.radius)  # base circles touch on the line of action (the x axis)
+
+
+def test_other_models_get_a_schematic_grid():
+    from pipeline.dynamics.layout import model_layout
+    from pipeline.dynamics.models.split_torque_helicopter import split_torque_helicopter_model
+
+    lay = model_layout(split_torque_helicopter_model())
+    centres = [p.centre for p in lay.places]
+    assert lay.schematic and len(centres) == 18 and len(set(centres)) == 18
+    assert max(c[0] for c in centres) == pytest.approx(3.0 * 4)  # 5 columns for 18 bodies

@@ -5,27 +5,15 @@ Checked from the data the figures hold (lines, bars, labels, limits), not from p
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
+from test_cli_workflows import load_workflow
 
 from pipeline.viz.stiffness import plot_friction_coefficients, plot_stiffness_curves
 from pipeline.viz.units import STIFFNESS_UNIT, stiffness_in_plot_unit, stiffness_label
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _workflow(name: str):
-    spec = importlib.util.spec_from_file_location(name, ROOT / "workflows" / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def test_stiffness_unit_is_N_per_um():
@@ -61,7 +49,7 @@ def test_contact_cycle_stiffness_in_N_per_um():
 
 def test_fe3d_workflow_plot_labels_match_its_numbers():
     """The workflow's stiffness axis said N/um but showed kN/um (1e-9 scaling)."""
-    wf = _workflow("fe3d_helical_stiffness")
+    wf = load_workflow("fe3d_helical_stiffness")
     cyc = SimpleNamespace(mesh_stiffness=np.array([1.1e9, 1.2e9]),
                           transmission_error=np.array([1e-6, 2e-6]))
     fig = wf.plot(np.array([0.0, 1.0]), {"slice": cyc}, "t")

@@ -5,8 +5,8 @@ action is the x axis, so the gear sits below the pinion); a planetary set is the
 the planets on the carrier circle at their angles, the ring and the carrier (drawn as
 the circle through the planet centres). Both halves of a herringbone member sit at the
 same place (``side`` "L" or "R"). Bodies of other models (the split-torque
-transmission) are placed in a row, one circle each, with their own axes: a schematic
-that still shows every body's motion.
+transmission) are placed on a square grid in the model's order, one unit circle each,
+with their own axes: a schematic that still shows every body's motion.
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ class ModelLayout:
     Attributes
     ----------
     places : one per body, in the model's body order.
-    schematic : True when the positions are a row of circles, not the gears' layout.
+    schematic : True when the positions are a grid of unit circles, not the gears' layout.
     """
 
     places: tuple[BodyPlace, ...]
@@ -93,9 +93,11 @@ def _pair(model) -> ModelLayout:
                         BodyPlace("gear", (0.0, -(rp + rg)), rg, 0.0, "gear")))
 
 
-def _row(bodies: tuple[Body, ...]) -> ModelLayout:
-    return ModelLayout(tuple(BodyPlace(b.name, (2.6 * i, 0.0), 1.0, b.frame_angle)
-                             for i, b in enumerate(bodies)), schematic=True)
+def _grid(bodies: tuple[Body, ...]) -> ModelLayout:
+    cols = math.ceil(math.sqrt(len(bodies)))
+    return ModelLayout(tuple(BodyPlace(b.name, (3.0 * (i % cols), -3.0 * (i // cols)), 1.0,
+                                       b.frame_angle) for i, b in enumerate(bodies)),
+                       schematic=True)
 
 
 def model_layout(model) -> ModelLayout:
@@ -112,4 +114,4 @@ def model_layout(model) -> ModelLayout:
         return _planetary(model, bodies)
     if hasattr(model, "base_radius_pinion") and names <= {"pinion", "gear"}:
         return _pair(model)
-    return _row(bodies)
+    return _grid(bodies)

@@ -7,7 +7,9 @@ through the planet centres); a body's translation is an arrow from its centre
 circle whose length is the rotation times the circle's radius (the tangential
 displacement at the base circle). Translations and rim displacements share one scale
 per panel (the largest is 90 % of the smallest gear's radius): the amplitude of a mode
-is arbitrary, its proportions are not.
+is arbitrary, its proportions are not. On a schematic layout (unit circles) the arrows
+and arcs are the kinetic-energy amplitudes sqrt(m) u and sqrt(I) theta instead, which
+compare translations and rotations without a radius.
 Axial motion (``z``) cannot be drawn in the plane; the panel gives the share of the
 kinetic energy in axial, translational and rotational coordinates. Herringbone halves
 are drawn in two colours (left, right).
@@ -101,6 +103,8 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
     if ax is None:
         ax = Figure(figsize=(4, 4)).subplots()
     phi = result.real_shapes()[:, k]
+    if layout.schematic and result.weights is not None:
+        phi = phi * result.weights  # unit circles: compare kinetic-energy amplitudes instead
     motion = {p.name: _motion(result, phi, p) for p in layout.places}
     big = max([np.hypot(*u) for u, _ in motion.values()]
               + [abs(t) for _, t in motion.values()] + [0.0])
@@ -176,6 +180,6 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     fig.legend(handles=handles, loc="outside lower center", ncol=min(len(handles), 3),
                fontsize=8)
     if title or layout.schematic:
-        note = " (bodies placed in a row: schematic layout)" if layout.schematic else ""
+        note = " (bodies placed on a grid: schematic layout)" if layout.schematic else ""
         fig.suptitle(f"{title}{note}", fontsize=10)
     return fig
