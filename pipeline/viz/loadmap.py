@@ -107,7 +107,8 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
             _rulers(plotter, pair, gear, load_map.z, load_map.radius(member),
                     body.bounds[0] - 1.0)
             name = "" if gear.name == member else f" ({gear.name})"
-            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}",
+            note = "; the internal gear's flank is not drawn" if pair.gear.internal else ""
+            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}",
                              position="lower_left", font_size=10)
             row_aspect = window_width / (weights[i] if i else row_h)
             _fit_camera(plotter, (*body.bounds[:2], body.bounds[2] - 1.3 * gear.module * 1e3,
