@@ -16,7 +16,9 @@ record (``run.json``) by :mod:`pipeline.provenance`.
 
 from __future__ import annotations
 
+import csv
 import hashlib
+import io
 import json
 import os
 import re
@@ -164,14 +166,41 @@ def write_json(path: str | os.PathLike, data: Any) -> Path:
     return atomic_write_text(path, json.dumps(to_jsonable(data), indent=2) + "\n")
 
 
-def write_csv(path: str | os.PathLike, columns: Mapping[str, np.ndarray]) -> Path:
-    """Write equal-length 1-D columns as CSV; put units in the column names."""
+def csv_header(names: list[str]) -> str:
+    """One CSV header line of ``names``, quoted where a name holds a comma, quote or newline
+    (RFC 4180, as :func:`csv.reader` reads it back), without the line end."""
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="").writerow(names)
+    return buf.getvalue()
+
+
+def write_csv(path: str | os.PathLike, columns: Mapping[str, Any]) -> Path:
+    """Write equal-length 1-D columns as CSV (RFC 4180); put units in the column names.
+
+    Numbers are written with 9 significant digits; a column of strings (a case name,
+    say) is written as text. Names and text that hold a comma, a quote or a line break
+    are quoted, so :func:`csv.reader` reads back one field per column in every row.
+    """
     names = list(columns)
-    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
-    header = ",".join(names)
-    return atomic_write(
-        path, lambda p: np.savetxt(p, data, delimiter=",", header=header, comments="", fmt="%.9g")
-    )
+    cols = [np.asarray(columns[n]) for n in names]
+    if any(c.ndim != 1 or c.size != cols[0].size for c in cols):
+        raise ValueError(f"{Path(path).name}: columns must be 1-D and of equal length, got "
+                         f"shapes {[c.shape for c in cols]}")
+    header = csv_header(names)
+    if all(c.dtype.kind in "biuf" for c in cols):
+        data = np.column_stack([c.astype(float) for c in cols]) if cols else np.empty((0, 0))
+        return atomic_write(path, lambda p: np.savetxt(p, data, delimiter=",", header=header,
+                                                       comments="", fmt="%.9g"))
+    text = [[str(v) for v in c] if c.dtype.kind in "USO" else [f"{v:.9g}" for v in c]
+            for c in cols]
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            w = csv.writer(fh, lineterminator="\n")
+            w.writerow(names)
+            w.writerows(zip(*text, strict=True))
+
+    return atomic_write(path, write)
 
 
 def content_hash(data: Any) -> str:

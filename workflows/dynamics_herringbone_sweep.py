@@ -44,7 +44,8 @@ Comparison with Xu et al. (2020), sec. 4 (coarse run: 100 points, H = 10, fine g
   the groove relation).
 
 Writes results/dynamics_herringbone_sweep/: sweep_groove.png, sweep_slide.png,
-sweep_*.csv, summary.csv (main peak frequency and peak RMS force per case on the
+sweep_*.csv (per case and shown mesh: RMS, max, mean, alternating RMS force in N, dynamic
+factor), summary.csv (main peak frequency and peak RMS force per case on the
 sweep grid), groove_peaks.csv (per K_j: side factors, refined peak frequencies and
 forces of both regions, equal-sides peaks, mesh/groove mode frequencies and strain
 energy shares), sweep_groove_peak1.png / sweep_groove_peak2.png (RMS force vs mesh
@@ -190,9 +191,8 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
         sweeps[name] = mesh_force_sweep(system, freqs, n_harmonics=H, executor=executor)
     files = []
     for name, sw in sweeps.items():
-        cols = {"mesh frequency [Hz]": sw.frequencies}
-        for m in MESHES:
-            cols[f"rms force {m} [N]"] = sw.rms_force[sw.mesh_names.index(m)]
+        cols = {k: v for k, v in sw.columns().items()
+                if k == "mesh frequency [Hz]" or any(f" {m} [" in k for m in MESHES)}
         files.append(
             write_csv(out / f"sweep_{name.replace(' ', '_').replace('+', 'p')}.csv", cols)
         )

@@ -54,11 +54,12 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.config import gearbox_from_dict
-from pipeline.io import atomic_write
+from pipeline.io import write_csv
 from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record
 from pipeline.run import RunOptions, run_pipeline
 from pipeline.viz import save
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 CONFIG = Path(__file__).resolve().parent / "configs" / "spur_pair_assembly_errors.toml"
 
@@ -69,20 +70,6 @@ CASES = {
     "FE 2D LTCA": ("fe2d", "contact"),
     "FE 3D LTCA": ("fe3d", "contact"),
 }
-
-
-def write_table(path: Path, columns: dict[str, list]) -> Path:
-    """CSV with a text first column (the case) and numbers (units in the headers)."""
-    import csv
-
-    def write(tmp: str) -> None:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh)
-            w.writerow(columns)
-            for row in zip(*columns.values(), strict=True):
-                w.writerow([row[0]] + [f"{v:.6g}" for v in row[1:]])
-
-    return atomic_write(path, write)
 
 
 def gearbox(compliance: str, excitation: str, full: bool, fe: dict | None = None):
@@ -113,11 +100,11 @@ def plot_excitations(runs: dict, title: str) -> Figure:
                              res.gearbox.dynamics.excitation)
         k = ex.stiffness.values
         tau = np.arange(k.size) / k.size
-        ax[0].plot(tau, k * 1e-6, label=label, lw=1.2)
+        ax[0].plot(tau, stiffness_in_plot_unit(k), label=label, lw=1.2)
         e = (ex.transmission_error.values if ex.transmission_error is not None
              else np.zeros_like(k))
         ax[1].plot(tau, e * 1e6, label=label, lw=1.2)
-    ax[0].set_ylabel("mesh stiffness k [N/um]")
+    ax[0].set_ylabel(stiffness_label("mesh stiffness k"))
     ax[1].set_ylabel("TE excitation e [um]")
     ax[1].set_xlabel("mesh cycle [-]")
     for a in ax:
@@ -194,7 +181,7 @@ def main(argv: list[str] | None = None) -> dict:
                   f"DTE p-p {vals[4] * 1e6:6.2f} um, DF {vals[6]:5.2f} at 2340 rpm; "
                   f"max DF {vals[7]:5.2f} at {vals[8]:.0f} Hz")
         rows["case"] = list(runs)
-        files.append(write_table(out / "summary.csv", rows))
+        files.append(write_csv(out / "summary.csv", rows))
         write_run_record(out, {"cases": {k: CASES[k] for k in runs}, "full": args.full,
                                "config": CONFIG.read_text(encoding="utf-8")},
                          files, "workflows/excitation_comparison.py")

@@ -70,12 +70,14 @@ def _stats(k: np.ndarray) -> dict:
 def plot(deg: np.ndarray, curves: dict, title: str):
     from matplotlib.figure import Figure
 
+    from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
+
     fig = Figure(figsize=(7, 6))
     ax = fig.subplots(2, 1, sharex=True)
     for name, cyc in curves.items():
-        ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, marker=".", label=name)
+        ax[0].plot(deg, stiffness_in_plot_unit(cyc.mesh_stiffness), marker=".", label=name)
         ax[1].plot(deg, cyc.transmission_error * 1e6, marker=".", label=name)
-    ax[0].set_ylabel("mesh stiffness dP/dx [N/um]")
+    ax[0].set_ylabel(stiffness_label("mesh stiffness dP/dx"))
     ax[1].set_ylabel("loaded static TE [um]")
     ax[1].set_xlabel("pinion angle [deg]")
     ax[0].legend(fontsize=8)

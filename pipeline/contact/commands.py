@@ -42,18 +42,20 @@ def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
     """Cycle and point CSVs, the cycle plot (against the slice method's ``k_slice``, N/m)
     and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG)."""
     from pipeline.viz.contact import plot_contact_cycle
-    from pipeline.viz.loadmap import plot_load_map_2d, render_load_map
+    from pipeline.viz.loadmap import load_map_title, plot_load_map_2d, render_load_map
 
     files = [write_csv(out / f"{prefix}contact_cycle.csv", cyc.columns()),
              write_csv(out / f"{prefix}contact_points.csv", cyc.point_columns()),
              figures.save(out / f"{prefix}contact_cycle.png", plot_contact_cycle, cyc, k_slice,
                           title)]
     lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm, title))
+    map_title = load_map_title(title, opts.modifications.describe())
+    files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm,
+                              map_title))
     files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))
     if opts.render:
         files.append(figures.save(out / f"{prefix}load_map.png", render_load_map, pair, lm,
-                                  title))
+                                  map_title))
     return files
 
 

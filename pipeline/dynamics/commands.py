@@ -18,6 +18,7 @@ import json
 from pipeline.commands_common import add_common_arguments, load, output_dir, record
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
+from pipeline.dynamics.layout import model_layout
 from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.io import to_jsonable, write_json
 from pipeline.output_folder import staged_output
@@ -75,7 +76,7 @@ def run_modes(args) -> int:
     box, model, out = _setup(args, "modes")
     res = analyse_modes(model)
     with staged_output(out) as staging:
-        files = write_modes(res, staging, count=16 if args.full else 8)
+        files = write_modes(res, staging, model_layout(model), title=box.name)
         record(staging, args, box, files)
     summary = {**res.summary(), "out": str(out)}
     lines = [f"{len(res.dof_names)} DOF, results in {out}",
@@ -120,9 +121,11 @@ def run_sweep(args) -> int:
                         show_progress=not args.json)
     freqs = res.frequencies
     with staged_output(out) as staging:
-        files = write_sweep(res, staging, box.name)
+        files = write_sweep(res, staging, box.name,
+                            natural_frequencies=analyse_modes(model).frequencies)
         record(staging, args, box, files)
-    peaks = {m: res.peaks(m) for m in shown_meshes(res)}
+    shown = shown_meshes(res)
+    peaks = {m: res.peaks(m) for m in shown}
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}
     lines = [
         f"{box.name}: {freqs.size} points {freqs[0]:.0f}-{freqs[-1]:.0f} Hz, results in {out}"

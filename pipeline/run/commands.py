@@ -69,6 +69,7 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
 def write_run(result: RunResult, out: Path, full: bool = False,
               figures: FigureCache = NO_CACHE) -> list[Path]:
     """All files of a run (module docstring); returns them."""
+    from pipeline.dynamics.layout import model_layout
     from pipeline.dynamics.outputs import write_modes, write_response, write_sweep
 
     box = result.gearbox
@@ -79,9 +80,10 @@ def write_run(result: RunResult, out: Path, full: bool = False,
         files += _write_mesh(label, st, box, out, prefix, figures)
     dyn = result.dynamics
     if dyn is not None:
-        files += write_modes(dyn.modes, out, 16 if full else 8, figures)
+        files += write_modes(dyn.modes, out, model_layout(dyn.model), figures, box.name)
         files += write_response(dyn.response, out, box.name, figures)
-        files += write_sweep(dyn.sweep, out, box.name, figures)
+        files += write_sweep(dyn.sweep, out, box.name, figures,
+                             natural_frequencies=dyn.modes.frequencies)
     return files
 
 
