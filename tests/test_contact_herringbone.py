@@ -180,7 +180,7 @@ def test_save_and_load_round_trip(case, tmp_path):
     (dict(sun_axial="floating"), "herringbone.sun_axial"),
     (dict(axial_slide=0.2), r"herringbone.axial_slide = 0.2 m is outside"),
     (dict(axial_support_stiffness=-1.0), r"axial_support_stiffness = -1 N/m"),
-    (dict(sun_axial="free", axial_slide=1e-3), "applies to a held sun"),
+    (dict(sun_axial="free", axial_slide=1e-3), "an axial slide applies to a held sun"),
 ])
 def test_invalid_options(kwargs, match):
     with pytest.raises(InputError, match=match):
@@ -199,3 +199,29 @@ def test_invalid_inputs(case):
         herringbone_mesh_cycle(src, -1.0, GrooveFlankCoupling.rigid(), N)
     with pytest.raises(InputError, match="planetary.planets"):
         herringbone_mesh_cycle(src, P, GrooveFlankCoupling.rigid(), 0)
+
+
+def test_gearbox_table():
+    """``[herringbone]`` in the file's units; refused where it does not apply."""
+    from pipeline.config import gearbox_from_text
+
+    text = open(CONFIG, encoding="utf-8").read()
+    box = load_gearbox(CONFIG)
+    assert box.herringbone == HerringboneOptions(axial_support_stiffness=1e9)
+    box = gearbox_from_text(text.replace("axial_slide_mm = 0.0", "axial_slide_mm = 0.5"))
+    assert box.herringbone.axial_slide == pytest.approx(0.5e-3)
+    for old, new, match in (
+        ("axial_slide_mm = 0.0", "axial_slide_mm = 80.0",
+         r"herringbone.axial_slide_mm = 80 mm is outside the allowed range \[-50, 50\] mm"),
+        ("axial_support_stiffness_N_per_m = 1.0e9", "axial_support_stiffness_N_per_m = -5.0",
+         r"axial_support_stiffness_N_per_m = -5 N/m is outside the allowed range \(0, inf\]"),
+        ('torque_entry = "right"', 'torque_entry = "middle"', "not one of 'right', 'left'"),
+        ('torque_entry = "right"', 'torque_entri = "left"', "did you mean 'torque_entry'"),
+        ("[groove] ", "[groovx] ", "table"),
+    ):
+        with pytest.raises(InputError, match=match):
+            gearbox_from_text(text.replace(old, new, 1))
+    head, tail = text.split("\n[groove]", 1)
+    without_groove = head + "\n[herringbone]" + tail.split("\n[herringbone]", 1)[1]
+    with pytest.raises(InputError, match=r"\[herringbone\] applies to a planetary set"):
+        gearbox_from_text(without_groove)

@@ -96,11 +96,11 @@ class HerringboneOptions:
         k = float(self.axial_support_stiffness)
         if not (k > 0.0):  # inf allowed: a rigid support
             raise InputError(f"herringbone.axial_support_stiffness = {k:g} N/m is outside the "
-                             "allowed range (0, inf] N/m")
+                             "allowed range (0, inf] N/m", field="axial_support_stiffness",
+                             value=k, bounds=(0.0, math.inf, True, False))
         if self.sun_axial == "free" and self.axial_slide != 0.0:
-            raise InputError(f"herringbone.axial_slide = {self.axial_slide:g} m applies to a "
-                             "held sun (sun_axial = \"held\"); a free sun finds its own "
-                             "axial position")
+            raise InputError("herringbone: a free sun (sun_axial = \"free\") finds its own "
+                             "axial position; an axial slide applies to a held sun")
 
 
 def _stack_hertz(h: HertzLineContact) -> HertzLineContact:
