@@ -225,3 +225,16 @@ def test_gearbox_table():
     without_groove = head + "\n[herringbone]" + tail.split("\n[herringbone]", 1)[1]
     with pytest.raises(InputError, match=r"\[herringbone\] applies to a planetary set"):
         gearbox_from_text(without_groove)
+
+
+def test_series_stiffness_is_the_half_with_the_groove(case):
+    """Linear contact, torque right: the left half in series with N r_b^2 / k_t carries the
+    left load at the planet approach: P_L = k_series,L x, P_R = k_series,R x (right has
+    nothing in series)."""
+    src, P, N, _ = case
+    g = torsion(4.0e7)
+    hb = run(case, g, local="linear")
+    np.testing.assert_allclose(hb.series_mesh_stiffness("left") * hb.approach, hb.load_left,
+                               rtol=1e-9)
+    np.testing.assert_allclose(hb.series_mesh_stiffness("right"), hb.right.mesh_stiffness,
+                               rtol=1e-15)

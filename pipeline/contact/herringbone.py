@@ -55,7 +55,7 @@ from numpy.typing import ArrayLike
 
 from pipeline.contact.complementarity import solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
-from pipeline.contact.herringbone_results import HerringboneCycle
+from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
 from pipeline.contact.hertz import HertzLineContact
 from pipeline.contact.ltca import LOCAL_MODELS, weber_model
 from pipeline.contact.results import LoadedMeshCycle
@@ -65,7 +65,7 @@ from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
-TORQUE_ENTRIES = {"right": 0.0, "left": 1.0, "both": 0.5}
+TORQUE_ENTRIES = LEFT_FRACTION
 """Fraction of the sun torque entering at O_L for each ``torque_entry``."""
 SUN_AXIAL = ("held", "free")
 

@@ -22,6 +22,7 @@ from pipeline.contact.results import LoadedMeshCycle
 from pipeline.fem.cache import load_arrays, save_arrays
 
 SIDES = ("left", "right")
+LEFT_FRACTION = {"right": 0.0, "left": 1.0, "both": 0.5}  # torque entering at O_L
 
 
 @dataclass(frozen=True)
@@ -89,6 +90,24 @@ class HerringboneCycle:
     def half_load(self, side: str) -> np.ndarray:
         """(m,) load of ``side`` along the transverse line of action, N."""
         return self.load_left if side == "left" else self.load_right
+
+    def series_mesh_stiffness(self, side: str) -> np.ndarray:
+        """(m,) stiffness of ``side``'s mesh in series with the groove and the axial support
+        its own load meets, N/m: ``1 / (1 / k_h + N w_h^T C w_h + N tan^2(beta_b) / k_a)``
+        with the groove weights ``w_L = (1 - f) [r_b, tan(beta_b)]``,
+        ``w_R = f [-r_b, tan(beta_b)]`` (f: torque fraction entering at O_L). It is what a
+        model with the groove inside the mesh spring (Xu et al. 2020, eq. 14) would call the
+        side's mesh stiffness; the half's own stiffness is ``half(side).mesh_stiffness``."""
+        f = LEFT_FRACTION[self.torque_entry]
+        t = math.tan(self.base_helix_angle)
+        w = (np.array([self.base_radius, t]) * (1.0 - f) if side == "left"
+             else np.array([-self.base_radius, t]) * f)
+        c = self.n_planets * float(w @ self.groove_compliance @ w)
+        if math.isfinite(self.axial_support_stiffness) and self.sun_axial == "held":
+            c += self.n_planets * t * t / self.axial_support_stiffness
+        k = self.half(side).mesh_stiffness
+        with np.errstate(divide="ignore"):
+            return np.where(k > 0.0, 1.0 / (1.0 / np.where(k > 0.0, k, 1.0) + c), 0.0)
 
     @property
     def groove_torsional_stiffness(self) -> float:
