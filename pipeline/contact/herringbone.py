@@ -57,7 +57,7 @@ from pipeline.contact.complementarity import solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
 from pipeline.contact.hertz import HertzLineContact
-from pipeline.contact.ltca import LOCAL_MODELS, weber_model
+from pipeline.contact.ltca import LOCAL_MODELS, mesh_positions, weber_model
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource
@@ -181,11 +181,7 @@ def herringbone_mesh_cycle(
     N = check_int_range("planetary.planets", n_planets, 1, 64)
     mods = modifications or FlankModifications()
     pair = source.pair
-    if np.ndim(positions) == 0:
-        check_int_range("contact.positions", int(positions), 1, 1_000_000)
-        s0 = pair.mesh_cycle(int(positions))
-    else:
-        s0 = np.asarray(positions, dtype=float).reshape(-1)
+    s0 = mesh_positions(pair, positions)
     rb = pair.pinion.base_radius
     t = math.tan(pair.pinion.base_helix_angle)
     f = TORQUE_ENTRIES[opts.torque_entry]

@@ -171,3 +171,31 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         note["text"] = (f"load left/right {s['left']['load_share_mean']:.3f} / "
                         f"{s['right']['load_share_mean']:.3f}")
     return HerringboneStage(groove, cycle, pair, op, g_hit, c_hit)
+
+
+def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
+                      profile_points: int = 80) -> list[Path]:
+    """``<prefix>herringbone.csv`` (per position: loads, flank approaches, own and whole-mesh
+    stiffness, groove twist and torque, sun axial position) and the left/right sun-flank
+    load maps ``<prefix>herringbone_load_map_{left,right}.png/.vtu``; returns the files."""
+    from pipeline.contact.herringbone_maps import (
+        half_load_maps,
+        half_pair,
+        loaded_range,
+        write_half_vtus,
+    )
+    from pipeline.io import write_csv
+    from pipeline.viz.loadmap import render_load_map
+
+    maps = half_load_maps(stage.cycle, stage.pair, profile_points)
+    files = [write_csv(out / f"{prefix}herringbone.csv", stage.cycle.columns())]
+    files += write_half_vtus(maps, stage.pair, out, f"{prefix}herringbone_load_map")
+    top = max(m.unit_load.max() for m in maps.values()) * 1e-3
+    for side, m in maps.items():
+        lo, hi = loaded_range(m)
+        title = (f"{side} sun flank, K_j = {stage.groove.equivalent_Kj:.3g} N m^2, torque "
+                 f"{stage.cycle.torque_entry}: max {hi * 1e-3:.0f} / min {lo * 1e-3:.0f} N/mm")
+        files.append(figures.save(out / f"{prefix}herringbone_load_map_{side}.png",
+                                  render_load_map, half_pair(stage.pair, side), m, title,
+                                  clim=(0.0, top)))
+    return files

@@ -32,9 +32,12 @@ along the flank normal with ``beta_b`` (Xu et al. 2020, eq. 17); one half of eac
 the helical pair of :func:`helical_half` at half the load, and its transverse signals
 are turned normal by :func:`normal_excitation`. Friction terms of the excitation are not
 applied in the planetary models (the line-of-action friction of Jin et al. 2018 is
-written for fixed-axis pairs here). Not derived: the left/right mesh-stiffness change of
-Xu et al. (2020), Fig. 5 (:mod:`pipeline.dynamics.models.groove_mesh`), and any stagger
-of the herringbone halves (the right sun meshes get only the groove twist phase).
+written for fixed-axis pairs here). The left/right sun-mesh excitation of a herringbone
+sun through its groove comes from the contact of both halves
+(:mod:`pipeline.dynamics.herringbone_excitation`, passed as a (left, right) pair); the
+published Fig. 5 percentages of Xu et al. (2020) are only a comparison
+(:mod:`pipeline.dynamics.models.groove_mesh`). Not modelled: a stagger of the herringbone
+halves.
 """
 
 from __future__ import annotations
