@@ -126,7 +126,6 @@ class HerringboneCycle:
             out[side] = {
                 "load_mean_N": float(p.mean()), "load_share_mean": float(p.mean() / self.load),
                 "max_unit_load_N_per_m": float(c.max_unit_load.max()),
-                "min_max_unit_load_N_per_m": float(c.max_unit_load.min()),
                 "mesh_stiffness_mean_N_per_m": float(c.mesh_stiffness.mean()),
                 "mesh_stiffness_max_N_per_m": float(c.mesh_stiffness.max()),
                 "mesh_stiffness_min_N_per_m": float(c.mesh_stiffness.min()),
