@@ -44,8 +44,8 @@ def torsion(Kj: float) -> GrooveFlankCoupling:
 
 def run(case, groove, local="weber", **opts):
     src, P, N, _ = case
-    return herringbone_mesh_cycle(src, P, groove, N, HerringboneOptions(**opts), local=local,
-                                  positions=POSITIONS)
+    return herringbone_mesh_cycle(src, P, groove, N, options=HerringboneOptions(**opts),
+                                  local=local, positions=POSITIONS)
 
 
 def test_rigid_groove_is_two_helical_contacts_at_half_load(case):
@@ -238,3 +238,11 @@ def test_series_stiffness_is_the_half_with_the_groove(case):
                                rtol=1e-9)
     np.testing.assert_allclose(hb.series_mesh_stiffness("right"), hb.right.mesh_stiffness,
                                rtol=1e-15)
+
+
+@pytest.mark.parametrize("axial", ["held", "free"])
+def test_whole_mesh_stiffness_linear(case, axial):
+    """Linear local contact, perfect flanks: the mesh is linear and homogeneous in the load,
+    so its tangent stiffness is P over the planet's approach, held or free."""
+    hb = run(case, torsion(4.6e7), local="linear", sun_axial=axial)
+    np.testing.assert_allclose(hb.mesh_stiffness, hb.load / hb.approach, rtol=1e-9)

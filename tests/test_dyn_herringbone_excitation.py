@@ -57,7 +57,7 @@ def setup():
     K12 = groove_matrix(5.98e7 / 0.225, kz=5.6e16)
     cycle = herringbone_mesh_cycle(src, op.torque / pair.pinion.base_radius,
                                    GrooveFlankCoupling.from_matrix(K12), ps.n_planets,
-                                   HerringboneOptions(axial_support_stiffness=K_AXIAL),
+                                   options=HerringboneOptions(axial_support_stiffness=K_AXIAL),
                                    positions=12)
     return box, pair, op, cycle, K12
 
@@ -115,7 +115,7 @@ def test_unloaded_half_is_refused(setup):
     src = analytical_compliance(pair, op, box.contact, box.stiffness)
     lifted = herringbone_mesh_cycle(src, op.torque / pair.pinion.base_radius,
                                     GrooveFlankCoupling.from_matrix(K12), 4,
-                                    HerringboneOptions(axial_slide=1e-3), positions=6)
+                                    options=HerringboneOptions(axial_slide=1e-3), positions=6)
     with pytest.raises(InputError, match="the left half carries 0 N"):
         excitation_from_herringbone(lifted, pair, op)
     with pytest.raises(InputError, match="needs >= 4"):

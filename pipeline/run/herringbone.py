@@ -134,7 +134,7 @@ def cached_herringbone_cycle(
                                    cache_dir=cache_dir, model=model,
                                    show_progress=show_progress)
         return herringbone_mesh_cycle(source, line_of_action_load(pair, operation), groove,
-                                      n_planets, herringbone,
+                                      n_planets, options=herringbone,
                                       modifications=contact.modifications,
                                       local=contact.local_contact, positions=contact.positions,
                                       show_progress=show_progress)
