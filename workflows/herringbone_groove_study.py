@@ -12,7 +12,8 @@ halves, 40 mm groove):
 2. The herringbone sun-planet contact of each groove (:mod:`pipeline.contact.herringbone`,
    ``[herringbone]``: torque leaving at the right half as at the paper's O_T, sun held on
    its 1e9 N/m axial bearing), plus the +1 mm slide at K_1 (Fig. 8e-f), the slide that
-   gives the paper's Fig. 8e change, and the torque entering at the left (paper's direction).
+   gives the paper's Fig. 8e change, the torque entering at the left (paper's direction)
+   and T/2 on each half (the paper's eqs. 20d / 21d).
 3. The six Fig. 8 load maps (left/right sun flank at K_1, K_5, K_1 + 1 mm slide; one
    colour scale; PNG + VTU).
 4. Fig. 5: each half's mesh stiffness over the cycle per K_j and the change of its maximum.
@@ -156,6 +157,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
     cases["K1 slide +1 mm"] = (grooves[0][1], dataclasses.replace(hb, axial_slide=1e-3))
     cases["K1 torque left"] = (grooves[0][1], dataclasses.replace(hb, torque_entry="left"))
     cases["K5 torque left"] = (grooves[-1][1], dataclasses.replace(hb, torque_entry="left"))
+    cases["K5 torque both"] = (grooves[-1][1], dataclasses.replace(hb, torque_entry="both"))
     cases["own groove"] = (own[1], hb)
     cyc = {}
     with log.step("herringbone contact", long=True) as note:
@@ -331,6 +333,10 @@ def comparison(cyc, maps, grooves, peaks, z_match):
     for s in ("left", "right"):
         rows.append(("loads", f"K_1: {s} share of the mesh load", "-", "~0.5 (Fig. 8)",
                      float(k1.half_load(s).mean() / k1.load)))
+    both = cyc["K5 torque both"]
+    rows.append(("eq. 20d", "K_5, T/2 on each half as the paper's model: left share", "-",
+                 "-", float(both.load_left.mean() / both.load),
+                 "the groove carries no static torque: no shift"))
     for m in MESHES:
         f = [peaks[f"K{j + 1}"][m][0] for j in range(5)]
         a = [peaks[f"K{j + 1}"][m][1] / 1e3 for j in range(5)]

@@ -1,8 +1,8 @@
 """Benchmark: the herringbone groove study (workflows/herringbone_groove_study.py), cold, warm.
 
 Targets (issue 13): the whole study (groove FE for 7 geometries - 2 to fit, 5 for K_1..K_5 -,
-the herringbone contact of 11 cases, the Fig. 9 sweeps of 5 grooves, 6 load maps and the
-figures) cold under 5 minutes on 2 cores; rerun from the cache under 30 s.
+the herringbone contact of 11 cases and a slide search, the Fig. 9 sweeps of 5 grooves,
+6 load maps and the figures) cold under 5 minutes on 2 cores; from the cache under 30 s.
 
 Each run is a fresh process (interpreter and imports included, as a user sees it) with
 its own empty cache folder for the cold run, the same folder for the warm run. Prints
