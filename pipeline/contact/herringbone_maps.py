@@ -35,7 +35,7 @@ def half_load_maps(cycle: HerringboneCycle, pair: GearPair, profile_points: int 
         m = flank_load_map(cycle.half(side), pair, profile_points)
         if side == "right":
             b = pair.face_width
-            m = FlankLoadMap(m.s, (b - m.z)[::-1], m.unit_load[:, ::-1], m.pinion_radius)
+            m = dataclasses.replace(m, z=(b - m.z)[::-1], unit_load=m.unit_load[:, ::-1])
         out[side] = m
     return out
 
