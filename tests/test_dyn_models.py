@@ -196,9 +196,11 @@ def test_xu2020_mesh_stiffness_change_with_groove_stiffness(side, published):
     Checked on the signals the model assembles (the relation plus the eq. 11 phase,
     which must not change the maximum); the ring-planet meshes do not change (eq. 15).
     """
+    from pipeline.dynamics.models.groove_mesh import XU2020_GROOVE_MESH as rel
     from pipeline.dynamics.models.wind_turbine_planetary import K_J, wind_turbine_herringbone_model
 
-    m1, m5 = wind_turbine_herringbone_model(K_J[0]), wind_turbine_herringbone_model(K_J[-1])
+    m1 = wind_turbine_herringbone_model(K_J[0], groove_mesh=rel)
+    m5 = wind_turbine_herringbone_model(K_J[-1], groove_mesh=rel)
     i = "LR".index(side)
     k1, k5 = m1.k_sun_mesh[i], m5.k_sun_mesh[i]
     assert k5.values.max() / k1.values.max() - 1.0 == pytest.approx(published, abs=5e-5)
@@ -230,6 +232,6 @@ def test_groove_mesh_relation_rejects_values_outside_the_paper_range():
         GrooveMeshRelation(calibration_Kj=6e7)
     with pytest.raises(InputError, match="change_right"):
         GrooveMeshRelation(change_right=-1.0)
-    # outside the range the earlier, equal-sides model is still available
-    m = wind_turbine_herringbone_model(1e8, groove_mesh=None)
+    # the default has equal sides at any K_j (the relation is a comparison, opted into)
+    m = wind_turbine_herringbone_model(1e8)
     assert not isinstance(m.k_sun_mesh, tuple)

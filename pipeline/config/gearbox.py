@@ -42,6 +42,7 @@ from pipeline.config import tables as T
 from pipeline.config.schema import build, read_table, restated, unknown
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
+from pipeline.contact.herringbone import HerringboneOptions
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications
 from pipeline.dynamics.options import (
@@ -63,7 +64,8 @@ from pipeline.validation import InputError, check_range
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
-STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "dynamics")
+STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "herringbone",
+                "dynamics")
 TABLES = PAIR_ROLES + PLANETARY_ROLES + ("carrier", "pair", "planetary", "lumped_model") \
     + STAGE_TABLES
 TOP_KEYS = ("name", "description")
@@ -101,6 +103,8 @@ class Gearbox:
     fe_source : settings of the FE compliance source ``[contact] compliance`` names
         (``FE2DSettings`` / ``FE3DSettings`` from ``[fe]``), or ``None`` for "analytical".
     groove : relief-groove analysis of a herringbone gear (``[groove]``), or ``None``.
+    herringbone : how a herringbone sun's halves are loaded and held in the sun-planet
+        contact through its groove (``[herringbone]``, planetary sets with a ``[groove]``).
     dynamics : options of the pair's or the planetary set's dynamic model (``[dynamics]``),
         or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
@@ -122,6 +126,7 @@ class Gearbox:
     fe: SectorFEOptions = field(default_factory=SectorFEOptions)
     fe_source: Any = None
     groove: GrooveSpec | None = None
+    herringbone: HerringboneOptions = field(default_factory=HerringboneOptions)
     dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
     lumped: Any = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
@@ -307,6 +312,16 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec
         return GrooveSpec(gear=gears[role], **values)
 
 
+def _herringbone(doc: Mapping[str, Any], kind: str, gears: Mapping[str, GearSpec]
+                 ) -> HerringboneOptions:
+    if "herringbone" not in doc:
+        return HerringboneOptions()
+    if kind != "planetary" or not gears["sun"].herringbone or "groove" not in doc:
+        raise InputError("[herringbone] applies to a planetary set with a herringbone sun and "
+                         "its [groove] table (the sun-planet contact through the groove)")
+    return build(HerringboneOptions, doc["herringbone"], T.HERRINGBONE, "herringbone")
+
+
 def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
               ) -> PairDynamicsOptions | PlanetaryDynamicsOptions | None:
     """``[dynamics]``: a pair's options, or a planetary set's (its own keys)."""
@@ -387,6 +402,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         fe=fe,
         fe_source=fe_source,
         groove=_groove(doc, gears),
+        herringbone=_herringbone(doc, kind, gears),
         dynamics=_dynamics(doc, base, kind),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),

@@ -142,6 +142,15 @@ GROOVE = (
     Key("planets", I),
 )
 
+HERRINGBONE = (
+    Key("torque_entry", S, choices=("right", "left", "both"),
+        help="where the sun torque leaves the herringbone sun"),
+    Key("sun_axial", S, choices=("held", "free"), help="sun held at axial_slide_mm, or free"),
+    Key("axial_slide_mm", N, help="slide of the sun towards the right half (held sun)"),
+    Key("axial_support_stiffness_N_per_m", N, help="held sun: axial support (default rigid)"),
+)
+"""Keys of ``[herringbone]`` (:class:`~pipeline.contact.herringbone.HerringboneOptions`)."""
+
 EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (
     Key("dofs", S, choices=("lateral_torsional", "torsional")),

@@ -18,6 +18,9 @@ the loaded approach and the mesh stiffness.
   crowning, slope deviation and pitch errors (:mod:`.separations`).
 - :func:`loaded_mesh_cycle` - a mesh cycle from a compliance source, warm-started:
   loads, load sharing, transmission error, mesh stiffness, unit loads (:mod:`.ltca`).
+- A herringbone sun-planet mesh, both helical halves through the sun's relief groove
+  (:mod:`.herringbone`, result :mod:`.herringbone_results`, the groove condensed to the
+  flank DOFs :mod:`.groove_flank`, left/right load maps :mod:`.herringbone_maps`).
 - Load maps over the flank (pyvista PNG, VTU) in :mod:`.loadmap`; the
   ``gearpipe contact`` command in :mod:`.commands` (options: :mod:`.options`).
 - :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),

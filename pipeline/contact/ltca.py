@@ -82,6 +82,19 @@ def _warm_start(prev_keys: np.ndarray | None, prev_loads: np.ndarray | None,
     return start if start.any() else None
 
 
+def mesh_positions(pair: GearPair, positions: int | ArrayLike) -> np.ndarray:
+    """Roll coordinates s0 (m) of the mesh positions: ``positions`` equally spaced over one
+    mesh cycle (an int >= 1), or the given roll coordinates (a non-empty finite array)."""
+    if np.ndim(positions) == 0:
+        check_int_range("contact.positions", int(positions), 1, 1_000_000)
+        return pair.mesh_cycle(int(positions))
+    s0 = np.asarray(positions, dtype=float).reshape(-1)
+    if s0.size == 0 or not np.all(np.isfinite(s0)):
+        raise InputError("contact positions must be a non-empty array of finite roll "
+                         "coordinates (m)")
+    return s0
+
+
 def loaded_mesh_cycle(
     source: ComplianceSource,
     load: float,
@@ -119,14 +132,7 @@ def loaded_mesh_cycle(
     check_choice("contact.local_contact", local, LOCAL_MODELS)
     mods = modifications or FlankModifications()
     pair = source.pair
-    if np.ndim(positions) == 0:
-        check_int_range("contact.positions", int(positions), 1, 1_000_000)
-        s0 = pair.mesh_cycle(int(positions))
-    else:
-        s0 = np.asarray(positions, dtype=float).reshape(-1)
-        if s0.size == 0 or not np.all(np.isfinite(s0)):
-            raise InputError("contact positions must be a non-empty array of finite roll "
-                             "coordinates (m)")
+    s0 = mesh_positions(pair, positions)
     k_all = pair.pair_indices()
     c_hertz = hertz_compliance(pair.pinion, pair.gear)  # m^2/N, per unit width
     m = s0.size

@@ -13,7 +13,8 @@ Package map (data flows top to bottom):
   contact-line), from the pipeline's analytical stiffness (:func:`analytical_excitation`)
   or from the loaded tooth contact (:func:`excitation_from_contact`: tangent k(t), static
   transmission error; the compliance it contains and what the models must not count
-  again are in that module).
+  again are in that module); :mod:`.herringbone_excitation` - left/right sun-mesh
+  excitation from the contact of both herringbone halves through the groove.
 - :mod:`.assembly` - :class:`Assembly`: bodies + couplings + loads ->
   :class:`~.system.LinearPeriodicSystem` (:mod:`.system`: M, C, K(t), G, F(t)).
 - :mod:`.models` - ready-made gearboxes: spur pair (6 DOF), planar planetary set

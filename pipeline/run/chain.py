@@ -22,6 +22,7 @@ takes from the one before:
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -90,6 +91,9 @@ class MeshStages:
     contact : loaded contact over one mesh cycle on the chosen compliance source, or
         ``None`` when it was not asked for (a dynamics command with analytical excitation).
     compliance : the source's name ("analytical", "fe2d", "fe3d").
+    herringbone : the sun-planet mesh of a herringbone sun with a ``[groove]`` table: both
+        halves through the groove (:class:`pipeline.run.herringbone.HerringboneStage`), or
+        ``None``.
     """
 
     case: MeshCase
@@ -97,6 +101,7 @@ class MeshStages:
     stiffness: StiffnessResult
     contact: LoadedMeshCycle | None
     compliance: str
+    herringbone: Any = None
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
@@ -111,6 +116,8 @@ class MeshStages:
         }
         if self.contact is not None:
             out["loaded_contact"] = self.contact.summary()
+        if self.herringbone is not None:
+            out["herringbone_contact"] = self.herringbone.summary()
         return out
 
 
@@ -198,7 +205,14 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
             note["cached"] = hit
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
                             f"{cycle.mesh_stiffness.mean():.4g} N/m")
-    return MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
+    stages = MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
+    if contact and case.name == "sun_planet":
+        from pipeline.run.herringbone import herringbone_stage
+
+        hb = herringbone_stage(box, stages, options, log)
+        if hb is not None:
+            stages = dataclasses.replace(stages, herringbone=hb)
+    return stages
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool = True

@@ -5,7 +5,9 @@ Runs :func:`pipeline.run.chain.run_pipeline` and writes, to ``results/<file stem
 the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
 contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 ``contact_points.csv``) and its load maps (``load_map_2d.png``, ``load_map.vtu``,
-``load_map.png``) - prefixed by the mesh name for a planetary set - then the dynamics
+``load_map.png``) - prefixed by the mesh name for a planetary set; a herringbone sun with a
+``[groove]`` table adds ``sun_planet_herringbone.csv`` and the left/right sun-flank load
+maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynamics
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
 ``sweep.csv/png``), one ``summary.json`` and ``run.json``. Each step prints a line with
 its time on stderr; FE tables and contact cycles come from the cache when their inputs
@@ -63,6 +65,11 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
                        st.case.operation, box.stiffness.foundation_correction)
     files += write_contact(st.contact, pair, opts, ref.total,
                            contact_title(name, st.contact, pair, opts), out, prefix, figures)
+    if st.herringbone is not None:
+        from pipeline.run.herringbone import write_herringbone
+
+        files += write_herringbone(st.herringbone, out, prefix, figures,
+                                   opts.load_map_profile_points)
     return files
 
 

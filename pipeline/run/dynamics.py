@@ -122,10 +122,23 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
                        else mesh_excitation(meshes[name], friction, opts.excitation)
                        for name, given in (("sun_planet", opts.sun_mesh_stiffness),
                                            ("planet_ring", opts.ring_mesh_stiffness))]
-        build = (pg.herringbone_planetary_model_from_gears if box.planetary.sun.herringbone
-                 else pg.planetary_model_from_gears)
-        return (build(box.planetary, box.bodies, box.carrier, box.operation, opts,
-                      *excitations), opts.excitation)
+        if not box.planetary.sun.herringbone:
+            return (pg.planetary_model_from_gears(box.planetary, box.bodies, box.carrier,
+                                                  box.operation, opts, *excitations),
+                    opts.excitation)
+        hb = meshes["sun_planet"].herringbone if "sun_planet" in meshes else None
+        extra = {}
+        if hb is not None and opts.excitation == "contact" and opts.sun_mesh_stiffness is None:
+            # both halves through the groove: left/right excitation, the same FE groove
+            from pipeline.dynamics.herringbone_excitation import excitation_from_herringbone
+            from pipeline.run.herringbone import TORQUE_SIDE
+
+            excitations[0] = excitation_from_herringbone(hb.cycle, hb.pair, hb.operation)
+            extra = {"groove": hb.groove,
+                     "sun_load_side": TORQUE_SIDE[box.herringbone.torque_entry]}
+        return (pg.herringbone_planetary_model_from_gears(
+            box.planetary, box.bodies, box.carrier, box.operation, opts, *excitations,
+            **extra), opts.excitation)
     stages = meshes["mesh"]
     excitation = None
     if opts.mesh_stiffness is None or opts.friction:

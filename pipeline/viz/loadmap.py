@@ -8,6 +8,8 @@ import, so it is imported inside :func:`render_load_map` only.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
@@ -63,7 +65,7 @@ def _rulers(plotter, pair: GearPair, gear, z: np.ndarray, radius: np.ndarray,
 
 
 def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
-                    window_width: int = 1400):
+                    window_width: int = 1400, clim: tuple[float, float] | None = None):
     """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth and, for an
     external gear, the gear tooth below it (one row each), colour bar in N/mm from 0.
 
@@ -71,13 +73,14 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     right as in :func:`plot_load_map_2d`, at true scale (parallel projection fitted to
     its row). The radii of the loaded band (start and end of contact) are marked at its
     left end. The colour scale runs from 0 to the largest unit load of the cycle (both
-    flanks carry the same load at a contact point). Save it with
+    flanks carry the same load at a contact point), or over ``clim`` (N/mm) when given,
+    e.g. one scale for maps to be compared. Save it with
     :func:`pipeline.viz.save` (which also closes it).
     """
     import pyvista as pv
 
     members = mapped_members(pair)
-    p_max = float(load_map.unit_load.max()) * 1e-3
+    clim = clim or (0.0, float(load_map.unit_load.max()) * 1e-3)
     b = pair.face_width * 1e3
     height = max((g.tip_radius_ - g.root_radius) * 1e3 + 1.6 * g.module * 1e3
                  for g in (pair.pinion, pair.gear))
@@ -95,15 +98,21 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
             gear = pair.pinion if member == "pinion" else pair.gear
             flank = load_map_grid(pair, load_map, member)
             body = tooth_body_grid(gear, load_map.z)
-            # lift the coloured flank a hair off the grey tooth so the two do not z-fight
-            centre = np.array([0.0, gear.root_radius * 1e3, 0.0])
-            d = flank.points - centre
+            # lift the coloured flank a hair off the grey tooth so the two do not z-fight,
+            # away from the tooth's centre line turned with the helix as the section is
+            # (else the lift of a helical tooth points into the body at one face)
+            hand = {"right": 1.0, "left": -1.0}.get(gear.hand, 0.0)
+            phi = (hand * flank.points[:, 2] * 1e-3 * math.tan(gear.helix_angle)
+                   / gear.reference_radius)
+            rf = gear.root_radius * 1e3
+            d = flank.points - np.stack([-rf * np.sin(phi), rf * np.cos(phi), 0.0 * phi],
+                                        axis=1)
             d[:, 2] = 0.0
             flank.points = flank.points + 2e-3 * gear.module * 1e3 * d / np.linalg.norm(
                 d, axis=1, keepdims=True)
             plotter.add_mesh(body, color="lightgrey", smooth_shading=True)
             plotter.add_mesh(flank, scalars="unit_load_N_per_mm", cmap="viridis",
-                             clim=(0.0, p_max), show_scalar_bar=False)
+                             clim=clim, show_scalar_bar=False)
             _rulers(plotter, pair, gear, load_map.z, load_map.radius(member),
                     body.bounds[0] - 1.0)
             name = "" if gear.name == member else f" ({gear.name})"

@@ -1,4 +1,11 @@
-"""Sun-planet mesh stiffness of the two herringbone halves against the groove stiffness.
+"""Xu et al. (2020)'s published left/right sun-planet mesh stiffness change, as a comparison.
+
+This is the paper's Fig. 5 taken as input data, kept to compare with the paper's own
+model (``wind_turbine_herringbone_model(groove_mesh=XU2020_GROOVE_MESH)``,
+``workflows/dynamics_herringbone_sweep.py``). The pipeline computes the effect instead:
+the groove's FE stiffness and the loaded contact of both halves through it
+(:mod:`pipeline.contact.herringbone`, :mod:`pipeline.dynamics.herringbone_excitation`,
+``workflows/herringbone_groove_study.py``), for any groove the FE can analyse.
 
 Xu et al. (2020) make the left and right sun-planet mesh stiffness
 depend on the torsional stiffness K_j of the sun's relief groove:

@@ -32,9 +32,12 @@ along the flank normal with ``beta_b`` (Xu et al. 2020, eq. 17); one half of eac
 the helical pair of :func:`helical_half` at half the load, and its transverse signals
 are turned normal by :func:`normal_excitation`. Friction terms of the excitation are not
 applied in the planetary models (the line-of-action friction of Jin et al. 2018 is
-written for fixed-axis pairs here). Not derived: the left/right mesh-stiffness change of
-Xu et al. (2020), Fig. 5 (:mod:`pipeline.dynamics.models.groove_mesh`), and any stagger
-of the herringbone halves (the right sun meshes get only the groove twist phase).
+written for fixed-axis pairs here). The left/right sun-mesh excitation of a herringbone
+sun through its groove comes from the contact of both halves
+(:mod:`pipeline.dynamics.herringbone_excitation`, passed as a (left, right) pair); the
+published Fig. 5 percentages of Xu et al. (2020) are only a comparison
+(:mod:`pipeline.dynamics.models.groove_mesh`). Not modelled: a stagger of the herringbone
+halves.
 """
 
 from __future__ import annotations
@@ -225,45 +228,64 @@ def herringbone_planetary_model_from_gears(
     carrier: RigidBody,
     operation: OperatingPoint,
     options: PlanetaryDynamicsOptions,
-    sun_excitation: MeshExcitation,
+    sun_excitation: MeshExcitation | tuple[MeshExcitation, MeshExcitation],
     ring_excitation: MeshExcitation,
+    *,
+    groove: object = None,
+    sun_load_side: str | None = None,
 ) -> HerringbonePlanetaryModel:
     """The herringbone planetary model (Xu et al. 2020, 8(N+3) DOF) of a set, from its gears.
 
     Parameters as for :func:`planetary_model_from_gears`; the excitations are those of one
     helical half (:func:`helical_half` at half the load, transverse line of action) and are
-    turned normal here (:func:`normal_excitation`). The sun's halves are joined by the
-    groove options (Xu et al. 2020, eq. 1: a torsional spring; the right sun meshes then lag
-    by the twist phase lambda_LR = dec(z_s T_s / (2 pi k_groove)), eq. 11, as in
+    turned normal here (:func:`normal_excitation`). ``sun_excitation`` may be a (left,
+    right) pair, one per half (the herringbone contact through the groove,
+    :func:`pipeline.dynamics.herringbone_excitation.excitation_from_herringbone`): the
+    static twist of the halves is then in their transmission errors and the right sun
+    meshes get no twist phase. Otherwise the sun's halves are joined by the groove options
+    (Xu et al. 2020, eq. 1: a torsional spring; the right sun meshes then lag by the twist
+    phase lambda_LR = dec(z_s T_s / (2 pi k_groove)), eq. 11, as in
     :func:`pipeline.dynamics.models.wind_turbine_planetary.wind_turbine_herringbone_model`)
-    or tied; planet, ring and carrier halves are tied.
+    or tied; planet, ring and carrier halves are tied. ``groove`` (a
+    :class:`~pipeline.fem.groove.result.GrooveStiffness` or its 12 x 12 matrix) replaces
+    the groove options by the FE coupling; ``sun_load_side`` ("both", "L", "R") replaces
+    the option of that name.
     """
     if not planetary.sun.herringbone:
         raise InputError("the herringbone planetary model needs herringbone gears "
                          "(herringbone = true in [sun], [planet] and [ring])")
     beta_b = planetary.sun.base_helix_angle
-    sun_n = normal_excitation(sun_excitation, beta_b)
+    per_side = isinstance(sun_excitation, tuple)
+    sun_n = [normal_excitation(e, beta_b) for e in (sun_excitation if per_side
+                                                    else (sun_excitation,))]
     ring_n = normal_excitation(ring_excitation, beta_b)
-    k_groove = options.groove_torsional_stiffness
-    phase_lr = 0.0 if k_groove is None else planetary.left_right_phase(operation.torque
-                                                                       / k_groove)
-    lateral = options.groove_lateral_stiffness
+    k_groove = options.groove_torsional_stiffness if groove is None else groove
+    lateral = options.groove_lateral_stiffness if groove is None else None
+    phase_lr = 0.0
+    if not per_side and k_groove is not None:
+        k_t = getattr(k_groove, "torsional_stiffness", k_groove)
+        if np.ndim(k_t) == 0:
+            phase_lr = planetary.left_right_phase(operation.torque / float(k_t))
     common = _common(planetary, bodies, carrier, operation, options)
 
     def axial(value, member):
         return common[f"k_{member}"] if value is None else value
 
+    def sides(name):
+        values = tuple(getattr(e, name) for e in sun_n)
+        return values if per_side else values[0]
+
     return HerringbonePlanetaryModel(
         **common,
         base_helix_angle=beta_b,
-        k_sun_mesh=sun_n.stiffness, k_ring_mesh=ring_n.stiffness,
-        e_sun_mesh=sun_n.transmission_error, e_ring_mesh=ring_n.transmission_error,
+        k_sun_mesh=sides("stiffness"), k_ring_mesh=ring_n.stiffness,
+        e_sun_mesh=sides("transmission_error"), e_ring_mesh=ring_n.transmission_error,
         kz_sun=axial(options.sun_axial_stiffness, "sun"),
         kz_ring=axial(options.ring_axial_stiffness, "ring"),
         kz_carrier=axial(options.carrier_axial_stiffness, "carrier"),
         kz_planet=axial(options.planet_axial_stiffness, "planet"),
         groove=k_groove,
         groove_translational=None if lateral is None else (lateral, lateral, lateral),
-        sun_load_side=options.sun_load_side,
+        sun_load_side=sun_load_side or options.sun_load_side,
         phase_lr=phase_lr,
     )

@@ -12,10 +12,13 @@ Planet angles and meshing phases (eqs. 10a-c, 11) come from
 modal damping without giving its value).
 
 Groove stiffness and mesh stiffness (Xu et al. 2020, eqs. 1, 11, 14-15): K_j sets the
-twist of the sun halves, hence the right meshes' phase lambda_LR, *and* the
-left/right sun-planet mesh stiffness (+9.79 % / -11.23 % from K_1 to K_5,
-:mod:`pipeline.dynamics.models.groove_mesh`); ring-planet meshes keep their
-stiffness (eq. 15). ``groove_mesh=None`` gives the earlier model with equal sides.
+twist of the sun halves, hence the right meshes' phase lambda_LR; ring-planet meshes
+keep their stiffness (eq. 15). As a comparison with the paper,
+``groove_mesh=XU2020_GROOVE_MESH`` also applies its published left/right sun-planet
+mesh stiffness change (+9.79 % / -11.23 % from K_1 to K_5,
+:mod:`pipeline.dynamics.models.groove_mesh`); by default both sides are equal. The
+computed effect of the groove (its FE stiffness and the contact of both halves through
+it) is :mod:`pipeline.contact.herringbone` and :mod:`pipeline.dynamics.herringbone_excitation`.
 """
 
 from __future__ import annotations
@@ -24,7 +27,6 @@ import math
 
 from pipeline.dynamics.excitation import contact_line_stiffness
 from pipeline.dynamics.models.groove_mesh import (
-    XU2020_GROOVE_MESH,
     GrooveMeshRelation,
     side_factors,
 )
@@ -85,7 +87,7 @@ def wind_turbine_herringbone_model(
     stagger: float = 0.0,
     groove: GrooveStiffness | None = None,
     modal_damping_ratio: float = 0.02,
-    groove_mesh: GrooveMeshRelation | None = XU2020_GROOVE_MESH,
+    groove_mesh: GrooveMeshRelation | None = None,
 ) -> HerringbonePlanetaryModel:
     """The herringbone planetary model of Xu et al. (2020) at one mesh frequency.
 
@@ -104,10 +106,14 @@ def wind_turbine_herringbone_model(
         matrix joins the sun halves and its ``phase_shift`` gives lambda_LR; ``None`` uses
         the beam value ``groove_Kj / L_TORSION`` with stiff translations.
     modal_damping_ratio : constant modal damping (-) of Xu et al. (2020) (sec. 2.3).
-    groove_mesh : left/right sun-planet mesh stiffness against K_j (Xu et al. 2020, eq. 14,
-        Fig. 5; :func:`~pipeline.dynamics.models.groove_mesh.side_factors`), evaluated at
-        ``groove_Kj`` (or ``groove.equivalent_Kj``), which must then lie in [K_5, K_1];
-        ``None``: both sides keep the nominal stiffness at every K_j.
+    groove_mesh : a comparison with the paper: its published left/right sun-planet mesh
+        stiffness change against K_j as input data (Xu et al. 2020, eq. 14, Fig. 5;
+        ``XU2020_GROOVE_MESH`` and ``side_factors`` of
+        :mod:`pipeline.dynamics.models.groove_mesh`),
+        evaluated at ``groove_Kj`` (or ``groove.equivalent_Kj``), which must then lie in
+        [K_5, K_1]; ``None`` (default): both sides keep the nominal stiffness at every K_j.
+        The computed left/right excitation through the groove is
+        :mod:`pipeline.dynamics.herringbone_excitation` (the herringbone contact).
     """
     ps = wind_turbine_planetary_set(4)
     mt = M_N / math.cos(BETA)

@@ -1,0 +1,201 @@
+"""The herringbone sun-planet stage of a run: groove FE -> contact of both halves -> excitation.
+
+For a planetary set whose herringbone sun has a ``[groove]`` table, the run adds to the
+sun-planet mesh (:mod:`pipeline.run.chain`):
+
+1. the groove's 12 x 12 stiffness by 3D FE (:func:`pipeline.fem.groove.groove_stiffness`),
+   cached by a content hash of the groove spec (gear, groove, shafts, mesh size, models);
+2. the loaded contact of both helical halves through it
+   (:func:`pipeline.contact.herringbone.herringbone_mesh_cycle`, ``[herringbone]``
+   options), cached by a hash of everything the helical-half cycle depends on plus the
+   condensed groove compliance, the planets and those options;
+3. with ``[dynamics] excitation = "contact"``, the left/right sun-planet excitation of the
+   herringbone planetary model (:mod:`pipeline.dynamics.herringbone_excitation`), whose sun
+   halves are then joined by the same FE matrix.
+
+The functions take the stages' own inputs, so workflows use them as the run does.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from pipeline.contact.analysis import line_of_action_load
+from pipeline.contact.compliance import compliance_source
+from pipeline.contact.cycle_io import cycle_cache_inputs
+from pipeline.contact.groove_flank import GrooveFlankCoupling
+from pipeline.contact.herringbone import HerringboneOptions, herringbone_mesh_cycle
+from pipeline.contact.herringbone_results import (
+    HerringboneCycle,
+    load_herringbone,
+    save_herringbone,
+)
+from pipeline.contact.options import ContactOptions
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.groove.result import GrooveStiffness
+from pipeline.fem.groove.spec import GrooveSpec
+from pipeline.geometry.pair import GearPair
+from pipeline.io import to_jsonable
+from pipeline.operation import OperatingPoint
+from pipeline.stiffness.options import StiffnessOptions
+
+HERRINGBONE_FORMAT = 1  # bump when the herringbone solve or its stored layout changes
+GROOVE_FORMAT = 1
+TORQUE_SIDE = {"right": "R", "left": "L", "both": "both"}
+"""``[herringbone] torque_entry`` -> the herringbone model's ``sun_load_side``."""
+
+
+@dataclass(frozen=True)
+class HerringboneStage:
+    """The sun-planet mesh of a herringbone set through its groove.
+
+    Attributes
+    ----------
+    groove : the groove FE result (12 x 12 between O_L and O_R, K_j).
+    cycle : the contact of both halves over a mesh cycle.
+    pair : the helical-half sun-planet pair (sun = pinion).
+    operation : the sun's torque on this planet's mesh (both halves) and its speed
+        relative to the carrier.
+    groove_cached, cycle_cached : True when read from the cache.
+    """
+
+    groove: GrooveStiffness
+    cycle: HerringboneCycle
+    pair: GearPair
+    operation: OperatingPoint
+    groove_cached: bool = False
+    cycle_cached: bool = False
+
+    def summary(self) -> dict[str, Any]:
+        """Groove K_j and k_t, and the contact summary (SI; units in keys)."""
+        return {"groove_Kj_Nm2": self.groove.equivalent_Kj,
+                "groove_torsional_stiffness_Nm_per_rad": self.groove.torsional_stiffness,
+                **self.cycle.summary()}
+
+
+def _save_groove(path: Path, g: GrooveStiffness) -> Path:
+    return save_arrays(path, {"json": np.array(json.dumps(to_jsonable(g.to_dict())))})
+
+
+def _load_groove(path: Path) -> GrooveStiffness:
+    return GrooveStiffness.from_dict(json.loads(str(load_arrays(path)["json"])))
+
+
+def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path | None = None
+                  ) -> tuple[GrooveStiffness, bool]:
+    """The groove FE result of ``spec`` from the cache, or computed and stored.
+
+    Returns (result, True if read from the cache); ``result.timings`` are those of the
+    run that computed it.
+    """
+    from pipeline.fem.groove.mesh import GEOMETRY_VERSION
+    from pipeline.fem.groove.study import groove_stiffness
+
+    inputs = {"spec": spec, "geometry_version": GEOMETRY_VERSION, "format": GROOVE_FORMAT}
+    res, _, hit = cached_file("groovestiffness", inputs,
+                              lambda: groove_stiffness(spec, cache_dir=cache_dir,
+                                                       use_cache=cache),
+                              _load_groove, _save_groove, cache_dir, cache)
+    return res, hit
+
+
+def cached_herringbone_cycle(
+    pair: GearPair, operation: OperatingPoint, groove: GrooveFlankCoupling, n_planets: int,
+    contact: ContactOptions, stiffness: StiffnessOptions, herringbone: HerringboneOptions,
+    *, fe: Any = None, model: Any = None, cache: bool = True,
+    cache_dir: str | Path | None = None, show_progress: bool = False,
+) -> tuple[HerringboneCycle, bool]:
+    """Herringbone contact of a sun-planet mesh, from the cache when its inputs are unchanged.
+
+    Parameters
+    ----------
+    pair : helical-half sun-planet pair (sun = pinion).
+    operation : sun torque on this mesh (both halves, N m) and its speed (rad/s).
+    groove : condensed groove compliance. n_planets : N.
+    contact, stiffness, fe : the ``[contact]``, ``[stiffness]`` options and FE source settings.
+    herringbone : torque entry and axial holding.
+    model : prebuilt analytical tooth models of ``pair`` (optional).
+
+    Returns (cycle, True if read from the cache).
+    """
+    inputs = {**cycle_cache_inputs(pair, operation, contact, stiffness, fe),
+              "herringbone_format": HERRINGBONE_FORMAT, "groove": groove.compliance.tolist(),
+              "n_planets": n_planets, "herringbone": herringbone}
+
+    def build() -> HerringboneCycle:
+        # the source sees one half's load (friction direction, EHL pressure)
+        half = OperatingPoint(0.5 * operation.torque, operation.speed, operation.driver)
+        source = compliance_source(pair, half, contact, stiffness, fe, cache=cache,
+                                   cache_dir=cache_dir, model=model,
+                                   show_progress=show_progress)
+        return herringbone_mesh_cycle(source, line_of_action_load(pair, operation), groove,
+                                      n_planets, options=herringbone,
+                                      modifications=contact.modifications,
+                                      local=contact.local_contact, positions=contact.positions,
+                                      show_progress=show_progress)
+
+    cycle, _, hit = cached_file("herringbone", inputs, build, load_herringbone,
+                                save_herringbone, cache_dir, cache)
+    return cycle, hit
+
+
+def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
+    """The herringbone stage of a run's sun-planet mesh, or ``None`` when the set has no
+    herringbone sun with a ``[groove]`` table (module docstring)."""
+    from pipeline.dynamics.models.planetary_gears import mesh_operations
+
+    ps = box.planetary
+    if box.kind != "planetary" or not ps.sun.herringbone or box.groove is None:
+        return None
+    with log.step("groove FE", long=True) as note:
+        groove, g_hit = cached_groove(box.groove, cache=options.cache,
+                                      cache_dir=options.cache_dir)
+        note["cached"] = g_hit
+        note["text"] = f"K_j = {groove.equivalent_Kj:.4g} N m^2"
+    op = mesh_operations(ps, box.operation, 1)[0]
+    pair = stages.case.pair
+    with log.step(f"herringbone contact ({box.contact.compliance}) [sun_planet]",
+                  long=True) as note:
+        cycle, c_hit = cached_herringbone_cycle(
+            pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
+            box.contact, box.stiffness, box.herringbone, fe=box.fe_source,
+            model=stages.stiffness.model, cache=options.cache, cache_dir=options.cache_dir,
+            show_progress=options.show_progress)
+        note["cached"] = c_hit
+        s = cycle.summary()
+        note["text"] = (f"load left/right {s['left']['load_share_mean']:.3f} / "
+                        f"{s['right']['load_share_mean']:.3f}")
+    return HerringboneStage(groove, cycle, pair, op, g_hit, c_hit)
+
+
+def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
+                      profile_points: int = 80) -> list[Path]:
+    """``<prefix>herringbone.csv`` (per position: loads, flank approaches, own and whole-mesh
+    stiffness, groove twist and torque, sun axial position) and the left/right sun-flank
+    load maps ``<prefix>herringbone_load_map_{left,right}.png/.vtu``; returns the files."""
+    from pipeline.contact.herringbone_maps import (
+        half_load_maps,
+        half_pair,
+        loaded_range,
+        write_half_vtus,
+    )
+    from pipeline.io import write_csv
+    from pipeline.viz.loadmap import render_load_map
+
+    maps = half_load_maps(stage.cycle, stage.pair, profile_points)
+    files = [write_csv(out / f"{prefix}herringbone.csv", stage.cycle.columns())]
+    files += write_half_vtus(maps, stage.pair, out, f"{prefix}herringbone_load_map")
+    top = max(m.unit_load.max() for m in maps.values()) * 1e-3
+    for side, m in maps.items():
+        lo, hi = loaded_range(m)
+        title = (f"{side} sun flank, K_j = {stage.groove.equivalent_Kj:.3g} N m^2, torque "
+                 f"{stage.cycle.torque_entry}: max {hi * 1e-3:.0f} / min {lo * 1e-3:.0f} N/mm")
+        files.append(figures.save(out / f"{prefix}herringbone_load_map_{side}.png",
+                                  render_load_map, half_pair(stage.pair, side), m, title,
+                                  clim=(0.0, top)))
+    return files
