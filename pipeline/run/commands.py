@@ -7,7 +7,9 @@ contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 ``contact_points.csv``) and its load maps (``load_map_2d.png``, ``load_map.vtu``,
 ``load_map.png``) - prefixed by the mesh name for a planetary set - then the dynamics
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
-``sweep.csv/png``), one ``summary.json`` and ``run.json``. Each step prints a line with
+``sweep.csv/png``), the load distribution report of every mesh (``report.html``,
+``report.json``, ``report.csv``; :mod:`pipeline.report`), one ``summary.json`` and
+``run.json``. Each step prints a line with
 its time on stderr; FE tables and contact cycles come from the cache when their inputs
 are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the cache).
 """
@@ -89,8 +91,15 @@ def run(args: argparse.Namespace) -> int:
                          show_progress=not args.json)
     result = run_pipeline(box, options)
     out = output_dir(args, "run")
+    figures = figure_cache(options)
     with result.log.step("writing tables and figures", long=True):
-        files = write_run(result, out, args.full, figure_cache(options))
+        files = write_run(result, out, args.full, figures)
+    if result.meshes:
+        from pipeline.report import write_reports
+
+        with result.log.step("load distribution reports", long=True):
+            files += write_reports(result, out, figures, command=f"gearpipe run {args.config}",
+                                   show_progress=options.show_progress)
     summary = result.summary()
     files.append(write_json(out / "summary.json", summary))
     write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
