@@ -25,7 +25,8 @@ MM, UM, MPA, N_PER_MM, N_PER_UM = 1e3, 1e6, 1e-6, 1e-3, 1e-6
 RPM = 60.0 / (2.0 * math.pi)
 
 
-def _q(key: str, label: str, unit: str, *values: Any) -> Quantity:
+def quantity(key: str, label: str, unit: str, *values: Any) -> Quantity:
+    """A table row; numpy scalars become Python numbers (JSON, formatting)."""
     return Quantity(key, label, tuple(_plain(v) for v in values), unit)
 
 
@@ -45,16 +46,18 @@ def operation_section(pair: GearPair, operation: OperatingPoint, contact: Contac
     driver = pair.pinion if operation.driver == "pinion" else pair.gear
     f_t = operation.torque / driver.reference_radius
     return Section("operation", "Operating point and analysis", (
-        _q("torque", f"torque on the driving gear ({operation.driver})", "N m", operation.torque),
-        _q("speed", f"speed of the driving gear ({operation.driver})", "rpm",
+        quantity("torque", f"torque on the driving gear ({operation.driver})", "N m",
+            operation.torque),
+        quantity("speed", f"speed of the driving gear ({operation.driver})", "rpm",
            operation.speed * RPM),
-        _q("load_line_of_action", "load along the transverse line of action P", "N",
+        quantity("load_line_of_action", "load along the transverse line of action P", "N",
            dist.load),
-        _q("tangential_load", "nominal tangential load F_t at the reference circle", "N", f_t),
-        _q("compliance", "compliance source of the loaded contact", "", compliance),
-        _q("local_contact", "local contact model", "", contact.local_contact),
-        _q("positions", "mesh positions per cycle", "-", len(dist.transmission_error)),
-        _q("slices", "slices across the face width", "-", dist.slices_across_face),
+        quantity("tangential_load", "nominal tangential load F_t at the reference circle", "N",
+            f_t),
+        quantity("compliance", "compliance source of the loaded contact", "", compliance),
+        quantity("local_contact", "local contact model", "", contact.local_contact),
+        quantity("positions", "mesh positions per cycle", "-", len(dist.transmission_error)),
+        quantity("slices", "slices across the face width", "-", dist.slices_across_face),
     ))
 
 
@@ -65,7 +68,7 @@ def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequen
     fp, fg = (prof.form_radius for prof in geometry.profiles)
 
     def both(key, label, unit, fn):
-        return _q(key, label, unit, fn(p), fn(g))
+        return quantity(key, label, unit, fn(p), fn(g))
 
     rows = [
         both("teeth", "number of teeth z", "-", lambda x: x.teeth),
@@ -82,7 +85,7 @@ def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequen
         both("base_diameter", "base diameter d_b", "mm", lambda x: 2 * x.base_radius * MM),
         both("tip_diameter", "tip diameter d_a", "mm", lambda x: 2 * x.tip_radius_ * MM),
         both("root_diameter", "root diameter d_f", "mm", lambda x: 2 * x.root_radius * MM),
-        _q("form_diameter", "form diameter d_Ff (fillet meets involute)", "mm", 2 * fp * MM,
+        quantity("form_diameter", "form diameter d_Ff (fillet meets involute)", "mm", 2 * fp * MM,
            2 * fg * MM),
         both("cutter_tip_radius", "rack cutter tip radius rho_a0", "mm",
              lambda x: x.cutter_tip_radius_coef * x.module * MM),
@@ -101,20 +104,21 @@ def pair_section(actual: GearPair, nominal: GearPair) -> Section:
     """Centre distance, pressure angle, contact ratios and the path of contact."""
     a = actual
     return Section("pair", "Pair (as installed)", (
-        _q("centre_distance", "operating centre distance a_w", "mm",
+        quantity("centre_distance", "operating centre distance a_w", "mm",
            a.operating_centre_distance * MM),
-        _q("centre_distance_nominal", "nominal centre distance", "mm",
+        quantity("centre_distance_nominal", "nominal centre distance", "mm",
            nominal.operating_centre_distance * MM),
-        _q("operating_pressure_angle", "transverse operating pressure angle alpha_wt", "deg",
+        quantity("operating_pressure_angle", "transverse operating pressure angle alpha_wt", "deg",
            math.degrees(a.operating_pressure_angle)),
-        _q("transverse_contact_ratio", "transverse contact ratio eps_alpha", "-",
+        quantity("transverse_contact_ratio", "transverse contact ratio eps_alpha", "-",
            a.transverse_contact_ratio),
-        _q("overlap_ratio", "overlap ratio eps_beta", "-", a.overlap_ratio),
-        _q("total_contact_ratio", "total contact ratio eps_gamma", "-", a.total_contact_ratio),
-        _q("base_pitch", "transverse base pitch p_bt", "mm", a.base_pitch * MM),
-        _q("path_of_contact", "length of the path of contact g_alpha", "mm",
+        quantity("overlap_ratio", "overlap ratio eps_beta", "-", a.overlap_ratio),
+        quantity("total_contact_ratio", "total contact ratio eps_gamma", "-",
+            a.total_contact_ratio),
+        quantity("base_pitch", "transverse base pitch p_bt", "mm", a.base_pitch * MM),
+        quantity("path_of_contact", "length of the path of contact g_alpha", "mm",
            a.path_length * MM),
-        _q("gear_ratio", "gear ratio u = z2 / z1", "-", a.gear_ratio),
+        quantity("gear_ratio", "gear ratio u = z2 / z1", "-", a.gear_ratio),
     ))
 
 
@@ -123,24 +127,25 @@ def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any
     m = contact.modifications
     pitch = ", ".join(f"{e * UM:g}" for e in m.pitch_errors) or "none"
     rows = [
-        _q("tip_relief_pinion", "tip relief C_a of the pinion", "um", m.tip_relief_pinion * UM),
-        _q("tip_relief_length_pinion", "tip relief length of the pinion (roll)", "mm",
+        quantity("tip_relief_pinion", "tip relief C_a of the pinion", "um",
+            m.tip_relief_pinion * UM),
+        quantity("tip_relief_length_pinion", "tip relief length of the pinion (roll)", "mm",
            m.relief_length_pinion * MM),
-        _q("tip_relief_gear", "tip relief C_a of the gear", "um", m.tip_relief_gear * UM),
-        _q("tip_relief_length_gear", "tip relief length of the gear (roll)", "mm",
+        quantity("tip_relief_gear", "tip relief C_a of the gear", "um", m.tip_relief_gear * UM),
+        quantity("tip_relief_length_gear", "tip relief length of the gear (roll)", "mm",
            m.relief_length_gear * MM),
-        _q("relief_shape", "relief shape", "", m.relief_shape),
-        _q("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
-        _q("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
+        quantity("relief_shape", "relief shape", "", m.relief_shape),
+        quantity("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
+        quantity("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
            m.slope_deviation * UM),
-        _q("pitch_errors", "pitch errors of tooth pairs 0, 1, ...", "um", pitch),
-        _q("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
+        quantity("pitch_errors", "pitch errors of tooth pairs 0, 1, ...", "um", pitch),
+        quantity("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
            ", ".join(f"{e * UM:g}" for e in assembly.pinion)),
-        _q("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
+        quantity("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
            ", ".join(f"{e * UM:g}" for e in assembly.gear)),
     ]
     if assembled is not None:
-        rows.append(_q("centre_distance_change", "centre distance change from the errors",
+        rows.append(quantity("centre_distance_change", "centre distance change from the errors",
                        "um", assembled.summary()["centre_distance_change_um"]))
     return Section("modifications", "Modifications and errors", tuple(rows))
 
@@ -152,19 +157,20 @@ def stiffness_section(stiffness: StiffnessResult, dist: LoadDistribution, compli
     k = dist.mesh_stiffness
     iso = stiffness.iso
     return Section("stiffness", "Mesh stiffness", (
-        _q("analytical_mean", "analytical (potential energy), mean", "N/um", an.mean() * N_PER_UM),
-        _q("analytical_min", "analytical, min", "N/um", an.min() * N_PER_UM),
-        _q("analytical_max", "analytical, max", "N/um", an.max() * N_PER_UM),
-        _q("loaded_mean", f"loaded (LTCA, {compliance}), tangent dP/dx, mean", "N/um",
+        quantity("analytical_mean", "analytical (potential energy), mean", "N/um",
+            an.mean() * N_PER_UM),
+        quantity("analytical_min", "analytical, min", "N/um", an.min() * N_PER_UM),
+        quantity("analytical_max", "analytical, max", "N/um", an.max() * N_PER_UM),
+        quantity("loaded_mean", f"loaded (LTCA, {compliance}), tangent dP/dx, mean", "N/um",
            k.mean() * N_PER_UM),
-        _q("loaded_min", "loaded, min", "N/um", k.min() * N_PER_UM),
-        _q("loaded_max", "loaded, max", "N/um", k.max() * N_PER_UM),
-        _q("iso_single", "ISO 6336-1 single stiffness c'", "N/(mm um)", iso.c_single * 1e-9),
-        _q("iso_mesh_per_width", "ISO 6336-1 mesh stiffness c_gamma_alpha", "N/(mm um)",
+        quantity("loaded_min", "loaded, min", "N/um", k.min() * N_PER_UM),
+        quantity("loaded_max", "loaded, max", "N/um", k.max() * N_PER_UM),
+        quantity("iso_single", "ISO 6336-1 single stiffness c'", "N/(mm um)", iso.c_single * 1e-9),
+        quantity("iso_mesh_per_width", "ISO 6336-1 mesh stiffness c_gamma_alpha", "N/(mm um)",
            iso.c_gamma_alpha * 1e-9),
-        _q("iso_mesh", "ISO 6336-1 mean mesh stiffness c_gamma_alpha b", "N/um",
+        quantity("iso_mesh", "ISO 6336-1 mean mesh stiffness c_gamma_alpha b", "N/um",
            iso.mesh_stiffness * N_PER_UM),
-        _q("loaded_over_iso", "loaded mean over ISO c_gamma_alpha b", "-",
+        quantity("loaded_over_iso", "loaded mean over ISO c_gamma_alpha b", "-",
            k.mean() / iso.mesh_stiffness),
     ), figures=tuple(figures))
 
@@ -172,15 +178,16 @@ def stiffness_section(stiffness: StiffnessResult, dist: LoadDistribution, compli
 def transmission_error_section(dist: LoadDistribution, figures: Sequence[Figure]) -> Section:
     """Loaded static TE, its mesh orders and the load sharing."""
     rows = [
-        _q("peak_to_peak", "loaded static TE, peak-to-peak (line of action)", "um",
+        quantity("peak_to_peak", "loaded static TE, peak-to-peak (line of action)", "um",
            dist.te_peak_to_peak * UM),
-        _q("peak_to_peak_angle", "loaded static TE, peak-to-peak (pinion angle)", "urad",
+        quantity("peak_to_peak_angle", "loaded static TE, peak-to-peak (pinion angle)", "urad",
            dist.te_peak_to_peak_angle * 1e6),
-        _q("mean", "loaded static TE, mean", "um", float(dist.transmission_error.mean()) * UM),
+        quantity("mean", "loaded static TE, mean", "um",
+            float(dist.transmission_error.mean()) * UM),
     ]
     for j, a in enumerate(dist.te_orders, start=1):
-        rows.append(_q(f"order_{j}", f"amplitude of mesh order {j}", "um", float(a) * UM))
-    rows.append(_q("max_load_share", "largest load share of one tooth pair", "-",
+        rows.append(quantity(f"order_{j}", f"amplitude of mesh order {j}", "um", float(a) * UM))
+    rows.append(quantity("max_load_share", "largest load share of one tooth pair", "-",
                    float(dist.load_share.max())))
     notes = ()
     if np.isnan(dist.te_orders).any():
@@ -205,14 +212,14 @@ def load_distribution_section(dist: LoadDistribution, pair: GearPair,
                      "uniform by construction, and lead crowning and helix slope deviation do "
                      "not enter the solve (K_Hbeta = 1).")
     return Section("load_distribution", "Line load and load factors", (
-        _q("K_Hbeta", "face load factor K_Hbeta", "-", dist.k_hbeta),
-        _q("K_Hbeta_position_max", "largest instantaneous max/mean line load", "-",
+        quantity("K_Hbeta", "face load factor K_Hbeta", "-", dist.k_hbeta),
+        quantity("K_Hbeta_position_max", "largest instantaneous max/mean line load", "-",
            float(dist.k_hbeta_position.max())),
-        _q("K_Halpha", "transverse load factor K_Halpha", "-", dist.k_halpha),
-        _q("mean_line_load", "mean line load P / b", "N/mm", dist.mean_line_load * N_PER_MM),
-        _q("max_line_load", "largest line load w", "N/mm", w.value * N_PER_MM),
-        _q("max_line_load_face_position", "its face position z", "mm", w.z * MM),
-        _q("max_line_load_pinion_angle", "its pinion angle in the cycle", "deg",
+        quantity("K_Halpha", "transverse load factor K_Halpha", "-", dist.k_halpha),
+        quantity("mean_line_load", "mean line load P / b", "N/mm", dist.mean_line_load * N_PER_MM),
+        quantity("max_line_load", "largest line load w", "N/mm", w.value * N_PER_MM),
+        quantity("max_line_load_face_position", "its face position z", "mm", w.z * MM),
+        quantity("max_line_load_pinion_angle", "its pinion angle in the cycle", "deg",
            math.degrees(w.pinion_angle)),
     ), figures=tuple(figures), notes=tuple(notes))
 
@@ -221,14 +228,14 @@ def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) 
     """Hertz pressure, its maximum and where."""
     h = dist.hertz_max
     return Section("contact_pressure", "Contact pressure", (
-        _q("max_hertz_pressure", "largest Hertz pressure p_H", "MPa", h.value * MPA),
-        _q("pinion_diameter", "where: pinion diameter", "mm", 2 * h.pinion_radius * MM),
-        _q("gear_diameter", "where: gear diameter", "mm", 2 * h.gear_radius * MM),
-        _q("face_position", "where: face position z", "mm", h.z * MM),
-        _q("roll_coordinate", "where: roll coordinate s from T1", "mm", h.s * MM),
-        _q("pinion_angle", "when: pinion angle in the cycle", "deg",
+        quantity("max_hertz_pressure", "largest Hertz pressure p_H", "MPa", h.value * MPA),
+        quantity("pinion_diameter", "where: pinion diameter", "mm", 2 * h.pinion_radius * MM),
+        quantity("gear_diameter", "where: gear diameter", "mm", 2 * h.gear_radius * MM),
+        quantity("face_position", "where: face position z", "mm", h.z * MM),
+        quantity("roll_coordinate", "where: roll coordinate s from T1", "mm", h.s * MM),
+        quantity("pinion_angle", "when: pinion angle in the cycle", "deg",
            math.degrees(h.pinion_angle)),
-        _q("tooth_pair", "tooth pair", "-", h.tooth_pair),
+        quantity("tooth_pair", "tooth pair", "-", h.tooth_pair),
     ), figures=tuple(figures), notes=(
         "Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load along "
         "the contact line, normal-section radii of curvature, plane-strain moduli of both "
@@ -243,34 +250,35 @@ def figures_section(key: str, title: str, figures: Sequence[Figure],
 
 def dynamics_rows(summary: dict[str, Any]) -> list[Quantity]:
     """Dynamic factor and mesh forces at the operating speed, sweep maxima, first modes."""
-    rows = [_q("excitation", "mesh excitation of the dynamic model", "", summary["excitation"])]
+    rows = [quantity("excitation", "mesh excitation of the dynamic model", "",
+        summary["excitation"])]
     for name, m in summary["response_at_operating_speed"]["meshes"].items():
-        rows.append(_q(f"{name}_dynamic_factor", f"{name}: dynamic factor at the operating "
+        rows.append(quantity(f"{name}_dynamic_factor", f"{name}: dynamic factor at the operating "
                        "speed (max / mean mesh force)", "-", m["dynamic_factor"]))
-        rows.append(_q(f"{name}_max_force", f"{name}: largest dynamic mesh force", "N",
+        rows.append(quantity(f"{name}_max_force", f"{name}: largest dynamic mesh force", "N",
                        m["max_force_N"]))
     sw = summary["sweep"]
     for name, v in sw["max_dynamic_factor"].items():
-        rows.append(_q(f"{name}_sweep_max_dynamic_factor", f"{name}: largest dynamic factor "
+        rows.append(quantity(f"{name}_sweep_max_dynamic_factor", f"{name}: largest dynamic factor "
                        f"over {sw['f_min_Hz']:g}-{sw['f_max_Hz']:g} Hz mesh frequency", "-", v))
-        rows.append(_q(f"{name}_sweep_max_at", f"{name}: at mesh frequency", "Hz",
+        rows.append(quantity(f"{name}_sweep_max_at", f"{name}: at mesh frequency", "Hz",
                        sw["max_dynamic_factor_at_Hz"][name]))
     for i, f in enumerate(summary["natural_frequencies_Hz"][:6]):
-        rows.append(_q(f"natural_frequency_{i}", f"natural frequency {i}", "Hz", f))
+        rows.append(quantity(f"natural_frequency_{i}", f"natural frequency {i}", "Hz", f))
     return rows
 
 
 def provenance_section(record: dict[str, Any]) -> Section:
     """Configuration hash, code revision, versions, run time."""
     rows = [
-        _q("configuration_hash", "configuration hash (gearbox inputs)", "",
+        quantity("configuration_hash", "configuration hash (gearbox inputs)", "",
            record["configuration_hash"]),
-        _q("gearbox_file_sha256", "gearbox file SHA-256", "", record["gearbox_file_sha256"]),
-        _q("code_revision", "code revision (git)", "", record["code_revision"]),
-        _q("command", "command", "", record["command"]),
-        _q("time_utc", "written (UTC)", "", record["time_utc"]),
-        _q("run_time", "run time of the stages", "s", record["run_time_s"]),
+        quantity("gearbox_file_sha256", "gearbox file SHA-256", "", record["gearbox_file_sha256"]),
+        quantity("code_revision", "code revision (git)", "", record["code_revision"]),
+        quantity("command", "command", "", record["command"]),
+        quantity("time_utc", "written (UTC)", "", record["time_utc"]),
+        quantity("run_time", "run time of the stages", "s", record["run_time_s"]),
     ]
     for name, v in record["versions"].items():
-        rows.append(_q(f"version_{name.replace('-', '_')}", name, "", v))
+        rows.append(quantity(f"version_{name.replace('-', '_')}", name, "", v))
     return Section("provenance", "Provenance", tuple(rows))

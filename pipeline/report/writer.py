@@ -140,6 +140,8 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
                   command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
     """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
     the files. A run without gear meshes (a lumped model) has none."""
+    from pipeline.contact.root_stress import analyse_root_stress
+
     files: list[Path] = []
     box = result.gearbox
     for name, st in result.meshes.items():
@@ -152,7 +154,8 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
         title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
                  f"{pair.pinion.module * 1e3:g} mm, beta "
                  f"{math.degrees(pair.pinion.helix_angle):g} deg")
-        root = None
+        root = analyse_root_stress(st.contact, pair, st.case.operation, box.fe_source,
+                                   show_progress=show_progress)
         report, dist = mesh_report(result, name, out, figures, title=title, command=command,
                                    root_stress=root)
         subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "

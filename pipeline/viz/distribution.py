@@ -177,6 +177,7 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ax.set_xlabel("arc length along the loaded-side root, from the middle of the tooth "
                   "space [mm]")
     ax.set_ylabel("largest principal stress [MPa]")
+    ax.set_ylim(0.0, None)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)
