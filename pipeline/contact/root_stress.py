@@ -4,8 +4,9 @@
 position ``i`` of a :class:`~pipeline.contact.results.LoadedMeshCycle` the tooth of pair
 ``k`` carries the loads of pair ``k`` and its neighbours those of pairs ``k +- 1, ...``
 (the tooth mapping of :mod:`pipeline.contact.fe2d_source`: pinion tooth ``mid - k``, gear
-tooth ``mid + k``), so the states ``(i, k)`` over one cycle are the tooth's whole passage
-through the mesh, before, during and after its own contact. In each transverse section
+tooth ``mid + k``), so the states ``(i, k)`` over one cycle are the tooth's passage
+through the mesh from its entry into contact until it has left it (the tooth pairs of
+:meth:`GearPair.pair_indices`). In each transverse section
 (slice ``z``) the stress along the loaded-side root of the tooth is the superposition of
 the FE stress table of the whole gear (:mod:`pipeline.fem.fillet_stress`, unit line loads
 on the flanks of the tooth and its neighbours) weighted by the slices' line loads ``F /
