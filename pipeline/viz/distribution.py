@@ -123,7 +123,8 @@ def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: Gea
         col = env[:, j]
         hit = np.flatnonzero(col > 0)
         if hit.size >= 2:
-            filled[:, j] = np.interp(s_grid, s_grid[hit], col[hit], left=0.0, right=0.0)
+            # the nearest sample holds up to the ends of the path (no sample falls there)
+            filled[:, j] = np.interp(s_grid, s_grid[hit], col[hit])
     return s_grid, z, filled
 
 
