@@ -59,15 +59,19 @@ class _Cells(HTMLParser):
             self._text += data
 
 
-@pytest.fixture(scope="module")
-def report(tmp_path_factory):
-    root = tmp_path_factory.mktemp("report")
+def small_report(root: Path) -> Path:
+    """``gearpipe report`` on the small case into ``root/out`` (cache in ``root/c``)."""
     cfg = root / "small.toml"
     cfg.write_text(SMALL, encoding="utf-8")
     out = root / "out"
     assert cli(["report", str(cfg), "--out", str(out), "--cache-dir", str(root / "c"),
                 "--json"]) == 0
-    return out, gearbox_from_text(SMALL, "small")
+    return out
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    return small_report(tmp_path_factory.mktemp("report")), gearbox_from_text(SMALL, "small")
 
 
 def _json_value(data: dict, key: str):

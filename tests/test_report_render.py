@@ -14,9 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_run import SMALL
-
-from pipeline.cli import main as cli
+from test_report import small_report
 
 ROOT = Path(__file__).resolve().parents[1]
 FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -33,13 +31,7 @@ def chromium() -> str:
 
 @pytest.fixture(scope="module")
 def report_html(tmp_path_factory) -> Path:
-    root = tmp_path_factory.mktemp("render")
-    cfg = root / "small.toml"
-    cfg.write_text(SMALL, encoding="utf-8")
-    out = root / "out"
-    assert cli(["report", str(cfg), "--out", str(out), "--cache-dir", str(root / "c"),
-                "--json"]) == 0
-    return out / "report.html"
+    return small_report(tmp_path_factory.mktemp("render")) / "report.html"
 
 
 def _chromium(chromium: str, tmp: Path, *args: str) -> None:

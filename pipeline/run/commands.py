@@ -85,12 +85,13 @@ def write_run(result: RunResult, out: Path, full: bool = False,
     return files
 
 
-def run(args: argparse.Namespace) -> int:
+def run(args: argparse.Namespace, command: str = "run") -> int:
+    """``gearpipe run`` (and ``gearpipe report``, the same files in ``results/<stem>/report``)."""
     box = load(args)
     options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
-    out = output_dir(args, "run")
+    out = output_dir(args, command)
     figures = figure_cache(options)
     with result.log.step("writing tables and figures", long=True):
         files = write_run(result, out, args.full, figures)
@@ -98,11 +99,12 @@ def run(args: argparse.Namespace) -> int:
         from pipeline.report import write_reports
 
         with result.log.step("load distribution reports", long=True):
-            files += write_reports(result, out, figures, command=f"gearpipe run {args.config}",
+            files += write_reports(result, out, figures,
+                                   command=f"gearpipe {command} {args.config}",
                                    show_progress=options.show_progress)
     summary = result.summary()
     files.append(write_json(out / "summary.json", summary))
     write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
-                     f"gearpipe run {args.config}")
+                     f"gearpipe {command} {args.config}")
     emit(args, summary, out)
     return 0
