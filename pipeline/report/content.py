@@ -31,8 +31,9 @@ def quantity(key: str, label: str, unit: str, *values: Any) -> Quantity:
 
 
 def _plain(v: Any) -> Any:
+    """Python numbers for numpy scalars; NaN becomes None (strict JSON; shown as a dash)."""
     if isinstance(v, (np.floating, float)):
-        return float(v)
+        return None if math.isnan(v) else float(v)
     if isinstance(v, (np.integer,)):
         return int(v)
     if isinstance(v, (np.bool_,)):
@@ -277,7 +278,8 @@ def provenance_section(record: dict[str, Any]) -> Section:
         quantity("code_revision", "code revision (git)", "", record["code_revision"]),
         quantity("command", "command", "", record["command"]),
         quantity("time_utc", "written (UTC)", "", record["time_utc"]),
-        quantity("run_time", "run time of the stages", "s", record["run_time_s"]),
+        quantity("run_time", "run time before the report (stages, tables, figures)", "s",
+                 record["run_time_s"]),
     ]
     for name, v in record["versions"].items():
         rows.append(quantity(f"version_{name.replace('-', '_')}", name, "", v))

@@ -32,12 +32,12 @@ from pipeline.report.model import Figure, MeshReport
 from pipeline.report.provenance import provenance
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
-# stage figures embedded when the run wrote them: (file, caption, section)
+# stage figures embedded when the run wrote them: (file, caption, section); every other
+# ``load_map*.png`` of the mesh is embedded too, under its file name
 STAGE_FIGURES = (
     ("tooth_profiles.png", "Tooth profiles (involute and trochoidal fillet)", "geometry"),
     ("load_map.png", "Tooth-surface load map", "load_maps"),
     ("load_map_2d.png", "Unit load over the plane of action", "load_maps"),
-    ("load_map_gear.png", "Tooth-surface load map of the gear flank", "load_maps"),
     ("sweep.png", "Dynamic mesh force and dynamic factor over mesh frequency", "dynamics"),
     ("dte_spectrum.png", "Dynamic transmission error spectrum", "dynamics"),
     ("harmonics.png", "Harmonic contributions of the response", "dynamics"),
@@ -50,6 +50,12 @@ def _stage_figures(out: Path, prefix: str, mesh_level: bool) -> dict[str, list[F
         file = (prefix if mesh_level and section != "dynamics" else "") + name
         if (out / file).is_file():
             found.setdefault(section, []).append(Figure(file, caption))
+    if mesh_level:
+        known = {f.file for f in found.get("load_maps", [])}
+        for path in sorted(out.glob(f"{prefix}load_map*.png")):
+            if path.name not in known:
+                found.setdefault("load_maps", []).append(
+                    Figure(path.name, "Load map: " + path.stem[len(prefix):].replace("_", " ")))
     return found
 
 
