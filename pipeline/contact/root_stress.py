@@ -45,7 +45,7 @@ class GearRootStress:
 
     Attributes
     ----------
-    name : "pinion" or "gear".
+    name : "pinion" or "gear" (the role in the pair).
     arc : (n_f,) arc length of the root points along the profile from the middle of the
         tooth space, m; radius : (n_f,) their radius, m.
     envelope : (n_f,) largest principal stress at each root point over the tooth's passage
@@ -59,6 +59,8 @@ class GearRootStress:
         (ascending), m; passage_stress : (n_s,) largest principal root stress at each, Pa.
     position_max : (m,) largest root stress of any tooth at each mesh position, Pa.
     iso : ISO 6336-3 method B for the same load, or None (internal gears).
+    label : how figures name the gear: the role, with the gear's own name when it differs
+        ("pinion (sun)").
     """
 
     name: str
@@ -75,6 +77,7 @@ class GearRootStress:
     passage_stress: np.ndarray
     position_max: np.ndarray
     iso: IsoRootStress | None
+    label: str = ""
 
     @property
     def difference_to_iso(self) -> float:
@@ -115,7 +118,7 @@ class RootStress:
 
     def curves(self) -> list[tuple[str, np.ndarray, np.ndarray, float | None]]:
         """(name, arc mm, envelope MPa, ISO MPa or None) per gear, for the report figure."""
-        return [(g.name, g.arc * 1e3, g.envelope * 1e-6,
+        return [(g.label, g.arc * 1e3, g.envelope * 1e-6,
                  None if g.iso is None else g.iso.sigma_f0 * 1e-6) for g in (self.pinion,
                                                                              self.gear)]
 
@@ -174,7 +177,8 @@ def _gear_result(name: str, cycle: LoadedMeshCycle, pair: GearPair, gear: GearSp
         max_stress=float(sig[f, i, k, j]), max_radius=float(table.radius[f]),
         max_arc=float(table.arc[f]), max_load_roll=s_max, max_load_radius=float(r_load),
         max_face_position=float(z[j]), passage_roll=roll.ravel()[order],
-        passage_stress=per_state.ravel()[order], position_max=per_state.max(axis=1), iso=iso)
+        passage_stress=per_state.ravel()[order], position_max=per_state.max(axis=1), iso=iso,
+        label=name if gear.name in (name, "") else f"{name} ({gear.name})")
 
 
 def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: OperatingPoint,

@@ -72,6 +72,7 @@ def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequen
         return quantity(key, label, unit, fn(p), fn(g))
 
     rows = [
+        both("name", "gear", "", lambda x: x.name),
         both("teeth", "number of teeth z", "-", lambda x: x.teeth),
         both("normal_module", "normal module m_n", "mm", lambda x: x.module * MM),
         both("pressure_angle", "normal pressure angle alpha_n", "deg",
