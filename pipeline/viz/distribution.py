@@ -75,7 +75,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
     a3.set_ylim(0.0, 1.05)
     a3.set_xlim(0.0, 1.0)
     a3.grid(alpha=0.3)
-    a3.legend(fontsize=7, loc="upper center", ncol=2)
+    a3.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # outside: no overlap
     fig.suptitle(title, fontsize=9)
     return fig
 
