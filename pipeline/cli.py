@@ -2,10 +2,12 @@
 
 Every subcommand takes a gearbox file (TOML, units in the key names;
 :mod:`pipeline.config`); everything inside is SI. Each writes CSV/JSON data, PNG
-plots and a ``run.json`` record (inputs, versions, configuration hash) to
-``results/<file stem>/<command>/`` unless ``--out`` says otherwise; ``--json``
-prints the summary to stdout. An input error is one line on stderr,
-``gearpipe <command>: error: ...``, with exit status 2.
+plots and a ``run.json`` record (:mod:`pipeline.provenance`) to
+``results/<file stem>/<command>/`` unless ``--out`` says otherwise, as a unit
+(:mod:`pipeline.output_folder`); ``--json`` prints the summary to stdout. An input error
+is one line on stderr, ``gearpipe <command>: error: ...``, with exit status 2; an output
+folder that cannot be written (a file in the way, a full or read-only disk) is one such
+line with exit status 1, and the folder keeps its previous result.
 """
 
 from __future__ import annotations
@@ -13,8 +15,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import time
 
 from pipeline import __version__
+from pipeline.output_folder import OutputError
 from pipeline.validation import InputError
 
 # name -> (module, add-arguments function, run function, help)
@@ -43,30 +47,45 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
                  "steady dynamic response: DTE, mesh forces, spectrum"),
     "sweep": ("pipeline.dynamics.commands", "add_sweep_arguments", "run_sweep",
               "RMS dynamic mesh force against mesh frequency"),
+    "study": ("pipeline.study.commands", "add_arguments", "run",
+              "design study: a base gearbox file over design axes, KPIs per point, on Dask "
+              "(STUDY.toml instead of a gearbox file)"),
 }
 
 
-def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None
-                 ) -> argparse.ArgumentParser:
+def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None, *,
+                 command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every subcommand; with ``command``, only that one's arguments are
+    added (its module imported), the rest are listed for ``--help`` alone - importing all
+    command modules costs a second or more that a single command does not need."""
     parser = argparse.ArgumentParser(prog="gearpipe", description=__doc__.split("\n\n")[0])
     parser.add_argument("--version", action="version", version=f"gearpipe {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     for name, (mod, add, run, help_) in (available or SUBCOMMANDS).items():
         p = sub.add_parser(name, help=help_, description=help_)
-        module = importlib.import_module(mod)
-        getattr(module, add)(p)
-        p.set_defaults(_run=getattr(module, run))
+        if command is None or name == command:
+            module = importlib.import_module(mod)
+            getattr(module, add)(p)
+            p.set_defaults(_run=getattr(module, run))
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; exit status 0 on success, 2 on an input error (one line on stderr)."""
-    args = build_parser().parse_args(argv)
+    """Run one command; exit status 0 on success, 2 on an input error, 1 when the results
+    cannot be written (one line on stderr)."""
+    started = time.time()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
+    args = build_parser(command=command).parse_args(argv)
+    args._argv, args._started = argv, started  # for the run record
     try:
         return int(args._run(args) or 0)
     except InputError as exc:
         print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except OutputError as exc:
+        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

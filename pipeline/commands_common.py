@@ -1,8 +1,11 @@
-"""What every ``gearpipe`` command shares: its arguments, its output folder, its summary.
+"""What every ``gearpipe`` command shares: its arguments, its output folder, its record,
+its summary.
 
 One rule for the output folder: ``results/<file stem>/<command>`` (the stem of the
-gearbox file, never a name written inside it), or ``--out DIR``. One summary
-format: a short table on stdout, or one JSON object with ``--json``.
+gearbox file, never a name written inside it), or ``--out DIR``; it is checked before
+the work starts and written as a unit (:func:`pipeline.output_folder.staged_output`).
+One record (``run.json``, :mod:`pipeline.provenance`). One summary format: a short
+table on stdout, or one JSON object with ``--json``.
 """
 
 from __future__ import annotations
@@ -16,7 +19,13 @@ from typing import Any
 import numpy as np
 
 from pipeline.config import Gearbox, load_gearbox
+from pipeline.config.signals import referenced_files
 from pipeline.io import to_jsonable
+from pipeline.output_folder import check_target
+from pipeline.provenance import write_run_record
+
+# arguments that choose where and how results are shown or cached, not what they are
+_NOT_NUMBERS = frozenset({"config", "out", "json", "command", "cache_dir", "no_cache"})
 
 
 def add_common_arguments(parser: argparse.ArgumentParser) -> None:
@@ -29,10 +38,34 @@ def add_common_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def output_dir(args: argparse.Namespace, command: str) -> Path:
-    """The folder a command writes to (created)."""
+    """The folder a command will write (``--out`` or the default rule), checked now so
+    that a file in the way or a read-only parent is refused before any work
+    (:class:`pipeline.output_folder.OutputError`); nothing is created."""
     out = args.out or Path("results") / Path(args.config).stem / command
-    out.mkdir(parents=True, exist_ok=True)
+    check_target(out)
     return out
+
+
+def number_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The command-line options that change the numbers (all but output, cache, display)."""
+    return {k: v for k, v in sorted(vars(args).items())
+            if not k.startswith("_") and k not in _NOT_NUMBERS}
+
+
+def record(out: Path, args: argparse.Namespace, box: Gearbox, files: list, *,
+           inputs: Any = None) -> Path:
+    """Write ``run.json`` of a command into ``out``: the gearbox file as written, the parsed
+    ``inputs`` (default: the file's contents), the options that change the numbers and the
+    SHA-256 of every file the gearbox file points to."""
+    src = box.source
+    base = src.path.parent if src is not None and src.path is not None else None
+    return write_run_record(
+        out, box.to_dict() if inputs is None else inputs, files,
+        f"gearpipe {getattr(args, 'command', '')}".strip(),
+        arguments=getattr(args, "_argv", None), options=number_options(args),
+        sources=[] if src is None else [src],
+        referenced={} if src is None else referenced_files(src.document, base),
+        started=getattr(args, "_started", None))
 
 
 def load(args: argparse.Namespace) -> Gearbox:

@@ -40,7 +40,7 @@ def test_fe_command(tmp_path, capsys):
     np.testing.assert_allclose(S, S.T, atol=1e-10 * np.abs(S).max())
     for name in ("pinion_mesh.png", "pinion_tooth_compliance.png", "pinion_deformed.png"):
         assert (tmp_path / name).stat().st_size > 10_000
-    assert json.loads((tmp_path / "run.json").read_text())["config_hash"]
+    assert json.loads((tmp_path / "run.json").read_text())["hash"]
 
 
 @pytest.fixture()

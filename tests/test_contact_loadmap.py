@@ -12,7 +12,12 @@ import pytest
 
 from pipeline.config.gearbox import contact_options_from_table
 from pipeline.contact import commands
-from pipeline.contact.loadmap import flank_load_map, flank_surface, write_load_map_vtu
+from pipeline.contact.loadmap import (
+    flank_load_map,
+    flank_surface,
+    mapped_members,
+    write_load_map_vtu,
+)
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.separations import FlankModifications
 from pipeline.contact.source import SliceCompliance
@@ -144,16 +149,56 @@ def test_contact_command_writes_its_outputs(tmp_path, capsys):
 
 
 def test_render_load_map_png(tmp_path, helical_traction_pair, helical_cycle):
-    """The off-screen pyvista render writes a PNG of the requested size that is not blank
-    (the coloured flank gives many distinct colours)."""
+    """The off-screen pyvista render: one row per flank (pinion and the external gear), the
+    colour scale of both from 0 to the largest unit load, a PNG of the requested width
+    that is not blank (the coloured flanks give many distinct colours)."""
     from PIL import Image
 
     from pipeline.viz import save
     from pipeline.viz.loadmap import render_load_map
 
     lm = flank_load_map(helical_cycle, helical_traction_pair, profile_points=30)
-    path = save(render_load_map(helical_traction_pair, lm, "test", window_size=(600, 450)),
-                tmp_path / "map.png")
+    plotter = render_load_map(helical_traction_pair, lm, "test", window_width=700)
+    assert len(plotter.renderers) == 2
+    p_max = lm.unit_load.max() * 1e-3
+    ranges = [tuple(a.mapper.scalar_range) for r in plotter.renderers
+              for a in r.actors.values()
+              if getattr(getattr(a, "mapper", None), "scalar_visibility", False)]
+    assert len(ranges) == 2 and all(r == pytest.approx((0.0, p_max)) for r in ranges)
+    path = save(plotter, tmp_path / "map.png")
     img = np.asarray(Image.open(path).convert("RGB"))
-    assert img.shape == (450, 600, 3)
+    assert img.shape[1] == 700
     assert len(np.unique(img.reshape(-1, 3), axis=0)) > 200
+
+
+def test_gear_flank_surface_and_members(helical_traction_pair, helical_cycle):
+    """The gear's flank carries the same grid at the gear radius of each contact point,
+    sqrt((T1T2 - s)^2 + r_b2^2); an internal gear's flank is refused by name."""
+    pair = helical_traction_pair
+    lm = flank_load_map(helical_cycle, pair, profile_points=40)
+    xyz = flank_surface(pair, lm, "gear")
+    r = np.hypot(xyz[..., 0], xyz[..., 1])
+    r2 = np.hypot(pair.t1t2 - lm.s, pair.gear.base_radius)
+    assert r == pytest.approx(np.broadcast_to(r2[:, None], r.shape), rel=1e-12)
+    assert np.all(xyz[:, 0, 0] < 0.0)  # at z = 0 the flank is on the -x side of the tooth
+    assert mapped_members(pair) == ("pinion", "gear")
+    with pytest.raises(InputError, match="wheel"):
+        flank_surface(pair, lm, "wheel")
+
+
+def test_load_map_2d_from_zero_and_titles(helical_traction_pair, helical_cycle):
+    """The 2D map's colour scale starts at 0; the title says what the map is and which
+    modifications were applied, in um and mm."""
+    from pipeline.viz.loadmap import load_map_title, plot_load_map_2d
+
+    lm = flank_load_map(helical_cycle, helical_traction_pair, profile_points=30)
+    mods = FlankModifications(15e-6, 8e-3, 0.0, 0.0, crowning=8e-6)
+    title = load_map_title("pair", mods.describe())
+    assert title == ("pair\nunit load, envelope over the mesh cycle; modifications: tip relief "
+                     "pinion 15 um over 8 mm (linear), crowning 8 um")
+    ax = plot_load_map_2d(lm, title)
+    mesh = ax.collections[0]
+    assert mesh.norm.vmin == 0.0 and mesh.norm.vmax == pytest.approx(lm.unit_load.max() * 1e-3)
+    assert FlankModifications().describe() == "none"
+    assert FlankModifications(slope_deviation=-5e-6, pitch_errors=(0.0, 4e-6)).describe() == (
+        "helix slope deviation -5 um, pitch errors 0/4 um")

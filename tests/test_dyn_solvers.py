@@ -50,10 +50,12 @@ def test_harmonic_balance_exact_for_smooth_stiffness():
 
 
 def test_woodbury_equals_dense(rect_pair):
-    """The low-rank (Woodbury) solve reproduces the dense harmonic system."""
-    a = harmonic_balance(rect_pair, 15, method="woodbury").coefficients
+    """The low-rank (Woodbury) solves, real form and complex form, reproduce the dense
+    harmonic system."""
     b = harmonic_balance(rect_pair, 15, method="dense").coefficients
-    assert np.abs(a - b).max() < 1e-10 * np.abs(b).max()
+    for method in ("woodbury", "woodbury_complex"):
+        a = harmonic_balance(rect_pair, 15, method=method).coefficients
+        assert np.abs(a - b).max() < 1e-10 * np.abs(b).max()
 
 
 def test_first_order_error_is_second_order_in_the_fluctuation():

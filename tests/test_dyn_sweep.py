@@ -40,6 +40,45 @@ def test_local_process_pool_matches_serial(pair):
     np.testing.assert_array_equal(a.rms_force, b.rms_force)
 
 
+def test_sweep_plan_equals_harmonic_balance():
+    """The sweep's precomputed plan (herringbone planetary, 56 DOF, 16 periodic terms, with
+    transmission-error excitation) gives the statistics of a full harmonic balance per
+    frequency, and the real-form Woodbury solve the complex one; the same for a spur pair
+    excited by a transmission error (displacement excitation and its rate)."""
+    from pipeline.dynamics.harmonic_balance import solve_coefficients
+    from pipeline.dynamics.hb_sweep import plan_sweep, sweep_point
+    from pipeline.dynamics.models.wind_turbine_planetary import wind_turbine_herringbone_model
+    from pipeline.dynamics.reduction import reduce_rigid_body_modes
+    from pipeline.dynamics.sweep import hb_samples
+
+    red = reduce_rigid_body_modes(
+        wind_turbine_herringbone_model(half_coupling=(5e10,) * 4).assembly().assemble())
+    assert len(red.terms) == 16
+    plan = plan_sweep(red, 12, hb_samples(12))
+    for f in (120.0, 1436.0, 4100.0):
+        s = red.with_mesh_frequency(f)
+        r = harmonic_balance(s, 12, samples=hb_samples(12)).response
+        F = r.mesh_force[:, :-1]
+        ref = np.stack([np.sqrt((F**2).mean(1)), F.std(1), F.max(1), F.mean(1)])
+        np.testing.assert_allclose(sweep_point(plan, f), ref, rtol=1e-11, atol=1e-9)
+        a = solve_coefficients(s, 12, method="woodbury")
+        b = solve_coefficients(s, 12, method="woodbury_complex")
+        assert np.abs(a - b).max() < 1e-12 * np.abs(b).max()
+    from pipeline.signals import PeriodicSignal
+
+    tau = np.arange(180) / 180
+    te = PeriodicSignal(4e-6 * np.abs(np.sin(np.pi * tau)) + 1e-6 * np.cos(6 * np.pi * tau))
+    k = rectangular_mesh_stiffness(2.0e8, 3.4e8, 1.65, 180)
+    spur = reduce_rigid_body_modes(SpurPairModel(k, transmission_error=te).assembly().assemble())
+    assert spur.meshes[0].transmission_error is not None
+    plan = plan_sweep(spur, 20, hb_samples(20))
+    for f in (900.0, 2500.0):
+        r = harmonic_balance(spur.with_mesh_frequency(f), 20, samples=hb_samples(20)).response
+        F = r.mesh_force[:, :-1]
+        ref = np.stack([np.sqrt((F**2).mean(1)), F.std(1), F.max(1), F.mean(1)])
+        np.testing.assert_allclose(sweep_point(plan, f), ref, rtol=1e-11, atol=1e-9)
+
+
 def test_sweep_peak_at_torsional_resonance():
     """Torsional pair with constant-ish stiffness: the force peak sits at the natural frequency."""
     k = rectangular_mesh_stiffness(3.0e8, 3.3e8, 1.5, 64)

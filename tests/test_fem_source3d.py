@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from pipeline.contact.fe3d_source import FE3DCompliance, touching_pairs
-from pipeline.contact.fe3d_table import FE3DSettings
+from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import ComplianceSource, SliceCompliance
 from pipeline.fem.flank_grid import flank_grid
@@ -272,7 +272,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
                 cache_dir=tmp_path / "cache", references=False)
     for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
         assert (out / name).is_file()
-    assert len(json.loads((out / "run.json").read_text())["config_hash"]) == 16
+    assert len(json.loads((out / "run.json").read_text())["hash"]) == 16
     for src in ("slice", "fe3d"):
         assert s["max_load_balance_error_N"][src] < 1e-6 * s["load_N"]
         assert s["max_residual_m"][src] < 1e-9

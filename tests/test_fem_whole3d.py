@@ -31,7 +31,7 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.contact.fe3d_table import FE3DSettings
+from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.fem.flank import flank_points
 from pipeline.fem.flank_grid import flank_grid
 from pipeline.fem.influence import influence_matrix

@@ -633,7 +633,8 @@ def test_ring_tooth_and_body_against_whole_ring_fe(z, alpha, rim):
     points was 10.7 % (RMS 2.9 %); measured here -4.6 to +2.6 %, RMS 1.6-2.3 %. Sainsot's
     external formula mapped to h_f = r_rim / r_f is far off (measured +23 % at the tip to
     +220 % at the root; asserted > 25 % somewhere): the reason for the ring fit."""
-    from pipeline.contact.fe2d_source import FE2DSettings, gear_table
+    from pipeline.contact.fe2d_source import gear_table
+    from pipeline.contact.fe_settings import FE2DSettings
     from pipeline.stiffness.foundation import foundation_coefficients
 
     g = ring(z, alpha_deg=alpha, rim_modules=rim)

@@ -22,6 +22,7 @@ import sys
 from pathlib import Path
 
 from pipeline.cli import main as cli
+from pipeline.io import atomic_write_text
 
 DEFAULT = """\
 name = "default_case"
@@ -68,7 +69,7 @@ def main(argv: list[str] | None = None) -> int:
     config = args.config
     if config is None:
         config = args.out / "default_case.toml"
-        config.write_text(DEFAULT, encoding="utf-8")
+        atomic_write_text(config, DEFAULT)
     print(f"== gearpipe run {config}")
     return cli(["run", str(config), "--out", str(args.out / "run")])
 

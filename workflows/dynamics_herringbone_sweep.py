@@ -44,7 +44,8 @@ Comparison with Xu et al. (2020), sec. 4 (coarse run: 100 points, H = 10, fine g
   the groove relation).
 
 Writes results/dynamics_herringbone_sweep/: sweep_groove.png, sweep_slide.png,
-sweep_*.csv, summary.csv (main peak frequency and peak RMS force per case on the
+sweep_*.csv (per case and shown mesh: RMS, max, mean, alternating RMS force in N, dynamic
+factor), summary.csv (main peak frequency and peak RMS force per case on the
 sweep grid), groove_peaks.csv (per K_j: side factors, refined peak frequencies and
 forces of both regions, equal-sides peaks, mesh/groove mode frequencies and strain
 energy shares), sweep_groove_peak1.png / sweep_groove_peak2.png (RMS force vs mesh
@@ -70,7 +71,9 @@ from pipeline.dynamics.models.wind_turbine_planetary import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import mesh_force_sweep
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_sweep
 
@@ -188,9 +191,8 @@ def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
         sweeps[name] = mesh_force_sweep(system, freqs, n_harmonics=H, executor=executor)
     files = []
     for name, sw in sweeps.items():
-        cols = {"mesh frequency [Hz]": sw.frequencies}
-        for m in MESHES:
-            cols[f"rms force {m} [N]"] = sw.rms_force[sw.mesh_names.index(m)]
+        cols = {k: v for k, v in sw.columns().items()
+                if k == "mesh frequency [Hz]" or any(f" {m} [" in k for m in MESHES)}
         files.append(
             write_csv(out / f"sweep_{name.replace(' ', '_').replace('+', 'p')}.csv", cols)
         )
@@ -275,7 +277,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    res = run(a.full, a.out)
+    with staged_output(Path(a.out or "results/dynamics_herringbone_sweep")) as out:
+        res = run(a.full, out)
     t = res["groove_peaks"]
     print("K_j [N m^2]  k L/R      peak1 L / R [Hz]   (equal sides)      peak2 L / R [Hz]")
     for i, kj in enumerate(t["K_j [N m^2]"]):

@@ -36,7 +36,9 @@ from pipeline.dynamics.models.split_torque_helicopter import (
     split_torque_helicopter_model,
 )
 from pipeline.dynamics.multirate import superpose_stages
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_harmonic_contributions
 
@@ -112,7 +114,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    cols = run(a.full, a.out)
+    with staged_output(Path(a.out or "results/dynamics_split_torque")) as out:
+        cols = run(a.full, out)
     for i, s in enumerate(cols["roughness [um]"]):
         print(
             f"S = {s:.1f} um: "

@@ -32,7 +32,9 @@ from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.geometry.pair import GearPair
-from pipeline.io import write_csv, write_run_record
+from pipeline.io import write_csv
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import FrictionModel
 from pipeline.viz import save
 from pipeline.viz.dynamics import plot_spectrum, plot_time_history
@@ -169,7 +171,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    cols = run(a.full, a.out)
+    with staged_output(Path(a.out or "results/dynamics_spur_dte")) as out:
+        cols = run(a.full, out)
     for i in range(len(cols["condition [-]"])):
         print(
             f"condition {int(cols['condition [-]'][i])}  mu {cols['friction [-]'][i]:.2f}  "

@@ -48,7 +48,9 @@ from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import SliceCompliance
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import FrictionModel, PairModel
 
 HERE = Path(__file__).resolve().parent
@@ -68,12 +70,14 @@ def _stats(k: np.ndarray) -> dict:
 def plot(deg: np.ndarray, curves: dict, title: str):
     from matplotlib.figure import Figure
 
+    from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
+
     fig = Figure(figsize=(7, 6))
     ax = fig.subplots(2, 1, sharex=True)
     for name, cyc in curves.items():
-        ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, marker=".", label=name)
+        ax[0].plot(deg, stiffness_in_plot_unit(cyc.mesh_stiffness), marker=".", label=name)
         ax[1].plot(deg, cyc.transmission_error * 1e6, marker=".", label=name)
-    ax[0].set_ylabel("mesh stiffness dP/dx [N/um]")
+    ax[0].set_ylabel(stiffness_label("mesh stiffness dP/dx"))
     ax[1].set_ylabel("loaded static TE [um]")
     ax[1].set_xlabel("pinion angle [deg]")
     ax[0].legend(fontsize=8)
@@ -167,8 +171,8 @@ def main(argv: list[str] | None = None) -> dict:
                     help=f"{FULL} instead of {COARSE}")
     ap.add_argument("--out", type=Path, default=Path("results/fe3d_helical_stiffness"))
     args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    summary = run(args.out, **(FULL if args.full else COARSE))
+    with staged_output(args.out) as out:
+        summary = run(out, **(FULL if args.full else COARSE))
     for name in (n for n in ("slice", "fe3d", "fe2d_strain", "fe2d_stress") if n in summary):
         row = summary[name]
         print(f"{name:11s} " + "  ".join(f"{k} {v:.4g}" for k, v in row.items()))

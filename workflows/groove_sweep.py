@@ -25,8 +25,10 @@ sys.path.insert(0, str(ROOT))
 
 from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
-from pipeline.io import write_csv, write_run_record  # noqa: E402
+from pipeline.io import write_csv  # noqa: E402
+from pipeline.output_folder import staged_output  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
+from pipeline.provenance import write_run_record  # noqa: E402
 from pipeline.viz import save  # noqa: E402
 
 CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
@@ -82,20 +84,20 @@ def main(argv: list[str] | None = None) -> dict:
     else:
         widths, diameters, h = [20, 40, 60], [250, 260, 270], 40.0
     base, kt, kj, dofs = sweep(args.config, widths, diameters, h)
-    out = args.out
-    W, D = np.meshgrid(widths, diameters)
-    files = [write_csv(out / "groove_sweep.csv", {
-        "groove width [mm]": W.ravel(), "groove bottom diameter [mm]": D.ravel(),
-        "k_t [N m/rad]": kt.ravel(), "K_j [N m^2]": kj.ravel(), "n_dof": dofs.ravel()}),
-        plot(out / "groove_sweep.png", widths, diameters, kt, kj, base)]
-    if not args.no_picture:
-        from pipeline.viz.groove import render_twisted_body
+    with staged_output(args.out) as out:
+        W, D = np.meshgrid(widths, diameters)
+        files = [write_csv(out / "groove_sweep.csv", {
+            "groove width [mm]": W.ravel(), "groove bottom diameter [mm]": D.ravel(),
+            "k_t [N m/rad]": kt.ravel(), "K_j [N m^2]": kj.ravel(), "n_dof": dofs.ravel()}),
+            plot(out / "groove_sweep.png", widths, diameters, kt, kj, base)]
+        if not args.no_picture:
+            from pipeline.viz.groove import render_twisted_body
 
-        a = analyse_groove(dataclasses.replace(base, mesh_size=h * 1e-3))
-        files.append(save(render_twisted_body(a, base.sun_torque or 1e5), out / "twist.png"))
-    write_run_record(out, {"config": dataclasses.asdict(base), "widths_mm": widths,
-                           "diameters_mm": diameters, "mesh_size_mm": h}, files,
-                     "workflows/groove_sweep.py" + (" --full" if args.full else ""))
+            a = analyse_groove(dataclasses.replace(base, mesh_size=h * 1e-3))
+            files.append(save(render_twisted_body(a, base.sun_torque or 1e5), out / "twist.png"))
+        write_run_record(out, {"config": dataclasses.asdict(base), "widths_mm": widths,
+                               "diameters_mm": diameters, "mesh_size_mm": h}, files,
+                         "workflows/groove_sweep.py" + (" --full" if args.full else ""))
     i40 = widths.index(40) if 40 in widths else 0
     i270 = diameters.index(270) if 270 in diameters else 0
     print(f"k_t(g = {widths[i40]} mm, d = {diameters[i270]} mm) = {kt[i270, i40]:.4e} N m/rad, "

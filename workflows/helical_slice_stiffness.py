@@ -20,8 +20,10 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config import load_gearbox
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.stiffness.mesh import PairModel
 from pipeline.viz import save
@@ -109,8 +111,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true", help="720 positions x 200 slices")
     ap.add_argument("--out", type=Path, default=Path("results/helical_slice_stiffness"))
     args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    table = run(args.out, *((720, 200) if args.full else (360, 100)))
+    with staged_output(args.out) as out:
+        table = run(out, *((720, 200) if args.full else (360, 100)))
     for name, row in table.items():
         print(f"{name:34s} " + "  ".join(f"{k} {v:.4g}" for k, v in row.items()))
     print(f"written to {args.out}/")

@@ -41,10 +41,13 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from pipeline.contact.fe2d_source import FE2DSettings, gear_table  # noqa: E402
+from pipeline.contact.fe2d_source import gear_table  # noqa: E402
+from pipeline.contact.fe_settings import FE2DSettings  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402
-from pipeline.io import write_csv, write_json, write_run_record  # noqa: E402
+from pipeline.io import write_csv, write_json  # noqa: E402
+from pipeline.output_folder import staged_output  # noqa: E402
 from pipeline.progress import progress  # noqa: E402
+from pipeline.provenance import write_run_record  # noqa: E402
 from pipeline.stiffness.tooth import load_geometry, tooth_compliance, tooth_model  # noqa: E402
 
 STEEL = Material(youngs_modulus=2.0e11, poisson_ratio=0.3, density=7850.0)
@@ -148,11 +151,11 @@ def main(argv: list[str] | None = None) -> int:
         result = fit(data)
         result.update(refinement=refinement, cases=len(cases))
         inputs = {"cases": cases, "refinement": refinement, "radii": radii}
-    args.out.mkdir(parents=True, exist_ok=True)
-    files = [write_csv(args.out / "samples.csv", data),
-             write_json(args.out / "fit.json", result)]
-    write_run_record(args.out, inputs, files, "python workflows/ring_body_fit.py "
-                     + " ".join(argv if argv is not None else sys.argv[1:]))
+    with staged_output(args.out) as out:
+        files = [write_csv(out / "samples.csv", data),
+                 write_json(out / "fit.json", result)]
+        write_run_record(out, inputs, files, "python workflows/ring_body_fit.py "
+                         + " ".join(argv if argv is not None else sys.argv[1:]))
     for k, v in result.items():
         print(f"{k}: {v}")
     return 0

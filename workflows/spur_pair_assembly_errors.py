@@ -19,8 +19,10 @@ import numpy as np
 
 from pipeline.config import load_gearbox
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.analysis import analyse_stiffness
 from pipeline.viz import save
 from pipeline.viz.stiffness import plot_stiffness_curves
@@ -93,8 +95,8 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--full", action="store_true", help="3600 positions per mesh cycle")
     ap.add_argument("--out", type=Path, default=Path("results/spur_pair_assembly_errors"))
     args = ap.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    table = run(args.out, 3600 if args.full else 360)
+    with staged_output(args.out) as out:
+        table = run(out, 3600 if args.full else 360)
     for name, row in table.items():
         print(f"{name:32s} mean {row['mean_N_per_m']:.4e}  max {row['max_N_per_m']:.4e}  "
               f"min {row['min_N_per_m']:.4e} N/m  eps_a {row['transverse_contact_ratio']:.4f}")

@@ -78,10 +78,13 @@ from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.source import FrictionCorrected
 from pipeline.geometry.assembly_errors import AssemblyErrors
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.progress import progress
+from pipeline.provenance import write_run_record
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz import save
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 HERE = Path(__file__).resolve().parent
 UM = 1e-6
@@ -153,23 +156,22 @@ def table_row(res: dict) -> dict:
 
 
 def write_summary_csv(path: Path, table: dict) -> Path:
-    """One row per case (name in the first column, quoted), the :func:`table_row` columns."""
+    """One row per case (its name in the first column), the :func:`table_row` columns."""
     cols = list(next(iter(table.values())))
-    lines = [",".join(["case"] + cols)]
-    lines += [",".join([f'"{name}"'] + [f"{row[c]:.9g}" for c in cols])
-              for name, row in table.items()]
-    return atomic_write(path, lambda p: Path(p).write_text("\n".join(lines) + "\n"))
+    return write_csv(path, {"case": list(table),
+                            **{c: [row[c] for row in table.values()] for c in cols}})
 
 
 def plot_case(name: str, res: dict):
     fig = Figure(figsize=(8, 4))
     ax = fig.subplots()
     deg = np.degrees(res["pinion_angle"])
-    ax.plot(deg, res["analytical"] * 1e-8, label="analytical (slice potential energy)")
-    ax.plot(deg, res["optimised_slice"] * 1e-8, "--", label="optimised slice (LTCA, eq. 24)")
-    ax.plot(deg, res["fe_enriched"] * 1e-8, "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
+    k = stiffness_in_plot_unit
+    ax.plot(deg, k(res["analytical"]), label="analytical (slice potential energy)")
+    ax.plot(deg, k(res["optimised_slice"]), "--", label="optimised slice (LTCA, eq. 24)")
+    ax.plot(deg, k(res["fe_enriched"]), "-", lw=2, label="FE-enriched (LTCA, eq. 24)")
     ax.set_xlabel("pinion rotation over one mesh cycle [deg]")
-    ax.set_ylabel("mesh stiffness [1e8 N/m]")
+    ax.set_ylabel(stiffness_label())
     ax.set_title(f"{name}: analytical vs FE-enriched mesh stiffness")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
@@ -211,7 +213,8 @@ def main(argv: list[str] | None = None) -> dict:
     args = ap.parse_args(argv)
     # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe2d_source docs)
     fe = FE2DSettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
-    table = run(args.out, args.positions, fe, args.only)
+    with staged_output(args.out) as out:
+        table = run(out, args.positions, fe, args.only)
     for name, row in table.items():
         print(f"{name:22s} mean: analytical {row['analytical_mean_N_per_m']:.4e}  "
               f"optimised {row['optimised_slice_mean_N_per_m']:.4e}  "

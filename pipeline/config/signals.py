@@ -67,10 +67,28 @@ def _build(kind: str, kw: dict[str, Any], where: str, keys, table, base) -> Peri
     return _csv_signal(kw, where, base)
 
 
+def csv_path(path: str, base: Path | None) -> Path:
+    """The file of a ``kind = "csv"`` table: a relative ``path`` is relative to ``base``
+    (the folder of the gearbox file)."""
+    p = Path(path)
+    return base / p if base is not None and not p.is_absolute() else p
+
+
+def referenced_files(document: Mapping[str, Any], base: Path | None,
+                     where: str = "") -> dict[str, Path]:
+    """The files a parsed gearbox document points to, by the dotted key of their ``path``."""
+    out: dict[str, Path] = {}
+    for key, value in document.items():
+        name = f"{where}{key}"
+        if isinstance(value, Mapping):
+            if value.get("kind") == "csv" and isinstance(value.get("path"), str):
+                out[f"{name}.path"] = csv_path(value["path"], base)
+            out.update(referenced_files(value, base, f"{name}."))
+    return out
+
+
 def _csv_signal(kw: dict[str, Any], where: str, base: Path | None) -> PeriodicSignal:
-    path = Path(kw["path"])
-    if base is not None and not path.is_absolute():
-        path = base / path
+    path = csv_path(kw["path"], base)
     if not path.is_file():
         raise InputError(f"{where}.path = {str(path)!r} does not exist")
     try:

@@ -31,6 +31,7 @@ the loaded approach and the mesh stiffness.
   tables of :mod:`.fe3d_table`).
 """
 
+from pipeline._lazy import lazy_exports
 from pipeline.contact.analysis import analyse_contact, analytical_compliance, line_of_action_load
 from pipeline.contact.complementarity import (
     ContactConvergenceError,
@@ -56,19 +57,12 @@ from pipeline.contact.sweep import solve_positions
 
 # FE sources are imported on first use: they pull in scikit-fem and Gmsh (seconds)
 _FE_EXPORTS = {"FE2DCompliance": "pipeline.contact.fe2d_source",
-               "FE2DSettings": "pipeline.contact.fe2d_source",
+               "FE2DSettings": "pipeline.contact.fe_settings",
                "FE3DCompliance": "pipeline.contact.fe3d_source",
-               "FE3DSettings": "pipeline.contact.fe3d_table"}
+               "FE3DSettings": "pipeline.contact.fe_settings"}
 
 
-def __getattr__(name: str):
-    import importlib
-
-    module = _FE_EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'pipeline.contact' has no attribute {name!r}")
-    return getattr(importlib.import_module(module), name)
-
+__getattr__ = lazy_exports(__name__, _FE_EXPORTS)
 
 __all__ = [
     "ContactOptions", "analyse_contact", "analytical_compliance", "line_of_action_load",

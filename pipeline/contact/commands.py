@@ -16,14 +16,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
 from pipeline.contact.analysis import TOOTH_MODELS, analyse_contact, analytical_compliance
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.loadmap import flank_load_map, write_load_map_vtu
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.stiffness.mesh import stiffness_at
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
@@ -41,18 +42,20 @@ def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
     """Cycle and point CSVs, the cycle plot (against the slice method's ``k_slice``, N/m)
     and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG)."""
     from pipeline.viz.contact import plot_contact_cycle
-    from pipeline.viz.loadmap import plot_load_map_2d, render_load_map
+    from pipeline.viz.loadmap import load_map_title, plot_load_map_2d, render_load_map
 
     files = [write_csv(out / f"{prefix}contact_cycle.csv", cyc.columns()),
              write_csv(out / f"{prefix}contact_points.csv", cyc.point_columns()),
              figures.save(out / f"{prefix}contact_cycle.png", plot_contact_cycle, cyc, k_slice,
                           title)]
     lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm, title))
+    map_title = load_map_title(title, opts.modifications.describe())
+    files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm,
+                              map_title))
     files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))
     if opts.render:
         files.append(figures.save(out / f"{prefix}load_map.png", render_load_map, pair, lm,
-                                  title))
+                                  map_title))
     return files
 
 
@@ -65,16 +68,14 @@ def contact_title(name: str, cyc: LoadedMeshCycle, pair: GearPair, opts: Contact
 def run(args: argparse.Namespace) -> int:
     box = load(args)
     pair, opts = box.actual_pair, box.contact
+    target = output_dir(args, "contact")
     slices = analytical_compliance(pair, box.operation, opts, box.stiffness,
                                    tooth_model=args.tooth_model)
     src = compliance_source(pair, box.operation, opts, box.stiffness, box.fe_source,
                             model=slices.model)
     cyc = analyse_contact(src, box.operation, opts, show_progress=True)
-    out = output_dir(args, "contact")
     ref = stiffness_at(slices.model, cyc.s0, opts.slices, slices.friction, slices.operating,
                        box.stiffness.foundation_correction)
-    files = write_contact(cyc, pair, opts, ref.total, contact_title(box.name, cyc, pair, opts),
-                          out)
     summary = {
         **cyc.summary(),
         "slice_method_mean_N_per_m": ref.mean,
@@ -88,8 +89,10 @@ def run(args: argparse.Namespace) -> int:
     }
     if box.assembled is not None:
         summary["assembly_errors"] = box.assembled.summary()
-    files.append(write_json(out / "contact.json", summary))
-    write_run_record(out, {"gearbox": box.to_dict(), "tooth_model": args.tooth_model},
-                     files, f"gearpipe contact {args.config}")
-    emit(args, summary, out)
+    with staged_output(target) as out:
+        files = write_contact(cyc, pair, opts, ref.total,
+                              contact_title(box.name, cyc, pair, opts), out)
+        files.append(write_json(out / "contact.json", summary))
+        record(out, args, box, files)
+    emit(args, summary, target)
     return 0

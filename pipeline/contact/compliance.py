@@ -18,9 +18,10 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from pipeline.contact.analysis import analytical_compliance
+from pipeline.contact.fe_settings import FE2DSettings, FE3DSettings
 from pipeline.contact.options import COMPLIANCES, ContactOptions
 from pipeline.contact.source import ComplianceSource, FrictionCorrected
 from pipeline.geometry.pair import GearPair
@@ -29,20 +30,10 @@ from pipeline.stiffness.mesh import PairModel
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, check_choice
 
-if TYPE_CHECKING:
-    from pipeline.contact.fe2d_source import FE2DSettings
-    from pipeline.contact.fe3d_table import FE3DSettings
-
 
 def fe_settings_class(compliance: str) -> type:
-    """``FE2DSettings`` or ``FE3DSettings`` (imported here: the FE stage costs seconds)."""
-    if compliance == "fe2d":
-        from pipeline.contact.fe2d_source import FE2DSettings
-
-        return FE2DSettings
-    from pipeline.contact.fe3d_table import FE3DSettings
-
-    return FE3DSettings
+    """``FE2DSettings`` for ``"fe2d"``, ``FE3DSettings`` for ``"fe3d"``."""
+    return FE2DSettings if compliance == "fe2d" else FE3DSettings
 
 
 def fe_settings(compliance: str, fe: Any, contact: ContactOptions
@@ -72,6 +63,7 @@ def compliance_source(
     tooth_model: str = "exact",
     model: PairModel | None = None,
     show_progress: bool = False,
+    prebuilt: Any = None,
 ) -> ComplianceSource:
     """The compliance source ``contact.compliance`` names, for the installed ``pair``.
 
@@ -87,6 +79,9 @@ def compliance_source(
         (:func:`~pipeline.contact.analysis.analytical_compliance`); with an FE source they
         give only the friction change.
     show_progress : progress of the FE build on stderr.
+    prebuilt : an FE source of the same gears and settings built earlier (a design study
+        ships it to its workers): its tables are used for ``pair`` instead of building or
+        reading them.
     """
     contact = contact or ContactOptions()
     slices = analytical_compliance(pair, operation, contact, stiffness,
@@ -94,7 +89,9 @@ def compliance_source(
     settings = fe_settings(contact.compliance, fe, contact)
     if settings is None:
         return slices
-    if contact.compliance == "fe2d":
+    if prebuilt is not None:
+        base = dataclasses.replace(prebuilt, pair=pair)
+    elif contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 
         base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,

@@ -70,66 +70,12 @@ import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe2d_table import gear_table, sector_teeth
+from pipeline.contact.fe_settings import FE2DSettings
 from pipeline.contact.source import ContactPoints, slice_points
-from pipeline.fem.influence import CUTS, InfluenceMatrix
-from pipeline.fem.options import PLANE_KINDS
-from pipeline.fem.sector2d import GRADED_BODY, GRADED_GROWTH, GRADED_TOOTH
+from pipeline.fem.influence import InfluenceMatrix
 from pipeline.geometry.pair import GearPair
 from pipeline.progress import progress
-from pipeline.validation import InputError, check_choice, check_int_range, check_range
-
-MESHES = ("graded", "uniform")
-DEFAULT_REFINEMENT = 1.0  # graded mesh: mean and extremes of k(t) within 1 % (docstring)
-
-
-@dataclass(frozen=True)
-class FE2DSettings:
-    """Settings of the FE compliance tables.
-
-    Attributes
-    ----------
-    teeth : teeth per sector (>= 3, covering the tooth pairs in contact), or None for the
-        whole gear (default: a sector with clamped cut faces is too stiff for deep gear
-        bodies - the assembly-error paper's gear: -42 % with 7 teeth, -4 % as a whole gear, vs the
-        analytical compliance; see :mod:`pipeline.fem.influence`).
-    radii : tabulated points per flank (4..1000).
-    refinement : mesh refinement, 0.1..20: flank element size m_n / (12 refinement) on the
-        loaded teeth (:meth:`SectorSettings2D.graded`; every tooth for ``mesh =
-        "uniform"``, :meth:`SectorSettings2D.for_gear`).
-    kind : "plane_strain" or "plane_stress".
-    slices : slices across the face width for helical pairs (spur: 1).
-    cuts : "clamped" or "free" sector cut faces.
-    mesh : "graded" (default: fine on the loaded teeth, coarser away from them; module
-        docstring) or "uniform" (every tooth at the flank size; the reference).
-    tooth_size : graded mesh: element size on the outline of the unloaded teeth, in m_n
-        (0.05..2).
-    body_size : graded mesh: largest element size, in m_n (tooth_size..20).
-    growth : graded mesh: element size growth per distance from the outline (0.05..1).
-    """
-
-    teeth: int | None = None
-    radii: int = 30
-    refinement: float = DEFAULT_REFINEMENT
-    kind: str = "plane_strain"
-    slices: int = 30
-    cuts: str = "clamped"
-    mesh: str = "graded"
-    tooth_size: float = GRADED_TOOTH
-    body_size: float = GRADED_BODY
-    growth: float = GRADED_GROWTH
-
-    def __post_init__(self) -> None:
-        if self.teeth is not None:
-            check_int_range("fe.teeth", self.teeth, 3, 99)
-        check_int_range("fe.radii", self.radii, 4, 1000)
-        check_range("fe.refinement", self.refinement, 0.1, 20.0)
-        check_choice("fe.kind", self.kind, PLANE_KINDS)
-        check_int_range("fe.slices", self.slices, 1, 10_000)
-        check_choice("fe.cuts", self.cuts, CUTS)
-        check_choice("fe.mesh", self.mesh, MESHES)
-        check_range("fe.tooth_size", self.tooth_size, 0.05, 2.0, unit="m_n")
-        check_range("fe.body_size", self.body_size, self.tooth_size, 20.0, unit="m_n")
-        check_range("fe.growth", self.growth, 0.05, 1.0)
+from pipeline.validation import InputError
 
 
 def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarray,

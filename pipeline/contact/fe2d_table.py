@@ -31,7 +31,7 @@ from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 
 if TYPE_CHECKING:
-    from pipeline.contact.fe2d_source import FE2DSettings
+    from pipeline.contact.fe_settings import FE2DSettings
 
 # Bump when the same inputs would give a different table.
 TABLE_FORMAT = 1

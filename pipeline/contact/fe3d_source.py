@@ -99,7 +99,8 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.contact.fe3d_table import FE3DSettings, FlankTable3D, flank_table
+from pipeline.contact.fe3d_table import FlankTable3D, flank_table
+from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.sector3d import helix_sign
 from pipeline.geometry.pair import GearPair

@@ -39,93 +39,22 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
+from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
-from pipeline.fem.influence import CUTS, ENDS, influence_matrix
+from pipeline.fem.influence import influence_matrix
 from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
-from pipeline.fem.solvers import SOLVERS, solver_named
+from pipeline.fem.solvers import solver_named
 from pipeline.geometry.gear import GearSpec
 from pipeline.progress import Steps
-from pipeline.validation import InputError, check_choice, check_int_range, check_range
+from pipeline.validation import InputError
 
 # Bump when the same inputs would give a different table.
 TABLE_FORMAT = 3  # 3: whole-gear bodies, timings stored
 _STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
            "timing_values", "symmetry_error")  # arrays in the cache file
-BODIES = ("whole", "sector")
-
-
-@dataclass(frozen=True)
-class FE3DSettings:
-    """Settings of the 3D FE compliance tables.
-
-    Attributes
-    ----------
-    body : "whole" (default): each gear's whole body (all teeth, body down to the bore,
-        full face width; bore clamped, as the 2D whole gear), graded from the loaded
-        teeth (:mod:`pipeline.fem.whole3d`); "sector": a sector of ``teeth`` teeth
-        clamped at its bore and cut faces (stiffer than the gear: an upper bound).
-    teeth : "sector" only: teeth per sector (3..99, odd values centre the loaded teeth),
-        or None for the fewest that hold the tooth pairs in contact (``2 max|k| + 1``).
-    radii : flank grid points along the profile (2..200).
-    face : flank grid points across the face width (1..200), or None for a spacing of
-        about one patch half-width (the structural kernel then varies little between
-        nodes; coarser face grids blur its peak at the diagonal).
-    refinement : mesh refinement, 0.2..4: loaded flanks ``m_n / (3 refinement)``
-        (:meth:`SectorSettings3D.for_gear`, :meth:`SectorSettings3D.whole_gear`).
-    patch : load patch half-width c in normal modules (0.1..2). Default 0.5, wider than
-        the 3D default 0.3 of :func:`pipeline.fem.influence.influence_matrix`: the
-        near-field subtraction needs the patch resolved by the mesh (0.3 m_n needs
-        refinement 2), and the structural part does not depend on c once it is. At
-        refinement 0.6 and c = 0.3 m_n (less than one flank element) the structural
-        diagonal fell below its neighbours (table eigenvalues down to -16 % of the
-        largest); at c = 0.5-0.6 m_n: -0.2 to -0.4 %.
-    face_margin : distance of the outer face grid points from the end faces, in
-        patch half-widths (0..10; 1 keeps every patch whole on the flank).
-    cuts : "clamped" or "free" sector cut faces (a whole gear has none).
-    ends : "free" or "sliding" (u_z = 0) end faces.
-    slices : slices across the face width of a helical pair (spur: 1).
-    hub_depth : if given, the body is clamped at ``max(bore, r_f - hub_depth m_n)``
-        instead of the bore (1..100 modules): a shallower body for deep gears.
-    method : solver (:func:`pipeline.fem.solvers.solver_named`, 3D).
-    """
-
-    body: str = "whole"
-    teeth: int | None = None
-    radii: int = 8
-    face: int | None = None
-    refinement: float = 1.0
-    patch: float = 0.5
-    face_margin: float = 1.0
-    cuts: str = "clamped"
-    ends: str = "free"
-    slices: int = 30
-    hub_depth: float | None = None
-    method: str = "auto"
-
-    def __post_init__(self) -> None:
-        check_choice("fe3d.body", self.body, BODIES)
-        if self.teeth is not None:
-            if self.body == "whole":
-                raise InputError(f"fe3d.teeth = {self.teeth} applies to body = 'sector' only "
-                                 "(a whole gear has all its teeth)")
-            check_int_range("fe3d.teeth", self.teeth, 3, 99)
-        check_int_range("fe3d.radii", self.radii, 2, 200)
-        if self.face is not None:
-            check_int_range("fe3d.face", self.face, 1, 200)
-        check_range("fe3d.refinement", self.refinement, 0.2, 4.0)
-        check_range("fe3d.patch", self.patch, 0.1, 2.0, unit="m_n")
-        check_range("fe3d.face_margin", self.face_margin, 0.0, 10.0)
-        check_choice("fe3d.cuts", self.cuts, CUTS)
-        check_choice("fe3d.ends", self.ends, ENDS)
-        check_int_range("fe3d.slices", self.slices, 1, 10_000)
-        if self.hub_depth is not None:
-            check_range("fe3d.hub_depth", self.hub_depth, 1.0, 100.0, unit="m_n")
-        check_choice("fe3d.method", self.method, SOLVERS)
-
-
 @dataclass(frozen=True, eq=False)
 class FlankTable3D:
     """Structural compliance on the right-flank grid of some teeth of one gear's 3D model.

@@ -1,14 +1,20 @@
-"""Tooth-surface load maps: the unit load over the pinion flank for a whole mesh cycle.
+"""Tooth-surface load maps: the unit load over the pinion and gear flanks for a whole mesh cycle.
 
 Over one mesh cycle the tooth pairs in contact together sweep the whole plane
 of action once (pair ``k`` covers ``[s_start + k p_bt, s_start + (k + 1) p_bt)``
 at ``z = 0``), so the unit loads of all pairs at all positions of a
 :class:`~pipeline.contact.results.LoadedMeshCycle` form the load one tooth sees
-as it rolls through the mesh. :func:`flank_load_map` puts them on a regular grid
-(roll coordinate ``s`` x face position ``z``, linear interpolation along ``s``
-within each slice); :func:`flank_surface` maps the grid onto the 3D pinion flank
-(involute at radius ``r = sqrt(s^2 + r_b1^2)``, swept along the helix by
-rotating the transverse section through ``z tan(beta) / r_ref``);
+as it rolls through the mesh: every point of the flank is loaded once per cycle, so the
+map is the envelope of the load over the cycle. :func:`flank_load_map` puts them on a
+regular grid (roll coordinate ``s`` x face position ``z``, linear interpolation along
+``s`` within each slice); :func:`flank_surface` maps the grid onto the 3D flank of the
+pinion (involute at radius ``r1 = sqrt(s^2 + r_b1^2)``) or of an external gear (the
+same contact point at ``r2 = sqrt((T1T2 - s)^2 + r_b2^2)``), swept along the helix by
+rotating the transverse section through ``z tan(beta) / r_ref``. The flank drawn is the
+one on the -x side of a tooth centred on +y, so that seen from outside the tooth with
+the tip up the face position z runs from left to right, as in the 2D map (which flank
+carries the load in service depends on the sense of rotation, which the contact
+analysis does not need);
 :func:`write_load_map_vtu` saves it for ParaView; :mod:`pipeline.viz.loadmap`
 draws it (pyvista PNG, colour bar in N/mm, axes in mm, and a 2D matplotlib map).
 """
@@ -26,7 +32,10 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.involute import inv
 from pipeline.geometry.pair import GearPair
 from pipeline.io import atomic_write
-from pipeline.validation import check_int_range
+from pipeline.validation import InputError, check_choice, check_int_range
+
+MEMBERS = ("pinion", "gear")
+"""The gears whose flanks a load map covers."""
 
 
 @dataclass(frozen=True)
@@ -39,12 +48,19 @@ class FlankLoadMap:
     z : (n_z,) face positions from 0 to b, m.
     unit_load : (n_s, n_z) load per unit length of contact line, N/m, over the cycle.
     pinion_radius : (n_s,) radius of the contact point on the pinion, m.
+    gear_radius : (n_s,) radius of the contact point on the gear, m.
     """
 
     s: np.ndarray
     z: np.ndarray
     unit_load: np.ndarray
     pinion_radius: np.ndarray
+    gear_radius: np.ndarray
+
+    def radius(self, member: str) -> np.ndarray:
+        """Contact radius (n_s,) on ``member`` ("pinion" or "gear"), m."""
+        check_choice("load map member", member, MEMBERS)
+        return self.pinion_radius if member == "pinion" else self.gear_radius
 
 
 def flank_load_map(cycle: LoadedMeshCycle, pair: GearPair,
@@ -71,16 +87,17 @@ def flank_load_map(cycle: LoadedMeshCycle, pair: GearPair,
         z, p = np.concatenate([[0.0], z]), np.concatenate([p[:, :1], p], axis=1)
     if z[-1] < b:
         z, p = np.concatenate([z, [b]]), np.concatenate([p, p[:, -1:]], axis=1)
-    return FlankLoadMap(s_grid, z, p, np.hypot(s_grid, pair.pinion.base_radius))
+    r1, r2 = pair.contact_radii(s_grid)
+    return FlankLoadMap(s_grid, z, p, np.asarray(r1), np.asarray(r2))
 
 
 def _involute_flank(gear: GearSpec, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Right flank (x >= 0) of an external tooth centred on +y at radii ``r`` (m)."""
+    """Flank on the -x side (x <= 0) of an external tooth centred on +y at radii ``r`` (m)."""
     at = gear.transverse_pressure_angle
     psi_ref = gear.reference_tooth_thickness / (2.0 * gear.reference_radius)
     a = np.arccos(np.clip(gear.base_radius / r, -1.0, 1.0))
     psi = psi_ref + inv(at) - inv(a)
-    return r * np.sin(psi), r * np.cos(psi)
+    return -r * np.sin(psi), r * np.cos(psi)
 
 
 def _sweep(gear: GearSpec, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
@@ -93,10 +110,23 @@ def _sweep(gear: GearSpec, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.nd
     return np.stack([X, Y, np.broadcast_to(z[None, :], X.shape)], axis=-1)
 
 
-def flank_surface(pair: GearPair, load_map: FlankLoadMap) -> np.ndarray:
-    """3D points of the pinion flank under the grid, (n_s, n_z, 3), m (tooth centred on +y)."""
-    x, y = _involute_flank(pair.pinion, load_map.pinion_radius)
-    return _sweep(pair.pinion, x, y, load_map.z)
+def mapped_members(pair: GearPair) -> tuple[str, ...]:
+    """The flanks a load map can be drawn on: the pinion's, and the gear's when external."""
+    return MEMBERS[:1] if pair.gear.internal else MEMBERS
+
+
+def flank_surface(pair: GearPair, load_map: FlankLoadMap, member: str = "pinion") -> np.ndarray:
+    """3D points of ``member``'s flank under the grid, (n_s, n_z, 3), m (tooth centred on +y).
+
+    ``member`` is "pinion" or "gear" (an external gear only: :func:`mapped_members`).
+    """
+    if member not in mapped_members(pair):
+        raise InputError(f"load map member {member!r}: the flanks that can be mapped are "
+                         f"{', '.join(mapped_members(pair))} (an internal gear's concave "
+                         "flank is not drawn)")
+    gear = pair.pinion if member == "pinion" else pair.gear
+    x, y = _involute_flank(gear, load_map.radius(member))
+    return _sweep(gear, x, y, load_map.z)
 
 
 def _tooth_outline(gear: GearSpec, points: int = 40) -> np.ndarray:
@@ -115,12 +145,12 @@ def _grid(pv, pts: np.ndarray):
     return pv.StructuredGrid(pts[..., 0], pts[..., 1], pts[..., 2])
 
 
-def load_map_grid(pair: GearPair, load_map: FlankLoadMap):
-    """pyvista StructuredGrid of the loaded flank in mm with point data
+def load_map_grid(pair: GearPair, load_map: FlankLoadMap, member: str = "pinion"):
+    """pyvista StructuredGrid of ``member``'s loaded flank in mm with point data
     ``unit_load_N_per_mm`` and ``roll_coordinate_mm``."""
     import pyvista as pv
 
-    pts = flank_surface(pair, load_map) * 1e3
+    pts = flank_surface(pair, load_map, member) * 1e3
     grid = _grid(pv, pts)
     # StructuredGrid point order is Fortran (first index fastest)
     grid.point_data["unit_load_N_per_mm"] = (load_map.unit_load * 1e-3).ravel(order="F")
@@ -139,8 +169,8 @@ def tooth_body_grid(gear: GearSpec, z: np.ndarray):
 
 
 def write_load_map_vtu(pair: GearPair, load_map: FlankLoadMap, path: str | Path) -> Path:
-    """Save the loaded flank as an unstructured VTU of quads (coordinates in mm, point data
-    ``unit_load_N_per_mm`` and ``roll_coordinate_mm``), atomically.
+    """Save the loaded pinion flank as an unstructured VTU of quads (coordinates in mm, point
+    data ``unit_load_N_per_mm`` and ``roll_coordinate_mm``), atomically.
 
     Written with meshio (the same grid as :func:`load_map_grid` without importing pyvista,
     which costs seconds).

@@ -90,6 +90,23 @@ class FlankModifications:
         return not (self.tip_relief_pinion or self.tip_relief_gear or self.crowning
                     or self.slope_deviation or any(self.pitch_errors))
 
+    def describe(self) -> str:
+        """One line for titles and reports, in the gearbox file's units (um, mm), e.g.
+        ``"tip relief pinion 15 um over 8.1 mm (linear), crowning 8 um"``, or ``"none"``."""
+        parts = [f"tip relief {who} {amount * 1e6:.3g} um over {length * 1e3:.3g} mm "
+                 f"({self.relief_shape})"
+                 for who, amount, length in (
+                     ("pinion", self.tip_relief_pinion, self.relief_length_pinion),
+                     ("gear", self.tip_relief_gear, self.relief_length_gear)) if amount]
+        if self.crowning:
+            parts.append(f"crowning {self.crowning * 1e6:.3g} um")
+        if self.slope_deviation:
+            parts.append(f"helix slope deviation {self.slope_deviation * 1e6:.3g} um")
+        if any(self.pitch_errors):
+            parts.append("pitch errors " + "/".join(f"{e * 1e6:.3g}" for e in self.pitch_errors)
+                         + " um")
+        return ", ".join(parts) or "none"
+
 
 def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarray:
     """``amount (x / length)^power`` for ``x > 0`` (x: roll distance into the relief, m)."""

@@ -15,11 +15,13 @@ from __future__ import annotations
 import argparse
 import json
 
-from pipeline.commands_common import add_common_arguments, load, output_dir
+from pipeline.commands_common import add_common_arguments, load, output_dir, record
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
+from pipeline.dynamics.layout import model_layout
 from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
-from pipeline.io import to_jsonable, write_json, write_run_record
+from pipeline.io import to_jsonable, write_json
+from pipeline.output_folder import staged_output
 from pipeline.run.dynamics import dynamics_options
 from pipeline.validation import InputError
 
@@ -58,8 +60,8 @@ def dynamic_model(box: Gearbox):
 
 def _setup(args, command: str):
     box = load(args)
-    model = dynamic_model(box)
-    return box, model, output_dir(args, command)
+    target = output_dir(args, command)
+    return box, dynamic_model(box), target
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
@@ -73,9 +75,10 @@ def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
     box, model, out = _setup(args, "modes")
     res = analyse_modes(model)
-    files = write_modes(res, out, count=16 if args.full else 8)
+    with staged_output(out) as staging:
+        files = write_modes(res, staging, model_layout(model), title=box.name)
+        record(staging, args, box, files)
     summary = {**res.summary(), "out": str(out)}
-    write_run_record(out, box.to_dict(), files, f"gearpipe modes {args.config}")
     lines = [f"{len(res.dof_names)} DOF, results in {out}",
              "  #   f [Hz]      kind           mult"]
     lines += [
@@ -94,11 +97,11 @@ def run_response(args) -> int:
     result = analyse_response(model, dynamics_options(box).response,
                               refine=2 if args.full else 1)
     resp = result.response
-    files = write_response(result, out, box.name)
     summary = {**result.summary(), "out": str(out)}
-    write_json(out / "summary.json", summary)
-    files.append(out / "summary.json")
-    write_run_record(out, box.to_dict(), files, f"gearpipe response {args.config}")
+    with staged_output(out) as staging:
+        files = write_response(result, staging, box.name)
+        files.append(write_json(staging / "summary.json", summary))
+        record(staging, args, box, files)
     lines = [
         f"{box.name}: {resp.method}, mesh period {resp.period * 1e3:.4f} ms, results in {out}",
         "mesh            RMS force [N]   DTE p-p [um]",
@@ -117,10 +120,12 @@ def run_sweep(args) -> int:
     res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
                         show_progress=not args.json)
     freqs = res.frequencies
-    files = write_sweep(res, out, box.name)
+    with staged_output(out) as staging:
+        files = write_sweep(res, staging, box.name,
+                            natural_frequencies=analyse_modes(model).frequencies)
+        record(staging, args, box, files)
     shown = shown_meshes(res)
     peaks = {m: res.peaks(m) for m in shown}
-    write_run_record(out, box.to_dict(), files, f"gearpipe sweep {args.config}")
     summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}
     lines = [
         f"{box.name}: {freqs.size} points {freqs[0]:.0f}-{freqs[-1]:.0f} Hz, results in {out}"

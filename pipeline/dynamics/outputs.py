@@ -8,20 +8,33 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from pipeline.dynamics.analysis import ResponseResult
+from pipeline.dynamics.layout import ModelLayout
 from pipeline.dynamics.modal import ModalResult
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.io import write_csv
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
-def write_modes(res: ModalResult, out: Path, count: int = 8,
-                figures: FigureCache = NO_CACHE) -> list[Path]:
-    """``modes.csv`` and ``mode_shapes.png`` (the first ``count`` modes)."""
-    from pipeline.viz.dynamics import plot_mode_shapes
+def write_modes(res: ModalResult, out: Path, layout: ModelLayout,
+                figures: FigureCache = NO_CACHE, title: str = "") -> list[Path]:
+    """``modes.csv`` (frequencies, multiplicities, kinds), ``mode_shapes.csv`` (the
+    eigenvectors, one row per coordinate with its unit) and the mode shapes drawn on
+    ``layout``: every elastic mode, 12 per page, ``mode_shapes.png`` then
+    ``mode_shapes_2.png``, ... (:func:`pipeline.viz.modes.mode_pages`)."""
+    from pipeline.viz.modes import mode_pages, plot_mode_shapes
 
-    return [write_csv(out / "modes.csv", res.columns()),
-            figures.save(out / "mode_shapes.png", plot_mode_shapes, res, count=count)]
+    files = [write_csv(out / "modes.csv", res.columns()),
+             write_csv(out / "mode_shapes.csv", res.shape_columns())]
+    pages = mode_pages(res)
+    for n, page in enumerate(pages, start=1):
+        name = "mode_shapes.png" if n == 1 else f"mode_shapes_{n}.png"
+        head = f"{title}: " if title else ""
+        files.append(figures.save(out / name, plot_mode_shapes, res, layout, page,
+                                  title=f"{head}mode shapes, page {n} of {len(pages)}"))
+    return files
 
 
 def write_response(result: ResponseResult, out: Path, name: str,
@@ -47,16 +60,20 @@ def write_response(result: ResponseResult, out: Path, name: str,
 
 
 def shown_meshes(res: SweepResult) -> list[str]:
-    """The meshes a sweep plot shows: the pair's mesh, or the first planet's sun mesh."""
-    return [m for m in res.mesh_names if m.startswith("s-p1") or m == "mesh"] or list(
-        res.mesh_names[:2])
+    """The meshes a sweep plot shows: the pair's mesh, or the first planet's sun mesh (both
+    halves of a herringbone set)."""
+    first = ("mesh", "s-p1", "s-p1L", "s-p1R")
+    return [m for m in res.mesh_names if m in first] or list(res.mesh_names[:2])
 
 
 def write_sweep(res: SweepResult, out: Path, name: str,
-                figures: FigureCache = NO_CACHE) -> list[Path]:
-    """``sweep.csv`` and ``sweep.png``."""
+                figures: FigureCache = NO_CACHE,
+                natural_frequencies: np.ndarray | None = None) -> list[Path]:
+    """``sweep.csv`` (every mesh: RMS, max, mean and alternating RMS force in N, dynamic
+    factor) and ``sweep.png`` (RMS force of :func:`shown_meshes`, with the model's
+    ``natural_frequencies`` in Hz marked)."""
     from pipeline.viz.dynamics import plot_sweep
 
     return [write_csv(out / "sweep.csv", res.columns()),
             figures.save(out / "sweep.png", plot_sweep, [res], [name], shown_meshes(res),
-                         title=name)]
+                         title=name, natural_frequencies=natural_frequencies)]

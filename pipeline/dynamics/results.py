@@ -160,3 +160,40 @@ class ModalResult:
         codes = np.array([MODE_KINDS.index(k) if k in MODE_KINDS else 5 for k in self.kinds])
         return {"frequency [Hz]": self.frequencies, "multiplicity [-]": self.multiplicity,
                 "kind [0 none,1 rigid,2 rot,3 trans,4 planet,5 mixed,6 axial]": codes}
+
+    def real_shapes(self) -> np.ndarray:
+        """Mode shapes as real vectors, shape (n_full, m), same units as ``shapes``.
+
+        Undamped non-gyroscopic modes are real already. A gyroscopic (complex) mode is
+        turned in phase so that its largest entry is real and positive, and its real part
+        is returned (the imaginary parts left are the gyroscopic coupling's, small where
+        the carrier turns slowly).
+        """
+        phi = np.asarray(self.shapes)
+        if not np.iscomplexobj(phi):
+            return phi.astype(float)
+        k = np.argmax(np.abs(phi), axis=0)
+        turn = np.exp(-1j * np.angle(phi[k, np.arange(phi.shape[1])]))
+        return (phi * turn).real
+
+    def shape_columns(self) -> dict[str, object]:
+        """Eigenvectors, one row per coordinate: its name, unit, modal mass weight, and the
+        mass-normalised shape of every mode (``mode <k> <f> Hz``, k as in ``modes.csv``).
+
+        Units of a row: translations (``.x``, ``.y``, ``.z``) m/kg^0.5, rotations
+        (``.theta``) rad/(kg m^2)^0.5, so that ``phi^T M phi = 1`` for every mode. The
+        column ``sqrt mass`` holds ``weights`` (kg^0.5 or (kg m^2)^0.5): ``sqrt mass *
+        shape`` is the kinetic-energy amplitude. Gyroscopic modes: see
+        :meth:`real_shapes`.
+        """
+        rot = [n.endswith(".theta") for n in self.dof_names]
+        cols: dict[str, object] = {
+            "dof": list(self.dof_names),
+            "unit": ["rad/(kg m^2)^0.5" if r else "m/kg^0.5" for r in rot],
+        }
+        if self.weights is not None:
+            cols["sqrt mass [kg^0.5 or (kg m^2)^0.5]"] = np.asarray(self.weights, float)
+        phi = self.real_shapes()
+        for k, f in enumerate(self.frequencies):
+            cols[f"mode {k} {f:.6g} Hz [row unit]"] = phi[:, k]
+        return cols

@@ -26,7 +26,7 @@ from functools import partial
 
 import numpy as np
 
-from pipeline.dynamics.harmonic_balance import harmonic_balance
+from pipeline.dynamics.hb_sweep import plan_sweep, sweep_point
 from pipeline.dynamics.integrate import build_propagator, integrate, steady_state
 from pipeline.dynamics.reduction import reduce_rigid_body_modes
 from pipeline.dynamics.results import Response
@@ -181,12 +181,9 @@ def _stats(resp: Response) -> np.ndarray:
     )
 
 
-def _point_hb(system: LinearPeriodicSystem, n_harmonics: int, f: float) -> np.ndarray:
-    return _stats(
-        harmonic_balance(
-            system.with_mesh_frequency(f), n_harmonics, samples=max(8 * n_harmonics, 256)
-        ).response
-    )
+def hb_samples(n_harmonics: int) -> int:
+    """Samples per period at which a harmonic-balance sweep evaluates the mesh forces."""
+    return max(8 * n_harmonics, 256)
 
 
 def _point_floquet(system: LinearPeriodicSystem, segments: int | None, f: float) -> np.ndarray:
@@ -225,9 +222,8 @@ def mesh_force_sweep(
     red = reduce_rigid_body_modes(system)
     if method == "harmonic_balance":
         check_int_range("n_harmonics", n_harmonics, 1, 5000)
-        stats = map_chunks(
-            partial(_point_hb, red, n_harmonics), f, executor, show_progress=show_progress
-        )
+        plan = plan_sweep(red, n_harmonics, hb_samples(n_harmonics))
+        stats = map_chunks(partial(sweep_point, plan), f, executor, show_progress=show_progress)
     elif method == "floquet":
         stats = map_chunks(
             partial(_point_floquet, red, segments), f, executor, show_progress=show_progress

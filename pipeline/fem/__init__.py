@@ -20,7 +20,7 @@
 The FE compliance sources of the contact solver are in :mod:`pipeline.contact`.
 """
 
-import importlib
+from pipeline._lazy import lazy_exports
 
 # name -> module: imported on first use (the FE modules pull in scikit-fem, Gmsh and
 # SciPy, seconds that a run which finds its FE tables in the cache does not need)
@@ -52,11 +52,6 @@ _EXPORTS = {
 }
 
 
-def __getattr__(name: str):
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'pipeline.fem' has no attribute {name!r}")
-    return getattr(importlib.import_module(module), name)
-
+__getattr__ = lazy_exports(__name__, _EXPORTS)
 
 __all__ = sorted(_EXPORTS)

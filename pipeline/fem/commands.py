@@ -22,11 +22,12 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
 from pipeline.fem.sector2d_size import check_size
 from pipeline.fem.sector_analysis import SectorResult, analyse_sector, sector_settings
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import atomic_write, write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.progress import progress
 from pipeline.validation import InputError
 
@@ -87,16 +88,18 @@ def run(args: argparse.Namespace) -> int:
     box = load(args)
     pair = box.require_pair()
     opts = options(box.fe, args)
-    out = output_dir(args, "fe")
+    target = output_dir(args, "fe")
     for gear in (pair.pinion, pair.gear):  # refuse models too big for the machine up front
         check_size(gear, sector_settings(gear, opts))
-    summary, files = {}, []
-    for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)), "2D sector FE"):
-        res = analyse_sector(gear, opts)
-        summary[tag] = res.summary()
-        files += write_gear(res, out, tag)
-    files.append(write_json(out / "fe_summary.json", summary))
-    write_run_record(out, {"gearbox": box.to_dict(), "fe": opts}, files,
-                     f"gearpipe fe {args.config}")
-    emit(args, summary, out)
+    summary = {}
+    with staged_output(target) as out:
+        files = []
+        for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)),
+                                  "2D sector FE"):
+            res = analyse_sector(gear, opts)
+            summary[tag] = res.summary()
+            files += write_gear(res, out, tag)
+        files.append(write_json(out / "fe_summary.json", summary))
+        record(out, args, box, files, inputs={"gearbox": box.to_dict(), "fe": opts})
+    emit(args, summary, target)
     return 0

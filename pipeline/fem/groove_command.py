@@ -13,15 +13,16 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, load, output_dir
-from pipeline.fem.groove.coupling import COUPLINGS
+from pipeline.commands_common import add_common_arguments, load, output_dir, record
 from pipeline.fem.groove.result import DOF_NAMES
-from pipeline.fem.groove.spec import TEETH_MODELS, GrooveSpec
+from pipeline.fem.groove.spec import COUPLINGS, TEETH_MODELS, GrooveSpec
 from pipeline.fem.groove.study import analyse_groove
-from pipeline.io import to_jsonable, write_csv, write_run_record
+from pipeline.io import to_jsonable, write_csv
+from pipeline.output_folder import staged_output
 from pipeline.validation import InputError
 
 
@@ -54,35 +55,19 @@ def _summary(spec: GrooveSpec, res, shift) -> str:
     return "\n".join(lines)
 
 
-def run(args: argparse.Namespace) -> int:
-    """Run the command; returns the process exit code."""
-    box = load(args)
-    if box.groove is None:
-        raise InputError(f"{args.config}: a relief-groove analysis needs a [groove] table "
-                         "(bottom_diameter_mm, ...) and a herringbone gear")
-    spec = box.groove
-    out = output_dir(args, "groove")
-    analysis = analyse_groove(spec)
-    res = analysis.result
-    shift = res.phase_shift(spec.sun_torque)
+def _write(analysis, rows: list, spec: GrooveSpec, out: Path) -> list[Path]:
+    """The result JSON, coupling matrix, twist render and (``--full``) the comparison."""
+    from pipeline.viz import save
+    from pipeline.viz.groove import render_twisted_body
+
+    res = rows[0]
     files = [res.save(out / "groove_stiffness.json")]
     files.append(write_csv(out / "coupling_matrix.csv",
                            {f"{n} [SI]": res.coupling_matrix[:, i] for i, n in
                             enumerate(DOF_NAMES)}))
-    from pipeline.viz import save
-    from pipeline.viz.groove import render_twisted_body
-
     torque = spec.sun_torque or 1e3 * res.torsional_stiffness * 1e-6
     files.append(save(render_twisted_body(analysis, torque), out / "twist.png"))
-    rows = [res]
-    if args.full:
-        for variant in (
-            dataclasses.replace(spec, teeth_model=[t for t in TEETH_MODELS
-                                                   if t != spec.teeth_model][0]),
-            dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
-                                else "distributed"),
-        ):
-            rows.append(analyse_groove(variant).result)
+    if len(rows) > 1:
         files.append(write_csv(out / "comparison.csv", {
             "teeth model (0 root cylinder, 1 helical teeth)": np.array(
                 [TEETH_MODELS.index(r.teeth_model) for r in rows]),
@@ -92,10 +77,35 @@ def run(args: argparse.Namespace) -> int:
             "K_j [N m^2]": np.array([r.equivalent_Kj for r in rows]),
             "n_dof": np.array([r.n_dof for r in rows]),
         }))
-    write_run_record(out, box.to_dict(), files, "gearpipe groove " + str(args.config))
+    return files
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the command; returns the process exit code."""
+    box = load(args)
+    if box.groove is None:
+        raise InputError(f"{args.config}: a relief-groove analysis needs a [groove] table "
+                         "(bottom_diameter_mm, ...) and a herringbone gear")
+    spec = box.groove
+    target = output_dir(args, "groove")
+    analysis = analyse_groove(spec)
+    res = analysis.result
+    shift = res.phase_shift(spec.sun_torque)
+    rows = [res]
+    if args.full:
+        for variant in (
+            dataclasses.replace(spec, teeth_model=[t for t in TEETH_MODELS
+                                                   if t != spec.teeth_model][0]),
+            dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
+                                else "distributed"),
+        ):
+            rows.append(analyse_groove(variant).result)
+    with staged_output(target) as out:
+        files = _write(analysis, rows, spec, out)
+        record(out, args, box, files)
     if args.json:
         payload = {"result": res.to_dict(), "phase_shift": dataclasses.asdict(shift),
-                   "variants": [r.to_dict() for r in rows[1:]], "outdir": str(out)}
+                   "variants": [r.to_dict() for r in rows[1:]], "outdir": str(target)}
         print(json.dumps(to_jsonable(payload)))
     else:
         print(_summary(spec, res, shift))
@@ -103,7 +113,7 @@ def run(args: argparse.Namespace) -> int:
             print(f"  variant {r.teeth_model}/{r.coupling}: k_t = {r.torsional_stiffness:.4e} "
                   f"N m/rad ({r.torsional_stiffness / res.torsional_stiffness - 1:+.2%}), "
                   f"K_j = {r.equivalent_Kj:.4e} N m^2, {r.n_dof} DOF")
-        print(f"  written to {out}")
+        print(f"  written to {target}")
     return 0
 
 

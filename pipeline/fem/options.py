@@ -1,4 +1,5 @@
-"""Options of the 2D tooth-sector FE stage (``[fe]`` table, ``gearpipe fe``)."""
+"""Options of the FE stage (``[fe]`` table, ``gearpipe fe``) and the names and defaults the
+FE settings take (kept here, free of scikit-fem and Gmsh imports, for the gearbox file)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,14 @@ from dataclasses import dataclass
 from pipeline.validation import check_choice, check_int_range, check_range
 
 PLANE_KINDS = ("plane_strain", "plane_stress")
+CUTS = ("clamped", "free")  # sector cut faces
+ENDS = ("free", "sliding")  # 3D end faces: traction-free or u_z = 0
+FACTOR_METHODS = ("auto", "cholmod", "cholespy", "splu")
+SOLVERS = FACTOR_METHODS + ("pmg-cg",)  # what configuration files may name
+# graded 2D meshes: element size on unloaded teeth and largest body size (m_n), growth
+GRADED_TOOTH = 0.6
+GRADED_BODY = 4.0
+GRADED_GROWTH = 0.5
 
 
 @dataclass(frozen=True)

@@ -42,6 +42,7 @@ from skfem import MeshTri2
 
 from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
+from pipeline.fem.options import GRADED_BODY, GRADED_GROWTH, GRADED_TOOTH
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector2d_size import check_size
 from pipeline.geometry.gear import GearSpec
@@ -49,9 +50,6 @@ from pipeline.validation import InputError, check_int_range, check_range
 
 # graded meshes (SectorSettings2D.graded): unloaded-tooth outline size and largest size in
 # m_n, size growth per distance (module docstring, "Graded meshes")
-GRADED_TOOTH = 0.6
-GRADED_BODY = 4.0
-GRADED_GROWTH = 0.5
 THIN = 4  # outline point stride on unloaded teeth of graded meshes
 
 

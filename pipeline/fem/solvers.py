@@ -48,11 +48,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis
 
+from pipeline.fem.options import FACTOR_METHODS, SOLVERS
 from pipeline.fem.pmultigrid import PMultigridCG
 from pipeline.validation import InputError, check_choice
-
-FACTOR_METHODS = ("auto", "cholmod", "cholespy", "splu")
-SOLVERS = FACTOR_METHODS + ("pmg-cg",)  # what configuration files may name
 
 
 def cholmod_available() -> bool:

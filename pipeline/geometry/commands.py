@@ -6,9 +6,10 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
 from pipeline.geometry.analysis import GeometryResult, analyse_geometry
-from pipeline.io import write_json, write_run_record
+from pipeline.io import write_json
+from pipeline.output_folder import staged_output
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
@@ -39,11 +40,12 @@ def write_geometry(res: GeometryResult, out: Path, prefix: str = "",
 
 def run(args: argparse.Namespace) -> int:
     box = load(args)
+    target = output_dir(args, "geometry")
     res = analyse_geometry(box.require_pair(), box.assembly_errors)
-    out = output_dir(args, "geometry")
-    files = write_geometry(res, out)
     summary = res.summary()
-    files.append(write_json(out / "geometry.json", summary))
-    write_run_record(out, box.to_dict(), files, f"gearpipe geometry {args.config}")
-    emit(args, summary, out)
+    with staged_output(target) as out:
+        files = write_geometry(res, out)
+        files.append(write_json(out / "geometry.json", summary))
+        record(out, args, box, files)
+    emit(args, summary, target)
     return 0

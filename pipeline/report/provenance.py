@@ -2,50 +2,27 @@
 
 The configuration hash is :func:`pipeline.io.content_hash` of the gearbox inputs (the
 same frozen inputs every stage received), the file hash the SHA-256 of the gearbox file's
-bytes; the code revision is the git commit of the source tree the package runs from (with
-``+modified`` when its tracked files differ from that commit), or "not a git checkout";
-library and solver versions from :func:`pipeline.io.library_versions` and the sparse
-direct solvers that are importable.
+bytes; the code revision, the library, solver and BLAS versions come from
+:mod:`pipeline.provenance` (the same as ``run.json``), flattened to one text per entry.
 """
 
 from __future__ import annotations
 
-import subprocess
 from datetime import UTC, datetime
-from functools import lru_cache
-from importlib import metadata
-from pathlib import Path
 from typing import Any
 
-from pipeline.io import content_hash, library_versions
+from pipeline.io import content_hash
+from pipeline.provenance import code_revision as _code
+from pipeline.provenance import library_versions
 
-_SOLVERS = ("scikit-sparse", "cholespy", "python-mumps", "pyamg")
 
-
-@lru_cache(maxsize=1)
 def code_revision() -> str:
-    """Git commit of the package's source tree (``+modified`` if dirty), or a note why not."""
-    root = Path(__file__).resolve().parents[2]
-    try:
-        head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True,
-                              text=True, timeout=10, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain",
-                                "--untracked-files=no"], capture_output=True, text=True,
-                               timeout=10, check=True).stdout.strip()
-    except (OSError, subprocess.SubprocessError):
-        return "not a git checkout"
-    return f"{head}{'+modified' if dirty else ''}"
-
-
-def solver_versions() -> dict[str, str]:
-    """Versions of the sparse solver packages (or "not installed")."""
-    out = {}
-    for name in _SOLVERS:
-        try:
-            out[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            out[name] = "not installed"
-    return out
+    """``git describe`` of the source tree (with ``-dirty``) and its commit, else the package
+    version and the SHA-256 of its source."""
+    rev = _code()
+    if rev.get("git_commit"):
+        return f"{rev.get('git_describe') or ''} ({rev['git_commit']})".strip()
+    return f"gearpipe {rev['version']}, source SHA-256 {rev['source_sha256'][:16]}"
 
 
 def provenance(gearbox_inputs: Any, *, file_sha256: str | None, command: str,
@@ -59,10 +36,12 @@ def provenance(gearbox_inputs: Any, *, file_sha256: str | None, command: str,
     command : the command line that made the report.
     run_seconds : wall time of the run that computed the results, s.
     """
+    versions = {k: ", ".join(v) if isinstance(v, list) else str(v)
+                for k, v in library_versions().items()}
     return {"configuration_hash": content_hash(gearbox_inputs),
             "gearbox_file_sha256": file_sha256 or "built in Python",
             "code_revision": code_revision(),
             "command": command,
             "time_utc": datetime.now(UTC).isoformat(timespec="seconds"),
             "run_time_s": float(run_seconds),
-            "versions": {**library_versions(), **solver_versions()}}
+            "versions": versions}

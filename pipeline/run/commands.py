@@ -20,11 +20,13 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
 from pipeline.fem.cache import default_cache_dir
-from pipeline.io import write_json, write_run_record
+from pipeline.io import write_json
+from pipeline.output_folder import staged_output
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
+from pipeline.viz.figure_queue import parallel_figures
 
 
 def figure_cache(options: RunOptions) -> FigureCache:
@@ -69,6 +71,7 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
 def write_run(result: RunResult, out: Path, full: bool = False,
               figures: FigureCache = NO_CACHE) -> list[Path]:
     """All files of a run (module docstring); returns them."""
+    from pipeline.dynamics.layout import model_layout
     from pipeline.dynamics.outputs import write_modes, write_response, write_sweep
 
     box = result.gearbox
@@ -79,32 +82,33 @@ def write_run(result: RunResult, out: Path, full: bool = False,
         files += _write_mesh(label, st, box, out, prefix, figures)
     dyn = result.dynamics
     if dyn is not None:
-        files += write_modes(dyn.modes, out, 16 if full else 8, figures)
+        files += write_modes(dyn.modes, out, model_layout(dyn.model), figures, box.name)
         files += write_response(dyn.response, out, box.name, figures)
-        files += write_sweep(dyn.sweep, out, box.name, figures)
+        files += write_sweep(dyn.sweep, out, box.name, figures,
+                             natural_frequencies=dyn.modes.frequencies)
     return files
 
 
 def run(args: argparse.Namespace, command: str = "run") -> int:
     """``gearpipe run`` (and ``gearpipe report``, the same files in ``results/<stem>/report``)."""
     box = load(args)
+    target = output_dir(args, command)
     options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
-    out = output_dir(args, command)
-    figures = figure_cache(options)
-    with result.log.step("writing tables and figures", long=True):
-        files = write_run(result, out, args.full, figures)
-    if result.meshes:
-        from pipeline.report import write_reports
+    with staged_output(target) as out:
+        with result.log.step("writing tables and figures", long=True), \
+                parallel_figures(figure_cache(options)) as figures:
+            files = write_run(result, out, args.full, figures)
+        if result.meshes:  # the report embeds the figures drawn above: after the queue
+            from pipeline.report import write_reports
 
-        with result.log.step("load distribution reports", long=True):
-            files += write_reports(result, out, figures,
-                                   command=f"gearpipe {command} {args.config}",
-                                   show_progress=options.show_progress)
-    summary = result.summary()
-    files.append(write_json(out / "summary.json", summary))
-    write_run_record(out, {"gearbox": box.to_dict(), "options": options}, files,
-                     f"gearpipe {command} {args.config}")
-    emit(args, summary, out)
+            with result.log.step("load distribution reports", long=True):
+                files += write_reports(result, out, figure_cache(options),
+                                       command=f"gearpipe {command} {args.config}",
+                                       show_progress=options.show_progress)
+        summary = result.summary()
+        files.append(write_json(out / "summary.json", summary))
+        record(out, args, box, files)
+    emit(args, summary, target)
     return 0

@@ -8,8 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
-from pipeline.io import write_csv, write_json, write_run_record
+from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
+from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
 from pipeline.validation import check_int_range
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
@@ -46,16 +47,17 @@ def run(args: argparse.Namespace) -> int:
     check_int_range("--harmonics", args.harmonics, 1, 1000)
     box = load(args)
     pair = box.require_pair()
+    target = output_dir(args, "stiffness")
     res = analyse_stiffness(pair, box.operation, box.stiffness,
                             assembly_errors=box.assembly_errors)
-    out = output_dir(args, "stiffness")
     summary = res.summary(args.harmonics)
     title = (f"{box.name}: z {pair.pinion.teeth}/{pair.gear.teeth}, "
              f"m_n {pair.pinion.module * 1e3:g} mm, "
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg, "
              f"friction {box.stiffness.friction}")
-    files = write_stiffness(res, out, title)
-    files.append(write_json(out / "mesh_stiffness.json", summary))
-    write_run_record(out, box.to_dict(), files, f"gearpipe stiffness {args.config}")
-    emit(args, summary, out)
+    with staged_output(target) as out:
+        files = write_stiffness(res, out, title)
+        files.append(write_json(out / "mesh_stiffness.json", summary))
+        record(out, args, box, files)
+    emit(args, summary, target)
     return 0

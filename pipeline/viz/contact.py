@@ -6,6 +6,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.contact.results import LoadedMeshCycle
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 
 def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
@@ -13,14 +14,15 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
     load sharing over the cycle, three panels; returns the figure."""
     if fig is None:
-        fig = Figure(figsize=(7, 8), layout="constrained")
+        fig = Figure(figsize=(9, 8), layout="constrained")
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
-    ax[0].plot(deg, cyc.mesh_stiffness * 1e-9, label="LTCA tangent dP/dx")
-    ax[0].plot(deg, cyc.mesh_stiffness_secant * 1e-9, "--", label="LTCA secant P/x")
-    ax[0].plot(deg, k_slice * 1e-9, ":", label="slice method (pipeline.stiffness)")
-    ax[0].set_ylabel("mesh stiffness [1e9 N/m = kN/um]")
-    ax[0].legend(fontsize=8)
+    k = stiffness_in_plot_unit
+    ax[0].plot(deg, k(cyc.mesh_stiffness), label="LTCA tangent dP/dx")
+    ax[0].plot(deg, k(cyc.mesh_stiffness_secant), "--", label="LTCA secant P/x")
+    ax[0].plot(deg, k(k_slice), ":", label="slice method (pipeline.stiffness)")
+    ax[0].set_ylabel(stiffness_label())
+    ax[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax[1].plot(deg, cyc.transmission_error * 1e6)
     ax[1].set_ylabel("loaded static TE [um]")
     for j, k in enumerate(cyc.pair_index):
@@ -28,6 +30,6 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
             ax[2].plot(deg, cyc.load_share[:, j], label=f"tooth pair {k}")
     ax[2].set_ylabel("load share [-]")
     ax[2].set_xlabel("pinion angle [deg]")
-    ax[2].legend(fontsize=8)
+    ax[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title
     return fig

@@ -1,4 +1,5 @@
-"""Dynamic results: time histories, spectra, harmonic contributions, sweeps, mode shapes.
+"""Dynamic results: time histories, spectra, harmonic contributions, sweeps (mode shapes:
+:mod:`pipeline.viz.modes`).
 
 Units on the axes: time in mesh periods, DTE in um, forces in kN, frequencies in
 Hz. Every function draws into ``ax`` (or ``fig`` for several panels) when given
@@ -13,7 +14,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
+from pipeline.dynamics.results import HarmonicResponse, Response
 
 
 def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
@@ -52,21 +53,67 @@ def plot_time_history(
     return fig
 
 
+def shown_orders(amplitudes: np.ndarray, threshold: float = 0.01, at_least: int = 10) -> int:
+    """Highest harmonic order a spectrum plot shows.
+
+    Parameters
+    ----------
+    amplitudes : shape (..., H), amplitudes (any unit) of orders 1..H; leading axes are
+        several curves (meshes, cases), all judged together.
+    threshold : orders whose amplitude is at least ``threshold`` times the largest one are
+        all shown, wherever they lie (a planetary set's order 7 can be as large as order 1).
+    at_least : the plot shows orders 1..``at_least`` in any case (within 1..H).
+
+    Returns
+    -------
+    The highest order shown, in [1, H].
+    """
+    a = np.abs(np.atleast_2d(np.asarray(amplitudes, dtype=float)))
+    h = a.shape[-1]
+    big = np.flatnonzero((a >= threshold * a.max()).any(axis=tuple(range(a.ndim - 1))))
+    last = int(big[-1]) + 1 if a.max() > 0 and big.size else 0
+    return max(1, min(h, max(at_least, last)))
+
+
+def _order_axis(ax: Axes, max_order: int) -> None:
+    """x from order 1 to ``max_order``: a tick at every order (every 2nd, 5th, ... when many)."""
+    step = next(s for s in (1, 2, 5, 10, 20, 50, 100, 10**9) if max_order / s <= 20)
+    ax.set_xticks(np.r_[1, np.arange(step, max_order + 1, step)] if step > 1
+                  else np.arange(1, max_order + 1))
+    ax.set_xlim(0.4, max_order + 0.6)
+
+
 def plot_spectrum(
     responses: Sequence[Response],
     labels: Sequence[str],
     mesh: str | None = None,
-    max_order: int = 8,
+    max_order: int | None = None,
     title: str = "",
     ax: Axes | None = None,
 ) -> Axes:
-    """DTE amplitude spectrum (um) against frequency in multiples of the mesh frequency."""
+    """DTE amplitude spectrum (um) against frequency in multiples of the mesh frequency.
+
+    ``mesh`` names the mesh (default: the first of each response); ``max_order`` the
+    highest order drawn (default: :func:`shown_orders` over all responses, so every
+    component of at least 1 % of the largest is shown, and at least orders 1-10). The
+    title names the mesh.
+    """
     ax = _axes(ax)
     width = 0.8 / max(len(responses), 1)
-    for j, (r, lab) in enumerate(zip(responses, labels, strict=True)):
+    spectra = []
+    for r in responses:
         i = 0 if mesh is None else r.mesh(mesh)
         f, a = r.dte_spectrum(i)
-        order = f * r.period
+        spectra.append((f * r.period, a))
+    if max_order is None:
+        top = max(int(np.floor(o.max() + 0.5)) for o, _ in spectra)
+        binned = np.zeros((len(spectra), max(top, 1)))
+        for j, (o, a) in enumerate(spectra):
+            k = np.floor(o + 0.5).astype(int)
+            ok = (k >= 1) & (k <= binned.shape[1])
+            np.maximum.at(binned[j], k[ok] - 1, a[ok])
+        max_order = shown_orders(binned)
+    for j, ((order, a), lab) in enumerate(zip(spectra, labels, strict=True)):
         keep = (order > 0.5) & (order <= max_order + 0.5)
         ax.bar(
             order[keep] + (j - (len(responses) - 1) / 2) * width,
@@ -74,9 +121,11 @@ def plot_spectrum(
             width=width,
             label=lab,
         )
-    ax.set_xlabel("frequency / mesh frequency")
+    names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
+    ax.set_xlabel("frequency / mesh frequency (mesh order) [-]")
     ax.set_ylabel("DTE amplitude [um]")
-    ax.set_title(title or "DTE spectrum")
+    ax.set_title(title or f"DTE spectrum, mesh {', '.join(names)}")
+    _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return ax
@@ -86,14 +135,22 @@ def plot_harmonic_contributions(
     results: Sequence[HarmonicResponse],
     labels: Sequence[str],
     mesh: int = 0,
-    max_order: int = 6,
+    max_order: int | None = None,
     title: str = "",
     ax: Axes | None = None,
 ) -> Axes:
-    """Share of each harmonic order in the DTE (the "contribution proportion" of
-    Jin et al. 2018)."""
+    """Share of each harmonic order in the DTE of mesh row ``mesh`` (the "contribution
+    proportion" of Jin et al. 2018).
+
+    ``max_order`` is the highest order drawn (default: :func:`shown_orders`, every order
+    with at least 1 % of the largest share, and at least orders 1-10). The title names
+    the mesh.
+    """
     ax = _axes(ax)
     width = 0.8 / max(len(results), 1)
+    if max_order is None:
+        h = min(hr.dte_contribution.shape[1] for hr in results)
+        max_order = shown_orders(np.array([hr.dte_contribution[mesh, :h] for hr in results]))
     for j, (hr, lab) in enumerate(zip(results, labels, strict=True)):
         o = np.arange(1, min(max_order, hr.dte_contribution.shape[1]) + 1)
         ax.bar(
@@ -102,9 +159,11 @@ def plot_harmonic_contributions(
             width=width,
             label=lab,
         )
-    ax.set_xlabel("harmonic order")
+    names = sorted({hr.response.mesh_names[mesh] for hr in results})
+    ax.set_xlabel("harmonic order (multiple of the mesh frequency) [-]")
     ax.set_ylabel("contribution to DTE [-]")
-    ax.set_title(title)
+    ax.set_title(title or f"harmonic contributions to the DTE, mesh {', '.join(names)}")
+    _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return ax
@@ -112,56 +171,46 @@ def plot_harmonic_contributions(
 
 def plot_sweep(
     sweeps: Sequence, labels: Sequence[str], meshes: Sequence[str], title: str = "",
-    fig: Figure | None = None,
+    natural_frequencies: np.ndarray | None = None, fig: Figure | None = None,
 ) -> Figure:
-    """RMS dynamic mesh force (kN) against mesh frequency, one panel per mesh."""
-    fig, ax = _panels(fig, len(meshes), 1, (8, 3.2 * len(meshes)))
-    for k, m in enumerate(meshes):
-        for sw, lab in zip(sweeps, labels, strict=True):
-            ax[k, 0].plot(
-                sw.frequencies, sw.rms_force[sw.mesh_names.index(m)] / 1e3, label=lab, lw=1
-            )
-        ax[k, 0].set_ylabel(f"RMS force {m} [kN]")
-        ax[k, 0].grid(alpha=0.3)
-    ax[-1, 0].set_xlabel("mesh frequency [Hz]")
-    ax[0, 0].legend(fontsize=8)
-    ax[0, 0].set_title(title)
-    return fig
+    """RMS dynamic mesh force (kN, solid) and its alternating part (RMS of the force minus
+    its mean, dashed) against mesh frequency (Hz), one panel per mesh.
 
-
-def plot_mode_shapes(
-    result: ModalResult, count: int = 8, skip_rigid: bool = True, fig: Figure | None = None
-) -> Figure:
-    """Bar charts of the first ``count`` mode shapes.
-
-    Each coordinate is shown as its kinetic-energy amplitude ``sqrt(m_i) phi_i`` (so
-    rotations and translations compare), normalised to the largest entry.
+    Every y axis starts at 0. ``natural_frequencies`` (Hz, the undamped modes of the
+    model) are marked as vertical lines where the mesh frequency equals them (first-order
+    resonance). A panel whose curves equal those of an earlier panel to 1e-9 says so (the
+    left and right halves of a symmetric herringbone set carry equal forces).
     """
-    idx = [
-        k
-        for k in range(result.frequencies.size)
-        if not (skip_rigid and result.frequencies[k] == 0.0)
-    ][:count]
-    cols = 2
-    rows = max(1, (len(idx) + 1) // cols)
-    n = len(result.dof_names)
-    fig, ax = _panels(fig, rows, cols, (12, 2.6 * rows))
-    for j, k in enumerate(idx):
-        a = ax[j // cols, j % cols]
-        phi = result.shapes[:, k].real
-        if result.weights is not None:
-            phi = phi * result.weights
-        a.bar(np.arange(n), phi / np.abs(phi).max(), color="tab:blue")
-        kind = result.kinds[k] if result.kinds[k] else ""
-        a.set_title(
-            f"{result.frequencies[k]:.1f} Hz {kind} (x{result.multiplicity[k]})", fontsize=9
-        )
-        a.set_xticks(np.arange(n))
-        a.set_xticklabels(result.dof_names, rotation=90, fontsize=5 if n > 30 else 7)
-        a.set_ylim(-1.05, 1.05)
-        if j % cols == 0:
-            a.set_ylabel("sqrt(m) phi, normalised [-]", fontsize=8)
+    fig, ax = _panels(fig, len(meshes), 1, (8, 3.2 * len(meshes)))
+    fmin = min(float(sw.frequencies[0]) for sw in sweeps)
+    fmax = max(float(sw.frequencies[-1]) for sw in sweeps)
+    fn = np.asarray([] if natural_frequencies is None else natural_frequencies, dtype=float)
+    fn = np.unique(np.round(fn[(fn > 0) & (fn >= fmin) & (fn <= fmax)], 6))
+    curves: list[np.ndarray] = []
+    for k, m in enumerate(meshes):
+        a = ax[k, 0]
+        for j, f in enumerate(fn):
+            a.axvline(f, color="0.55", ls=":", lw=0.8,
+                      label="natural frequencies (undamped)" if j == 0 else None)
+        y = np.concatenate([sw.rms_force[sw.mesh_names.index(m)] for sw in sweeps])
+        for c, (sw, lab) in enumerate(zip(sweeps, labels, strict=True)):
+            i = sw.mesh_names.index(m)
+            a.plot(sw.frequencies, sw.rms_force[i] / 1e3, color=f"C{c}", lw=1.2,
+                   label=f"{lab}: RMS")
+            a.plot(sw.frequencies, sw.rms_alternating[i] / 1e3, color=f"C{c}", lw=1, ls="--",
+                   label=f"{lab}: alternating RMS (mean removed)")
+        same = [meshes[i] for i, c in enumerate(curves)
+                if np.allclose(c, y, rtol=1e-9, atol=1e-9 * np.abs(y).max())]
+        curves.append(y)
+        a.set_ylabel(f"mesh force {m} [kN]")
+        if same:
+            a.set_title(f"{m}: equal to {same[0]} (symmetric model)", fontsize=9)
+        a.set_ylim(bottom=0.0, top=1.08 * float(y.max()) / 1e3)
+        a.set_xlim(fmin, fmax)
         a.grid(alpha=0.3)
-    for j in range(len(idx), rows * cols):
-        ax[j // cols, j % cols].axis("off")
+    ax[-1, 0].set_xlabel("mesh frequency [Hz]")
+    handles, names = ax[0, 0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="outside lower center", fontsize=8,
+               ncol=2 if len(names) > 3 else len(names))
+    fig.suptitle(title)
     return fig

@@ -16,14 +16,18 @@ import inspect
 import shutil
 import sys
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, fields, is_dataclass
+from dataclasses import dataclass, field, fields, is_dataclass
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from pipeline.io import atomic_write
 from pipeline.viz.saving import save
+
+if TYPE_CHECKING:
+    from pipeline.viz.figure_queue import FigureQueue
 
 
 def _feed(h, obj: Any) -> None:
@@ -79,26 +83,35 @@ class FigureCache:
     ----------
     folder : cache folder (e.g. ``<cache>/figures``), or ``None``.
     dpi : resolution, dots per inch (part of the key).
+    queue : if given, figures not in the cache are queued there instead of drawn at once
+        (:func:`pipeline.viz.figure_queue.parallel_figures` draws them side by side).
     """
 
     folder: Path | None = None
     dpi: int = 130
+    queue: FigureQueue | None = field(default=None, compare=False)
 
     def save(self, path: str | Path, draw: Callable[..., Any], *args: Any, **kwargs: Any
              ) -> Path:
         """Write ``draw(*args, **kwargs)`` as PNG to ``path``, or copy it from the cache."""
-        if self.folder is None:
-            return save(draw(*args, **kwargs), path, self.dpi)
-        key = data_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
-                        args, kwargs)
-        cached = Path(self.folder) / f"fig-{key}.png"
-        if cached.is_file() and cached.stat().st_size > 0:
-            return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+        cached = None
+        if self.folder is not None:
+            key = data_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
+                            args, kwargs)
+            cached = Path(self.folder) / f"fig-{key}.png"
+            if cached.is_file() and cached.stat().st_size > 0:
+                return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+        job = partial(self._draw, Path(path), cached, draw, args, kwargs)
+        return job() if self.queue is None else self.queue.add(path, job)
+
+    def _draw(self, path: Path, cached: Path | None, draw: Callable[..., Any],
+              args: tuple, kwargs: dict) -> Path:
         out = save(draw(*args, **kwargs), path, self.dpi)
-        try:
-            atomic_write(cached, lambda p: shutil.copyfile(out, p))
-        except OSError:
-            pass  # a read-only or full cache only costs the next run a redraw
+        if cached is not None:
+            try:
+                atomic_write(cached, lambda p: shutil.copyfile(out, p))
+            except OSError:
+                pass  # a read-only or full cache only costs the next run a redraw
         return out
 
 

@@ -44,21 +44,28 @@ def plot_line_of_action(pair: GearPair, title: str = "", ax: Axes | None = None)
 
 
 def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None) -> Axes:
-    """Contact lines on the plane of action at a few positions over one mesh cycle."""
+    """Contact lines on the plane of action at a few positions over one mesh cycle.
+
+    Axes in mm at equal scale (the plane of action as it is); the legend sits outside
+    the plane, to the right, so it never covers a line.
+    """
     if ax is None:
-        ax = Figure(figsize=(6, 4)).subplots()
+        length, b = pair.path_length, pair.face_width
+        height = min(8.0, max(2.5, 5.5 * b / length))
+        ax = Figure(figsize=(8.0, height + 1.2), layout="constrained").subplots()
     b = pair.face_width * 1e3
     ax.add_patch(Rectangle((pair.s_start * 1e3, 0), pair.path_length * 1e3, b, fill=False,
-                           ec="k", lw=1))
+                           ec="k", lw=1, label="path of contact x face width"))
     for i, s0 in enumerate(pair.mesh_cycle(n_positions)):
         for j, seg in enumerate(pair.contact_lines(float(s0))):
             ax.plot(seg[:, 0] * 1e3, seg[:, 1] * 1e3, color=f"C{i}", lw=2,
                     label=f"t = {i}/{n_positions} T_m" if j == 0 else None)
-    ax.axvline(pair.s_pitch * 1e3, color="k", ls="--", lw=1)
+    ax.axvline(pair.s_pitch * 1e3, color="k", ls="--", lw=1, label="pitch point")
+    ax.set_aspect("equal")
     ax.set_xlabel("roll coordinate s [mm]")
     ax.set_ylabel("face width position z [mm]")
     ax.set_title("Contact lines on the plane of action")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
 
 

@@ -1,5 +1,5 @@
-"""Tooth-surface load map pictures: the 3D pinion tooth coloured by the unit load (pyvista)
-and the 2D map over the plane of action (matplotlib).
+"""Tooth-surface load map pictures: the 3D pinion and gear teeth coloured by the unit load
+(pyvista) and the 2D map over the plane of action (matplotlib), both from 0 N/mm.
 
 The data (:class:`~pipeline.contact.loadmap.FlankLoadMap`, the flank surface and
 the VTU file) live in :mod:`pipeline.contact.loadmap`. pyvista costs seconds to
@@ -12,55 +12,143 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from pipeline.contact.loadmap import FlankLoadMap, load_map_grid, tooth_body_grid
+from pipeline.contact.loadmap import (
+    FlankLoadMap,
+    load_map_grid,
+    mapped_members,
+    tooth_body_grid,
+)
 from pipeline.geometry.pair import GearPair
 
 
-def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
-                    window_size: tuple[int, int] = (1000, 800)):
-    """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth, colour bar in N/mm.
+def _fit_camera(plotter, bounds, aspect: float, margin: float = 1.08) -> None:
+    """Parallel projection looking at the -x side (tip up, z to the right), scaled so the
+    object fills a view of width/height ``aspect``, shifted left to leave the colour bar
+    room on the right."""
+    x0, x1, y0, y1, z0, z1 = bounds
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2])
+    width, height = z1 - z0, y1 - y0
+    plotter.enable_parallel_projection()
+    cam = plotter.camera
+    half = margin * max(height / 2, width / (2 * aspect))
+    centre = centre + [0.0, 0.0, 0.06 * aspect * half]  # object left of the bar
+    cam.focal_point = tuple(centre)
+    cam.position = tuple(centre + np.array([-10.0 * max(width, height), 0.0, 0.0]))
+    cam.up = (0.0, 1.0, 0.0)
+    cam.parallel_scale = half
+    plotter.reset_camera_clipping_range()
 
-    Save it with :func:`pipeline.viz.save` (which also closes it).
+
+def _rulers(plotter, pair: GearPair, gear, z: np.ndarray, radius: np.ndarray,
+            x_shift: float) -> None:
+    """Face position ticks (mm) under the tooth and the contact radii of the loaded part
+    of the flank (mm) at its left end: labels pinned to points, so they face the viewer."""
+    b = pair.face_width * 1e3
+    y_low = gear.root_radius * 1e3 - 0.18 * gear.module * 1e3
+    ticks = np.linspace(0.0, b, 6)
+    pts = np.column_stack([np.full(ticks.size, x_shift), np.full(ticks.size, y_low), ticks])
+    plotter.add_point_labels(pts, [f"{t:.0f}" for t in ticks], show_points=False,
+                             shape=None, font_size=14, always_visible=True,
+                             justification_horizontal="center")
+    plotter.add_point_labels(np.array([[x_shift, y_low - 0.55 * gear.module * 1e3, b / 2]]),
+                             ["face position z [mm]"], show_points=False, shape=None,
+                             font_size=14, always_visible=True,
+                             justification_horizontal="center")
+    r = np.array([radius.min(), radius.max()]) * 1e3
+    pts = np.column_stack([np.full(2, x_shift), r, np.full(2, -0.012 * b)])
+    plotter.add_point_labels(pts, [f"r = {v:.1f} mm" for v in r], show_points=False,
+                             shape=None, font_size=13, always_visible=True,
+                             justification_horizontal="right",
+                             justification_vertical="center")
+
+
+def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
+                    window_width: int = 1400):
+    """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth and, for an
+    external gear, the gear tooth below it (one row each), colour bar in N/mm from 0.
+
+    Each flank is seen from outside the tooth, tip up, face position z from left to
+    right as in :func:`plot_load_map_2d`, at true scale (parallel projection fitted to
+    its row). The radii of the loaded band (start and end of contact) are marked at its
+    left end. The colour scale runs from 0 to the largest unit load of the cycle (both
+    flanks carry the same load at a contact point). Save it with
+    :func:`pipeline.viz.save` (which also closes it).
     """
     import pyvista as pv
 
-    flank = load_map_grid(pair, load_map)
-    gear = pair.pinion
-    body = tooth_body_grid(gear, load_map.z)
-    # lift the coloured flank a hair off the grey tooth so the two do not z-fight
-    centre = np.array([0.0, gear.root_radius * 1e3, 0.0])
-    d = flank.points - centre
-    d[:, 2] = 0.0
-    flank.points = flank.points + 2e-3 * gear.module * 1e3 * d / np.linalg.norm(
-        d, axis=1, keepdims=True)
-    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
+    members = mapped_members(pair)
+    p_max = float(load_map.unit_load.max()) * 1e-3
+    b = pair.face_width * 1e3
+    height = max((g.tip_radius_ - g.root_radius) * 1e3 + 1.6 * g.module * 1e3
+                 for g in (pair.pinion, pair.gear))
+    view = 0.78  # share of the row width the tooth may take (the colour bar takes the rest)
+    aspect = float(np.clip(1.1 * b / height / view, 1.6, 7.0))  # row width / height
+    row_h = int(window_width / aspect)
+    title_h = 60 if title else 0
+    weights = [row_h + title_h] + [row_h] * (len(members) - 1)
+    plotter = pv.Plotter(off_screen=True, shape=(len(members), 1), border=False,
+                         row_weights=weights,
+                         window_size=[window_width, sum(weights)])
     try:
-        plotter.add_mesh(body, color="lightgrey", smooth_shading=True)
-        plotter.add_mesh(flank, scalars="unit_load_N_per_mm", cmap="viridis",
-                         scalar_bar_args={"title": "unit load p [N/mm]", "vertical": False,
-                                          "position_x": 0.25, "position_y": 0.04,
-                                          "width": 0.5, "height": 0.07, "fmt": "%.0f"})
-        # x spans only the tooth thickness and is seen end-on: its title, no crowded labels
-        plotter.show_bounds(xtitle="x", ytitle="y [mm]", ztitle="face z [mm]",
-                            location="outer", grid=False, show_xlabels=False, n_ylabels=3,
-                            fmt="%.0f")
-        if title:
-            plotter.add_text(title, font_size=10)
-        plotter.view_vector((1.0, 0.25, 0.6), viewup=(0.0, 1.0, 0.0))
+        for i, member in enumerate(members):
+            plotter.subplot(i, 0)
+            gear = pair.pinion if member == "pinion" else pair.gear
+            flank = load_map_grid(pair, load_map, member)
+            body = tooth_body_grid(gear, load_map.z)
+            # lift the coloured flank a hair off the grey tooth so the two do not z-fight
+            centre = np.array([0.0, gear.root_radius * 1e3, 0.0])
+            d = flank.points - centre
+            d[:, 2] = 0.0
+            flank.points = flank.points + 2e-3 * gear.module * 1e3 * d / np.linalg.norm(
+                d, axis=1, keepdims=True)
+            plotter.add_mesh(body, color="lightgrey", smooth_shading=True)
+            plotter.add_mesh(flank, scalars="unit_load_N_per_mm", cmap="viridis",
+                             clim=(0.0, p_max), show_scalar_bar=False)
+            _rulers(plotter, pair, gear, load_map.z, load_map.radius(member),
+                    body.bounds[0] - 1.0)
+            name = "" if gear.name == member else f" ({gear.name})"
+            note = "; the internal gear's flank is not drawn" if pair.gear.internal else ""
+            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}",
+                             position="lower_left", font_size=10)
+            row_aspect = window_width / (weights[i] if i else row_h)
+            _fit_camera(plotter, (*body.bounds[:2], body.bounds[2] - 1.3 * gear.module * 1e3,
+                                  *body.bounds[3:]), row_aspect * view)
+            if i == 0 and title_h:  # keep the title band above the tooth free
+                cam = plotter.camera
+                grow = cam.parallel_scale * (weights[0] / row_h - 1.0)
+                cam.parallel_scale += grow
+                cam.focal_point = tuple(np.add(cam.focal_point, [0.0, grow, 0.0]))
+                cam.position = tuple(np.add(cam.position, [0.0, grow, 0.0]))
+                plotter.add_text(title, position="upper_edge", font_size=9)
+        plotter.subplot(0, 0)
+        plotter.add_scalar_bar(title="unit load p [N/mm]\n", vertical=True, n_labels=6,
+                                     fmt="%.0f", position_x=0.85, position_y=0.06,
+                                     width=0.06, height=0.62 * row_h / weights[0] + 0.2,
+                                     title_font_size=14, label_font_size=12)
     except BaseException:
         plotter.close()
         raise
     return plotter
 
 
+def load_map_title(title: str, modifications: str) -> str:
+    """Title of the load maps: ``title``, then what the map shows and the modifications."""
+    return (f"{title}\nunit load, envelope over the mesh cycle; modifications: "
+            f"{modifications}")
+
+
 def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = None) -> Axes:
-    """Map of the unit load over the plane of action (N/mm); returns the Axes."""
+    """Map of the unit load (N/mm, colour scale from 0) over the pinion flank: face position
+    z (mm) to the right, pinion contact radius (mm) up, as :func:`render_load_map` shows the
+    flank; returns the Axes."""
     if ax is None:
-        ax = Figure(figsize=(7, 4.5)).subplots()
-    mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3,
-                         load_map.unit_load * 1e-3, shading="gouraud", cmap="viridis")
+        ax = Figure(figsize=(7.5, 4.8), layout="constrained").subplots()
+    p = load_map.unit_load * 1e-3
+    mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3, p,
+                         shading="gouraud", cmap="viridis", vmin=0.0, vmax=float(p.max()))
     ax.figure.colorbar(mesh, ax=ax, label="unit load p [N/mm]")
     ax.set_xlabel("face position z [mm]")
     ax.set_ylabel("pinion contact radius [mm]")
-    ax.set_title(title or "unit load over the pinion flank (one mesh cycle)")
+    ax.set_title(title or "unit load over the pinion flank, envelope over the mesh cycle",
+                 fontsize=9)
     return ax

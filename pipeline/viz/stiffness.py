@@ -12,6 +12,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
+
 
 def plot_stiffness_curves(
     curves: Sequence[tuple[str, np.ndarray, np.ndarray]],
@@ -25,15 +27,15 @@ def plot_stiffness_curves(
     if ax is None:
         ax = Figure(figsize=(8, 4.2)).subplots()
     for i, (label, x, k) in enumerate(curves):
-        ax.plot(x, np.asarray(k) * 1e-8, lw=1.6, color=f"C{i}", label=label)
+        ax.plot(x, stiffness_in_plot_unit(k), lw=1.6, color=f"C{i}", label=label)
     if pairs is not None and pairs_x is not None:
         for j in range(pairs.shape[1]):
             kj = np.where(pairs[:, j] > 0, pairs[:, j], np.nan)
             if np.any(np.isfinite(kj)):
-                ax.plot(pairs_x, kj * 1e-8, lw=0.8, ls=":", color="0.35",
+                ax.plot(pairs_x, stiffness_in_plot_unit(kj), lw=0.8, ls=":", color="0.35",
                         label="single tooth pairs" if j == 0 else None)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel("mesh stiffness [1e8 N/m]")
+    ax.set_ylabel(stiffness_label())
     ax.grid(alpha=0.3)
     ax.set_title(title)
     ax.legend(fontsize=8)
@@ -46,8 +48,8 @@ def plot_friction_coefficients(x: np.ndarray, kf: np.ndarray, kt1: np.ndarray, k
     if fig is None:
         fig = Figure(figsize=(10, 3.8))
     a1, a2 = fig.subplots(1, 2)
-    a1.plot(x, kf * 1e-6)
-    a1.set_ylabel("friction stiffness K_f [1e6 N/m]")
+    a1.plot(x, stiffness_in_plot_unit(kf))
+    a1.set_ylabel(stiffness_label("friction stiffness K_f"))
     a2.plot(x, kt1 * 1e-3, label="driving gear")
     a2.plot(x, kt2 * 1e-3, label="driven gear")
     a2.set_ylabel("friction torque coefficient KT_f [kN]")

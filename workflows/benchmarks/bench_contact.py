@@ -39,7 +39,8 @@ from scipy.optimize import minimize
 
 from pipeline.contact import HertzLineContact, solve_contact, solve_positions
 from pipeline.geometry import GearPair, GearSpec, Material
-from pipeline.io import library_versions, write_json
+from pipeline.io import write_json
+from pipeline.provenance import library_versions
 
 STEEL = Material(2.06e11, 0.3, 7850.0)
 K_PER_WIDTH = 1.4e10  # single-pair mesh stiffness per unit face width, N/m^2 (14 N/(mm um))

@@ -30,7 +30,8 @@ from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.fem.sector3d import SectorSettings3D, section_area, sector_mesh_3d
 from pipeline.fem.solvers import factorize_spd, solver_named, sparse_cholesky
 from pipeline.geometry import GearSpec, Material
-from pipeline.io import library_versions, write_json
+from pipeline.io import write_json
+from pipeline.provenance import library_versions
 
 STEEL = Material(2.0e11, 0.3, 7850.0)
 

@@ -26,7 +26,8 @@ from pathlib import Path
 
 from pipeline.contact import FE3DCompliance, FE3DSettings
 from pipeline.geometry import GearPair, GearSpec
-from pipeline.io import library_versions, write_json
+from pipeline.io import write_json
+from pipeline.provenance import library_versions
 
 HERE = Path(__file__).resolve().parents[1]
 

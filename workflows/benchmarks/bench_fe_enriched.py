@@ -155,7 +155,8 @@ def print_table(res: dict) -> None:
 
 def write(res: dict) -> None:
     """JSON of everything; CSV with one row per run (cold/warm x graded/uniform)."""
-    from pipeline.io import atomic_write_text, library_versions, write_json
+    from pipeline.io import atomic_write_text, write_json
+    from pipeline.provenance import library_versions
 
     res["versions"] = library_versions()
     write_json(OUT / "fe_enriched.json", res)

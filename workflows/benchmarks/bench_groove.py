@@ -91,7 +91,8 @@ def main(argv: list[str] | None = None) -> dict:
               f"assembly {t['assembly']:.1f}, set-up {t['factor']:.1f}, "
               f"{r['load_cases_in_one_solve']} load cases {t['solve']:.1f}) | "
               f"peak RSS {r['peak_rss_GB']:.2f} GB", flush=True)
-    from pipeline.io import library_versions, write_json
+    from pipeline.io import write_json
+    from pipeline.provenance import library_versions
 
     out = write_json(ROOT / "results" / "benchmarks" / "groove.json", {
         "target": "one converged k_t < 90 s on 2 cores; whole 12x12 from one factorisation",

@@ -9,7 +9,9 @@ one session side by side: cold, warm with the same file, warm with the mesh damp
 ratio changed. Prints the wall time, the step breakdown the run records in its
 ``summary.json`` (geometry, stiffness, contact with FE build, dynamic model, modes,
 response, sweep, writing), the rest (interpreter start, imports, run record) and the
-peak resident memory of the process; writes results/benchmarks/run.json.
+peak resident memory of the process, its CPU time (with its children: figures are
+drawn in forked processes; CPU time is what a busy machine does not inflate), and the
+load average at the start; writes results/benchmarks/run.json.
 
     python workflows/benchmarks/bench_run.py [--compliance fe2d|fe3d|analytical]
 """
@@ -31,21 +33,27 @@ sys.path.insert(0, str(HERE / "workflows"))
 
 from default_case import DEFAULT  # noqa: E402
 
-from pipeline.io import library_versions, write_json  # noqa: E402
+from pipeline.io import write_json  # noqa: E402
+from pipeline.provenance import library_versions  # noqa: E402
 
 
 def one_run(config: Path, out: Path, cache: Path) -> dict:
-    """Run ``gearpipe run`` in a child process; wall time (s), steps (s), peak RSS (MB)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    """Run ``gearpipe run`` in a child process; wall time (s), CPU time of the process and
+    its children (s), steps (s), peak RSS (MB)."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    before, cpu0 = usage.ru_maxrss, usage.ru_utime + usage.ru_stime
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-m", "pipeline.cli", "run", str(config), "--out", str(out),
                     "--cache-dir", str(cache), "--json"], check=True, cwd=HERE,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                    env={**os.environ, "PYVISTA_OFF_SCREEN": "true", "MPLBACKEND": "Agg"})
     wall = time.perf_counter() - t0
-    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss  # max over children, KiB
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    peak = usage.ru_maxrss  # max over children, KiB
+    cpu = usage.ru_utime + usage.ru_stime - cpu0
     timing = json.loads((out / "summary.json").read_text())["timing"]
-    return {"wall_s": wall, "steps_s": timing["steps_s"], "from_cache": timing["from_cache"],
+    return {"wall_s": wall, "cpu_s": cpu, "steps_s": timing["steps_s"],
+            "from_cache": timing["from_cache"],
             "outside_steps_s": wall - timing["total_s"],
             "peak_rss_MB": peak / 1024 if peak > before else None}
 
@@ -67,17 +75,19 @@ def main(argv: list[str] | None = None) -> dict:
         figures["warm"] = one_run(cfg, tmp / "warm", tmp / "cache")
         figures["warm_dynamics_changed"] = one_run(changed, tmp / "warm2", tmp / "cache")
     cold = figures["cold"]["wall_s"]
-    print(f"gearpipe run, {args.compliance} compliance, "
-          f"{os.cpu_count()} CPUs (targets: cold < 15 s, warm with a dynamics change < 3 s)")
+    load = os.getloadavg()[0]
+    print(f"gearpipe run, {args.compliance} compliance, {os.cpu_count()} CPUs, load average "
+          f"{load:.1f} (targets: cold < 15 s, warm with a dynamics change < 3 s)")
     for name, f in figures.items():
         rss = f"{f['peak_rss_MB']:.0f} MB" if f["peak_rss_MB"] else "n/a"
         print(f"  {name:24s} {f['wall_s']:6.2f} s  ({f['wall_s'] / cold:5.3f} of cold), "
-              f"peak RSS {rss}")
+              f"CPU {f['cpu_s']:6.2f} s, peak RSS {rss}")
         for step, s in f["steps_s"].items():
             mark = "  (cache)" if step in f["from_cache"] else ""
             print(f"      {step:42s} {s:7.3f} s{mark}")
         print(f"      {'interpreter, imports, run record':42s} {f['outside_steps_s']:7.3f} s")
     result = {"compliance": args.compliance, "figures": figures, "cpus": os.cpu_count(),
+              "load_average": load,
               "versions": library_versions()}
     out = HERE / "results" / "benchmarks"
     write_json(out / "run.json", result)

@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.geometry import GearPair, GearSpec, Material
-from pipeline.io import library_versions, write_json
+from pipeline.io import write_json
+from pipeline.provenance import library_versions
 from pipeline.stiffness.mesh import FrictionModel, PairModel, mesh_stiffness, stiffness_at
 
 STEEL = Material(2.0e11, 0.3, 7850.0)

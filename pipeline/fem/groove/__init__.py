@@ -6,8 +6,14 @@
 (:mod:`pipeline.viz.groove` draws the twisted body).
 """
 
-from pipeline.fem.groove.result import GrooveStiffness, PhaseShift
-from pipeline.fem.groove.spec import GrooveSpec
-from pipeline.fem.groove.study import analyse_groove, groove_stiffness
+from pipeline._lazy import lazy_exports
 
-__all__ = ["GrooveSpec", "GrooveStiffness", "PhaseShift", "analyse_groove", "groove_stiffness"]
+# imported on first use: ``study`` pulls in scikit-fem and Gmsh, which a gearbox file
+# naming a groove needs only when the groove is analysed
+_EXPORTS = {"GrooveStiffness": "pipeline.fem.groove.result",
+            "PhaseShift": "pipeline.fem.groove.result",
+            "GrooveSpec": "pipeline.fem.groove.spec",
+            "analyse_groove": "pipeline.fem.groove.study",
+            "groove_stiffness": "pipeline.fem.groove.study"}
+__getattr__ = lazy_exports(__name__, _EXPORTS)
+__all__ = sorted(_EXPORTS)

@@ -48,13 +48,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from pipeline.fem.groove.spec import COUPLINGS
 from pipeline.fem.linear_static import ElasticModel, rigid_body_modes
 from pipeline.fem.pmultigrid import p1_prolongation, pmg_cg
 from pipeline.fem.solvers import cholmod_available, factorize_spd
 from pipeline.fem.tetmesh import surface_mass
 from pipeline.validation import InputError, check_choice
 
-COUPLINGS = ("distributed", "rigid", "tooth_forces")
 SOLVERS = ("auto", "cholmod", "cholespy", "splu", "pmg-cg")
 
 

@@ -13,10 +13,12 @@ import math
 from dataclasses import dataclass
 
 from pipeline.fem.groove.body import CoaxialBody, HelicalTeeth, Segment
-from pipeline.fem.groove.coupling import COUPLINGS
 from pipeline.fem.groove.mesh import MeshSettings
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
+
+# how the reference nodes O_L, O_R are tied to the body (:mod:`pipeline.fem.groove.coupling`)
+COUPLINGS = ("distributed", "rigid", "tooth_forces")
 
 TEETH_MODELS = ("root_cylinder", "helical_teeth")
 

@@ -1,0 +1,117 @@
+"""Where the bodies of a dynamic model sit in the transverse plane, for drawing mode shapes.
+
+A gear pair is two base circles touching on the line of action (the model's line of
+action is the x axis, so the gear sits below the pinion); a planetary set is the sun,
+the planets on the carrier circle at their angles, the ring and the carrier (drawn as
+the circle through the planet centres). Both halves of a herringbone member sit at the
+same place (``side`` "L" or "R"). Bodies of other models (the split-torque
+transmission) are placed on a square grid in the model's order, one unit circle each,
+with their own axes: a schematic that still shows every body's motion.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from pipeline.dynamics.bodies import Body
+
+
+@dataclass(frozen=True)
+class BodyPlace:
+    """One body in the drawing plane.
+
+    Attributes
+    ----------
+    name : the body's name in the model (its coordinates are ``"<name>.<dof>"``).
+    centre : (x, y) of the body's axis, m.
+    radius : radius of the drawn circle (base circle, carrier circle), m.
+    frame_angle : rad, direction of the body's own x axis (planets: radial).
+    role : "sun", "planet", "ring", "carrier", "pinion", "gear" or "body".
+    side : "L" or "R" for a half of a herringbone member, else "".
+    """
+
+    name: str
+    centre: tuple[float, float]
+    radius: float
+    frame_angle: float = 0.0
+    role: str = "body"
+    side: str = ""
+
+
+@dataclass(frozen=True)
+class ModelLayout:
+    """The places of all bodies of a model.
+
+    Attributes
+    ----------
+    places : one per body, in the model's body order.
+    schematic : True when the positions are a grid of unit circles, not the gears' layout.
+    """
+
+    places: tuple[BodyPlace, ...]
+    schematic: bool = False
+
+    def place(self, name: str) -> BodyPlace:
+        """The place of body ``name``."""
+        for p in self.places:
+            if p.name == name:
+                return p
+        raise KeyError(name)
+
+
+_CENTRAL = {"s": "sun", "r": "ring", "c": "carrier"}
+
+
+def _planetary(model, bodies: tuple[Body, ...]) -> ModelLayout:
+    radius = {"sun": model.base_radius_sun, "ring": model.base_radius_ring,
+              "carrier": model.carrier_radius, "planet": model.base_radius_planet}
+    angles = list(model.angles)
+    herringbone = all(b.name[-1] in "LR" for b in bodies)
+    places = []
+    for b in bodies:
+        base, side = (b.name[:-1], b.name[-1]) if herringbone else (b.name, "")
+        if base in _CENTRAL:
+            role = _CENTRAL[base]
+            places.append(BodyPlace(b.name, (0.0, 0.0), radius[role], 0.0, role, side))
+            continue
+        if not (base[:1] == "p" and base[1:].isdigit() and int(base[1:]) <= len(angles)):
+            extra = 1.6 * radius["ring"] + 2.2 * radius["planet"] * len(places)
+            places.append(BodyPlace(b.name, (extra, 0.0), radius["planet"], b.frame_angle,
+                                    "body", side))
+            continue
+        psi = angles[int(base[1:]) - 1]
+        a = model.carrier_radius
+        places.append(BodyPlace(b.name, (a * math.cos(psi), a * math.sin(psi)),
+                                radius["planet"], b.frame_angle, "planet", side))
+    return ModelLayout(tuple(places))
+
+
+def _pair(model) -> ModelLayout:
+    rp, rg = model.base_radius_pinion, model.base_radius_gear
+    return ModelLayout((BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"),
+                        BodyPlace("gear", (0.0, -(rp + rg)), rg, 0.0, "gear")))
+
+
+def _grid(bodies: tuple[Body, ...]) -> ModelLayout:
+    cols = math.ceil(math.sqrt(len(bodies)))
+    return ModelLayout(tuple(BodyPlace(b.name, (3.0 * (i % cols), -3.0 * (i // cols)), 1.0,
+                                       b.frame_angle) for i, b in enumerate(bodies)),
+                       schematic=True)
+
+
+def model_layout(model) -> ModelLayout:
+    """The drawing layout of a dynamic model (module docstring).
+
+    Parameters
+    ----------
+    model : a model with ``assembly()`` (pair, planetary, herringbone planetary,
+        split torque, ...).
+    """
+    bodies = tuple(model.assembly().bodies)
+    names = {b.name for b in bodies}
+    if hasattr(model, "carrier_radius") and hasattr(model, "angles"):
+        return _planetary(model, bodies)
+    if hasattr(model, "base_radius_pinion") and names <= {"pinion", "gear"}:
+        return _pair(model)
+    return _grid(bodies)

@@ -1,0 +1,226 @@
+"""A run's output folder, written as a unit: it holds the previous complete result or the
+new one, never a mix.
+
+:func:`staged_output` hands the caller a fresh hidden staging folder beside the target
+(``.<target>.staging-<pid>-<random>``, on the same filesystem). When the caller's block
+succeeds, the staging folder is flushed to disk (its files were flushed as they were
+written, :func:`pipeline.io.atomic_write`) and swapped in: on Linux in one atomic step
+(``renameat2`` with ``RENAME_EXCHANGE``), elsewhere by renaming the previous folder away
+(``.<target>.old-<pid>-<random>``) and the new one in; then the parent is flushed and the
+previous result deleted. When the block fails, the staging folder and any parent folder
+made for it are removed, so a failed run changes nothing. A process killed while writing
+leaves its staging folder hidden; the next run for the same target removes it, and when
+the kill came between the two renames it first puts the previous result back.
+
+A target must be new, empty, or a previous result (a folder whose ``run.json`` lists
+every file in it): a folder holding anything else (``--out .`` in a project folder) is
+refused rather than replaced. Problems with the target are :class:`OutputError`, one line
+naming the folder; the command line prints it without a traceback.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import errno
+import json
+import os
+import re
+import secrets
+import shutil
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from pipeline.io import fsync_path, pid_alive, process_umask
+
+# errors of the disk rather than of the computation
+_DISK_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EFBIG}
+
+
+class OutputError(Exception):
+    """The results cannot be written where asked (full or read-only disk, a file in the
+    way, a folder holding other files); the message is one line naming the folder."""
+
+
+def _foreign_entries(folder: Path) -> list[str]:
+    """Entries of ``folder`` that no ``run.json`` in it lists (sorted)."""
+    entries = sorted(os.listdir(folder))
+    if not entries:
+        return []
+    try:
+        record = json.loads((folder / "run.json").read_text(encoding="utf-8"))
+        listed = {str(o) for o in record.get("outputs", [])} | {"run.json"}
+    except (OSError, ValueError, AttributeError):
+        listed = set()
+    return [e for e in entries if e not in listed
+            and not any(e.startswith(f".{name}.") for name in listed)]  # its temp files
+
+
+def check_target(target: str | os.PathLike) -> Path:
+    """The folder ``target`` as it will be written, or :class:`OutputError` if it cannot be.
+
+    Checked before any work: ``target`` is not a file, holds nothing but an earlier result,
+    and its nearest existing parent is a writable folder.
+    """
+    shown = Path(target)
+    path = shown.resolve()
+    if path.exists():
+        if not path.is_dir():
+            raise OutputError(f"{shown} is a file, not a folder; give --out a folder "
+                              "(new, empty, or an earlier result)")
+        foreign = _foreign_entries(path)
+        if foreign:
+            more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+            raise OutputError(f"{shown} holds files that are not one gearpipe result "
+                              f"({', '.join(foreign[:5])}{more}); choose a new or empty folder "
+                              "or move them away")
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise OutputError(f"{parent} is a file, so the folder {shown} cannot "
+                                  "be made; move the file or give --out another folder")
+            if not os.access(parent, os.W_OK | os.X_OK):
+                raise OutputError(f"{parent} is not writable, so the results cannot be "
+                                  f"written to {shown}; give --out another folder")
+            break
+    return path
+
+
+def _stale(target: Path) -> list[tuple[str, Path]]:
+    """Staging and old folders of ``target`` whose process is gone: (kind, path)."""
+    pattern = re.compile(rf"^\.{re.escape(target.name)}\.(staging|old)-(\d+)-")
+    out = []
+    for entry in os.scandir(target.parent):
+        m = pattern.match(entry.name)
+        if m and not pid_alive(int(m.group(2))):
+            out.append((m.group(1), Path(entry.path)))
+    return out
+
+
+def recover(target: str | os.PathLike) -> None:
+    """Clean up after a killed run: put back the previous result if it was renamed away
+    and the new one never arrived, and delete stale staging and old folders."""
+    target = Path(target)
+    stale = _stale(target)
+    olds = sorted((p for kind, p in stale if kind == "old"), key=lambda p: p.stat().st_mtime)
+    if olds and not target.exists():
+        os.rename(olds[-1], target)
+        stale = [(k, p) for k, p in stale if p != olds[-1]]
+    for _, p in stale:
+        shutil.rmtree(p, ignore_errors=True)
+
+
+def _aside(target: Path) -> Path:
+    return target.parent / f".{target.name}.old-{os.getpid()}-{secrets.token_hex(4)}"
+
+
+def exchange(a: Path, b: Path) -> bool:
+    """Swap two existing paths atomically (Linux ``renameat2(RENAME_EXCHANGE)``); False
+    where the system or the filesystem cannot."""
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (AttributeError, OSError):
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(a), None, str(b))
+
+
+def _commit(staging: Path, target: Path) -> None:
+    """Swap the finished staging folder in for ``target`` (see the module docstring)."""
+    os.chmod(staging, 0o777 & ~process_umask())
+    fsync_path(staging, directory=True)
+    if target.is_dir() and exchange(staging, target):  # staging now holds the old result
+        fsync_path(target.parent, directory=True)
+        shutil.rmtree(staging, ignore_errors=True)
+        return
+    olds: list[Path] = []
+    for attempt in range(5):
+        if target.exists():
+            olds.append(_aside(target))
+            os.rename(target, olds[-1])
+        try:
+            os.rename(staging, target)
+            break
+        except OSError as exc:  # another run put its result in between: move that too
+            if exc.errno in (errno.ENOTEMPTY, errno.EEXIST) and attempt < 4:
+                continue
+            if olds and not target.exists():
+                os.rename(olds.pop(), target)
+            raise
+    fsync_path(target.parent, directory=True)
+    for old in olds:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _made_parents(path: Path) -> list[Path]:
+    """The parents of ``path`` that do not exist yet, deepest first."""
+    return [p for p in path.parents if not p.exists()]
+
+
+def _is_output_error(exc: BaseException, staging: Path) -> bool:
+    if not isinstance(exc, OSError):
+        return False
+    inside = any(str(f).startswith(str(staging)) for f in (exc.filename, exc.filename2) if f)
+    return inside or exc.errno in _DISK_ERRNOS
+
+
+@contextmanager
+def staged_output(target: str | os.PathLike) -> Iterator[Path]:
+    """Yield a staging folder to write a result into; on success it becomes ``target``.
+
+    Parameters
+    ----------
+    target : the result folder (created with its parents if missing; an earlier result
+        there is replaced as a whole).
+
+    Yields
+    ------
+    Path : the hidden staging folder beside ``target``; write every file of the result
+        into it (names as they should appear in ``target``).
+
+    Raises
+    ------
+    OutputError : ``target`` cannot be written (see :func:`check_target`), or the disk
+        refused a write (full, read-only); nothing was changed.
+    """
+    shown = Path(target)
+    path = check_target(shown)
+    made = _made_parents(path)
+    unchanged = "the folder holds the previous result" if path.exists() else \
+        "nothing was written"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        recover(path)
+        staging = Path(tempfile.mkdtemp(prefix=f".{path.name}.staging-{os.getpid()}-",
+                                        dir=path.parent))
+    except OSError as exc:
+        _remove_empty(made)
+        raise OutputError(f"cannot write the results to {shown}: "
+                          f"{exc.strerror or exc} ({unchanged})") from None
+    try:
+        yield staging
+        _commit(staging, path)
+    except BaseException as exc:
+        shutil.rmtree(staging, ignore_errors=True)
+        _remove_empty(made)
+        if _is_output_error(exc, staging):
+            raise OutputError(f"cannot write the results to {shown}: "
+                              f"{exc.strerror or exc} ({unchanged})") from None
+        raise
+
+
+def _remove_empty(folders: list[Path]) -> None:
+    for folder in folders:  # deepest first
+        try:
+            folder.rmdir()
+        except OSError:
+            return
+
+
+__all__ = ["OutputError", "check_target", "recover", "staged_output"]

@@ -1,0 +1,121 @@
+"""``gearpipe study STUDY.toml``: a design study over a base gearbox file, on Dask.
+
+Writes to ``results/<study file stem>/study/`` (or ``--out``): ``study.parquet`` and
+``study.csv`` (one row per point: ``point``, the axes in the file's units, the KPIs with
+their units in the names, ``error``), ``manifest.json`` and ``parts/`` (what resuming
+reads), ``sensitivity.png``, ``tradeoff.png``, ``best_point/gearbox.toml`` with the best
+point's ``gearpipe run`` results in ``best_point/run/`` (:func:`report_best_point`, the
+hook of the tooth load distribution report), ``summary.json`` and ``run.json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+from typing import Any
+
+from pipeline.commands_common import emit
+from pipeline.io import atomic_write_text, write_json, write_run_record
+from pipeline.study.execute import StudyOptions, run_study
+from pipeline.study.spec import StudySpec, study_from_file
+from pipeline.validation import InputError
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("config", type=Path, help="study file (TOML: base gearbox file + axes)")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="output folder (default: results/<study file stem>/study)")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+    parser.add_argument("--scheduler", default=None,
+                        help="address of an existing Dask scheduler (tcp://host:8786); "
+                             "default: a LocalCluster on this machine")
+    parser.add_argument("--workers", type=int, default=None,
+                        help="LocalCluster worker processes (default: one per core); 0 runs "
+                             "the points serially in this process")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue the unfinished study in the output folder")
+    parser.add_argument("--no-best-run", action="store_true",
+                        help="write the best point's gearbox file but do not run it")
+
+
+def best_row(table: dict[str, list], kpi: str, goal: str) -> int | None:
+    """Row of the best finite value of ``kpi`` (lowest for "min"), or ``None``."""
+    vals = [(v, i) for i, v in enumerate(table[kpi]) if v is not None and math.isfinite(v)]
+    if not vals:
+        return None
+    return (min(vals) if goal == "min" else max(vals))[1]
+
+
+def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: bool = True
+                      ) -> list[Path]:
+    """The best point as a gearbox file and, with ``run``, its ``gearpipe run`` folder.
+
+    This is where the tooth load distribution report of the best point plugs in: it gets
+    the same gearbox file and run folder.
+    """
+    import tomli_w
+
+    from pipeline.config import load_gearbox
+    from pipeline.run.chain import RunOptions, run_pipeline
+    from pipeline.run.commands import figure_cache, write_run
+
+    doc = spec.point_document(values)
+    header = (f"# Best point of the study {spec.name} ({spec.path.name}): the base file "
+              f"{spec.base_path.name} with\n" + "".join(f"#   {k} = {v!r}\n"
+                                                       for k, v in values.items()))
+    path = atomic_write_text(out / "gearbox.toml", header + tomli_w.dumps(doc))
+    files = [path]
+    if run:
+        box = load_gearbox(path)
+        options = RunOptions(show_progress=False)
+        result = run_pipeline(box, options)
+        folder = out / "run"
+        folder.mkdir(parents=True, exist_ok=True)
+        written = write_run(result, folder, False, figure_cache(options))
+        written.append(write_json(folder / "summary.json", result.summary()))
+        write_run_record(folder, {"gearbox": box.to_dict(), "options": options}, written,
+                         f"gearpipe run {path}")
+        files.append(folder)
+    return files
+
+
+def run(args: argparse.Namespace) -> int:
+    from pipeline.study.plots import plot_sensitivity, plot_tradeoff
+    from pipeline.viz import save
+
+    spec = study_from_file(args.config)
+    if args.workers is not None and args.workers < 0:
+        raise InputError(f"--workers {args.workers}: expected 0 (serial) or more")
+    out = args.out or Path("results") / Path(args.config).stem / "study"
+    out.mkdir(parents=True, exist_ok=True)
+    options = StudyOptions(scheduler=args.scheduler, workers=args.workers, resume=args.resume,
+                           show_progress=not args.json)
+    table, facts = run_study(spec, out, options)
+    cols = table.to_pydict()
+    kpis = [n for n in table.column_names[1 + len(spec.axes):] if n != "error"]
+    trade = list(spec.tradeoff) or kpis[:2]
+    for k in trade + ([spec.best_kpi] if spec.best_kpi else []):
+        if k not in kpis:
+            raise InputError(f"{spec.path}: {k!r} is not a KPI of this study; its KPIs: "
+                             f"{', '.join(kpis)}")
+    best_kpi = spec.best_kpi or kpis[0]
+    best = best_row(cols, best_kpi, spec.best_goal)
+    files = [out / "study.parquet", out / "study.csv"]
+    files.append(save(plot_sensitivity(spec, cols, kpis[:4]), out / "sensitivity.png"))
+    files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
+                                    f"{spec.name}: {len(cols['point'])} points"),
+                      out / "tradeoff.png"))
+    summary: dict[str, Any] = {"study": spec.name, **facts,
+                               "failed_points": sum(1 for e in cols["error"] if e)}
+    if best is not None:
+        values = {a.label: cols[a.label][best] for a in spec.axes}
+        summary["best"] = {"point": cols["point"][best], "kpi": best_kpi,
+                           "goal": spec.best_goal, "value": cols[best_kpi][best], **values}
+        files += report_best_point(spec, values, out / "best_point", not args.no_best_run)
+    files.append(write_json(out / "summary.json", summary))
+    write_run_record(out, {"study": spec.document, "base": spec.base.document,
+                           "base_sha256": spec.base.sha256}, files,
+                     f"gearpipe study {args.config}")
+    emit(args, summary, out)
+    return 0

@@ -1,0 +1,138 @@
+"""One design point: gearbox document in, KPI row out (pure; writes nothing).
+
+:func:`evaluate_point` composes the static stages of :mod:`pipeline.run.chain` for every
+mesh (geometry, analytical stiffness, the ``[contact] compliance`` source, loaded
+contact) and, with a speed range, the dynamic model of :mod:`pipeline.run.dynamics`
+swept over it; the KPIs of :mod:`pipeline.study.kpis` are read from the result.
+
+FE tables depend only on the gears and the FE settings, not on flank modifications,
+load or assembly errors, so a study builds them once per distinct geometry
+(:func:`fe_geometry_key`, :func:`build_fe_tables`) and hands the built sources to every
+point of that geometry (``fe``); a point then neither meshes nor reads the disk.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from pipeline.config import Gearbox, gearbox_from_dict
+from pipeline.io import content_hash
+from pipeline.study.kpis import KPI, PointResult, kpi_row
+
+
+def point_gearbox(doc: Mapping[str, Any], name: str = "point") -> Gearbox:
+    """The gearbox of a point document (validated like a gearbox file)."""
+    return gearbox_from_dict(doc, name=name)
+
+
+def _actual(case) -> Any:
+    from pipeline.geometry.assembly_errors import assemble
+
+    assembled = assemble(case.pair, case.assembly_errors)
+    return case.pair if assembled is None else assembled.actual
+
+
+def fe_geometry_key(box: Gearbox) -> str | None:
+    """Content hash of what the FE tables of every mesh depend on (gears, FE settings,
+    tooth pairs in contact), or ``None`` for the analytical compliance."""
+    from pipeline.run.chain import mesh_cases
+
+    if box.fe_source is None:
+        return None
+    parts = []
+    for case in mesh_cases(box):
+        pair = _actual(case)
+        parts.append({"mesh": case.name, "pinion": dataclasses.asdict(pair.pinion),
+                      "gear": dataclasses.asdict(pair.gear),
+                      "pairs": np.asarray(pair.pair_indices()).tolist()})
+    return content_hash({"compliance": box.contact.compliance,
+                         "settings": dataclasses.asdict(box.fe_source), "meshes": parts})
+
+
+def build_fe_tables(doc: Mapping[str, Any], *, cache: bool = True,
+                    cache_dir: str | None = None) -> dict[str, Any]:
+    """The FE compliance source (both gears' tables) of every mesh of a point's gearbox,
+    ``{mesh name: FE2DCompliance | FE3DCompliance}`` (read from the FE cache when there)."""
+    from pipeline.run.chain import mesh_cases
+
+    box = point_gearbox(doc)
+    out = {}
+    for case in mesh_cases(box):
+        pair = _actual(case)
+        if box.contact.compliance == "fe2d":
+            from pipeline.contact.fe2d_source import FE2DCompliance
+
+            out[case.name] = FE2DCompliance.build(pair, box.fe_source, cache=cache,
+                                                  cache_dir=cache_dir)
+        else:
+            from pipeline.contact.fe3d_source import FE3DCompliance
+
+            out[case.name] = FE3DCompliance.build(pair, box.fe_source, cache=cache,
+                                                  cache_dir=cache_dir, progress=False)
+    return out
+
+
+def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
+                 speed_range_rpm: tuple[float, float] | None = None, speed_points: int = 40,
+                 cache: bool = True, cache_dir: str | None = None) -> PointResult:
+    """Static stages of every mesh and, with ``speed_range_rpm``, a sweep of the dynamic
+    model over that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
+    from pipeline.contact.analysis import analyse_contact
+    from pipeline.contact.compliance import compliance_source
+    from pipeline.geometry.analysis import analyse_geometry
+    from pipeline.run.chain import MeshStages, RunResult, mesh_cases
+    from pipeline.run.steps import StepLog
+    from pipeline.stiffness.analysis import analyse_stiffness
+
+    meshes = {}
+    for case in mesh_cases(box):
+        geometry = analyse_geometry(case.pair, case.assembly_errors)
+        stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
+                                      assembly_errors=case.assembly_errors)
+        source = compliance_source(stiffness.actual, case.operation, box.contact,
+                                   box.stiffness, box.fe_source, cache=cache,
+                                   cache_dir=cache_dir, model=stiffness.model,
+                                   prebuilt=None if fe is None else fe[case.name])
+        cycle = analyse_contact(source, case.operation, box.contact)
+        meshes[case.name] = MeshStages(case, geometry, stiffness, cycle,
+                                       box.contact.compliance)
+    run = RunResult(box, meshes, None, StepLog(show=False))
+    if speed_range_rpm is None:
+        return PointResult(run)
+    from pipeline.dynamics.sweep import mesh_force_sweep
+    from pipeline.run.dynamics import dynamic_model, dynamics_options
+
+    model, _ = dynamic_model(box, meshes)
+    opts = dynamics_options(box).sweep
+    speeds = np.linspace(*speed_range_rpm, speed_points)
+    period = next(iter(meshes.values())).stiffness.mesh.mesh_period  # at the operating speed
+    op_rpm = box.operation.speed * 30.0 / np.pi
+    freqs = speeds / op_rpm / period
+    sweep = mesh_force_sweep(model.assembly().assemble(), freqs, opts.method, opts.n_harmonics,
+                             executor=None)
+    return PointResult(run, sweep, speeds)
+
+
+def evaluate_point(doc: Mapping[str, Any], fe: Mapping[str, Any] | None = None, *,
+                   kpis: tuple[KPI, ...], speed_range_rpm: tuple[float, float] | None = None,
+                   speed_points: int = 40, cache: bool = True, cache_dir: str | None = None
+                   ) -> dict[str, float]:
+    """KPI row ``{name: value}`` of one point document (units in the KPI names).
+
+    Parameters
+    ----------
+    doc : the point's gearbox document (base file with the point's values, file units).
+    fe : prebuilt FE sources ``{mesh name: source}`` of this geometry
+        (:func:`build_fe_tables`), or ``None`` to build or read them here.
+    kpis : the KPIs to compute.
+    speed_range_rpm, speed_points : driver speed range (rpm) of the dynamic KPIs.
+    cache, cache_dir : FE cache used when ``fe`` is ``None``.
+    """
+    box = point_gearbox(doc)
+    res = point_result(box, fe, speed_range_rpm=speed_range_rpm, speed_points=speed_points,
+                       cache=cache, cache_dir=cache_dir)
+    return kpi_row(res, kpis)

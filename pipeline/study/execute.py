@@ -1,0 +1,250 @@
+"""Running a study: every point checked first, FE tables once per geometry, batches on Dask.
+
+:func:`run_study` builds every point's gearbox before any work (an input error is one
+line and nothing is written), groups the points by the geometry their FE tables depend
+on (:func:`pipeline.study.evaluate.fe_geometry_key`) and runs
+
+* on **dask.distributed** (default): a ``LocalCluster`` with one single-threaded worker
+  process per core and BLAS pinned to one thread (``workers``), or the existing cluster
+  at ``scheduler`` (``tcp://host:8786``) with no other change. The FE tables of each
+  geometry are one task; the batches of its points take that task's future as an
+  argument, so Dask ships the tables to each worker once (memory to memory, never as
+  files a remote worker could not see) and no point recomputes them;
+* **serially** in this process (``workers = 0``): the same batches in the same order.
+
+Each finished batch is appended atomically to the results folder
+(:class:`pipeline.study.store.StudyStore`), so a killed study resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import sys
+import uuid
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pyarrow as pa
+
+from pipeline.progress import progress
+from pipeline.study.evaluate import build_fe_tables, evaluate_point, fe_geometry_key
+from pipeline.study.kpis import KPI, select_kpis
+from pipeline.study.points import DesignPoint, axis_values, design_points
+from pipeline.study.spec import StudySpec
+from pipeline.study.store import StudyStore, study_identity
+from pipeline.validation import InputError
+
+
+@dataclass(frozen=True)
+class StudyOptions:
+    """How to run a study (not what it computes: that is the study file).
+
+    Attributes
+    ----------
+    scheduler : address of an existing Dask scheduler, or ``None`` for a LocalCluster.
+    workers : LocalCluster worker processes (default: CPU count); 0 runs serially here.
+    resume : continue the unfinished study in the results folder.
+    cache, cache_dir : the FE table cache (workers on this machine share it).
+    point_log : append ``"<session> <point>"`` per computed point to
+        ``OUT/computed_points.log`` (workers on this machine only).
+    show_progress : progress bar on stderr.
+    """
+
+    scheduler: str | None = None
+    workers: int | None = None
+    resume: bool = False
+    cache: bool = True
+    cache_dir: str | None = None
+    point_log: bool = True
+    show_progress: bool = True
+
+
+@dataclass(frozen=True)
+class _Job:
+    """What every batch of a study shares (sent with each batch)."""
+
+    kpis: tuple[KPI, ...]
+    speed_range_rpm: tuple[float, float] | None
+    speed_points: int
+    cache: bool
+    cache_dir: str | None
+    log_path: str | None
+    session: str
+
+
+def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[dict]:
+    """KPI rows ``{"point": i, KPI...: value, "error": ""}`` of a batch (one BLAS thread).
+
+    A point the pipeline refuses (an :class:`InputError` such as a contact that does not
+    converge) gets NaN KPIs and its message in ``error``; the study goes on.
+    """
+    from threadpoolctl import threadpool_limits
+
+    rows = []
+    with threadpool_limits(limits=1):
+        for index, doc in batch:
+            try:
+                row = evaluate_point(doc, fe, kpis=job.kpis, speed_range_rpm=job.speed_range_rpm,
+                                     speed_points=job.speed_points, cache=job.cache,
+                                     cache_dir=job.cache_dir)
+                err = ""
+            except InputError as exc:
+                row, err = {k.name: float("nan") for k in job.kpis}, str(exc)
+            rows.append({"point": index, **row, "error": err})
+            if job.log_path:
+                with open(job.log_path, "a", encoding="utf-8") as fh:
+                    fh.write(f"{job.session} {index}\n")
+    return rows
+
+
+def _fe_batch(doc: dict, job: _Job) -> Any:
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1):
+        return build_fe_tables(doc, cache=job.cache, cache_dir=job.cache_dir)
+
+
+def _arrow_type(values: list[Any]) -> pa.DataType:
+    if all(isinstance(v, bool) for v in values):
+        return pa.bool_()
+    if all(isinstance(v, int) and not isinstance(v, bool) for v in values):
+        return pa.int64()
+    if all(isinstance(v, int | float) and not isinstance(v, bool) for v in values):
+        return pa.float64()
+    return pa.string()
+
+
+def table_schema(spec: StudySpec, points: list[DesignPoint], kpis: tuple[KPI, ...]
+                 ) -> pa.Schema:
+    """Columns: ``point``, each axis by its first key (file units), the KPIs, ``error``."""
+    fields = [pa.field("point", pa.int64())]
+    for a in spec.axes:
+        vals = axis_values(a) if spec.method == "grid" else [p.values[a.label] for p in points]
+        fields.append(pa.field(a.label, _arrow_type(vals)))
+    fields += [pa.field(k.name, pa.float64()) for k in kpis]
+    fields.append(pa.field("error", pa.string()))
+    return pa.schema(fields)
+
+
+def check_points(spec: StudySpec, points: list[DesignPoint]) -> tuple[list[dict], list[Any]]:
+    """Point documents and their FE geometry keys; the first bad point is one line."""
+    from pipeline.study.evaluate import point_gearbox
+
+    docs, keys = [], []
+    for p in points:
+        doc = spec.point_document(p.values)
+        try:
+            box = point_gearbox(doc, spec.name)
+        except InputError as exc:
+            vals = ", ".join(f"{k} = {v!r}" for k, v in p.values.items())
+            raise InputError(f"{spec.path}: point {p.index} ({vals}): {exc}") from None
+        docs.append(doc)
+        keys.append(fe_geometry_key(box))
+    return docs, keys
+
+
+def _batches(todo: list[int], keys: list[Any], size: int) -> list[tuple[Any, list[int]]]:
+    """Consecutive points of one geometry, ``size`` at most per batch."""
+    groups: dict[Any, list[int]] = {}
+    for i in todo:
+        groups.setdefault(keys[i], []).append(i)
+    return [(g, ids[j:j + size]) for g, ids in groups.items() for j in range(0, len(ids), size)]
+
+
+@contextmanager
+def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+    """A client of the cluster at ``scheduler``, or of a new LocalCluster (one process per
+    core, one thread each, BLAS pinned to one thread), closed on exit."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except OSError as exc:
+            raise InputError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+        with client:
+            yield client
+        return
+    one = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                      processes=True, dashboard_address=None, silence_logs=logging.ERROR,
+                      env=one) as cluster, Client(cluster) as client:
+        yield client
+
+
+def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None
+              ) -> tuple[pa.Table, dict[str, Any]]:
+    """Evaluate every point of ``spec`` into ``out`` (module docstring).
+
+    Returns the table (ordered by point number) and run facts: points, computed now,
+    distinct FE geometries, workers, session id.
+    """
+    options = options or StudyOptions()
+    dynamics = spec.speed_range_rpm is not None
+    if dynamics and "dynamics" not in spec.base.document:
+        raise InputError(f"{spec.path}: kpis.speed_range_rpm needs a [dynamics] table in the "
+                         f"base file {spec.base_path.name}")
+    kpis = select_kpis(spec.kpis, dynamics)
+    points = design_points(spec)
+    docs, keys = check_points(spec, points)
+    store = StudyStore(out, table_schema(spec, points, kpis),
+                       study_identity(spec, [k.name for k in kpis]))
+    done = store.open(options.resume, len(points))
+    todo = [p.index for p in points if p.index not in done]
+    local = options.scheduler is None
+    session = uuid.uuid4().hex[:8]
+    job = _Job(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
+               options.cache_dir,
+               str(Path(out).resolve() / "computed_points.log") if options.point_log and local
+               else None, session)
+    nw = (os.cpu_count() or 1) if options.workers is None else options.workers
+    size = spec.batch_points or max(1, min(32, len(todo) // (8 * max(nw, 1)) or 1))
+    batches = _batches(todo, keys, size)
+
+    def finish(rows: list[dict]) -> None:
+        for r in rows:
+            r.update(points[r["point"]].values)
+        store.append(rows, session)
+
+    bar = progress(range(len(todo)), f"study {spec.name}", total=len(todo),
+                   enabled=options.show_progress and bool(todo))
+    ticks = iter(bar)
+    if options.workers == 0:
+        fe_cache: dict[Any, Any] = {}
+        for g, ids in batches:
+            if g is not None and g not in fe_cache:
+                fe_cache[g] = _fe_batch(docs[ids[0]], job)
+            rows = evaluate_batch([(i, docs[i]) for i in ids], fe_cache.get(g), job)
+            finish(rows)
+            for _ in rows:
+                next(ticks, None)
+    elif batches:
+        from dask.distributed import as_completed
+
+        with dask_client(options.scheduler, options.workers) as client:
+            nw = len(client.scheduler_info().get("workers", {})) or nw
+            fe_futures = {g: client.submit(_fe_batch, docs[ids[0]], job, key=f"fe-tables-{g}")
+                          for g, ids in batches if g is not None}
+            futures = [client.submit(evaluate_batch, [(i, docs[i]) for i in ids],
+                                     fe_futures.get(g), job, key=f"batch-{session}-{ids[0]}")
+                       for g, ids in batches]
+            for fut in as_completed(futures):
+                rows = fut.result()
+                finish(rows)
+                for _ in rows:
+                    next(ticks, None)
+    for _ in ticks:
+        pass
+    table, _ = store.write_table()
+    if table.num_rows != len(points):  # pragma: no cover - would be a bug
+        print(f"study: {table.num_rows} of {len(points)} points in the table", file=sys.stderr)
+    facts = {"points": len(points), "computed_now": len(todo), "resumed": options.resume,
+             "fe_geometries": len({k for k in keys if k is not None}),
+             "workers": 0 if options.workers == 0 else nw, "session": session,
+             "scheduler": options.scheduler or ("serial" if options.workers == 0
+                                                else "LocalCluster")}
+    return table, facts

@@ -1,0 +1,67 @@
+"""Figures of a run: cached by what they show, drawn side by side in forked processes.
+
+A cached figure is copied, not redrawn; a changed argument redraws it. Figures queued
+for parallel drawing come out byte-identical to those drawn in turn, and one figure
+whose drawing fails is named in one error while the others are still written.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+from pipeline.viz.figure_cache import FigureCache
+from pipeline.viz.figure_queue import FigureQueue, parallel_figures
+
+
+def draw_line(y: np.ndarray, title: str) -> Figure:
+    """A small figure of ``y`` (a module-level function: the cache keys its source)."""
+    fig = Figure(figsize=(3, 2))
+    ax = fig.subplots()
+    ax.plot(y)
+    ax.set_title(title)
+    return fig
+
+
+def draw_broken(y: np.ndarray, title: str) -> Figure:
+    raise ValueError(f"cannot draw {title}")
+
+
+def _figures(save, tmp, n=5):
+    return [save(tmp / f"f{i}.png", draw_line, np.arange(i + 3.0) ** 2, f"figure {i}")
+            for i in range(n)]
+
+
+def test_cache_copies_unchanged_and_redraws_changed_figures(tmp_path):
+    cache = FigureCache(tmp_path / "cache")
+    first = cache.save(tmp_path / "a.png", draw_line, np.arange(4.0), "a")
+    assert len(list((tmp_path / "cache").glob("fig-*.png"))) == 1
+    again = cache.save(tmp_path / "b.png", draw_line, np.arange(4.0), "a")
+    assert again.read_bytes() == first.read_bytes()
+    assert len(list((tmp_path / "cache").glob("fig-*.png"))) == 1  # a hit, nothing drawn
+    cache.save(tmp_path / "c.png", draw_line, np.arange(4.0) + 1e-12, "a")
+    assert len(list((tmp_path / "cache").glob("fig-*.png"))) == 2  # changed data: redrawn
+
+
+@pytest.mark.parametrize("workers", [1, 2, 3])
+def test_parallel_figures_equal_serial_ones(tmp_path, workers):
+    serial = _figures(FigureCache().save, tmp_path / "serial")
+    with parallel_figures(FigureCache(tmp_path / "cache"), workers) as figures:
+        queued = _figures(figures.save, tmp_path / "parallel")
+        assert not any(p.exists() for p in queued)  # drawn on leaving the block
+    for s, q in zip(serial, queued, strict=True):
+        assert q.read_bytes() == s.read_bytes(), q.name
+    assert len(list((tmp_path / "cache").glob("fig-*.png"))) == 5
+
+
+def test_a_failing_figure_is_named_and_the_others_are_written(tmp_path):
+    queue = FigureQueue()
+    cache = FigureCache(queue=queue)
+    good = _figures(cache.save, tmp_path, n=3)
+    cache.save(tmp_path / "broken.png", draw_broken, np.zeros(2), "the broken one")
+    with pytest.raises(RuntimeError, match=r"broken\.png: ValueError: cannot draw the broken"):
+        queue.draw_all(workers=2)
+    assert all(p.is_file() for p in good)
+    assert not (tmp_path / "broken.png").exists()
+    assert not list(tmp_path.glob(".*"))  # no temporary files left behind
