@@ -3,6 +3,7 @@
 #   ./dev.sh demo     run the default workflow (embedded spur pair) -> results/
 #   ./dev.sh test     run the test suite (fast cases; add -m slow for FE cases)
 #   ./dev.sh bench    run the benchmark scripts in workflows/benchmarks
+#   ./dev.sh chromium install Debian's headless Chromium if missing (the report's render test)
 # The first call creates .venv and installs the package and its dependencies.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -29,11 +30,25 @@ ensure_env() {
     export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 }
 
+ensure_chromium() {
+    # The slow report test renders the HTML report in headless Chromium (Debian's package).
+    if ! command -v chromium >/dev/null 2>&1; then
+        echo "[dev.sh] installing Debian's chromium (first run only)" >&2
+        sudo_cmd=""
+        if [ "$(id -u)" -ne 0 ]; then sudo_cmd="sudo"; fi
+        $sudo_cmd apt-get update -q >&2
+        DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -q --no-install-recommends \
+            chromium fonts-dejavu-core >&2
+    fi
+    command -v chromium
+}
+
 cmd="${1:-help}"; shift || true
 case "$cmd" in
     demo)  ensure_env; python workflows/default_case.py "$@" ;;
     test)  ensure_env; python -m pytest "$@" ;;
     bench) ensure_env; for f in workflows/benchmarks/bench_*.py; do python "$f" "$@"; done ;;
     env)   ensure_env; echo "environment ready: $venv" ;;
-    *)     sed -n '2,7p' "$0"; exit 2 ;;
+    chromium) ensure_chromium ;;
+    *)     sed -n '2,8p' "$0"; exit 2 ;;
 esac

@@ -26,6 +26,9 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
     "run": ("pipeline.run.commands", "add_arguments", "run",
             "the whole pipeline: geometry, stiffness, FE-enriched loaded contact, dynamics "
             "(modes, response, speed sweep), into one folder"),
+    "report": ("pipeline.report.commands", "add_arguments", "run",
+               "tooth load distribution report per gear mesh: HTML (self-contained), JSON, "
+               "CSV"),
     "geometry": ("pipeline.geometry.commands", "add_arguments", "run",
                  "tooth profiles, contact ratios and line of action"),
     "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",

@@ -79,7 +79,7 @@ def test_default_case(tmp_path):
     assert load_workflow("default_case").main(["--out", str(tmp_path)]) == 0
     run = tmp_path / "run"
     for name in ("mesh_stiffness.png", "contact_cycle.png", "load_map_2d.png", "sweep.png",
-                 "summary.json", "run.json"):
+                 "summary.json", "run.json", "report.html", "report.json"):
         assert (run / name).exists(), name
     s = json.loads((run / "summary.json").read_text())
     mesh = s["meshes"]["mesh"]

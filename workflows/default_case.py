@@ -7,7 +7,8 @@ dynamic model excited by the loaded contact (loaded k(t), static transmission er
 friction). Writes to results/default_case/: the gearbox file it ran, and in ``run/`` the
 line of action and tooth profiles, the analytical mesh stiffness with the ISO 6336
 comparison, the loaded contact cycle and load maps, modes, the response at 2340 rpm, a
-speed sweep with the dynamic factor, one ``summary.json`` and ``run.json`` (inputs,
+speed sweep with the dynamic factor, the tooth load distribution report (``report.html``
+with its ``report.json`` and ``report.csv``), one ``summary.json`` and ``run.json`` (inputs,
 versions, configuration hash). FE tables and the contact cycle are cached in ``meshes/``:
 a second run reads them back.
 

@@ -59,7 +59,9 @@ from pipeline.dynamics.models.planetary_gears import (
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
 from pipeline.fem.cache import cached_file, default_cache_dir, load_arrays, save_arrays
-from pipeline.io import atomic_write, write_csv, write_json, write_run_record
+from pipeline.io import atomic_write, write_csv, write_json
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 from pipeline.run.chain import RunOptions, mesh_cases, static_stages
 from pipeline.run.dynamics import mesh_excitation
 from pipeline.run.herringbone import TORQUE_SIDE, cached_groove, cached_herringbone_cycle
@@ -143,8 +145,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
         cache_dir: Path | None = None, executor=None, show_progress: bool = True) -> dict:
     """The study (module docstring); returns the comparison rows, cases, grooves, sweeps,
     peaks, the step timing (s) and the files written."""
-    out = Path(out or "results/herringbone_groove_study")
-    out.mkdir(parents=True, exist_ok=True)
+    target = Path(out or "results/herringbone_groove_study")
     log = StepLog(show=show_progress)
     cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
     figures = FigureCache(cache_dir / "figures") if cache else NO_CACHE
@@ -175,57 +176,59 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
                                                    positions, cache, cache_dir)[0]
         note["cached"] = all(hits)
         note["text"] = f"{len(cyc)} cases, {positions} positions"
-    files = []
-    with log.step("load maps (Fig. 8)", long=True):
-        from pipeline.viz.loadmap import render_load_map
+    with staged_output(target) as out:  # the folder holds one complete study
+        files = []
+        with log.step("load maps (Fig. 8)", long=True):
+            from pipeline.viz.loadmap import render_load_map
 
-        maps = {k: half_load_maps(cyc[k], pair, box.contact.load_map_profile_points)
-                for k in PAPER_FIG8}
-        # one colour scale for the four groove maps, one for the slide pair
-        top = {k: max(maps[c][s].unit_load.max() for c in group for s in maps[c]) * 1e-3
-               for group in (("K1", "K5"), ("K1 slide +1 mm",)) for k in group}
-        for k, m in maps.items():
-            stem = "fig8_" + k.replace(" ", "_").replace("+", "p")
-            files += write_half_vtus(m, pair, out, stem)
-            for s in ("left", "right"):
-                lo, hi = loaded_range(m[s])
-                title = (f"Xu et al. (2020) Fig. 8, {k}: {s} sun flank, max {hi * 1e-3:.0f} / "
-                         f"min {lo * 1e-3:.0f} N/mm")
-                files.append(figures.save(out / f"{stem}_{s}.png", render_load_map,
-                                          half_pair(pair, s), m[s], title, clim=(0.0, top[k])))
-    with log.step("Fig. 5 figure"):
-        from pipeline.viz.herringbone import plot_groove_mesh_stiffness
+            maps = {k: half_load_maps(cyc[k], pair, box.contact.load_map_profile_points)
+                    for k in PAPER_FIG8}
+            # one colour scale for the four groove maps, one for the slide pair
+            top = {k: max(maps[c][s].unit_load.max() for c in group for s in maps[c]) * 1e-3
+                   for group in (("K1", "K5"), ("K1 slide +1 mm",)) for k in group}
+            for k, m in maps.items():
+                stem = "fig8_" + k.replace(" ", "_").replace("+", "p")
+                files += write_half_vtus(m, pair, out, stem)
+                for s in ("left", "right"):
+                    lo, hi = loaded_range(m[s])
+                    title = (f"Xu et al. (2020) Fig. 8, {k}: {s} sun flank, max {hi * 1e-3:.0f} / "
+                             f"min {lo * 1e-3:.0f} N/mm")
+                    files.append(figures.save(out / f"{stem}_{s}.png", render_load_map,
+                                              half_pair(pair, s), m[s], title, clim=(0.0, top[k])))
+        with log.step("Fig. 5 figure"):
+            from pipeline.viz.herringbone import plot_groove_mesh_stiffness
 
-        kjs = np.array([g.equivalent_Kj for _, g in grooves])
-        k = {s: np.array([cyc[f"K{j + 1}"].half(s).mesh_stiffness for j in range(5)])
-             for s in ("left", "right")}
-        ks = {s: np.array([cyc[f"K{j + 1}"].series_mesh_stiffness(s) for j in range(5)])
-              for s in ("left", "right")}
-        files.append(figures.save(
-            out / "fig5_mesh_stiffness.png", plot_groove_mesh_stiffness, kjs, k["left"],
-            k["right"], ks["left"], ks["right"],
-            title="Herringbone sun-planet mesh stiffness against the groove's FE stiffness "
-                  "(cf. Xu et al. 2020, Fig. 5)"))
-    sweeps, peaks = fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache,
-                                cache_dir)
-    with log.step("Fig. 9 figure"):
-        from pipeline.viz.dynamics import plot_sweep
+            kjs = np.array([g.equivalent_Kj for _, g in grooves])
+            k = {s: np.array([cyc[f"K{j + 1}"].half(s).mesh_stiffness for j in range(5)])
+                 for s in ("left", "right")}
+            ks = {s: np.array([cyc[f"K{j + 1}"].series_mesh_stiffness(s) for j in range(5)])
+                  for s in ("left", "right")}
+            files.append(figures.save(
+                out / "fig5_mesh_stiffness.png", plot_groove_mesh_stiffness, kjs, k["left"],
+                k["right"], ks["left"], ks["right"],
+                title="Herringbone sun-planet mesh stiffness against the groove's FE stiffness "
+                      "(cf. Xu et al. 2020, Fig. 5)"))
+        sweeps, peaks = fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache,
+                                    cache_dir)
+        with log.step("Fig. 9 figure"):
+            from pipeline.viz.dynamics import plot_sweep
 
-        files.append(figures.save(
-            out / "fig9_sweep.png", plot_sweep, list(sweeps.values()),
-            [f"{k}: K_j = {g.equivalent_Kj / 1e7:.2f}e7 N m^2" for k, (_, g) in
-             zip(sweeps, grooves, strict=True)], MESHES,
-            title="RMS dynamic mesh force, FE groove + herringbone contact (cf. Xu et al. "
-                  "2020, Fig. 9)"))
-    rows, cols = comparison(cyc, maps, grooves, peaks, z_match)
-    files.append(write_table(out / "comparison.csv", rows))
-    files.append(write_csv(out / "cases.csv", cols))
-    files.append(write_json(out / "timing.json", log.summary()))
-    write_run_record(out, {"config": str(CONFIG), "full": full, "positions": positions,
-                           "groove_bottoms_m": [d for d, _ in grooves]}, files,
-                     "workflows/herringbone_groove_study.py")
+            files.append(figures.save(
+                out / "fig9_sweep.png", plot_sweep, list(sweeps.values()),
+                [f"{k}: K_j = {g.equivalent_Kj / 1e7:.2f}e7 N m^2" for k, (_, g) in
+                 zip(sweeps, grooves, strict=True)], MESHES,
+                title="RMS dynamic mesh force, FE groove + herringbone contact (cf. Xu et al. "
+                      "2020, Fig. 9)"))
+        rows, cols = comparison(cyc, maps, grooves, peaks, z_match)
+        files.append(write_table(out / "comparison.csv", rows))
+        files.append(write_csv(out / "cases.csv", cols))
+        files.append(write_json(out / "timing.json", log.summary()))
+        write_run_record(out, {"config": str(CONFIG), "full": full, "positions": positions,
+                               "groove_bottoms_m": [d for d, _ in grooves]}, files,
+                         "workflows/herringbone_groove_study.py")
     return {"rows": rows, "cases": cyc, "grooves": grooves, "sweeps": sweeps, "peaks": peaks,
-            "timing": log.summary(), "files": files, "slide_match": z_match}
+            "timing": log.summary(), "slide_match": z_match,
+            "files": [target / Path(f).relative_to(out) for f in files]}
 
 
 def _save_sweep(path: Path, sw: SweepResult) -> Path:

@@ -26,6 +26,9 @@ the loaded approach and the mesh stiffness.
 - :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),
   and Hertz half-width / maximum pressure (:mod:`.hertz`).
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
+- :func:`load_distribution` - line load, K_Hbeta, K_Halpha, Hertz pressure, TE orders of a
+  loaded mesh cycle (:mod:`.distribution`); root stress (FE 2D, ISO 6336-3) in
+  :mod:`.root_stress` and :mod:`.iso_root_stress`.
 - :class:`FE2DCompliance`, :class:`FE3DCompliance` - the FE stage's influence matrices
   adapted to :class:`ComplianceSource` (:mod:`.fe2d_source`; :mod:`.fe3d_source` on the
   tables of :mod:`.fe3d_table`).
@@ -38,6 +41,7 @@ from pipeline.contact.complementarity import (
     complementarity_residual,
     solve_contact,
 )
+from pipeline.contact.distribution import LoadDistribution, load_distribution
 from pipeline.contact.hertz import (
     HertzLineContact,
     LinearLocalCompliance,
@@ -71,4 +75,5 @@ __all__ = [
     "LoadedMeshCycle", "LocalCompliance", "SliceCompliance", "complementarity_residual",
     "contact_modulus", "effective_radius", "hertz_half_width", "hertz_max_pressure",
     "initial_separations", "loaded_mesh_cycle", "solve_contact", "solve_positions",
+    "LoadDistribution", "load_distribution",
 ]

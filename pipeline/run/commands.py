@@ -9,7 +9,9 @@ contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 ``[groove]`` table adds ``sun_planet_herringbone.csv`` and the left/right sun-flank load
 maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynamics
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
-``sweep.csv/png``), one ``summary.json`` and ``run.json``. Each step prints a line with
+``sweep.csv/png``), the load distribution report of every mesh (``report.html``,
+``report.json``, ``report.csv``; :mod:`pipeline.report`), one ``summary.json`` and
+``run.json``. Each step prints a line with
 its time on stderr; FE tables and contact cycles come from the cache when their inputs
 are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the cache).
 """
@@ -94,9 +96,10 @@ def write_run(result: RunResult, out: Path, full: bool = False,
     return files
 
 
-def run(args: argparse.Namespace) -> int:
+def run(args: argparse.Namespace, command: str = "run") -> int:
+    """``gearpipe run`` (and ``gearpipe report``, the same files in ``results/<stem>/report``)."""
     box = load(args)
-    target = output_dir(args, "run")
+    target = output_dir(args, command)
     options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
@@ -104,6 +107,13 @@ def run(args: argparse.Namespace) -> int:
         with result.log.step("writing tables and figures", long=True), \
                 parallel_figures(figure_cache(options)) as figures:
             files = write_run(result, out, args.full, figures)
+        if result.meshes:  # the report embeds the figures drawn above: after the queue
+            from pipeline.report import write_reports
+
+            with result.log.step("load distribution reports", long=True):
+                files += write_reports(result, out, figure_cache(options),
+                                       command=f"gearpipe {command} {args.config}",
+                                       show_progress=options.show_progress)
         summary = result.summary()
         files.append(write_json(out / "summary.json", summary))
         record(out, args, box, files)

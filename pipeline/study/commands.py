@@ -16,7 +16,8 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.commands_common import emit
-from pipeline.io import atomic_write_text, write_json, write_run_record
+from pipeline.io import atomic_write_text, write_json
+from pipeline.provenance import write_run_record
 from pipeline.study.execute import StudyOptions, run_study
 from pipeline.study.spec import StudySpec, study_from_file
 from pipeline.validation import InputError

@@ -1,0 +1,302 @@
+"""Tooth load distribution of a loaded mesh cycle: the quantities a load distribution report
+and a design study rank gears by.
+
+:func:`load_distribution` turns a :class:`~pipeline.contact.results.LoadedMeshCycle` (the
+loads of every candidate point at every mesh position) into:
+
+* **Line load** ``w(z, t)`` (N/m): the transverse load along the line of action per unit
+  face width at face position ``z`` (slice centres) and mesh position ``t``, summed over
+  the tooth pairs touching in that section: ``w = sum_k F_k(z, t) / width``. Its face mean
+  is ``P / b`` at every position. ``envelope`` is its largest value at each ``z`` over the
+  cycle, ``cycle_mean`` its mean over the cycle.
+* **Face load factor** ``K_Hbeta`` (ISO 6336-1: maximum over mean load per unit face
+  width), from the cycle-mean line load: ``K_Hbeta = max_z w_bar(z) / mean_z w_bar(z)``.
+  Averaging over the cycle removes the way the load moves between the tooth pairs (which
+  is ``K_Halpha``'s), so a pair loaded evenly across its face has exactly 1, and a spur pair
+  of uniform mesh stiffness ``c_gamma`` (N/m per m of face) with a helix slope deviation
+  ``f_Hb`` has ISO 6336-1's closed form ``1 + f_Hb c_gamma / (2 P / b)`` while the whole
+  face carries load (``sqrt(2 f_Hb c_gamma / (P / b))`` once part of it lifts off at one
+  position). ``k_hbeta_position`` is the same ratio at every position (``max_z w / (P/b)``).
+* **Transverse load factor** ``K_Halpha``: how unevenly the tooth pairs in contact share the
+  load, from the computed sharing: at each position the largest mean unit load of a tooth
+  pair, ``F_k / L_k`` (its load over its contact-line length on the plane of action), over
+  the mean unit load of all its contact lines ``P / sum_k L_k``; ``K_Halpha`` is the largest
+  over the cycle (1 in single contact, and for pairs sharing in proportion to their contact
+  lengths). This is the LTCA's own measure, not ISO 6336-1's empirical formula (which is
+  built to go with the contact ratio factor ``Z_eps``).
+* **Hertz contact pressure** at every loaded point (Johnson 1985, eq. 4.45) in the normal
+  section of the flanks: unit load ``p`` (N/m along the contact line), effective radius
+  ``R_n = R_t / cos(beta_b)``, contact modulus ``E*``; the same pressure acts on both flanks,
+  at the pinion radius ``r_1(s)`` and the gear radius ``r_2(s)``. Its maximum and where
+  (roll coordinate, face position, both radii, mesh position).
+* **Loaded static transmission error** (m, and as a pinion angle in rad), its
+  peak-to-peak, and the amplitudes of mesh orders 1..10 (single-sided, from the DFT of the
+  equally spaced positions; orders at or above half the number of positions are NaN).
+* **Load sharing** ``F_k / P`` of every tooth pair at every position.
+
+Conventions: SI inside; the summary keys carry their units.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from pipeline.contact.analysis import line_of_action_load
+from pipeline.contact.hertz import contact_modulus, effective_radius, hertz_max_pressure
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
+from pipeline.validation import InputError
+
+MESH_ORDERS = 10  # transmission-error orders reported (1..MESH_ORDERS)
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    out = np.array(a, dtype=float, copy=True)
+    out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True)
+class PeakLocation:
+    """Where a maximum occurs.
+
+    Attributes
+    ----------
+    value : the maximum, in the unit of the quantity.
+    position : mesh position index (0 .. m-1).
+    pinion_angle : pinion rotation from the first position, rad.
+    s : roll coordinate on the transverse line of action, m.
+    z : face position from the pinion's reference face, m.
+    pinion_radius, gear_radius : radius of the point on each flank, m.
+    tooth_pair : tooth-pair index k (:meth:`GearPair.pair_indices`).
+    """
+
+    value: float
+    position: int
+    pinion_angle: float
+    s: float
+    z: float
+    pinion_radius: float
+    gear_radius: float
+    tooth_pair: int
+
+
+@dataclass(frozen=True)
+class LoadDistribution:
+    """Load distribution of one loaded mesh cycle (module docstring for the definitions).
+
+    Attributes
+    ----------
+    z : (n_z,) face positions of the slices, m.
+    line_load : (m, n_z) transverse load per unit face width w(z, t), N/m.
+    mean_line_load : P / b, N/m.
+    envelope : (n_z,) largest line load at each face position over the cycle, N/m.
+    cycle_mean : (n_z,) mean line load at each face position over the cycle, N/m.
+    k_hbeta : face load factor K_Hbeta (-).
+    k_hbeta_position : (m,) max_z w(z, t) / (P / b) at each position (-).
+    k_halpha : transverse load factor K_Halpha (-).
+    k_halpha_position : (m,) the same ratio at each position (-).
+    hertz_pressure : (n_total,) Hertz maximum pressure p_H of every candidate point of the
+        cycle (the order of ``cycle.point_*``), Pa; 0 where unloaded.
+    hertz_max : largest p_H and where (Pa).
+    line_load_max : largest line load w and where (N/m).
+    pinion_angle : (m,) pinion rotation from the first position, rad.
+    transmission_error : (m,) loaded static TE along the line of action, m.
+    te_peak_to_peak : m; te_peak_to_peak_angle : as pinion angle, rad.
+    te_orders : (10,) single-sided amplitudes of mesh orders 1..10, m (NaN when the
+        positions cannot resolve an order).
+    pair_index : (K,) tooth-pair indices; load_share : (m, K) F_k / P (-).
+    mesh_stiffness : (m,) tangent mesh stiffness dP/dx_s, N/m.
+    load : P, total load along the transverse line of action, N.
+    face_width : b, m.
+    slices_across_face : number of distinct face positions (1 for spur pairs with one slice:
+        then the face distribution is uniform by construction and lead modifications do not
+        enter the solve).
+    """
+
+    z: np.ndarray
+    line_load: np.ndarray
+    mean_line_load: float
+    envelope: np.ndarray
+    cycle_mean: np.ndarray
+    k_hbeta: float
+    k_hbeta_position: np.ndarray
+    k_halpha: float
+    k_halpha_position: np.ndarray
+    hertz_pressure: np.ndarray
+    hertz_max: PeakLocation
+    line_load_max: PeakLocation
+    pinion_angle: np.ndarray
+    transmission_error: np.ndarray
+    te_peak_to_peak: float
+    te_peak_to_peak_angle: float
+    te_orders: np.ndarray
+    pair_index: np.ndarray
+    load_share: np.ndarray
+    mesh_stiffness: np.ndarray
+    load: float
+    face_width: float
+    slices_across_face: int = field(default=1)
+
+    def __post_init__(self) -> None:
+        for name in ("z", "line_load", "envelope", "cycle_mean", "k_hbeta_position",
+                     "k_halpha_position", "hertz_pressure", "pinion_angle",
+                     "transmission_error", "te_orders", "load_share", "mesh_stiffness"):
+            object.__setattr__(self, name, _readonly(getattr(self, name)))
+
+    def summary(self) -> dict[str, Any]:
+        """The key figures (SI; keys carry units): load factors, pressures, TE, sharing."""
+        h, w = self.hertz_max, self.line_load_max
+        out: dict[str, Any] = {
+            "load_N": self.load,
+            "face_width_m": self.face_width,
+            "K_Hbeta": self.k_hbeta,
+            "K_Halpha": self.k_halpha,
+            "mean_line_load_N_per_m": self.mean_line_load,
+            "max_line_load_N_per_m": w.value,
+            "max_line_load_face_position_m": w.z,
+            "max_hertz_pressure_Pa": h.value,
+            "max_hertz_pressure_roll_coordinate_m": h.s,
+            "max_hertz_pressure_face_position_m": h.z,
+            "max_hertz_pressure_pinion_diameter_m": 2.0 * h.pinion_radius,
+            "max_hertz_pressure_gear_diameter_m": 2.0 * h.gear_radius,
+            "max_hertz_pressure_pinion_angle_rad": h.pinion_angle,
+            "transmission_error_peak_to_peak_m": self.te_peak_to_peak,
+            "transmission_error_peak_to_peak_rad": self.te_peak_to_peak_angle,
+            "max_load_share": float(self.load_share.max()),
+            "mesh_stiffness_mean_N_per_m": float(self.mesh_stiffness.mean()),
+            "slices_across_face": self.slices_across_face,
+        }
+        for j, a in enumerate(self.te_orders, start=1):
+            out[f"transmission_error_order_{j}_amplitude_m"] = float(a)
+        return out
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Per-position columns over the cycle (shape (m,) each), named with their units."""
+        cols = {
+            "pinion_angle [rad]": self.pinion_angle,
+            "transmission_error [m]": self.transmission_error,
+            "mesh_stiffness_tangent [N/m]": self.mesh_stiffness,
+            "K_Hbeta_at_position [-]": self.k_hbeta_position,
+            "K_Halpha_at_position [-]": self.k_halpha_position,
+        }
+        for j, k in enumerate(self.pair_index):
+            cols[f"load_share_pair_{k} [-]"] = self.load_share[:, j]
+        return cols
+
+    def face_columns(self) -> dict[str, np.ndarray]:
+        """Per-face-position columns (shape (n_z,) each): mean and envelope line load."""
+        return {"face_position_z [m]": self.z,
+                "line_load_cycle_mean [N/m]": self.cycle_mean,
+                "line_load_envelope [N/m]": self.envelope}
+
+
+def mesh_order_amplitudes(values: np.ndarray, orders: int = MESH_ORDERS) -> np.ndarray:
+    """Single-sided amplitudes of orders 1..``orders`` of equally spaced samples over one
+    period (same unit as ``values``); NaN for orders the samples cannot resolve
+    (``order >= n / 2``)."""
+    v = np.asarray(values, dtype=float)
+    n = v.size
+    c = np.fft.rfft(v) / n
+    out = np.full(orders, np.nan)
+    for j in range(1, orders + 1):
+        if 2 * j < n:
+            out[j - 1] = 2.0 * abs(c[j])
+    return out
+
+
+def _peak(values: np.ndarray, cycle: LoadedMeshCycle, pair: GearPair) -> PeakLocation:
+    i = int(np.argmax(values))
+    pos = int(cycle.point_position[i])
+    s = float(cycle.point_s[i])
+    r1, r2 = pair.contact_radii(s)
+    return PeakLocation(float(values[i]), pos, float(cycle.pinion_angle[pos]), s,
+                        float(cycle.point_z[i]), float(r1), float(r2),
+                        int(cycle.point_pair[i]))
+
+
+def hertz_pressures(cycle: LoadedMeshCycle, pair: GearPair) -> np.ndarray:
+    """Hertz maximum pressure (Pa) of every candidate point of ``cycle``, shape (n_total,):
+    unit load along the contact line ``p = F / width`` (N/m), normal-section effective radius
+    ``R_t / cos(beta_b)`` (module docstring)."""
+    s = np.clip(cycle.point_s, pair.s_start, pair.s_end)
+    rho1, rho2 = pair.curvature_radii(s)
+    cos_bb = math.cos(pair.pinion.base_helix_angle)
+    radius = effective_radius(rho1, rho2) / cos_bb
+    e_star = contact_modulus(pair.pinion.material, pair.gear.material)
+    p = np.maximum(cycle.point_unit_load, 0.0)
+    return np.where(p > 0.0, hertz_max_pressure(p, np.maximum(radius, 1e-300), e_star), 0.0)
+
+
+def _line_loads(cycle: LoadedMeshCycle) -> tuple[np.ndarray, np.ndarray]:
+    """Face positions (n_z,) and line loads (m, n_z), N/m."""
+    zq = np.round(cycle.point_z, 12)
+    z, iz = np.unique(zq, return_inverse=True)
+    w = np.zeros((len(cycle), z.size))
+    np.add.at(w, (cycle.point_position, iz), cycle.point_load / cycle.point_width)
+    return z, w
+
+
+def _transverse_factor(cycle: LoadedMeshCycle, pair: GearPair) -> np.ndarray:
+    """max_k (F_k / L_k) / (P / sum_k L_k) at every position (module docstring)."""
+    lengths = pair.contact_line_lengths(cycle.s0)  # (m, K) on the plane of action, m
+    k_all = pair.pair_indices()
+    cols = np.searchsorted(k_all, cycle.pair_index)
+    L = lengths[:, cols]
+    loaded = (cycle.pair_loads > 0.0) & (L > 0.0)
+    unit = np.where(loaded, cycle.pair_loads / np.where(L > 0.0, L, 1.0), 0.0)
+    mean_unit = cycle.load / np.where(loaded, L, 0.0).sum(axis=1)
+    return unit.max(axis=1) / mean_unit
+
+
+def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
+                      operation: OperatingPoint) -> LoadDistribution:
+    """Load distribution quantities of a loaded mesh cycle (module docstring).
+
+    Parameters
+    ----------
+    cycle : loaded contact over one mesh cycle (:func:`pipeline.contact.analyse_contact`).
+    pair : the pair the cycle was solved on (the *actual* pair, after assembly errors).
+    operation : the operating point the cycle was solved at (its load is checked against
+        ``cycle.load``).
+
+    Returns
+    -------
+    LoadDistribution
+    """
+    if len(cycle) < 1 or cycle.point_load.size == 0:
+        raise InputError("load distribution: the contact cycle has no loaded points")
+    if not np.isin(cycle.pair_index, pair.pair_indices()).all():
+        raise InputError("load distribution: the cycle's tooth pairs do not belong to this pair")
+    expected = line_of_action_load(pair, operation)
+    if not math.isclose(cycle.load, expected, rel_tol=1e-9):
+        raise InputError(f"load distribution: the cycle was solved at P = {cycle.load:.6g} N, "
+                         f"the operating point gives {expected:.6g} N (torque "
+                         f"{operation.torque:.6g} N m on the {operation.driver}); pass the "
+                         f"pair and operating point the cycle was solved for")
+    z, w = _line_loads(cycle)
+    b = pair.face_width
+    w_m = cycle.load / b
+    cycle_mean = w.mean(axis=0)
+    k_hb = float(cycle_mean.max() / cycle_mean.mean())
+    kha = _transverse_factor(cycle, pair)
+    hertz = hertz_pressures(cycle, pair)
+    iz = np.searchsorted(z, np.round(cycle.point_z, 12))
+    line_at_point = w[cycle.point_position, iz]
+    te = cycle.transmission_error
+    rb1 = pair.pinion.base_radius
+    return LoadDistribution(
+        z=z, line_load=w, mean_line_load=float(w_m), envelope=w.max(axis=0),
+        cycle_mean=cycle_mean, k_hbeta=k_hb, k_hbeta_position=w.max(axis=1) / w_m,
+        k_halpha=float(kha.max()), k_halpha_position=kha, hertz_pressure=hertz,
+        hertz_max=_peak(hertz, cycle, pair), line_load_max=_peak(line_at_point, cycle, pair),
+        pinion_angle=cycle.pinion_angle, transmission_error=te,
+        te_peak_to_peak=float(np.ptp(te)), te_peak_to_peak_angle=float(np.ptp(te) / rb1),
+        te_orders=mesh_order_amplitudes(te), pair_index=np.array(cycle.pair_index),
+        load_share=cycle.load_share, mesh_stiffness=cycle.mesh_stiffness,
+        load=float(cycle.load), face_width=float(b), slices_across_face=int(z.size))

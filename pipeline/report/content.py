@@ -1,0 +1,287 @@
+"""The sections of a mesh report from the results of the stages (numbers in report units).
+
+Pure functions: stage results in, :class:`~pipeline.report.model.Section` out. Units of
+the report: mm, deg, um, urad, N/mm (line and unit loads), N/um (mesh stiffness), MPa
+(pressures, stresses), N m, rpm; every row states its unit.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from pipeline.contact.distribution import LoadDistribution
+from pipeline.contact.options import ContactOptions
+from pipeline.geometry.analysis import GeometryResult
+from pipeline.geometry.pair import GearPair
+from pipeline.operation import OperatingPoint
+from pipeline.report.model import Figure, Quantity, Section
+from pipeline.stiffness.analysis import StiffnessResult
+
+MM, UM, MPA, N_PER_MM, N_PER_UM = 1e3, 1e6, 1e-6, 1e-3, 1e-6
+RPM = 60.0 / (2.0 * math.pi)
+
+
+def quantity(key: str, label: str, unit: str, *values: Any) -> Quantity:
+    """A table row; numpy scalars become Python numbers (JSON, formatting)."""
+    return Quantity(key, label, tuple(_plain(v) for v in values), unit)
+
+
+def _plain(v: Any) -> Any:
+    """Python numbers for numpy scalars; NaN becomes None (strict JSON; shown as a dash)."""
+    if isinstance(v, (np.floating, float)):
+        return None if math.isnan(v) else float(v)
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, (np.bool_,)):
+        return bool(v)
+    return v
+
+
+def operation_section(pair: GearPair, operation: OperatingPoint, contact: ContactOptions,
+                      compliance: str, dist: LoadDistribution) -> Section:
+    """Operating point and how the contact was solved."""
+    driver = pair.pinion if operation.driver == "pinion" else pair.gear
+    f_t = operation.torque / driver.reference_radius
+    return Section("operation", "Operating point and analysis", (
+        quantity("torque", f"torque on the driving gear ({operation.driver})", "N m",
+            operation.torque),
+        quantity("speed", f"speed of the driving gear ({operation.driver})", "rpm",
+           operation.speed * RPM),
+        quantity("load_line_of_action", "load along the transverse line of action P", "N",
+           dist.load),
+        quantity("tangential_load", "nominal tangential load F_t at the reference circle", "N",
+            f_t),
+        quantity("compliance", "compliance source of the loaded contact", "", compliance),
+        quantity("local_contact", "local contact model", "", contact.local_contact),
+        quantity("positions", "mesh positions per cycle", "-", len(dist.transmission_error)),
+        quantity("slices", "slices across the face width", "-", dist.slices_across_face),
+    ))
+
+
+def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequence[Figure]
+                     ) -> Section:
+    """Both gears side by side, then the pair (contact ratios of the installed pair)."""
+    p, g = actual.pinion, actual.gear
+    fp, fg = (prof.form_radius for prof in geometry.profiles)
+
+    def both(key, label, unit, fn):
+        return quantity(key, label, unit, fn(p), fn(g))
+
+    rows = [
+        both("name", "gear", "", lambda x: x.name),
+        both("teeth", "number of teeth z", "-", lambda x: x.teeth),
+        both("normal_module", "normal module m_n", "mm", lambda x: x.module * MM),
+        both("pressure_angle", "normal pressure angle alpha_n", "deg",
+             lambda x: math.degrees(x.pressure_angle)),
+        both("helix_angle", "helix angle beta", "deg", lambda x: math.degrees(x.helix_angle)),
+        both("hand", "hand of helix", "", lambda x: x.hand),
+        both("face_width", "face width b", "mm", lambda x: x.face_width * MM),
+        both("profile_shift", "profile shift coefficient x", "-", lambda x: x.profile_shift),
+        both("internal", "internal gear", "", lambda x: bool(x.internal)),
+        both("reference_diameter", "reference diameter d", "mm",
+             lambda x: 2 * x.reference_radius * MM),
+        both("base_diameter", "base diameter d_b", "mm", lambda x: 2 * x.base_radius * MM),
+        both("tip_diameter", "tip diameter d_a", "mm", lambda x: 2 * x.tip_radius_ * MM),
+        both("root_diameter", "root diameter d_f", "mm", lambda x: 2 * x.root_radius * MM),
+        quantity("form_diameter", "form diameter d_Ff (fillet meets involute)", "mm", 2 * fp * MM,
+           2 * fg * MM),
+        both("cutter_tip_radius", "rack cutter tip radius rho_a0", "mm",
+             lambda x: x.cutter_tip_radius_coef * x.module * MM),
+        both("bore_diameter", "bore diameter (ring: rim outer diameter)", "mm",
+             lambda x: 2 * x.bore_radius * MM),
+        both("youngs_modulus", "Young's modulus E", "GPa",
+             lambda x: x.material.youngs_modulus * 1e-9),
+        both("poisson_ratio", "Poisson's ratio nu", "-", lambda x: x.material.poisson_ratio),
+    ]
+    gears = Section("geometry", "Gears", tuple(rows), columns=("pinion", "gear"),
+                    figures=tuple(figures))
+    return gears
+
+
+def pair_section(actual: GearPair, nominal: GearPair) -> Section:
+    """Centre distance, pressure angle, contact ratios and the path of contact."""
+    a = actual
+    return Section("pair", "Pair (as installed)", (
+        quantity("centre_distance", "operating centre distance a_w", "mm",
+           a.operating_centre_distance * MM),
+        quantity("centre_distance_nominal", "nominal centre distance", "mm",
+           nominal.operating_centre_distance * MM),
+        quantity("operating_pressure_angle", "transverse operating pressure angle alpha_wt", "deg",
+           math.degrees(a.operating_pressure_angle)),
+        quantity("transverse_contact_ratio", "transverse contact ratio eps_alpha", "-",
+           a.transverse_contact_ratio),
+        quantity("overlap_ratio", "overlap ratio eps_beta", "-", a.overlap_ratio),
+        quantity("total_contact_ratio", "total contact ratio eps_gamma", "-",
+            a.total_contact_ratio),
+        quantity("base_pitch", "transverse base pitch p_bt", "mm", a.base_pitch * MM),
+        quantity("path_of_contact", "length of the path of contact g_alpha", "mm",
+           a.path_length * MM),
+        quantity("gear_ratio", "gear ratio u = z2 / z1", "-", a.gear_ratio),
+    ))
+
+
+def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any) -> Section:
+    """Profile and lead modifications, pitch errors and assembly errors."""
+    m = contact.modifications
+    pitch = ", ".join(f"{e * UM:g}" for e in m.pitch_errors) or "none"
+    rows = [
+        quantity("tip_relief_pinion", "tip relief C_a of the pinion", "um",
+            m.tip_relief_pinion * UM),
+        quantity("tip_relief_length_pinion", "tip relief length of the pinion (roll)", "mm",
+           m.relief_length_pinion * MM),
+        quantity("tip_relief_gear", "tip relief C_a of the gear", "um", m.tip_relief_gear * UM),
+        quantity("tip_relief_length_gear", "tip relief length of the gear (roll)", "mm",
+           m.relief_length_gear * MM),
+        quantity("relief_shape", "relief shape", "", m.relief_shape),
+        quantity("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
+        quantity("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
+           m.slope_deviation * UM),
+        quantity("pitch_errors", "pitch errors of tooth pairs 0, 1, ...", "um", pitch),
+        quantity("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
+           ", ".join(f"{e * UM:g}" for e in assembly.pinion)),
+        quantity("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
+           ", ".join(f"{e * UM:g}" for e in assembly.gear)),
+    ]
+    if assembled is not None:
+        rows.append(quantity("centre_distance_change", "centre distance change from the errors",
+                       "um", assembled.summary()["centre_distance_change_um"]))
+    return Section("modifications", "Modifications and errors", tuple(rows))
+
+
+def stiffness_section(stiffness: StiffnessResult, dist: LoadDistribution, compliance: str,
+                      figures: Sequence[Figure]) -> Section:
+    """Analytical, loaded (LTCA) and ISO 6336-1 mesh stiffness."""
+    an = stiffness.mesh.total
+    k = dist.mesh_stiffness
+    iso = stiffness.iso
+    return Section("stiffness", "Mesh stiffness", (
+        quantity("analytical_mean", "analytical (potential energy), mean", "N/um",
+            an.mean() * N_PER_UM),
+        quantity("analytical_min", "analytical, min", "N/um", an.min() * N_PER_UM),
+        quantity("analytical_max", "analytical, max", "N/um", an.max() * N_PER_UM),
+        quantity("loaded_mean", f"loaded (LTCA, {compliance}), tangent dP/dx, mean", "N/um",
+           k.mean() * N_PER_UM),
+        quantity("loaded_min", "loaded, min", "N/um", k.min() * N_PER_UM),
+        quantity("loaded_max", "loaded, max", "N/um", k.max() * N_PER_UM),
+        quantity("iso_single", "ISO 6336-1 single stiffness c'", "N/(mm um)", iso.c_single * 1e-9),
+        quantity("iso_mesh_per_width", "ISO 6336-1 mesh stiffness c_gamma_alpha", "N/(mm um)",
+           iso.c_gamma_alpha * 1e-9),
+        quantity("iso_mesh", "ISO 6336-1 mean mesh stiffness c_gamma_alpha b", "N/um",
+           iso.mesh_stiffness * N_PER_UM),
+        quantity("loaded_over_iso", "loaded mean over ISO c_gamma_alpha b", "-",
+           k.mean() / iso.mesh_stiffness),
+    ), figures=tuple(figures))
+
+
+def transmission_error_section(dist: LoadDistribution, figures: Sequence[Figure]) -> Section:
+    """Loaded static TE, its mesh orders and the load sharing."""
+    rows = [
+        quantity("peak_to_peak", "loaded static TE, peak-to-peak (line of action)", "um",
+           dist.te_peak_to_peak * UM),
+        quantity("peak_to_peak_angle", "loaded static TE, peak-to-peak (pinion angle)", "urad",
+           dist.te_peak_to_peak_angle * 1e6),
+        quantity("mean", "loaded static TE, mean", "um",
+            float(dist.transmission_error.mean()) * UM),
+    ]
+    for j, a in enumerate(dist.te_orders, start=1):
+        rows.append(quantity(f"order_{j}", f"amplitude of mesh order {j}", "um", float(a) * UM))
+    rows.append(quantity("max_load_share", "largest load share of one tooth pair", "-",
+                   float(dist.load_share.max())))
+    notes = ()
+    if np.isnan(dist.te_orders).any():
+        n = int(np.isfinite(dist.te_orders).sum())
+        notes = (f"{len(dist.transmission_error)} positions per cycle resolve mesh orders up "
+                 f"to {n}; raise [contact] positions to at least 22 for orders 1-10.",)
+    return Section("transmission_error", "Transmission error and load sharing", tuple(rows),
+                   figures=tuple(figures), notes=notes)
+
+
+def load_distribution_section(dist: LoadDistribution, pair: GearPair,
+                              figures: Sequence[Figure]) -> Section:
+    """Line load over the face, K_Hbeta and K_Halpha."""
+    w = dist.line_load_max
+    notes = ["K_Hbeta = largest over mean of the line load averaged over the mesh cycle "
+             "(ISO 6336-1: maximum over mean load per unit face width); K_Halpha = largest "
+             "mean unit load of a tooth pair over the mean unit load of all contact lines "
+             "in contact, the largest over the cycle (from the computed load sharing, not ISO "
+             "6336-1's formula)."]
+    if dist.slices_across_face == 1:
+        notes.append("Spur pair analysed with one slice across the face: the line load is "
+                     "uniform by construction, and lead crowning and helix slope deviation do "
+                     "not enter the solve (K_Hbeta = 1).")
+    return Section("load_distribution", "Line load and load factors", (
+        quantity("K_Hbeta", "face load factor K_Hbeta", "-", dist.k_hbeta),
+        quantity("K_Hbeta_position_max", "largest instantaneous max/mean line load", "-",
+           float(dist.k_hbeta_position.max())),
+        quantity("K_Halpha", "transverse load factor K_Halpha", "-", dist.k_halpha),
+        quantity("mean_line_load", "mean line load P / b", "N/mm", dist.mean_line_load * N_PER_MM),
+        quantity("max_line_load", "largest line load w", "N/mm", w.value * N_PER_MM),
+        quantity("max_line_load_face_position", "its face position z", "mm", w.z * MM),
+        quantity("max_line_load_pinion_angle", "its pinion angle in the cycle", "deg",
+           math.degrees(w.pinion_angle)),
+    ), figures=tuple(figures), notes=tuple(notes))
+
+
+def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) -> Section:
+    """Hertz pressure, its maximum and where."""
+    h = dist.hertz_max
+    return Section("contact_pressure", "Contact pressure", (
+        quantity("max_hertz_pressure", "largest Hertz pressure p_H", "MPa", h.value * MPA),
+        quantity("pinion_diameter", "where: pinion diameter", "mm", 2 * h.pinion_radius * MM),
+        quantity("gear_diameter", "where: gear diameter", "mm", 2 * h.gear_radius * MM),
+        quantity("face_position", "where: face position z", "mm", h.z * MM),
+        quantity("roll_coordinate", "where: roll coordinate s from T1", "mm", h.s * MM),
+        quantity("pinion_angle", "when: pinion angle in the cycle", "deg",
+           math.degrees(h.pinion_angle)),
+        quantity("tooth_pair", "tooth pair", "-", h.tooth_pair),
+    ), figures=tuple(figures), notes=(
+        "Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load along "
+        "the contact line, normal-section radii of curvature, plane-strain moduli of both "
+        "gears; the envelope over the mesh cycle is drawn on each flank.",))
+
+
+def figures_section(key: str, title: str, figures: Sequence[Figure],
+                    rows: Sequence[Quantity] = (), notes: Sequence[str] = ()) -> Section:
+    """A section of stage figures (load maps, dynamics) with optional rows."""
+    return Section(key, title, tuple(rows), figures=tuple(figures), notes=tuple(notes))
+
+
+def dynamics_rows(summary: dict[str, Any]) -> list[Quantity]:
+    """Dynamic factor and mesh forces at the operating speed, sweep maxima, first modes."""
+    rows = [quantity("excitation", "mesh excitation of the dynamic model", "",
+        summary["excitation"])]
+    for name, m in summary["response_at_operating_speed"]["meshes"].items():
+        rows.append(quantity(f"{name}_dynamic_factor", f"{name}: dynamic factor at the operating "
+                       "speed (max / mean mesh force)", "-", m["dynamic_factor"]))
+        rows.append(quantity(f"{name}_max_force", f"{name}: largest dynamic mesh force", "N",
+                       m["max_force_N"]))
+    sw = summary["sweep"]
+    for name, v in sw["max_dynamic_factor"].items():
+        rows.append(quantity(f"{name}_sweep_max_dynamic_factor", f"{name}: largest dynamic factor "
+                       f"over {sw['f_min_Hz']:g}-{sw['f_max_Hz']:g} Hz mesh frequency", "-", v))
+        rows.append(quantity(f"{name}_sweep_max_at", f"{name}: at mesh frequency", "Hz",
+                       sw["max_dynamic_factor_at_Hz"][name]))
+    for i, f in enumerate(summary["natural_frequencies_Hz"][:6]):
+        rows.append(quantity(f"natural_frequency_{i}", f"natural frequency {i}", "Hz", f))
+    return rows
+
+
+def provenance_section(record: dict[str, Any]) -> Section:
+    """Configuration hash, code revision, versions, run time."""
+    rows = [
+        quantity("configuration_hash", "configuration hash (gearbox inputs)", "",
+           record["configuration_hash"]),
+        quantity("gearbox_file_sha256", "gearbox file SHA-256", "", record["gearbox_file_sha256"]),
+        quantity("code_revision", "code revision (git)", "", record["code_revision"]),
+        quantity("command", "command", "", record["command"]),
+        quantity("time_utc", "written (UTC)", "", record["time_utc"]),
+        quantity("run_time", "run time before the report (stages, tables, figures)", "s",
+                 record["run_time_s"]),
+    ]
+    for name, v in record["versions"].items():
+        rows.append(quantity(f"version_{name.replace('-', '_')}", name, "", v))
+    return Section("provenance", "Provenance", tuple(rows))

@@ -1,0 +1,171 @@
+"""Writing the reports of a run: per gear mesh one HTML file, its JSON and its CSV.
+
+:func:`write_reports` takes a :class:`~pipeline.run.chain.RunResult` and the folder the
+run's stage outputs were written to (:func:`pipeline.run.commands.write_run`): it
+computes the load distribution of every mesh (:func:`pipeline.contact.load_distribution`)
+and the tooth root stress (FE 2D and ISO 6336-3, :mod:`pipeline.contact.root_stress`),
+draws the report's own figures (:mod:`pipeline.viz.distribution`), embeds them and the
+stage figures it finds in the folder, and writes, per mesh (prefix ``<mesh>_`` for a
+planetary set):
+
+* ``report.html`` - the self-contained report (:mod:`pipeline.report.html`);
+* ``report.json`` - every number of it, by section and key, with labels and units;
+* ``report.csv`` - the same numbers as rows ``section,key,column,quantity,value,unit``;
+* ``report_cycle.csv`` - per mesh position: TE, mesh stiffness, load factors, load
+  shares, root stress maxima; ``report_face.csv`` - line load over the face.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from pipeline.contact.distribution import LoadDistribution, load_distribution
+from pipeline.io import atomic_write_text, write_csv, write_json
+from pipeline.report import content
+from pipeline.report.html import render_html
+from pipeline.report.model import Figure, MeshReport
+from pipeline.report.provenance import provenance
+from pipeline.viz.figure_cache import NO_CACHE, FigureCache
+
+# stage figures embedded when the run wrote them: (file, caption, section); every other
+# ``load_map*.png`` of the mesh is embedded too, under its file name
+STAGE_FIGURES = (
+    ("tooth_profiles.png", "Tooth profiles (involute and trochoidal fillet)", "geometry"),
+    ("load_map.png", "Tooth-surface load map", "load_maps"),
+    ("load_map_2d.png", "Unit load over the plane of action", "load_maps"),
+    ("sweep.png", "Dynamic mesh force and dynamic factor over mesh frequency", "dynamics"),
+    ("dte_spectrum.png", "Dynamic transmission error spectrum", "dynamics"),
+    ("harmonics.png", "Harmonic contributions of the response", "dynamics"),
+)
+
+
+def _stage_figures(out: Path, prefix: str, mesh_level: bool) -> dict[str, list[Figure]]:
+    found: dict[str, list[Figure]] = {}
+    for name, caption, section in STAGE_FIGURES:
+        file = (prefix if mesh_level and section != "dynamics" else "") + name
+        if (out / file).is_file():
+            found.setdefault(section, []).append(Figure(file, caption))
+    if mesh_level:
+        known = {f.file for f in found.get("load_maps", [])}
+        for path in sorted(out.glob(f"{prefix}load_map*.png")):
+            if path.name not in known:
+                found.setdefault("load_maps", []).append(
+                    Figure(path.name, "Load map: " + path.stem[len(prefix):].replace("_", " ")))
+    return found
+
+
+def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
+                command: str, root_stress: Any = None) -> tuple[MeshReport, LoadDistribution]:
+    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report."""
+    from pipeline.viz import distribution as viz
+
+    st = result.meshes[name]
+    box = result.gearbox
+    prefix = "" if name == "mesh" else f"{name}_"
+    actual, op = st.stiffness.actual, st.case.operation
+    dist = load_distribution(st.contact, actual, op)
+    stage = _stage_figures(out, prefix, True)
+
+    def fig(file: str, caption: str, fn, *args) -> Figure:
+        figures.save(out / f"{prefix}{file}", fn, *args)
+        return Figure(f"{prefix}{file}", caption)
+
+    k_fig = fig("report_stiffness.png", "Mesh stiffness over one mesh cycle",
+                viz.plot_stiffness_comparison, actual, st.stiffness.mesh.s0,
+                st.stiffness.mesh.total, st.contact, st.stiffness.iso.mesh_stiffness,
+                st.compliance, title)
+    te_fig = fig("report_transmission_error.png", "Loaded static transmission error, its mesh "
+                 "orders and the load sharing", viz.plot_transmission_error, actual, dist,
+                 st.contact.s0, title)
+    w_fig = fig("report_line_load.png", "Line load over the face width",
+                viz.plot_line_load, dist, title)
+    p_fig = fig("report_contact_pressure.png", "Hertz contact pressure over both flanks",
+                viz.plot_contact_pressure, st.contact, dist, actual, title)
+    sections = [
+        content.operation_section(actual, op, box.contact, st.compliance, dist),
+        content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
+        content.pair_section(actual, st.stiffness.nominal),
+        content.modifications_section(box.contact, st.case.assembly_errors,
+                                      st.stiffness.assembled),
+        content.stiffness_section(st.stiffness, dist, st.compliance, [k_fig]),
+        content.transmission_error_section(dist, [te_fig]),
+        content.load_distribution_section(dist, actual, [w_fig]),
+        content.contact_pressure_section(dist, [p_fig]),
+    ]
+    if root_stress is not None:
+        from pipeline.report.root_section import root_stress_section
+
+        r_fig = fig("report_root_stress.png", "Largest principal stress along the fillets",
+                    viz.plot_root_stress, root_stress.curves(), title)
+        sections.append(root_stress_section(root_stress, [r_fig]))
+    if stage.get("load_maps"):
+        sections.append(content.figures_section("load_maps", "Tooth-surface load maps",
+                                                stage["load_maps"]))
+    if result.dynamics is not None:
+        dyn = _stage_figures(out, prefix, False).get("dynamics", [])
+        sections.append(content.figures_section(
+            "dynamics", "Dynamics", dyn, content.dynamics_rows(result.dynamics.summary())))
+    run_s = result.log.summary()["total_s"]
+    src = box.source
+    record = provenance(box.to_dict(), file_sha256=src.sha256 if src else None,
+                        command=command, run_seconds=run_s)
+    sections.append(content.provenance_section(record))
+    return MeshReport(title, name, tuple(sections)), dist
+
+
+def _csv_text(report: MeshReport) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["section", "key", "column", "quantity", "value", "unit"])
+    for section, key, column, label, unit, value in report.rows():
+        w.writerow([section, key, column, label, "" if value is None else value, unit])
+    return buf.getvalue()
+
+
+def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, prefix: str,
+                      subtitle: str, root_stress: Any = None) -> list[Path]:
+    """The HTML, JSON and CSV files of one mesh report (module docstring)."""
+    cycle_cols = dist.columns()
+    if root_stress is not None:
+        cycle_cols.update(root_stress.cycle_columns())
+    return [
+        atomic_write_text(out / f"{prefix}report.html", render_html(report, out, subtitle)),
+        write_json(out / f"{prefix}report.json", report.to_json()),
+        atomic_write_text(out / f"{prefix}report.csv", _csv_text(report)),
+        write_csv(out / f"{prefix}report_cycle.csv", cycle_cols),
+        write_csv(out / f"{prefix}report_face.csv", dist.face_columns()),
+    ]
+
+
+def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
+                  command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
+    """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
+    the files. A run without gear meshes (a lumped model) has none."""
+    from pipeline.contact.root_stress import analyse_root_stress
+
+    files: list[Path] = []
+    box = result.gearbox
+    for name, st in result.meshes.items():
+        if st.contact is None:
+            continue
+        t0 = time.perf_counter()
+        prefix = "" if name == "mesh" else f"{name}_"
+        pair = st.stiffness.actual
+        label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
+        title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
+                 f"{pair.pinion.module * 1e3:g} mm, beta "
+                 f"{math.degrees(pair.pinion.helix_angle):g} deg")
+        root = analyse_root_stress(st.contact, pair, st.case.operation, box.fe_source,
+                                   show_progress=show_progress)
+        report, dist = mesh_report(result, name, out, figures, title=title, command=command,
+                                   root_stress=root)
+        subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
+                    f"{len(st.contact)} mesh positions; written in "
+                    f"{time.perf_counter() - t0:.1f} s")
+        files += write_mesh_report(report, dist, out, prefix, subtitle, root)
+    return files

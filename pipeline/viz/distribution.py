@@ -1,0 +1,185 @@
+"""Figures of the tooth load distribution report: stiffness, transmission error, line load,
+contact pressure over both flanks, root stress along the fillets.
+
+Every function draws a new matplotlib :class:`~matplotlib.figure.Figure` (no pyplot, no
+backend chosen) with its axes labelled in the report's units: mesh stiffness N/um,
+transmission error um, line load and unit load N/mm, pressures and stresses MPa, lengths
+mm, angles deg.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from pipeline.contact.distribution import LoadDistribution
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.geometry.pair import GearPair
+
+N_PER_UM = 1e-6  # N/m -> N/um
+N_PER_MM = 1e-3  # N/m -> N/mm
+
+
+def _cycle_fraction(pair: GearPair, s0: np.ndarray) -> np.ndarray:
+    return (np.asarray(s0) - pair.s_start) / pair.base_pitch
+
+
+def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
+                              k_analytical: np.ndarray, cycle: LoadedMeshCycle,
+                              k_iso: float, compliance: str, title: str) -> Figure:
+    """Analytical k(t), the LTCA tangent k(t) on ``compliance`` and ISO 6336-1's
+    c_gamma_alpha b over one mesh cycle (N/m in, N/um drawn)."""
+    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot(_cycle_fraction(pair, s0_analytical), np.asarray(k_analytical) * N_PER_UM,
+            label="analytical (potential energy)")
+    ax.plot(_cycle_fraction(pair, cycle.s0), cycle.mesh_stiffness * N_PER_UM, "o-", ms=3,
+            label=f"loaded contact (LTCA, {compliance} compliance)")
+    ax.axhline(k_iso * N_PER_UM, color="k", ls="--", lw=1.0,
+               label="ISO 6336-1 c_gamma_alpha b (mean)")
+    ax.set_xlabel("mesh cycle [-] (roll of the leading pair over the base pitch)")
+    ax.set_ylabel("mesh stiffness [N/um]")
+    ax.set_ylim(0.0, None)
+    ax.set_xlim(0.0, 1.0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(title, fontsize=9)
+    return fig
+
+
+def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarray,
+                            title: str) -> Figure:
+    """Loaded static TE over the cycle (um), the amplitudes of mesh orders 1-10 (um) and the
+    load share of every tooth pair."""
+    fig = Figure(figsize=(10.0, 3.4), layout="constrained")
+    a1, a2, a3 = fig.subplots(1, 3, width_ratios=(1.3, 1.0, 1.3))
+    x = _cycle_fraction(pair, s0)
+    a1.plot(x, dist.transmission_error * 1e6, "o-", ms=3)
+    a1.set_xlabel("mesh cycle [-]")
+    a1.set_ylabel("loaded static TE [um]")
+    a1.set_xlim(0.0, 1.0)
+    a1.grid(alpha=0.3)
+    orders = np.arange(1, dist.te_orders.size + 1)
+    a2.bar(orders, np.nan_to_num(dist.te_orders) * 1e6, color="C1")
+    a2.set_xticks(orders)
+    a2.set_xlabel("mesh order [-]")
+    a2.set_ylabel("TE amplitude [um]")
+    a2.grid(alpha=0.3, axis="y")
+    for j, k in enumerate(dist.pair_index):
+        if dist.load_share[:, j].any():
+            a3.plot(x, dist.load_share[:, j], label=f"tooth pair {k}")
+    a3.set_xlabel("mesh cycle [-]")
+    a3.set_ylabel("load share [-]")
+    a3.set_ylim(0.0, 1.05)
+    a3.set_xlim(0.0, 1.0)
+    a3.grid(alpha=0.3)
+    a3.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # outside: no overlap
+    fig.suptitle(title, fontsize=9)
+    return fig
+
+
+def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
+    """Line load over the face width at every position (grey), its envelope and its mean over
+    the cycle, with the mean P/b (N/mm against mm)."""
+    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    z, w, env, mean = dist.z * 1e3, dist.line_load, dist.envelope, dist.cycle_mean
+    if z.size == 1:  # one slice stands for the whole face
+        z = np.array([0.0, dist.face_width * 1e3])
+        w, env, mean = np.repeat(w, 2, axis=1), np.repeat(env, 2), np.repeat(mean, 2)
+    for i, row in enumerate(w):
+        ax.plot(z, row * N_PER_MM, color="0.7", lw=0.7,
+                label="each mesh position" if i == 0 else None)
+    ax.plot(z, env * N_PER_MM, "C3", lw=2.0, label="envelope over the cycle")
+    ax.plot(z, mean * N_PER_MM, "C0", lw=2.0, ls="--",
+            label=f"mean over the cycle (K_Hbeta = {dist.k_hbeta:.3f})")
+    ax.axhline(dist.mean_line_load * N_PER_MM, color="k", ls=":", lw=1.0, label="P / b")
+    ax.set_xlabel("face position z [mm]")
+    ax.set_ylabel("line load w [N/mm]")
+    ax.set_xlim(0.0, dist.face_width * 1e3)
+    ax.set_ylim(0.0, max(dist.envelope.max() * N_PER_MM * 1.15, 1e-9))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(title, fontsize=9)
+    return fig
+
+
+def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
+                       n_s: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Largest p_H over the cycle on an (s, z) grid of the plane of action (Pa)."""
+    s_grid = np.linspace(pair.s_start, pair.s_end, n_s)
+    zq = np.round(cycle.point_z, 12)
+    z = np.unique(zq)
+    env = np.zeros((n_s, z.size))
+    idx = np.clip(np.round((cycle.point_s - pair.s_start) / (pair.s_end - pair.s_start)
+                           * (n_s - 1)).astype(int), 0, n_s - 1)
+    iz = np.searchsorted(z, zq)
+    np.maximum.at(env, (idx, iz), dist.hertz_pressure)
+    # positions sample the path at the cycle spacing: carry the largest value between samples
+    filled = env.copy()
+    for j in range(z.size):
+        col = env[:, j]
+        hit = np.flatnonzero(col > 0)
+        if hit.size >= 2:
+            # the nearest sample holds up to the ends of the path (no sample falls there)
+            filled[:, j] = np.interp(s_grid, s_grid[hit], col[hit])
+    return s_grid, z, filled
+
+
+def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
+                          title: str, profile_points: int = 80) -> Figure:
+    """Hertz pressure envelope over the cycle on the pinion and the gear flank (MPa), drawn
+    over the diameter of each flank (mm) and the face width (mm); the maximum is marked."""
+    s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
+    r1, r2 = pair.contact_radii(s)
+    fig = Figure(figsize=(10.0, 3.8), layout="constrained")
+    axes = fig.subplots(1, 2, sharey=True)
+    vmax = max(env.max() * 1e-6, 1e-9)
+    zz = z * 1e3
+    if zz.size == 1:  # one slice: spread it over the face
+        zz = np.array([0.0, pair.face_width * 1e3])
+        env = np.repeat(env, 2, axis=1)
+    h = dist.hertz_max
+    for ax, r, rmax, name in ((axes[0], r1, h.pinion_radius, "pinion"),
+                              (axes[1], r2, h.gear_radius, "gear")):
+        d = 2e3 * r
+        order = np.argsort(d)
+        m = ax.pcolormesh(d[order], zz, env[order].T * 1e-6, shading="gouraud",
+                          cmap="inferno", vmin=0.0, vmax=vmax)
+        ax.plot(2e3 * rmax, h.z * 1e3, "c+", ms=12, mew=2,
+                label=f"max {h.value * 1e-6:.0f} MPa")
+        ax.set_xlabel(f"{name} diameter [mm] (root side left)")
+        ax.set_title(f"{name} flank", fontsize=9)
+        ax.legend(fontsize=8, loc="upper right")
+    axes[0].set_ylabel("face position z [mm]")
+    fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
+    fig.suptitle(title, fontsize=9)
+    return fig
+
+
+def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | None]],
+                     title: str) -> Figure:
+    """Largest principal stress along the fillet, envelope over the cycle, per gear.
+
+    ``curves`` : (name, arc length from the middle of the tooth space in mm, stress in MPa,
+    ISO 6336-3 nominal stress in MPa or None) per gear.
+    """
+    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    for i, (name, arc, sigma, iso) in enumerate(curves):
+        ax.plot(arc, sigma, color=f"C{i}", label=f"{name}: FE 2D, envelope over the cycle")
+        k = int(np.argmax(sigma))
+        ax.plot(arc[k], sigma[k], "o", color=f"C{i}")
+        if iso is not None and math.isfinite(iso):
+            ax.axhline(iso, color=f"C{i}", ls="--", lw=1.0,
+                       label=f"{name}: ISO 6336-3 sigma_F0")
+    ax.set_xlabel("arc length along the loaded-side root, from the middle of the tooth "
+                  "space [mm]")
+    ax.set_ylabel("largest principal stress [MPa]")
+    ax.set_ylim(0.0, None)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=9)
+    return fig

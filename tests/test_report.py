@@ -1,0 +1,210 @@
+"""The tooth load distribution report (pipeline.report, ``gearpipe report``).
+
+The report of a small case is built through the command line and read back as a user's
+tools would: every figure embedded as a data URI (nothing fetched from elsewhere), every
+number in the HTML equal to the JSON's value as printed, the CSV the same numbers, the
+numbers themselves the stages' (K_Hbeta, Hertz pressure, TE, ISO 6336-1 stiffness,
+provenance hash); the failure paths are one line and write nothing.
+"""
+
+from __future__ import annotations
+
+import base64
+import csv
+import json
+import re
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+from test_run import SMALL
+
+from pipeline.cli import main as cli
+from pipeline.config import gearbox_from_text
+from pipeline.contact.distribution import load_distribution
+from pipeline.io import content_hash
+from pipeline.report.model import format_value
+
+CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
+
+
+class _Cells(HTMLParser):
+    """Table cells with their data-key, image sources, links."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.cells: list[tuple[str | None, str]] = []
+        self.images: list[str] = []
+        self.links: list[str] = []
+        self._in_td: str | None | bool = False
+        self._text = ""
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "td":
+            self._in_td, self._text = a.get("data-key"), ""
+        elif tag == "img":
+            self.images.append(a["src"])
+        elif tag in ("a", "link", "script"):
+            self.links.append(a.get("href") or a.get("src") or "")
+
+    def handle_endtag(self, tag):
+        if tag == "td" and self._in_td is not False:
+            self.cells.append((self._in_td, self._text))
+            self._in_td = False
+
+    def handle_data(self, data):
+        if self._in_td is not False:
+            self._text += data
+
+
+def small_report(root: Path) -> Path:
+    """``gearpipe report`` on the small case into ``root/out`` (cache in ``root/c``)."""
+    cfg = root / "small.toml"
+    cfg.write_text(SMALL, encoding="utf-8")
+    out = root / "out"
+    assert cli(["report", str(cfg), "--out", str(out), "--cache-dir", str(root / "c"),
+                "--json"]) == 0
+    return out
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    return small_report(tmp_path_factory.mktemp("report")), gearbox_from_text(SMALL, "small")
+
+
+def _json_value(data: dict, key: str):
+    section, name, *column = key.split(".")
+    row = data["sections"][section]["quantities"][name]
+    return row["values"][column[0]] if column else row["value"]
+
+
+def test_every_figure_is_embedded(report):
+    out, _ = report
+    html = (out / "report.html").read_text(encoding="utf-8")
+    data = json.loads((out / "report.json").read_text())
+    p = _Cells()
+    p.feed(html)
+    figures = [f["file"] for s in data["sections"].values() for f in s["figures"]]
+    assert len(p.images) == len(figures) >= 8
+    for src, name in zip(p.images, figures, strict=True):
+        assert src.startswith("data:image/png;base64,")
+        png = base64.b64decode(src.split(",", 1)[1])
+        assert png == (out / name).read_bytes()  # the figure the stage wrote, unchanged
+    # opens offline: no script, no style sheet or image from elsewhere
+    assert all(link.startswith("#") for link in p.links)
+    assert not re.search(r"(src|href)=\"(http|//|file:)", html)
+    assert "@media print" in html
+
+
+def test_every_number_shown_equals_the_json(report):
+    out, _ = report
+    data = json.loads((out / "report.json").read_text())
+    p = _Cells()
+    p.feed((out / "report.html").read_text(encoding="utf-8"))
+    shown = [(k, t) for k, t in p.cells if k is not None]
+    n_json = sum(len(s["columns"]) * len(s["quantities"]) for s in data["sections"].values())
+    assert len(shown) == n_json > 100
+    for key, text in shown:
+        assert text == format_value(_json_value(data, key)), key
+    # every other cell is a label or a unit, never a number
+    for key, text in p.cells:
+        if key is None:
+            assert not re.fullmatch(r"[-+]?\d[\d.eE+-]*", text.strip()), text
+
+
+def test_csv_holds_the_same_numbers(report):
+    out, _ = report
+    data = json.loads((out / "report.json").read_text())
+    with open(out / "report.csv", newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == sum(len(s["columns"]) * len(s["quantities"])
+                            for s in data["sections"].values())
+    for r in rows:
+        cols = data["sections"][r["section"]]["columns"]
+        key = f"{r['section']}.{r['key']}" + (f".{r['column']}" if len(cols) > 1 else "")
+        v = _json_value(data, key)
+        if isinstance(v, float):
+            assert float(r["value"]) == v
+        else:
+            assert r["value"] == ("" if v is None else str(v))
+    cycle = np.genfromtxt(out / "report_cycle.csv", delimiter=",", names=True)
+    assert cycle.size == 24
+
+
+def test_numbers_are_the_stages(report):
+    out, box = report
+    s = json.loads((out / "report.json").read_text())["sections"]
+
+    def val(section, key, col=None):
+        row = s[section]["quantities"][key]
+        return row["values"][col] if col else row["value"]
+
+    # spur pair, one slice: even face load, stated as such
+    assert val("load_distribution", "K_Hbeta") == 1.0
+    assert any("one slice" in n for n in s["load_distribution"]["notes"])
+    assert val("operation", "load_line_of_action") == pytest.approx(
+        340.0 / box.pair.pinion.base_radius)
+    assert val("stiffness", "iso_mesh") == pytest.approx(
+        json.loads((out / "summary.json").read_text())["meshes"]["mesh"][
+            "iso6336_mesh_stiffness_N_per_m"] * 1e-6)
+    assert val("geometry", "teeth", "pinion") == 50
+    assert val("pair", "transverse_contact_ratio") == pytest.approx(
+        box.pair.transverse_contact_ratio)
+    # single contact carries P: the Hertz pressure of the pitch-point region is 800-850 MPa
+    assert 750.0 < val("contact_pressure", "max_hertz_pressure") < 900.0
+    te = json.loads((out / "summary.json").read_text())["meshes"]["mesh"]["loaded_contact"][
+        "transmission_error_peak_to_peak_m"]
+    assert val("transmission_error", "peak_to_peak") == pytest.approx(te * 1e6, rel=1e-12)
+    assert val("transmission_error", "peak_to_peak_angle") == pytest.approx(
+        te / box.pair.pinion.base_radius * 1e6, rel=1e-12)
+    assert val("transmission_error", "order_1") > val("transmission_error", "order_10") > 0
+    # root stress: FE under the solved loads within 10 % of ISO 6336-3, below it
+    for g in ("pinion", "gear"):
+        d = val("root_stress", "difference", g)
+        assert -10.0 < d < 0.0
+        assert val("geometry", "root_diameter", g) <= val("root_stress", "fe_max_diameter", g) \
+            <= val("geometry", "form_diameter", g)
+    prov = s["provenance"]["quantities"]
+    assert prov["configuration_hash"]["value"] == content_hash(box.to_dict())
+    assert prov["code_revision"]["value"]
+    assert "dynamics" in s and val("dynamics", "mesh_dynamic_factor") > 1.0
+
+
+def test_report_numbers_match_the_distribution(report):
+    """The report is a rendering of load_distribution (the function a study calls)."""
+    from pipeline.run import RunOptions, run_pipeline
+
+    out, box = report
+    res = run_pipeline(box, RunOptions(cache_dir=out.parent / "c", show_progress=False))
+    st = res.meshes["mesh"]
+    dist = load_distribution(st.contact, st.stiffness.actual, st.case.operation)
+    s = json.loads((out / "report.json").read_text())["sections"]
+    q = s["contact_pressure"]["quantities"]
+    assert q["max_hertz_pressure"]["value"] == dist.hertz_max.value * 1e-6
+    assert s["transmission_error"]["quantities"]["peak_to_peak"]["value"] == \
+        dist.te_peak_to_peak * 1e6
+
+
+def test_run_writes_the_report_last(tmp_path):
+    cfg = tmp_path / "small.toml"
+    cfg.write_text(SMALL.replace("[dynamics]", "[nodynamics]").split("[nodynamics]")[0],
+                   encoding="utf-8")
+    out = tmp_path / "out"
+    assert cli(["run", str(cfg), "--out", str(out), "--cache-dir", str(tmp_path / "c"),
+                "--json"]) == 0
+    for name in ("report.html", "report.json", "report.csv", "report_face.csv"):
+        assert (out / name).is_file(), name
+    data = json.loads((out / "report.json").read_text())
+    assert "dynamics" not in data["sections"]
+    assert "report.html" in json.loads((out / "run.json").read_text())["outputs"]
+
+
+def test_report_refuses_a_file_without_meshes(tmp_path, capsys):
+    out = tmp_path / "out"
+    rc = cli(["report", str(CONFIGS / "lin_parker_planetary.toml"), "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1
+    assert err[0].startswith("gearpipe report: error:") and "gears in mesh" in err[0]
+    assert not out.exists() or not any(out.iterdir())
