@@ -174,3 +174,32 @@ def test_latin_hypercube_points_are_reproducible(tmp_path):
     assert [q.values for q in a] == [q.values for q in b]
     # one sample in each eighth of the range
     assert sorted(np.floor(x / 3.0).astype(int).tolist()) == list(range(8))
+
+
+def test_load_distribution_kpis_are_the_reports(tmp_path):
+    """K_Hbeta, the largest Hertz pressure and the largest root stress of a study point are
+    the report's numbers for the same gearbox (one function serves both), and on the
+    assembly-error paper's spur pair they are what the report's checks establish: K_Hbeta
+    exactly 1 (one slice across the face: a uniform line load), and the FE root stress
+    within 10 % of ISO 6336-3's nominal sigma_F0 for the same load (measured -3 %)."""
+    import tomllib
+
+    from pipeline.contact.distribution import load_distribution
+    from pipeline.contact.root_stress import analyse_root_stress
+    from pipeline.study.evaluate import point_gearbox, point_result
+    from pipeline.study.kpis import KPI_BY_NAME, kpi_row
+
+    doc = tomllib.loads(BASE.read_text())
+    doc["contact"] = {"compliance": "fe2d", "positions": 20, "render": False}
+    names = ("k_hbeta", "contact_pressure_max_MPa", "root_stress_max_MPa")
+    res = point_result(point_gearbox(doc), cache_dir=str(tmp_path))
+    row = kpi_row(res, tuple(KPI_BY_NAME[n] for n in names))
+    dist = load_distribution(res.contact, res.pair, res.operation)
+    root = analyse_root_stress(res.contact, res.pair, res.operation, res.run.gearbox.fe_source,
+                               cache_dir=tmp_path)
+    assert row["k_hbeta"] == pytest.approx(1.0, abs=1e-12)
+    assert row["contact_pressure_max_MPa"] == pytest.approx(dist.hertz_max.value * 1e-6,
+                                                            rel=1e-12)
+    worst = max(root.pinion, root.gear, key=lambda g: g.max_stress)
+    assert row["root_stress_max_MPa"] == pytest.approx(worst.max_stress * 1e-6, rel=1e-12)
+    assert abs(worst.max_stress / worst.iso.sigma_f0 - 1.0) < 0.10

@@ -102,7 +102,7 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
                                        box.contact.compliance)
     run = RunResult(box, meshes, None, StepLog(show=False))
     if speed_range_rpm is None:
-        return PointResult(run)
+        return PointResult(run, cache=cache, cache_dir=cache_dir)
     from pipeline.dynamics.sweep import mesh_force_sweep
     from pipeline.run.dynamics import dynamic_model, dynamics_options
 
@@ -114,7 +114,7 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     freqs = speeds / op_rpm / period
     sweep = mesh_force_sweep(model.assembly().assemble(), freqs, opts.method, opts.n_harmonics,
                              executor=None)
-    return PointResult(run, sweep, speeds)
+    return PointResult(run, sweep, speeds, cache=cache, cache_dir=cache_dir)
 
 
 def evaluate_point(doc: Mapping[str, Any], fe: Mapping[str, Any] | None = None, *,

@@ -2,9 +2,14 @@
 
 Each KPI is one row of :data:`KPIS`: its column name (unit suffix as in the gearbox
 file's keys), what it needs (``"contact"``: the loaded contact cycle of the main mesh;
-``"dynamics"``: a speed sweep of the dynamic model) and a function of the
-:class:`PointResult`. Adding a KPI is adding one row; a KPI of the load distribution
-reads ``r.contact``, ``r.pair`` and ``r.operation`` like the rows below.
+``"root_stress"``: the FE fillet stress tables of its gears; ``"dynamics"``: a speed
+sweep of the dynamic model) and a function of the
+:class:`PointResult`. Adding a KPI is adding one row. The load distribution KPIs
+(K_Hbeta, Hertz pressure, TE orders) are those of the report
+(:func:`pipeline.contact.distribution.load_distribution`), the root stress is the
+report's FE 2D root stress (:func:`pipeline.contact.root_stress.analyse_root_stress`:
+fillet stress tables once per gear geometry, in the FE cache of the machine that
+evaluates the point).
 
 The main mesh is the first mesh of the gearbox (a pair: its mesh; a planetary set: the
 sun-planet mesh).
@@ -14,10 +19,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
+from pipeline.contact.distribution import LoadDistribution, load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
@@ -35,11 +42,14 @@ class PointResult:
     sweep : the dynamic mesh forces over the study's speed range
         (:class:`pipeline.dynamics.sweep.SweepResult`), or ``None``.
     speeds_rpm : shape (F,), driver speeds of the sweep points, rpm (or ``None``).
+    cache, cache_dir : FE cache of the root stress tables (as the run's).
     """
 
     run: Any
     sweep: Any = None
     speeds_rpm: np.ndarray | None = None
+    cache: bool = True
+    cache_dir: str | None = None
 
     @property
     def main(self) -> Any:
@@ -61,6 +71,20 @@ class PointResult:
         """Torque (N m) and speed (rad/s) of the main mesh's driving gear."""
         return self.main.case.operation
 
+    @cached_property
+    def distribution(self) -> LoadDistribution:
+        """Load distribution of the main mesh's loaded contact (as in its report)."""
+        return load_distribution(self.contact, self.pair, self.operation)
+
+    @cached_property
+    def root_stress(self) -> Any:
+        """FE 2D root stress of both gears of the main mesh under its contact loads."""
+        from pipeline.contact.root_stress import analyse_root_stress
+
+        return analyse_root_stress(self.contact, self.pair, self.operation,
+                                   self.run.gearbox.fe_source, cache=self.cache,
+                                   cache_dir=self.cache_dir)
+
 
 @dataclass(frozen=True)
 class KPI:
@@ -71,18 +95,6 @@ class KPI:
     needs: str
     func: Callable[[PointResult], float]
     help: str = ""
-
-
-def te_order_amplitude(cycle: LoadedMeshCycle, order: int) -> float:
-    """Single-sided amplitude of mesh order ``order`` of the loaded static TE, m.
-
-    The cycle's positions are equally spaced over one mesh period, so the discrete
-    Fourier transform of the TE samples gives the mesh orders directly.
-    """
-    te = np.asarray(cycle.transmission_error, dtype=float)
-    if order >= te.size / 2:
-        return float("nan")
-    return float(2.0 * np.abs(np.fft.rfft(te)[order]) / te.size)
 
 
 def _ripple(r: PointResult) -> float:
@@ -100,12 +112,20 @@ KPIS: tuple[KPI, ...] = (
     KPI("te_peak_to_peak_um", "um", "contact",
         lambda r: float(np.ptp(r.contact.transmission_error)) * 1e6,
         "peak-to-peak loaded static transmission error along the line of action"),
-    KPI("te_order1_um", "um", "contact", lambda r: te_order_amplitude(r.contact, 1) * 1e6,
+    KPI("te_order1_um", "um", "contact", lambda r: r.distribution.te_orders[0] * 1e6,
         "amplitude of the 1st mesh order of the loaded TE"),
-    KPI("te_order2_um", "um", "contact", lambda r: te_order_amplitude(r.contact, 2) * 1e6,
+    KPI("te_order2_um", "um", "contact", lambda r: r.distribution.te_orders[1] * 1e6,
         "amplitude of the 2nd mesh order of the loaded TE"),
-    KPI("te_order3_um", "um", "contact", lambda r: te_order_amplitude(r.contact, 3) * 1e6,
+    KPI("te_order3_um", "um", "contact", lambda r: r.distribution.te_orders[2] * 1e6,
         "amplitude of the 3rd mesh order of the loaded TE"),
+    KPI("k_hbeta", "-", "contact", lambda r: r.distribution.k_hbeta,
+        "face load factor K_Hbeta: largest over mean line load across the face (ISO 6336-1)"),
+    KPI("contact_pressure_max_MPa", "MPa", "contact",
+        lambda r: r.distribution.hertz_max.value * 1e-6,
+        "largest Hertz contact pressure p_H over both flanks and the cycle"),
+    KPI("root_stress_max_MPa", "MPa", "root_stress",
+        lambda r: max(r.root_stress.pinion.max_stress, r.root_stress.gear.max_stress) * 1e-6,
+        "largest FE 2D fillet principal stress of either gear over the cycle"),
     KPI("mesh_stiffness_mean_N_per_um", "N/um", "contact",
         lambda r: float(r.contact.mesh_stiffness.mean()) * 1e-6,
         "mean loaded (tangent) mesh stiffness over the cycle"),
