@@ -28,14 +28,8 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
-from skfem import Basis, ElementTriP2
 
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays
-from pipeline.fem.elasticity import lame_constants
-from pipeline.fem.flank import flank_points
-from pipeline.fem.influence import constrained_dofs
-from pipeline.fem.linear_static import build_model, solve_static
-from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
@@ -131,6 +125,8 @@ def _recover(sector: SectorMesh2D, U: np.ndarray, lam: float, mu: float, tooth: 
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Root nodes (their scalar DOF ids), their coordinates (2, n_f) and the stress (3, n_f,
     n_cases) in the global frame, averaged over the owning triangles."""
+    from skfem import Basis, ElementTriP2
+
     mesh = sector.mesh
     facets = _root_facets(sector, tooth)
     tri = mesh.f2t[0, facets]
@@ -202,6 +198,13 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
               "radii": r.tolist(), "format": TABLE_FORMAT}
 
     def build() -> dict[str, np.ndarray]:
+        # the solver side is imported on a cache miss only (a second of imports)
+        from pipeline.fem.elasticity import lame_constants
+        from pipeline.fem.flank import flank_points
+        from pipeline.fem.influence import constrained_dofs
+        from pipeline.fem.linear_static import build_model, solve_static
+        from pipeline.fem.patch_loads import patch_loads
+
         t0 = time.perf_counter()
         sec = sector_mesh_2d(gear, ss, cache=cache, cache_dir=cache_dir)
         t1 = time.perf_counter()

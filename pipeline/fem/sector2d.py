@@ -36,9 +36,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-from skfem import MeshTri2
 
 from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
@@ -48,8 +48,11 @@ from pipeline.fem.sector2d_size import check_size
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
-# graded meshes (SectorSettings2D.graded): unloaded-tooth outline size and largest size in
-# m_n, size growth per distance (module docstring, "Graded meshes")
+if TYPE_CHECKING:
+    from skfem import MeshTri2
+
+# graded meshes (SectorSettings2D.graded): sizes and growth in pipeline.fem.options
+# (module docstring, "Graded meshes")
 THIN = 4  # outline point stride on unloaded teeth of graded meshes
 
 
@@ -301,6 +304,8 @@ def _extract_tri_mesh(gmsh, curves: dict[str, list[int]]) -> TetMeshData:
 
 def to_skfem_tri(data: TetMeshData) -> tuple[MeshTri2, dict]:
     """``MeshTri2`` of 2D sector data and its named boundary facets (name -> facet indices)."""
+    from skfem import MeshTri2  # here: reading a table from the cache needs no scikit-fem
+
     cells = data.cells
     # Gmsh 6-node triangles: vertices, then edges (0,1) (1,2) (2,0) - scikit-fem's order.
     mesh = MeshTri2(data.points, cells)
