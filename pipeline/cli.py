@@ -5,7 +5,10 @@ Every subcommand takes a gearbox file (TOML, units in the key names;
 plots and a ``run.json`` record (inputs, versions, configuration hash) to
 ``results/<file stem>/<command>/`` unless ``--out`` says otherwise; ``--json``
 prints the summary to stdout. An input error is one line on stderr,
-``gearpipe <command>: error: ...``, with exit status 2.
+``gearpipe <command>: error: ...``, with exit status 2; a solve that fails (the contact
+iteration does not converge, a singular or too large model) is one such line with exit
+status 1. Warnings (an unusable cache, a loaded contact ratio below 1, ...) are one line
+each, ``gearpipe <command>: warning: ...``, and the run goes on.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
 from pipeline import __version__
 from pipeline.validation import InputError
@@ -56,14 +60,36 @@ def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None
     return parser
 
 
+def _solve_errors() -> tuple[type[BaseException], ...]:
+    """Failures of a computation on valid input, reported in one line (exit status 1)."""
+    from numpy.linalg import LinAlgError
+
+    from pipeline.contact.complementarity import ContactConvergenceError
+
+    return (ContactConvergenceError, LinAlgError, MemoryError)
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; exit status 0 on success, 2 on an input error (one line on stderr)."""
+    """Run one command; exit status 0 on success, 2 on an input error, 1 on a failed solve
+    (one line on stderr each); warnings are one line each."""
     args = build_parser().parse_args(argv)
-    try:
-        return int(args._run(args) or 0)
-    except InputError as exc:
-        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+    prefix = f"gearpipe {args.command}"
+
+    def one_line(message, category, filename, lineno, file=None, line=None) -> None:
+        print(f"{prefix}: warning: {message}", file=sys.stderr, flush=True)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = one_line
+        try:
+            return int(args._run(args) or 0)
+        except InputError as exc:
+            print(f"{prefix}: error: {exc}", file=sys.stderr)
+            return 2
+        except _solve_errors() as exc:
+            what = "out of memory" if isinstance(exc, MemoryError) else str(exc).strip()
+            print(f"{prefix}: error: the computation failed ({type(exc).__name__}: "
+                  f"{what or 'no detail'})", file=sys.stderr)
+            return 1
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import FlankPoints, active_radii, flank_points
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
 from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
@@ -105,7 +105,7 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     teeth = np.asarray(teeth, dtype=int)
     ss = sector_settings(gear, settings, teeth)
     pts = table_points(gear, settings, teeth)
-    inputs = {"gear": asdict(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
               "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
               "format": TABLE_FORMAT}
 

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import CUTS, ENDS, influence_matrix
@@ -235,7 +235,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
     r, z, c = _grid(gear, width, settings)
     rb = gear.base_radius
     arc = (r * r - rb * rb) / (2 * rb)
-    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": asdict(gear),
+    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": unlabelled(gear),
            "sector": asdict(s3), "inner_radius": inner_radius(gear, s3),
            "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
            "ends": settings.ends}

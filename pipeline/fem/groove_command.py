@@ -16,7 +16,13 @@ import json
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, load, output_dir
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    load,
+    output_dir,
+)
 from pipeline.fem.groove.coupling import COUPLINGS
 from pipeline.fem.groove.result import DOF_NAMES
 from pipeline.fem.groove.spec import TEETH_MODELS, GrooveSpec
@@ -28,6 +34,7 @@ from pipeline.validation import InputError
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``groove`` sub-command arguments to ``parser``."""
     add_common_arguments(parser)
+    add_cache_arguments(parser)
     parser.add_argument("--full", action="store_true",
                         help="also run the other teeth model and coupling, and compare")
 
@@ -62,7 +69,8 @@ def run(args: argparse.Namespace) -> int:
                          "(bottom_diameter_mm, ...) and a herringbone gear")
     spec = box.groove
     out = output_dir(args, "groove")
-    analysis = analyse_groove(spec)
+    folder = cache_folder(args)
+    analysis = analyse_groove(spec, cache_dir=folder, use_cache=folder is not None)
     res = analysis.result
     shift = res.phase_shift(spec.sun_torque)
     files = [res.save(out / "groove_stiffness.json")]
@@ -82,7 +90,8 @@ def run(args: argparse.Namespace) -> int:
             dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
                                 else "distributed"),
         ):
-            rows.append(analyse_groove(variant).result)
+            rows.append(analyse_groove(variant, cache_dir=folder,
+                                       use_cache=folder is not None).result)
         files.append(write_csv(out / "comparison.csv", {
             "teeth model (0 root cylinder, 1 helical teeth)": np.array(
                 [TEETH_MODELS.index(r.teeth_model) for r in rows]),

@@ -40,7 +40,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from skfem import MeshTri2
 
-from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector2d_size import check_size
@@ -333,7 +333,7 @@ def sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D | None = None, cac
     settings = settings or SectorSettings2D.for_gear(gear)
     r_in = inner_radius(gear, settings)
     check_size(gear, settings)
-    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in}
+    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}
     data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh_2d(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
     mesh, facets = to_skfem_tri(data)

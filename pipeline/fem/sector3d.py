@@ -46,7 +46,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 from skfem import Basis, ElementTetP0
 
-from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.sector2d import inner_radius, outline_pieces
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
@@ -340,7 +340,7 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     if settings.half == 1 and not gear.herringbone:
         raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
     r_in = inner_radius(gear, settings)
-    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in,
+    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in,
               "version": GEOMETRY_VERSION}
     check_sector_teeth(gear, settings)
     if settings.teeth == gear.teeth:

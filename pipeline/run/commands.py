@@ -18,8 +18,15 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir
-from pipeline.fem.cache import default_cache_dir
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    emit,
+    load,
+    output_dir,
+)
+from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import write_json, write_run_record
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
@@ -36,11 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
     parser.add_argument("--full", action="store_true",
                         help="fine dynamics settings (more harmonics, all sweep points)")
-    parser.add_argument("--no-cache", action="store_true",
-                        help="recompute FE tables and contact cycles (neither read nor write "
-                             "the cache)")
-    parser.add_argument("--cache-dir", type=Path, default=None,
-                        help="cache folder (default: meshes/ of the source tree)")
+    add_cache_arguments(parser)
 
 
 def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
@@ -85,7 +88,8 @@ def write_run(result: RunResult, out: Path, full: bool = False,
 
 def run(args: argparse.Namespace) -> int:
     box = load(args)
-    options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
+    folder = cache_folder(args)
+    options = RunOptions(full=args.full, cache=folder is not None, cache_dir=folder,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
     out = output_dir(args, "run")
