@@ -70,6 +70,7 @@ import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe2d_table import gear_table, sector_teeth
+from pipeline.contact.options import MAX_SLICES
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.influence import CUTS, InfluenceMatrix
 from pipeline.fem.options import PLANE_KINDS
@@ -124,7 +125,7 @@ class FE2DSettings:
         check_int_range("fe.radii", self.radii, 4, 1000)
         check_range("fe.refinement", self.refinement, 0.1, 20.0)
         check_choice("fe.kind", self.kind, PLANE_KINDS)
-        check_int_range("fe.slices", self.slices, 1, 10_000)
+        check_int_range("fe.slices", self.slices, 1, MAX_SLICES)
         check_choice("fe.cuts", self.cuts, CUTS)
         check_choice("fe.mesh", self.mesh, MESHES)
         check_range("fe.tooth_size", self.tooth_size, 0.05, 2.0, unit="m_n")
