@@ -222,3 +222,36 @@ def test_identical_pinion_and_gear_are_meshed_once(tmp_path, monkeypatch):
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 2
     assert np.array_equal(meshes[0].mesh.p, meshes[1].mesh.p)
     assert meshes[1].gear.name == "wheel"  # the result still carries its own gear
+
+
+FIGURE_DAMAGE = [
+    ("zero-byte", lambda p: p.write_bytes(b"")),
+    ("truncated", lambda p: p.write_bytes(p.read_bytes()[:-20])),
+    ("not a png", lambda p: p.write_bytes(b"x" * 5000)),
+]
+
+
+@pytest.mark.parametrize(("case", "damage"), FIGURE_DAMAGE, ids=[d[0] for d in FIGURE_DAMAGE])
+def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
+    import matplotlib.pyplot as plt
+
+    from pipeline.viz.figure_cache import FigureCache
+
+    drawn: list = []
+
+    def draw(y):
+        drawn.append(1)
+        fig, ax = plt.subplots()
+        ax.plot(y)
+        return fig
+
+    figures = FigureCache(tmp_path / "figures", dpi=40)
+    first = figures.save(tmp_path / "a.png", draw, np.arange(3.0))
+    (cached,) = (tmp_path / "figures").iterdir()
+    figures.save(tmp_path / "b.png", draw, np.arange(3.0))
+    assert len(drawn) == 1 and (tmp_path / "b.png").read_bytes() == first.read_bytes()
+    damage(cached)
+    with pytest.warns(CacheWarning, match="not a whole PNG"):
+        out = figures.save(tmp_path / "c.png", draw, np.arange(3.0))
+    assert len(drawn) == 2 and out.read_bytes()[-8:] == b"IEND\xaeB`\x82"
+    assert cached.read_bytes() == out.read_bytes()  # the cache holds the whole figure again

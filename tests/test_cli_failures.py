@@ -38,6 +38,11 @@ BAD = [
      ["billion unknowns", "GiB", "limit is 800 thousand", "groove.mesh_size_mm (now 0.5 mm)"]),
     ("10000 contact slices", "contact", SPUR, r"^\[dynamics\]", "[contact]\nslices = 10000\n"
      "[dynamics]", ["contact.slices = 10000", "[1, 1000]"]),
+    ("100000 contact positions", "contact", SPUR, r"^\[dynamics\]",
+     "[contact]\npositions = 100000\n[dynamics]", ["contact.positions = 100000", "[2, 10000]"]),
+    ("fe 1000 points on 99 teeth", "fe", SPUR, r"^\[dynamics\]",
+     "[fe]\npoints = 1000\nteeth = 99\n[dynamics]",
+     ["fe.points x fe.teeth = 1000 x 99 = 99000 flank points", "limit is 8000 points"]),
     ("zero mesh frequency", "modes", LUMPED, r"^mesh_frequency_Hz = .*$",
      "mesh_frequency_Hz = 0", ["lumped_model.mesh_frequency_Hz = 0 Hz", "[0.001, 1e+06] Hz"]),
 ]

@@ -39,10 +39,11 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
+from pipeline.contact.options import MAX_SLICES
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
-from pipeline.fem.influence import CUTS, ENDS, influence_matrix
+from pipeline.fem.influence import CUTS, ENDS, check_table_points, influence_matrix
 from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
 from pipeline.fem.solvers import SOLVERS, solver_named
@@ -120,7 +121,7 @@ class FE3DSettings:
         check_range("fe3d.face_margin", self.face_margin, 0.0, 10.0)
         check_choice("fe3d.cuts", self.cuts, CUTS)
         check_choice("fe3d.ends", self.ends, ENDS)
-        check_int_range("fe3d.slices", self.slices, 1, 10_000)
+        check_int_range("fe3d.slices", self.slices, 1, MAX_SLICES)
         if self.hub_depth is not None:
             check_range("fe3d.hub_depth", self.hub_depth, 1.0, 100.0, unit="m_n")
         check_choice("fe3d.method", self.method, SOLVERS)
@@ -233,6 +234,9 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
     s3 = _sector_settings(gear, model_teeth, settings, loaded)
     width = gear.face_width
     r, z, c = _grid(gear, width, settings)
+    check_table_points(r.size * z.size * loaded.size,
+                       f"fe.points x fe.face_points x loaded teeth = {r.size} x {z.size} x "
+                       f"{loaded.size}", "lower fe.points or fe.face_points")
     rb = gear.base_radius
     arc = (r * r - rb * rb) / (2 * rb)
     key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": unlabelled(gear),
