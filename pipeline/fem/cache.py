@@ -7,13 +7,13 @@ A mesh depends only on the geometry and the mesh settings, so both go into the k
 one entry. Any changed input gives a new file name and the stale file is simply never
 read again. The folder is :func:`pipeline.fem.cache_dir.default_cache_dir` unless moved.
 
-Entries are ``.npz`` archives written atomically (temporary file, fsync, ``os.replace``)
-with one more array, ``__sha256__``, the digest of every other array's name, dtype,
-shape and bytes (:func:`arrays_digest`). An entry that cannot be read back exactly
-(zero bytes, truncated, not an archive, a missing field, a digest that does not match
-because the payload was changed) is reported once as a :class:`CacheWarning`,
-deleted and rebuilt. A folder that cannot be written costs only the saving: the
-result is returned uncached, with one warning.
+Entries are ``.npz`` archives written atomically (:func:`pipeline.io.atomic_write`: a
+temporary file moved into place) with one more array, ``__sha256__``, the digest of
+every other array's name, dtype, shape and bytes (:func:`arrays_digest`). An entry
+that cannot be read back exactly (zero bytes, truncated, not an archive, a missing
+field, a digest that does not match because the payload was changed) is reported once
+as a :class:`CacheWarning`, deleted and rebuilt. A folder that cannot be written costs
+only the saving: the result is returned uncached, with one warning.
 """
 
 from __future__ import annotations
