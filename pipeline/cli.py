@@ -7,7 +7,10 @@ plots and a ``run.json`` record (:mod:`pipeline.provenance`) to
 (:mod:`pipeline.output_folder`); ``--json`` prints the summary to stdout. An input error
 is one line on stderr, ``gearpipe <command>: error: ...``, with exit status 2; an output
 folder that cannot be written (a file in the way, a full or read-only disk) is one such
-line with exit status 1, and the folder keeps its previous result.
+line with exit status 1, and the folder keeps its previous result; a solve that fails
+(the contact iteration does not converge, a singular or too large model) is one such line
+with exit status 1. Warnings (an unusable cache, a loaded contact ratio below 1, ...) are
+one line each, ``gearpipe <command>: warning: ...``, and the run goes on.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import argparse
 import importlib
 import sys
 import time
+import warnings
 
 from pipeline import __version__
 from pipeline.output_folder import OutputError
@@ -70,22 +74,44 @@ def build_parser(available: dict[str, tuple[str, str, str, str]] | None = None, 
     return parser
 
 
+def _solve_errors() -> tuple[type[BaseException], ...]:
+    """Failures of a computation on valid input, reported in one line (exit status 1)."""
+    from numpy.linalg import LinAlgError
+
+    from pipeline.contact.complementarity import ContactConvergenceError
+
+    return (ContactConvergenceError, LinAlgError, MemoryError)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; exit status 0 on success, 2 on an input error, 1 when the results
-    cannot be written (one line on stderr)."""
+    cannot be written or a solve fails (one line on stderr each); warnings are one line
+    each."""
     started = time.time()
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
     args = build_parser(command=command).parse_args(argv)
     args._argv, args._started = argv, started  # for the run record
-    try:
-        return int(args._run(args) or 0)
-    except InputError as exc:
-        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
-        return 2
-    except OutputError as exc:
-        print(f"gearpipe {args.command}: error: {exc}", file=sys.stderr)
-        return 1
+    prefix = f"gearpipe {args.command}"
+
+    def one_line(message, category, filename, lineno, file=None, line=None) -> None:
+        print(f"{prefix}: warning: {message}", file=sys.stderr, flush=True)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = one_line
+        try:
+            return int(args._run(args) or 0)
+        except InputError as exc:
+            print(f"{prefix}: error: {exc}", file=sys.stderr)
+            return 2
+        except OutputError as exc:
+            print(f"{prefix}: error: {exc}", file=sys.stderr)
+            return 1
+        except _solve_errors() as exc:
+            what = "out of memory" if isinstance(exc, MemoryError) else str(exc).strip()
+            print(f"{prefix}: error: the computation failed ({type(exc).__name__}: "
+                  f"{what or 'no detail'})", file=sys.stderr)
+            return 1
 
 
 if __name__ == "__main__":

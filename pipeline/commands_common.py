@@ -20,6 +20,7 @@ import numpy as np
 
 from pipeline.config import Gearbox, load_gearbox
 from pipeline.config.signals import referenced_files
+from pipeline.fem.cache_dir import CACHE_ENV, writable_cache_dir
 from pipeline.io import to_jsonable
 from pipeline.output_folder import check_target
 from pipeline.provenance import write_run_record
@@ -35,6 +36,24 @@ def add_common_arguments(parser: argparse.ArgumentParser) -> None:
                         help="output folder (default: results/<file stem>/<command>)")
     parser.add_argument("--json", action="store_true",
                         help="print the result summary as JSON on stdout")
+
+
+def add_cache_arguments(parser: argparse.ArgumentParser) -> None:
+    """--cache-dir and --no-cache, the same for every command that meshes or solves."""
+    parser.add_argument("--no-cache", action="store_true",
+                        help="recompute meshes, FE tables and contact cycles (neither read "
+                             "nor write the cache)")
+    parser.add_argument("--cache-dir", type=Path, default=None,
+                        help=f"cache folder (default: ${CACHE_ENV}, else meshes/ of a source "
+                             "checkout, else $XDG_CACHE_HOME/gearpipe or ~/.cache/gearpipe)")
+
+
+def cache_folder(args: argparse.Namespace) -> Path | None:
+    """The cache folder of this run, or None for no cache (``--no-cache``, or a folder that
+    cannot be written: one warning line, and the run goes on without it)."""
+    if args.no_cache:
+        return None
+    return writable_cache_dir(args.cache_dir)
 
 
 def output_dir(args: argparse.Namespace, command: str) -> Path:

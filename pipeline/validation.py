@@ -26,6 +26,12 @@ class InputError(ValueError):
         self.bounds = bounds  # (lo, hi, lo_open, hi_open)
 
 
+class PhysicsWarning(UserWarning):
+    """A result that is computed correctly but outside what the model or the design is
+    meant for (e.g. one tooth pair carrying the whole load at a time, a correlation used
+    beyond its fitted range); the message gives the value."""
+
+
 def _fmt(v: float) -> str:
     return f"{v:.6g}" if isinstance(v, float) else repr(v)
 

@@ -24,6 +24,7 @@ from gearsets import spur
 from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analyse_contact
 from pipeline.contact.options import ContactOptions
+from pipeline.fem.cache_dir import CacheWarning
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorSettings2D, build_sector_mesh_2d, sector_mesh_2d
@@ -184,7 +185,8 @@ def test_warm_build_reads_the_tables(tmp_path, monkeypatch):
     s0 = SMALL.mesh_cycle(3)[1]
     assert np.array_equal(cold.matrix(s0), warm.matrix(s0))
     files[0].write_bytes(files[0].read_bytes()[:100])
-    again = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
+    with pytest.warns(CacheWarning, match="deleted and rebuilt"):
+        again = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
     assert not (again.info["pinion"]["cached"] and again.info["gear"]["cached"])
     assert np.allclose(again.matrix(s0), cold.matrix(s0), rtol=1e-10, atol=0)
 

@@ -82,6 +82,7 @@ def test_cache_hit_miss_and_atomic(tmp_path, tube):
     assert not hit3 and p3 != p1
     # A truncated file is rebuilt, and no temporary files are left behind.
     p1.write_bytes(p1.read_bytes()[:100])
-    _, _, hit4 = cache.cached_tet_mesh("t", inputs, build, cache_dir=tmp_path)
+    with pytest.warns(cache.CacheWarning, match="deleted and rebuilt"):
+        _, _, hit4 = cache.cached_tet_mesh("t", inputs, build, cache_dir=tmp_path)
     assert not hit4 and len(calls) == 3
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([p1.name, p3.name])

@@ -16,6 +16,7 @@ import pytest
 
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
+from pipeline.fem.cache_dir import CacheWarning
 from pipeline.run import RunOptions, run_pipeline
 
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
@@ -99,7 +100,8 @@ def test_unreadable_cache_file_is_rebuilt(tmp_path):
     first = _run(SMALL, tmp_path)
     (path,) = tmp_path.glob("contactcycle-*.npz")
     path.write_bytes(path.read_bytes()[:100])  # truncated, as by a full disk
-    again = _run(SMALL, tmp_path)
+    with pytest.warns(CacheWarning, match="not a complete archive"):
+        again = _run(SMALL, tmp_path)
     assert not again.log.cached["loaded contact (analytical)"]
     np.testing.assert_array_equal(first.meshes["mesh"].contact.transmission_error,
                                   again.meshes["mesh"].contact.transmission_error)

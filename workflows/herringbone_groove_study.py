@@ -58,7 +58,8 @@ from pipeline.dynamics.models.planetary_gears import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
-from pipeline.fem.cache import cached_file, default_cache_dir, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record

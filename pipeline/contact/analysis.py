@@ -7,6 +7,8 @@ without a command module. The command ``gearpipe contact`` composes the same cal
 
 from __future__ import annotations
 
+import warnings
+
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.results import LoadedMeshCycle
@@ -16,7 +18,7 @@ from pipeline.operation import OperatingPoint
 from pipeline.stiffness.mesh import PairModel
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
-from pipeline.validation import check_choice
+from pipeline.validation import PhysicsWarning, check_choice
 
 TOOTH_MODELS = ("exact", "classical")
 
@@ -78,5 +80,13 @@ def analyse_contact(
     """
     options = options or ContactOptions()
     load = line_of_action_load(source.pair, operation)
-    return loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
-                             options.positions, show_progress=show_progress)
+    cycle = loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
+                              options.positions, show_progress=show_progress)
+    warn_physics(cycle)
+    return cycle
+
+
+def warn_physics(cycle: LoadedMeshCycle) -> None:
+    """Issue :meth:`LoadedMeshCycle.physics_warnings` as :class:`PhysicsWarning`."""
+    for text in cycle.physics_warnings():
+        warnings.warn(text, PhysicsWarning, stacklevel=3)

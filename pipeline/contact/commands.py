@@ -16,7 +16,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    emit,
+    load,
+    output_dir,
+    record,
+)
 from pipeline.contact.analysis import TOOTH_MODELS, analyse_contact, analytical_compliance
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.loadmap import flank_load_map, write_load_map_vtu
@@ -31,6 +39,7 @@ from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
+    add_cache_arguments(parser)
     parser.add_argument("--tooth-model", choices=TOOTH_MODELS, default="exact",
                         help="exact profile with fillet (default) or the classical involute "
                              "clamped at the base circle (Yang et al. 2026, eqs. 11-13)")
@@ -71,8 +80,9 @@ def run(args: argparse.Namespace) -> int:
     target = output_dir(args, "contact")
     slices = analytical_compliance(pair, box.operation, opts, box.stiffness,
                                    tooth_model=args.tooth_model)
+    folder = cache_folder(args)
     src = compliance_source(pair, box.operation, opts, box.stiffness, box.fe_source,
-                            model=slices.model)
+                            model=slices.model, cache=folder is not None, cache_dir=folder)
     cyc = analyse_contact(src, box.operation, opts, show_progress=True)
     ref = stiffness_at(slices.model, cyc.s0, opts.slices, slices.friction, slices.operating,
                        box.stiffness.foundation_correction)

@@ -24,9 +24,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import FlankPoints, active_radii, flank_points
-from pipeline.fem.influence import InfluenceMatrix, influence_matrix
+from pipeline.fem.influence import InfluenceMatrix, check_table_points, influence_matrix
 from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 
@@ -104,8 +104,11 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     t0 = time.perf_counter()
     teeth = np.asarray(teeth, dtype=int)
     ss = sector_settings(gear, settings, teeth)
+    check_table_points(settings.radii * teeth.size,
+                       f"fe.points x loaded teeth = {settings.radii} x {teeth.size}",
+                       "lower fe.points")
     pts = table_points(gear, settings, teeth)
-    inputs = {"gear": asdict(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
               "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
               "format": TABLE_FORMAT}
 

@@ -40,10 +40,10 @@ import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe_settings import FE3DSettings
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
-from pipeline.fem.influence import influence_matrix
+from pipeline.fem.influence import check_table_points, influence_matrix
 from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
 from pipeline.fem.solvers import solver_named
@@ -162,9 +162,12 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
     s3 = _sector_settings(gear, model_teeth, settings, loaded)
     width = gear.face_width
     r, z, c = _grid(gear, width, settings)
+    check_table_points(r.size * z.size * loaded.size,
+                       f"fe.points x fe.face_points x loaded teeth = {r.size} x {z.size} x "
+                       f"{loaded.size}", "lower fe.points or fe.face_points")
     rb = gear.base_radius
     arc = (r * r - rb * rb) / (2 * rb)
-    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": asdict(gear),
+    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": unlabelled(gear),
            "sector": asdict(s3), "inner_radius": inner_radius(gear, s3),
            "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
            "ends": settings.ends}

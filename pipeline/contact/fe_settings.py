@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from pipeline.contact.options import MAX_SLICES
 from pipeline.fem.options import (
     CUTS,
     ENDS,
@@ -67,7 +68,7 @@ class FE2DSettings:
         check_int_range("fe.radii", self.radii, 4, 1000)
         check_range("fe.refinement", self.refinement, 0.1, 20.0)
         check_choice("fe.kind", self.kind, PLANE_KINDS)
-        check_int_range("fe.slices", self.slices, 1, 10_000)
+        check_int_range("fe.slices", self.slices, 1, MAX_SLICES)
         check_choice("fe.cuts", self.cuts, CUTS)
         check_choice("fe.mesh", self.mesh, MESHES)
         check_range("fe.tooth_size", self.tooth_size, 0.05, 2.0, unit="m_n")
@@ -141,7 +142,7 @@ class FE3DSettings:
         check_range("fe3d.face_margin", self.face_margin, 0.0, 10.0)
         check_choice("fe3d.cuts", self.cuts, CUTS)
         check_choice("fe3d.ends", self.ends, ENDS)
-        check_int_range("fe3d.slices", self.slices, 1, 10_000)
+        check_int_range("fe3d.slices", self.slices, 1, MAX_SLICES)
         if self.hub_depth is not None:
             check_range("fe3d.hub_depth", self.hub_depth, 1.0, 100.0, unit="m_n")
         check_choice("fe3d.method", self.method, SOLVERS)

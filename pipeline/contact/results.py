@@ -230,11 +230,35 @@ class LoadedMeshCycle:
         """(m, K) fraction of the load on each tooth pair (-)."""
         return self.pair_loads / self.load
 
+    @property
+    def loaded_contact_ratio(self) -> float:
+        """Mean number of tooth pairs carrying load over the cycle (-): the roll length over
+        which a pair is loaded, over the base pitch. A loaded mesh has at least 1; 1 means
+        one pair carries the whole load at a time and the load jumps between pairs."""
+        return float((self.pair_loads > 0).sum(axis=1).mean())
+
+    def physics_warnings(self) -> list[str]:
+        """One line per condition the numbers are valid for but a design should not be in:
+        a loaded contact ratio of 1 within the sampling (at most two of the positions have
+        two pairs loaded, e.g. the hand-over instant), as with tip reliefs too long or
+        too deep for the load."""
+        ratio, m = self.loaded_contact_ratio, len(self)
+        if ratio > 1.0 + 2.0 / m:
+            return []
+        single = float(np.mean((self.pair_loads > 0).sum(axis=1) <= 1))
+        te = self.transmission_error
+        return [f"loaded contact ratio {ratio:.3f}: one tooth pair carries the whole load over "
+                f"{single:.0%} of the mesh cycle, so the load jumps between pairs "
+                f"(transmission error {(te.max() - te.min()) * 1e6:.3g} um peak to peak); "
+                f"check the tip relief and the flank modifications"]
+
     def summary(self) -> dict[str, float]:
-        """Mean/max/min of the mesh stiffness and transmission error (SI; keys carry units)."""
+        """Mean/max/min of the mesh stiffness and transmission error, the loaded contact
+        ratio (SI; keys carry units)."""
         k, te = self.mesh_stiffness, self.transmission_error
         return {
             "load_N": self.load,
+            "loaded_contact_ratio": self.loaded_contact_ratio,
             "mesh_stiffness_mean_N_per_m": float(k.mean()),
             "mesh_stiffness_max_N_per_m": float(k.max()),
             "mesh_stiffness_min_N_per_m": float(k.min()),

@@ -14,8 +14,16 @@ from __future__ import annotations
 
 import argparse
 import json
+from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, load, output_dir, record
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    load,
+    output_dir,
+    record,
+)
 from pipeline.config import Gearbox
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
 from pipeline.dynamics.layout import model_layout
@@ -28,6 +36,7 @@ from pipeline.validation import InputError
 
 def _common(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
+    add_cache_arguments(parser)
     parser.add_argument("--full", action="store_true", help="fine settings instead of coarse")
 
 
@@ -36,13 +45,14 @@ add_response_arguments = _common
 add_sweep_arguments = _common
 
 
-def dynamic_model(box: Gearbox):
+def dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True):
     """The dynamic model a gearbox file describes, excited by its static stages.
 
     The same composition as ``gearpipe run`` (:func:`pipeline.run.dynamics.dynamic_model`):
     the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
     its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
-    when ``gearpipe run`` or an earlier command computed it).
+    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
+    in :class:`pipeline.run.chain.RunOptions`).
     """
     from pipeline.run.chain import RunOptions, mesh_stages
     from pipeline.run.dynamics import dynamic_model as model_of
@@ -53,7 +63,8 @@ def dynamic_model(box: Gearbox):
         raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
                          "a gear pair ([pinion] and [gear]), a planetary set or a "
                          "[lumped_model]")
-    meshes = mesh_stages(box, RunOptions(show_progress=False), StepLog(show=False),
+    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
+    meshes = mesh_stages(box, options, StepLog(show=False),
                          contact=needs_contact(box))
     return model_of(box, meshes)[0]
 
@@ -61,7 +72,8 @@ def dynamic_model(box: Gearbox):
 def _setup(args, command: str):
     box = load(args)
     target = output_dir(args, command)
-    return box, dynamic_model(box), target
+    folder = cache_folder(args)
+    return box, dynamic_model(box, folder, cache=folder is not None), target
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:

@@ -22,7 +22,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    emit,
+    load,
+    output_dir,
+    record,
+)
 from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
 from pipeline.fem.sector2d_size import check_size
 from pipeline.fem.sector_analysis import SectorResult, analyse_sector, sector_settings
@@ -34,6 +42,7 @@ from pipeline.validation import InputError
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
+    add_cache_arguments(parser)
     parser.add_argument("--teeth", type=int, default=None,
                         help="teeth in the sector (default: [fe] teeth, else 5)")
     parser.add_argument("--points", type=int, default=None,
@@ -89,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
     pair = box.require_pair()
     opts = options(box.fe, args)
     target = output_dir(args, "fe")
+    folder = cache_folder(args)
     for gear in (pair.pinion, pair.gear):  # refuse models too big for the machine up front
         check_size(gear, sector_settings(gear, opts))
     summary = {}
@@ -96,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
         files = []
         for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)),
                                   "2D sector FE"):
-            res = analyse_sector(gear, opts)
+            res = analyse_sector(gear, opts, cache=folder is not None, cache_dir=folder)
             summary[tag] = res.summary()
             files += write_gear(res, out, tag)
         files.append(write_json(out / "fe_summary.json", summary))

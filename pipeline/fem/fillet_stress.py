@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
@@ -194,7 +194,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
     teeth = mid + offsets
     ss = SectorSettings2D.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
     r = load_radii(gear, settings.radii)
-    inputs = {"gear": asdict(gear), "sector": asdict(ss), "settings": asdict(settings),
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
               "radii": r.tolist(), "format": TABLE_FORMAT}
 
     def build() -> dict[str, np.ndarray]:

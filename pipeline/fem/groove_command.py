@@ -17,7 +17,14 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, load, output_dir, record
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    load,
+    output_dir,
+    record,
+)
 from pipeline.fem.groove.result import DOF_NAMES
 from pipeline.fem.groove.spec import COUPLINGS, TEETH_MODELS, GrooveSpec
 from pipeline.fem.groove.study import analyse_groove
@@ -29,6 +36,7 @@ from pipeline.validation import InputError
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``groove`` sub-command arguments to ``parser``."""
     add_common_arguments(parser)
+    add_cache_arguments(parser)
     parser.add_argument("--full", action="store_true",
                         help="also run the other teeth model and coupling, and compare")
 
@@ -88,7 +96,8 @@ def run(args: argparse.Namespace) -> int:
                          "(bottom_diameter_mm, ...) and a herringbone gear")
     spec = box.groove
     target = output_dir(args, "groove")
-    analysis = analyse_groove(spec)
+    folder = cache_folder(args)
+    analysis = analyse_groove(spec, cache_dir=folder, use_cache=folder is not None)
     res = analysis.result
     shift = res.phase_shift(spec.sun_torque)
     rows = [res]
@@ -99,7 +108,8 @@ def run(args: argparse.Namespace) -> int:
             dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
                                 else "distributed"),
         ):
-            rows.append(analyse_groove(variant).result)
+            rows.append(analyse_groove(variant, cache_dir=folder,
+                                       use_cache=folder is not None).result)
     with staged_output(target) as out:
         files = _write(analysis, rows, spec, out)
         record(out, args, box, files)

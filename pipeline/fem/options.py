@@ -40,3 +40,8 @@ class SectorFEOptions:
         check_int_range("fe.points", self.points, 2, 1000)
         check_range("fe.refinement", self.refinement, 0.1, 20.0)
         check_choice("fe.kind", self.kind, PLANE_KINDS)
+        from pipeline.fem.influence import check_table_points
+
+        check_table_points(self.points * self.teeth,
+                           f"fe.points x fe.teeth = {self.points} x {self.teeth}",
+                           "lower fe.points or fe.teeth")

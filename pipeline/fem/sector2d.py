@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
 from pipeline.fem.options import GRADED_BODY, GRADED_GROWTH, GRADED_TOOTH
 from pipeline.fem.outline2d import inner_radius, outline_pieces
@@ -336,7 +336,7 @@ def sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D | None = None, cac
     settings = settings or SectorSettings2D.for_gear(gear)
     r_in = inner_radius(gear, settings)
     check_size(gear, settings)
-    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in}
+    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}
     data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh_2d(gear, settings),
                                  cache_dir=cache_dir, enabled=cache)
     mesh, facets = to_skfem_tri(data)

@@ -46,9 +46,11 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 from skfem import Basis, ElementTetP0
 
-from pipeline.fem.cache import cached_tet_mesh
+from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.sector2d import inner_radius, outline_pieces
+from pipeline.fem.sector3d_size import estimated_size_3d
+from pipeline.fem.size3d import check_size_3d
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
@@ -340,9 +342,14 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     if settings.half == 1 and not gear.herringbone:
         raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
     r_in = inner_radius(gear, settings)
-    inputs = {"gear": asdict(gear), "settings": asdict(settings), "inner_radius": r_in,
+    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in,
               "version": GEOMETRY_VERSION}
     check_sector_teeth(gear, settings)
+    body = "whole gear" if settings.teeth == gear.teeth else f"{settings.teeth}-tooth sector"
+    check_size_3d(f"the {body} of {gear.name}",
+                  estimated_size_3d(gear, settings, meshed_width(gear)),
+                  "use a smaller fe.refinement (elements m_n / (3 refinement) on the loaded "
+                  "flanks)")
     if settings.teeth == gear.teeth:
         from pipeline.fem.whole3d import build_whole_gear_mesh_3d as build
     else:

@@ -8,6 +8,7 @@ its columns, matrix and figures.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -96,14 +97,16 @@ def sector_settings(gear: GearSpec, options: SectorFEOptions) -> SectorSettings2
     return SectorSettings2D.for_gear(gear, options.teeth, options.refinement)
 
 
-def analyse_sector(gear: GearSpec, options: SectorFEOptions | None = None) -> SectorResult:
-    """Mesh a 2D sector of ``gear``, compute its flank influence matrix and compare the
-    middle tooth's compliance with the analytical tooth model."""
+def analyse_sector(gear: GearSpec, options: SectorFEOptions | None = None, *,
+                   cache: bool = True, cache_dir: str | Path | None = None) -> SectorResult:
+    """Mesh a 2D sector of ``gear`` (from the mesh cache ``cache_dir`` unless ``cache`` is
+    False), compute its flank influence matrix and compare the middle tooth's compliance
+    with the analytical tooth model."""
     from pipeline.stiffness.tooth import tooth_compliance, tooth_model
 
     options = options or SectorFEOptions()
     n = options.teeth
-    sec = sector_mesh_2d(gear, sector_settings(gear, options))
+    sec = sector_mesh_2d(gear, sector_settings(gear, options), cache=cache, cache_dir=cache_dir)
     r = active_radii(gear, options.points)
     pts = flank_points(gear, n, np.repeat(np.arange(n), r.size), np.tile(r, n))
     G = influence_matrix(sec, pts, kind=options.kind)

@@ -25,11 +25,12 @@ from pipeline.validation import (
     InputError,
     check_choice,
     check_int_range,
-    check_positive,
     check_range,
 )
 
 HANDS = ("right", "left", "none")
+MIN_FACE_MODULES, MAX_FACE_MODULES = 0.5, 250.0
+"""Allowed face width range in normal modules."""
 
 
 @dataclass(frozen=True)
@@ -75,7 +76,8 @@ class GearSpec:
     teeth : number of teeth z (>= 5 external, >= 10 internal).
     module : normal module m_n in m.
     pressure_angle : normal pressure angle alpha_n in rad, in (0, 35 deg].
-    face_width : toothed face width b in m (both halves for a herringbone gear).
+    face_width : toothed face width b in m (both halves for a herringbone gear),
+        0.5 to 250 normal modules.
     helix_angle : beta in rad, in [0, 45 deg).
     hand : "right", "left" or "none" (spur).
     profile_shift : x (-), ISO 21771 sign convention.
@@ -123,7 +125,10 @@ class GearSpec:
         check_range(f"{p}.module", self.module, 1e-5, 1.0, unit="m")
         check_range(f"{p}.pressure_angle", self.pressure_angle, 0.0, math.radians(35.0),
                     lo_open=True, unit="rad")
-        check_positive(f"{p}.face_width", self.face_width, unit="m")
+        # b / m_n from 0.5 (thinner and the FE bodies degenerate: a groove model of a
+        # 0.001 mm wide gear was singular) to 250 (b / m_n is 6-40 in practice)
+        check_range(f"{p}.face_width", self.face_width, MIN_FACE_MODULES * self.module,
+                    MAX_FACE_MODULES * self.module, unit="m")
         check_range(f"{p}.helix_angle", self.helix_angle, 0.0, math.radians(45.0),
                     hi_open=True, unit="rad")
         check_choice(f"{p}.hand", self.hand, HANDS)

@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.config import Gearbox
-from pipeline.contact.analysis import analyse_contact
+from pipeline.contact.analysis import analyse_contact, warn_physics
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.cycle_io import cycle_cache_inputs, load_cycle, save_cycle
 from pipeline.contact.results import LoadedMeshCycle
@@ -185,6 +185,8 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
     cycle, _, hit = cached_file("contactcycle", inputs, build, load_cycle, save_cycle,
                                 options.cache_dir, options.cache)
+    if hit:
+        warn_physics(cycle)  # a cycle solved now has warned already
     return cycle, hit
 
 

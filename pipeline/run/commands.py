@@ -22,8 +22,16 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
-from pipeline.fem.cache import default_cache_dir
+from pipeline.commands_common import (
+    add_cache_arguments,
+    add_common_arguments,
+    cache_folder,
+    emit,
+    load,
+    output_dir,
+    record,
+)
+from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import write_json
 from pipeline.output_folder import staged_output
 from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
@@ -42,11 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
     parser.add_argument("--full", action="store_true",
                         help="fine dynamics settings (more harmonics, all sweep points)")
-    parser.add_argument("--no-cache", action="store_true",
-                        help="recompute FE tables and contact cycles (neither read nor write "
-                             "the cache)")
-    parser.add_argument("--cache-dir", type=Path, default=None,
-                        help="cache folder (default: meshes/ of the source tree)")
+    add_cache_arguments(parser)
 
 
 def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
@@ -100,7 +104,8 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     """``gearpipe run`` (and ``gearpipe report``, the same files in ``results/<stem>/report``)."""
     box = load(args)
     target = output_dir(args, command)
-    options = RunOptions(full=args.full, cache=not args.no_cache, cache_dir=args.cache_dir,
+    folder = cache_folder(args)
+    options = RunOptions(full=args.full, cache=folder is not None, cache_dir=folder,
                          show_progress=not args.json)
     result = run_pipeline(box, options)
     with staged_output(target) as out:

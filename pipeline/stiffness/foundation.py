@@ -15,8 +15,23 @@ to where the load line crosses it, and ``alpha_m`` the load angle.
 
 The extracted text of Table 1 of Yang et al. (2026) lost the minus signs; the signs below are
 those of the original paper (Table 1 of Sainsot et al. 2004). The fit was made
-for 1.4 <= h_f <= 7 and 0.01 <= theta_f <= 0.12 rad; outside that range the
-formula is extrapolated and :func:`foundation_coefficients` reports it.
+for 1.4 <= h_f <= 7 and 0.01 <= theta_f <= 0.12 rad.
+
+Bores outside the fit. Sainsot's body is an annulus clamped at its bore, and the h_f
+dependence of P* is that annulus in torsion (``0.1855 h_f^2``, against
+``2 (1 + nu) h_f^2 / (4 pi)`` for a plane annulus; :mod:`.ring_body`), which grows
+without bound as the bore closes: extrapolated, the seed 001 pair's mesh stiffness fell
+from 3.76e8 N/m (21 mm bore, h_f 3.4) to 2.03e8 (10 mm), 7.3e7 (5 mm) and 8.6e6 (2 mm),
+while a solid gear, with no bore to be clamped at, was given the fit's upper end,
+2.07e8. The material inside ``r_f / 7`` is the shaft seat, whose torsion belongs to
+the shaft, not to the tooth foundation; so a small bore is treated as the solid gear
+is, and both ends of the fit the same way: ``h_f`` is held at the nearest end of
+[1.4, 7] (a rim thinner than ``h_f = 1.4`` also bends like a ring, which the fit does
+not contain, so the polynomial's softening towards ``h_f = 1`` is not trusted either).
+The mesh stiffness is then continuous and monotonic in the bore, and a bore -> 0 tends
+to the solid gear (tests/test_stiffness_body_term.py). :func:`foundation_coefficients`
+reports a geometry outside the fit (``in_fit_range``) and
+:func:`body_term_warnings` says what was done, in one line.
 """
 
 from __future__ import annotations
@@ -43,7 +58,9 @@ THETA_F_RANGE = (0.01, 0.12)
 class FoundationCoefficients:
     """Sainsot coefficients L*, M*, P*, Q* for one gear body (dimensionless).
 
-    ``in_fit_range`` is False when (h_f, theta_f) lies outside the fitted domain.
+    ``h_f`` is the value used, within the fit (module docstring); ``in_fit_range`` is
+    False when the gear's own (r_f / r_int, theta_f) lies outside the fitted domain (a
+    solid disc counts as inside: it is the fit's upper end by definition).
     """
 
     L: float
@@ -70,13 +87,38 @@ def foundation_coefficients(root_radius: float, body_radius: float, theta_f: flo
     Sainsot's fit is for external gear bodies; ring gears have their own body term
     (:mod:`pipeline.stiffness.ring_body`).
     """
+    lo, hi = H_F_RANGE
     if body_radius <= 0:
-        h_f = H_F_RANGE[1]  # solid disc: the fit saturates; use its upper end
+        ratio = hi  # solid disc: held at the fit's upper end (module docstring)
     else:
-        h_f = max(root_radius, body_radius) / min(root_radius, body_radius)
+        ratio = max(root_radius, body_radius) / min(root_radius, body_radius)
+    h_f = min(max(ratio, lo), hi)
     L, M, P, Q = sainsot_polynomials(h_f, theta_f)
-    ok = H_F_RANGE[0] <= h_f <= H_F_RANGE[1] and THETA_F_RANGE[0] <= theta_f <= THETA_F_RANGE[1]
+    ok = lo <= ratio <= hi and THETA_F_RANGE[0] <= theta_f <= THETA_F_RANGE[1]
     return FoundationCoefficients(float(L), float(M), float(P), float(Q), h_f, theta_f, ok)
+
+
+def body_term_warnings(name: str, root_radius: float, bore_radius: float,
+                       theta_f: float) -> list[str]:
+    """One line per way an external gear's body lies outside Sainsot's fit (none for a
+    solid disc or a bore within it). Lengths in m, ``theta_f`` in rad."""
+    lo, hi = H_F_RANGE
+    out = []
+    if bore_radius > 0:
+        ratio = root_radius / bore_radius
+        if ratio > hi:
+            out.append(f"{name}: bore radius {bore_radius * 1e3:.4g} mm is below r_f / 7 = "
+                       f"{root_radius / hi * 1e3:.4g} mm, the smallest bore of Sainsot's body "
+                       f"term; its body is treated as a solid gear's (h_f = 7)")
+        elif ratio < lo:
+            out.append(f"{name}: rim from bore {bore_radius * 1e3:.4g} mm to root "
+                       f"{root_radius * 1e3:.4g} mm is thinner than Sainsot's fit (h_f = "
+                       f"{ratio:.3g} < 1.4); body term held at h_f = 1.4 (rim bending not "
+                       f"included: the body is more compliant than computed)")
+    if not THETA_F_RANGE[0] <= theta_f <= THETA_F_RANGE[1]:
+        out.append(f"{name}: root half angle theta_f = {theta_f:.4g} rad is outside Sainsot's "
+                   f"fit [{THETA_F_RANGE[0]}, {THETA_F_RANGE[1]}] rad; body term extrapolated")
+    return out
 
 
 def foundation_compliance(

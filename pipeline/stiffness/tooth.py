@@ -26,6 +26,7 @@ leave the root circle, and ``eta`` runs inwards to the tip
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,12 +35,14 @@ from numpy.typing import ArrayLike
 from pipeline.geometry.gear import GearSpec
 from pipeline.stiffness.foundation import (
     FoundationCoefficients,
+    body_term_warnings,
     foundation_coefficients,
     foundation_compliance,
 )
 from pipeline.stiffness.friction import load_components
 from pipeline.stiffness.ring_body import ring_coefficients
 from pipeline.stiffness.sections import ToothSections, _half_angles, exact_sections
+from pipeline.validation import PhysicsWarning
 
 
 @dataclass(frozen=True)
@@ -92,9 +95,12 @@ def tooth_model(gear: GearSpec, n_sections: int = 3000) -> ToothModel:
 
 
 def body_coefficients(gear: GearSpec, theta_f: float) -> FoundationCoefficients:
-    """Body-term coefficients: Sainsot's for external gears, the ring fit for internal ones."""
+    """Body-term coefficients: Sainsot's for external gears, the ring fit for internal ones;
+    a body outside Sainsot's fit is reported once as a :class:`PhysicsWarning`."""
     if gear.internal:
         return ring_coefficients(gear, theta_f)
+    for text in body_term_warnings(gear.name, gear.root_radius, gear.bore_radius, theta_f):
+        warnings.warn(text, PhysicsWarning, stacklevel=1)  # once per gear and process
     return foundation_coefficients(gear.root_radius, gear.bore_radius, theta_f)
 
 

@@ -39,6 +39,7 @@ def _actual(case) -> Any:
 def fe_geometry_key(box: Gearbox) -> str | None:
     """Content hash of what the FE tables of every mesh depend on (gears, FE settings,
     tooth pairs in contact), or ``None`` for the analytical compliance."""
+    from pipeline.fem.cache import unlabelled
     from pipeline.run.chain import mesh_cases
 
     if box.fe_source is None:
@@ -46,8 +47,8 @@ def fe_geometry_key(box: Gearbox) -> str | None:
     parts = []
     for case in mesh_cases(box):
         pair = _actual(case)
-        parts.append({"mesh": case.name, "pinion": dataclasses.asdict(pair.pinion),
-                      "gear": dataclasses.asdict(pair.gear),
+        parts.append({"mesh": case.name, "pinion": unlabelled(pair.pinion),
+                      "gear": unlabelled(pair.gear),
                       "pairs": np.asarray(pair.pair_indices()).tolist()})
     return content_hash({"compliance": box.contact.compliance,
                          "settings": dataclasses.asdict(box.fe_source), "meshes": parts})

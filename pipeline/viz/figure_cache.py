@@ -6,7 +6,9 @@ stiffness, contact and load-map figures. :meth:`FigureCache.save` keys each PNG 
 the drawing function, the source of the module that defines it, and every argument
 it is drawn from (arrays by their bytes, dataclasses field by field), so a figure is
 redrawn exactly when its data or its drawing code changed. An argument the key
-cannot describe is an error rather than a silently stale figure.
+cannot describe is an error rather than a silently stale figure. A cached file that is
+not a whole PNG (empty, or cut before its end chunk) is reported in one warning line and
+redrawn over.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import hashlib
 import inspect
 import shutil
 import sys
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, fields, is_dataclass
 from functools import partial
@@ -23,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from pipeline.fem.cache_dir import CacheWarning
 from pipeline.io import atomic_write
 from pipeline.viz.saving import save
 
@@ -99,8 +103,11 @@ class FigureCache:
             key = data_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
                             args, kwargs)
             cached = Path(self.folder) / f"fig-{key}.png"
-            if cached.is_file() and cached.stat().st_size > 0:
-                return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+            if cached.is_file():
+                if _whole_png(cached):
+                    return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+                warnings.warn(f"cached figure {cached} is not a whole PNG; redrawn",
+                              CacheWarning, stacklevel=2)
         job = partial(self._draw, Path(path), cached, draw, args, kwargs)
         return job() if self.queue is None else self.queue.add(path, job)
 
@@ -113,6 +120,24 @@ class FigureCache:
             except OSError:
                 pass  # a read-only or full cache only costs the next run a redraw
         return out
+
+
+_PNG_START = b"\x89PNG\r\n\x1a\n"
+_PNG_END = b"IEND\xaeB`\x82"  # the end chunk's type and CRC, the last bytes of every PNG
+
+
+def _whole_png(path: Path) -> bool:
+    """True if ``path`` starts with the PNG signature and ends with the IEND chunk."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(len(_PNG_START))
+            fh.seek(0, 2)
+            if fh.tell() < len(_PNG_START) + len(_PNG_END):
+                return False
+            fh.seek(-len(_PNG_END), 2)
+            return head == _PNG_START and fh.read() == _PNG_END
+    except OSError:
+        return False
 
 
 NO_CACHE = FigureCache()

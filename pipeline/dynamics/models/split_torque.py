@@ -75,6 +75,9 @@ class StageMesh:
     teeth_driver: int
     teeth_driven: int
 
+    def __post_init__(self) -> None:
+        check_range("mesh_frequency", self.mesh_frequency, 1e-3, 1e6, unit="Hz")
+
 
 @dataclass(frozen=True)
 class SplitTorqueModel:

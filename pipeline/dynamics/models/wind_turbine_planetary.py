@@ -35,6 +35,7 @@ from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.planetary import PlanetarySet, dec
 from pipeline.signals import PeriodicSignal
+from pipeline.validation import check_range
 
 Z_S, Z_P, Z_R = 21, 37, 95
 M_N = 15e-3
@@ -127,6 +128,7 @@ def wind_turbine_herringbone_model(
     eps_a = 1.55
     eps_b = HALF_WIDTH * math.sin(BETA) / (math.pi * M_N)
     k = contact_line_stiffness(C_GAMMA * HALF_WIDTH / math.cos(bb), eps_a, eps_b, samples)
+    check_range("mesh_frequency", mesh_frequency, 1e-3, 1e6, unit="Hz")
     omega_c = 2 * math.pi * mesh_frequency / Z_R
     t_c = POWER / (RATED_CARRIER_RPM * 2 * math.pi / 60)
     t_s = t_c / (1 + Z_R / Z_S)

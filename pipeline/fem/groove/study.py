@@ -17,9 +17,11 @@ from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.groove.coupling import TwoNodeCoupling, couple_two_surfaces
 from pipeline.fem.groove.mesh import GEOMETRY_VERSION, mesh_coaxial_body
 from pipeline.fem.groove.result import GrooveStiffness
+from pipeline.fem.groove.size import estimated_size
 from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import ElasticModel, build_model
+from pipeline.fem.size3d import check_size_3d
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 
 
@@ -67,6 +69,8 @@ def analyse_groove(
     t_start = time.perf_counter()
     body = spec.body()
     settings = spec.mesh_settings()
+    check_size_3d(f"the groove body of {spec.gear.name}", estimated_size(body, settings),
+                  f"raise groove.mesh_size_mm (now {spec.mesh_size * 1e3:g} mm)")
     data, _, hit = cached_tet_mesh(
         "groove", {"body": asdict(body), "mesh": asdict(settings),
                    "geometry_version": GEOMETRY_VERSION},

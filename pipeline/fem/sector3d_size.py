@@ -1,0 +1,51 @@
+"""Size of a 3D sector or whole-gear model before meshing (:mod:`pipeline.fem.size3d`).
+
+Mirrors :func:`pipeline.fem.grading3d.tooth_size_field`: the section (teeth above the
+root circle counted at half their annulus, the rim between root and inner radius) is
+swept over the meshed width at ``size_body``; the sides of the loaded teeth add a layer
+at ``size_flank`` (to a quarter of it from the surface) graded to ``size_body`` over
+``grading``; the other teeth are meshed at ``size_tooth``, graded to ``size_body`` over
+``grading`` below the root circle. Cells are never larger than half the meshed width
+(Gmsh puts at least two across the face). The sum is scaled by :data:`SURFACE_FACTOR`
+for the finer cells Gmsh makes along the curved flank and fillet surfaces.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pipeline.fem.outline2d import inner_radius, outline_pieces
+from pipeline.fem.size3d import SizeEstimate, graded_layer_cells, uniform_cells
+from pipeline.geometry.gear import GearSpec
+
+SURFACE_FACTOR = 1.4
+"""Measured: without it the estimate was 0.59-0.82 of the unknowns of six real meshes
+(3- and 5-tooth sectors and whole z 50 gears, 18k-352k unknowns); with it 0.83-1.15."""
+
+
+def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
+    """Estimated cells and unknowns of the P2 model of ``gear`` meshed with ``settings``
+    (a :class:`~pipeline.fem.sector3d.SectorSettings3D`) over the meshed ``width`` (m)."""
+    n, z = settings.teeth, gear.teeth
+    loaded = range(n) if settings.loaded is None else settings.loaded
+    keep = {f"{side}{k}" for k in loaded for side in ("right", "left")}
+    flank = sum(float(np.hypot(*np.diff(seg, axis=0).T).sum())
+                for name, seg in outline_pieces(gear, n, settings.profile_points)
+                if name in keep)
+    rf, ra, r_in = gear.root_radius, gear.tip_radius_, inner_radius(gear, settings)
+    share = n / z
+    rim = math.pi * abs(rf**2 - r_in**2) * share * width
+    teeth = 0.5 * math.pi * abs(ra**2 - rf**2) * share * width
+    h0 = settings.size_flank
+    hb = max(min(settings.size_body, 0.5 * width), h0)
+    cells = uniform_cells(rim + teeth, hb)
+    cells += graded_layer_cells(flank * width, h0, hb, 0.25 * h0, settings.grading)
+    others = (n - len(loaded)) / n
+    if others > 0:
+        ht = min(max(settings.size_tooth or h0, h0), hb)
+        cells += others * (uniform_cells(teeth, ht) - uniform_cells(teeth, hb))
+        cells += graded_layer_cells(2 * math.pi * rf * share * others * width, ht, hb, 0.0,
+                                    settings.grading)
+    return SizeEstimate(SURFACE_FACTOR * cells)
