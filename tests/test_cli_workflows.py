@@ -57,6 +57,12 @@ def test_spur_pair_assembly_errors_workflow(tmp_path):
     assert table["condition 3 (100 um), mu = 0"]["transverse_contact_ratio"] < \
         ideal["transverse_contact_ratio"]
     assert (tmp_path / "friction.png").exists() and (tmp_path / "run.json").exists()
+    # the record holds the SHA-256 of the gearbox file the workflow read
+    from pipeline.provenance import file_sha256
+
+    wf = load_workflow("spur_pair_assembly_errors")
+    record = json.loads((tmp_path / "run.json").read_text())
+    assert record["referenced_files"]["config"]["sha256"] == file_sha256(wf.CONFIG)
 
 
 def test_helical_slice_stiffness_workflow(tmp_path):

@@ -42,7 +42,7 @@ class _Sector:
 def test_fe_options_give_different_hashes(tmp_path, monkeypatch, a, b):
     import pipeline.fem.commands as fe
 
-    monkeypatch.setattr(fe, "analyse_sector", lambda gear, opts: _Sector())
+    monkeypatch.setattr(fe, "analyse_sector", lambda gear, opts, **cache: _Sector())
     monkeypatch.setattr(fe, "write_gear", lambda res, out, tag: [])
     hashes = []
     for i, extra in enumerate((a, b, a)):

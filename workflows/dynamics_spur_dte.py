@@ -161,6 +161,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
         {"full": full, "n_harmonics": H, "stiffness": "analytical"},
         files,
         "workflows/dynamics_spur_dte.py",
+        referenced={"config": CONFIG},
     )
     return cols
 

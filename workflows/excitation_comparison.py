@@ -184,7 +184,8 @@ def main(argv: list[str] | None = None) -> dict:
         files.append(write_csv(out / "summary.csv", rows))
         write_run_record(out, {"cases": {k: CASES[k] for k in runs}, "full": args.full,
                                "config": CONFIG.read_text(encoding="utf-8")},
-                         files, "workflows/excitation_comparison.py")
+                         files, "workflows/excitation_comparison.py",
+                         referenced={"config": CONFIG})
     return summary
 
 

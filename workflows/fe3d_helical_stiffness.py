@@ -161,7 +161,7 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
                       out / "stiffness.png"))
     write_run_record(out, {"config": str(CONFIG), "pair": cfg, "fe3d": asdict(settings),
                            "positions": positions, "local_contact": "weber"},
-                     files, "workflows/fe3d_helical_stiffness.py")
+                     files, "workflows/fe3d_helical_stiffness.py", referenced={"config": CONFIG})
     return summary
 
 

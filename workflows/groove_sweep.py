@@ -97,7 +97,8 @@ def main(argv: list[str] | None = None) -> dict:
             files.append(save(render_twisted_body(a, base.sun_torque or 1e5), out / "twist.png"))
         write_run_record(out, {"config": dataclasses.asdict(base), "widths_mm": widths,
                                "diameters_mm": diameters, "mesh_size_mm": h}, files,
-                         "workflows/groove_sweep.py" + (" --full" if args.full else ""))
+                         "workflows/groove_sweep.py" + (" --full" if args.full else ""),
+                         referenced={"config": CONFIG})
     i40 = widths.index(40) if 40 in widths else 0
     i270 = diameters.index(270) if 270 in diameters else 0
     print(f"k_t(g = {widths[i40]} mm, d = {diameters[i270]} mm) = {kt[i270, i40]:.4e} N m/rad, "

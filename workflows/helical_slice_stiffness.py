@@ -102,7 +102,7 @@ def run(out: Path, positions: int, slices: int) -> dict:
         cols[f"{n} [N/m]"] = r.mesh.total
     files.append(write_csv(out / "curves.csv", cols))
     write_run_record(out, {"config": str(CONFIG), "positions": positions, "slices": slices},
-                     files, "workflows/helical_slice_stiffness.py")
+                     files, "workflows/helical_slice_stiffness.py", referenced={"config": CONFIG})
     return table
 
 

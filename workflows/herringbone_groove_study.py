@@ -226,7 +226,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
         files.append(write_json(out / "timing.json", log.summary()))
         write_run_record(out, {"config": str(CONFIG), "full": full, "positions": positions,
                                "groove_bottoms_m": [d for d, _ in grooves]}, files,
-                         "workflows/herringbone_groove_study.py")
+                         "workflows/herringbone_groove_study.py", referenced={"config": CONFIG})
     return {"rows": rows, "cases": cyc, "grooves": grooves, "sweeps": sweeps, "peaks": peaks,
             "timing": log.summary(), "slide_match": z_match,
             "files": [target / Path(f).relative_to(out) for f in files]}

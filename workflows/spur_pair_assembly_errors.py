@@ -86,7 +86,8 @@ def run(out: Path, positions: int) -> dict:
     files.append(write_csv(out / "curves.csv", cols))
     write_run_record(out, {"config": str(CONFIG), "positions": positions,
                            "cases": list(results)},
-                     files, "workflows/spur_pair_assembly_errors.py")
+                     files, "workflows/spur_pair_assembly_errors.py",
+                     referenced={"config": CONFIG})
     return table
 
 
