@@ -25,8 +25,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
-from pipeline.fem.flank import FlankPoints, active_radii, flank_points
-from pipeline.fem.influence import InfluenceMatrix, check_table_points, influence_matrix
+from pipeline.fem.flank import FlankPoints, flank_points, table_radii
+from pipeline.fem.influence import InfluenceMatrix, influence_matrix
+from pipeline.fem.options import check_table_points
 from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 
@@ -53,17 +54,6 @@ def sector_settings(gear: GearSpec, settings: FE2DSettings, loaded: np.ndarray
     return SectorSettings2D.graded(gear, n, tuple(int(k) for k in loaded), settings.refinement,
                                    tooth=settings.tooth_size, body=settings.body_size,
                                    growth=settings.growth)
-
-
-def table_radii(gear: GearSpec, n: int) -> np.ndarray:
-    """``n`` tabulated involute radii (m), ascending: as close to both ends of the involute
-    as the load patch (0.1 m_n) allows."""
-    from pipeline.geometry.profile import tooth_profile
-
-    form = tooth_profile(gear).form_radius
-    if gear.internal:
-        return active_radii(gear, n, hi=min(form, gear.root_radius), margin=0.11 * gear.module)
-    return active_radii(gear, n, lo=max(form, gear.base_radius), margin=0.11 * gear.module)
 
 
 def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> FlankPoints:

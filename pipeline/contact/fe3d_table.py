@@ -43,7 +43,8 @@ from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
-from pipeline.fem.influence import check_table_points, influence_matrix
+from pipeline.fem.influence import influence_matrix
+from pipeline.fem.options import check_table_points
 from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
 from pipeline.fem.solvers import solver_named

@@ -104,7 +104,7 @@ def principal_stress(sxx: np.ndarray, syy: np.ndarray, sxy: np.ndarray) -> np.nd
 def load_radii(gear: GearSpec, n: int) -> np.ndarray:
     """``n`` flank radii from the form (or base) circle to the tip, 0.11 m_n of arc inside
     both ends (the load patch stays on the involute), m."""
-    from pipeline.contact.fe2d_table import table_radii
+    from pipeline.fem.flank import table_radii
 
     return table_radii(gear, n)
 

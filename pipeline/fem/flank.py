@@ -161,3 +161,14 @@ def active_radii(gear: GearSpec, n: int, lo: float | None = None, hi: float | No
         raise InputError(f"no involute left between {lo:.6g} m and {hi:.6g} m after margins")
     arcs = np.linspace(a0, a1, n)
     return np.sqrt(2 * rb * arcs + rb * rb)
+
+
+def table_radii(gear: GearSpec, n: int) -> np.ndarray:
+    """``n`` tabulated involute radii (m), ascending: as close to both ends of the involute
+    as the load patch (0.1 m_n) allows."""
+    from pipeline.geometry.profile import tooth_profile
+
+    form = tooth_profile(gear).form_radius
+    if gear.internal:
+        return active_radii(gear, n, hi=min(form, gear.root_radius), margin=0.11 * gear.module)
+    return active_radii(gear, n, lo=max(form, gear.base_radius), margin=0.11 * gear.module)

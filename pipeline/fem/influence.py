@@ -73,10 +73,6 @@ from pipeline.fem.solvers import Solver, solver_named
 from pipeline.progress import Steps
 from pipeline.validation import InputError, check_choice, check_positive
 
-MAX_TABLE_POINTS = 8000
-"""Most flank points in one influence matrix: its dense ``n x n`` matrices (FE, near
-field, structural) take 3 x 8 n^2 bytes (1.4 GiB at 8000) and each point is one solve
-(7 ms on a 32k-unknown 2D sector, seconds in 3D)."""
 KINDS = {2: ("plane_strain", "plane_stress"), 3: ("3d",)}
 
 
@@ -161,16 +157,6 @@ def _patch_half_width(sector: SectorMesh2D | SectorMesh3D, points: FlankPoints,
         raise InputError(f"flank point(s) closer than the patch half-width {c:.4g} m to the end "
                          f"of the involute (arc room {room.min():.4g} m)")
     return c
-
-
-def check_table_points(n: int, what: str, change: str) -> int:
-    """Refuse (InputError) an influence matrix of more than :data:`MAX_TABLE_POINTS` flank
-    points; ``what`` says how ``n`` was counted (keys as written), ``change`` what to do."""
-    if n > MAX_TABLE_POINTS:
-        gib = 3 * 8 * n * n / 2**30
-        raise InputError(f"{what} = {n} flank points: the influence matrices would need about "
-                         f"{gib:.3g} GiB; the limit is {MAX_TABLE_POINTS} points: {change}")
-    return n
 
 
 def influence_matrix(

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pipeline.validation import check_choice, check_int_range, check_range
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 PLANE_KINDS = ("plane_strain", "plane_stress")
 CUTS = ("clamped", "free")  # sector cut faces
@@ -16,6 +16,22 @@ SOLVERS = FACTOR_METHODS + ("pmg-cg",)  # what configuration files may name
 GRADED_TOOTH = 0.6
 GRADED_BODY = 4.0
 GRADED_GROWTH = 0.5
+
+
+MAX_TABLE_POINTS = 8000
+"""Most flank points in one influence matrix: its dense ``n x n`` matrices (FE, near
+field, structural) take 3 x 8 n^2 bytes (1.4 GiB at 8000) and each point is one solve
+(7 ms on a 32k-unknown 2D sector, seconds in 3D)."""
+
+
+def check_table_points(n: int, what: str, change: str) -> int:
+    """Refuse (InputError) an influence matrix of more than :data:`MAX_TABLE_POINTS` flank
+    points; ``what`` says how ``n`` was counted (keys as written), ``change`` what to do."""
+    if n > MAX_TABLE_POINTS:
+        gib = 3 * 8 * n * n / 2**30
+        raise InputError(f"{what} = {n} flank points: the influence matrices would need about "
+                         f"{gib:.3g} GiB; the limit is {MAX_TABLE_POINTS} points: {change}")
+    return n
 
 
 @dataclass(frozen=True)
@@ -40,8 +56,6 @@ class SectorFEOptions:
         check_int_range("fe.points", self.points, 2, 1000)
         check_range("fe.refinement", self.refinement, 0.1, 20.0)
         check_choice("fe.kind", self.kind, PLANE_KINDS)
-        from pipeline.fem.influence import check_table_points
-
         check_table_points(self.points * self.teeth,
                            f"fe.points x fe.teeth = {self.points} x {self.teeth}",
                            "lower fe.points or fe.teeth")
