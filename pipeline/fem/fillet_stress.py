@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
+from pipeline.fem.flank import table_radii
 from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
@@ -99,14 +100,6 @@ def principal_stress(sxx: np.ndarray, syy: np.ndarray, sxy: np.ndarray) -> np.nd
     """Largest in-plane principal stress (same unit and shape as the inputs)."""
     c = 0.5 * (sxx + syy)
     return c + np.sqrt((0.5 * (sxx - syy)) ** 2 + sxy**2)
-
-
-def load_radii(gear: GearSpec, n: int) -> np.ndarray:
-    """``n`` flank radii from the form (or base) circle to the tip, 0.11 m_n of arc inside
-    both ends (the load patch stays on the involute), m."""
-    from pipeline.fem.flank import table_radii
-
-    return table_radii(gear, n)
 
 
 def _root_facets(sector: SectorMesh2D, tooth: int) -> np.ndarray:
@@ -193,7 +186,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
     offsets = np.arange(-settings.offsets, settings.offsets + 1)
     teeth = mid + offsets
     ss = SectorSettings2D.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
-    r = load_radii(gear, settings.radii)
+    r = table_radii(gear, settings.radii)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
               "radii": r.tolist(), "format": TABLE_FORMAT}
 
