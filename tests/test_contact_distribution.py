@@ -28,7 +28,7 @@ from pipeline.contact.separations import FlankModifications
 from pipeline.contact.source import ContactPoints
 from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
-from pipeline.validation import InputError
+from pipeline.validation import InputError, PhysicsWarning
 
 
 @dataclass(frozen=True)
@@ -161,6 +161,36 @@ def test_hertz_pressure_at_pitch_point_matches_iso_6336_2(pair):
     assert dist.hertz_max.s == pytest.approx(pair.s_pitch, rel=1e-12)
     assert 2 * dist.hertz_max.pinion_radius == pytest.approx(
         2 * pair.operating_pitch_radii[0], rel=1e-12)
+
+
+def test_spur_pair_with_crowning_is_sliced(pair):
+    """Lead crowning C_b on a spur pair: the analytical compliance of ``ContactOptions`` cuts
+    the face into ``slices`` (one slice would hide it), and with linear local contact the line
+    load is P/b + k (g_mean - g(z)) / b, g(z) = C_b (2 z / b - 1)^2: on N (even) slices
+    K_Hbeta(s0) = 1 + k(s0) C_b ((1 - 1/N^2) / 3 - 1/N^2) / P, k the mesh stiffness of the
+    stiffness stage at s0. Without modifications the same options give one slice."""
+    from pipeline.stiffness.mesh import stiffness_at
+
+    op = OperatingPoint(torque=300.0, speed=100.0)
+    c_b, n = 8e-6, 20
+    opts = ContactOptions(positions=12, slices=n, local_contact="linear",
+                          modifications=FlankModifications(crowning=c_b))
+    src = analytical_compliance(pair, op, opts)
+    assert src.slices == n and opts.face_slices(pair) == n
+    assert ContactOptions(slices=n).face_slices(pair) == 1
+    with pytest.warns(PhysicsWarning, match="contact.slices = 1 cannot resolve"):
+        ContactOptions(slices=1, modifications=FlankModifications(crowning=c_b))
+    cyc = analyse_contact(src, op, opts)
+    dist = load_distribution(cyc, pair, op)
+    k = stiffness_at(src.model, cyc.s0, n, src.friction, src.operating).total
+    shape = (1.0 - 1.0 / n**2) / 3.0 - 1.0 / n**2
+    assert np.all(k * c_b * (1.0 - shape) < cyc.load)  # the face ends stay loaded
+    np.testing.assert_allclose(dist.k_hbeta_position, 1.0 + k * c_b * shape / cyc.load,
+                               rtol=1e-9)
+    assert dist.k_hbeta > 1.1
+    i = np.argmax(dist.cycle_mean)  # the crown carries the most, symmetric about mid face
+    assert abs(dist.z[i] - pair.face_width / 2) < pair.face_width / n
+    np.testing.assert_allclose(dist.cycle_mean, dist.cycle_mean[::-1], rtol=1e-9)
 
 
 def test_helical_pair_even_load_near_one(helical_traction_pair):

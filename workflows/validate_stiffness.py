@@ -117,6 +117,7 @@ def compare(cfg: Gearbox, positions: int, fe: FE2DSettings, cache: dict) -> dict
     src = analytical_compliance(actual, cfg.operation, opts, cfg.stiffness)
     s0 = actual.mesh_cycle(positions)
     load = line_of_action_load(actual, cfg.operation)
+    fe = dataclasses.replace(fe, slices=src.slices)  # a spur pair: one slice, as the slices
     k_analytical = stiffness_at(src.model, s0, fe.slices, src.friction, src.operating,
                                 src.foundation_correction).total
     slice_cycle = loaded_mesh_cycle(src, load, local="weber", positions=s0)

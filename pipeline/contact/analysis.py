@@ -38,7 +38,8 @@ def analytical_compliance(
     ----------
     pair : the *actual* pair (after assembly errors, see ``Gearbox.actual_pair``).
     operation : driver, torque (N m) and speed (rad/s): friction direction and EHL load.
-    contact : slices and slice coupling (defaults if ``None``).
+    contact : slices and slice coupling (defaults if ``None``); a spur pair gets one slice
+        unless its modifications vary along the face (``ContactOptions.face_slices``).
     stiffness : friction model and foundation correction (defaults if ``None``).
     tooth_model : "exact" (involute + trochoidal fillet) or "classical" (involute clamped
         at the base circle, Yang et al. 2026 eqs. 11-13).
@@ -52,7 +53,7 @@ def analytical_compliance(
                           classical_tooth_model(pair.gear),
                           hertz_compliance(pair.pinion, pair.gear))
     model = model or PairModel.build(pair)
-    return SliceCompliance(model, contact.slices, stiffness.friction_model, operation,
+    return SliceCompliance(model, contact.face_slices(pair), stiffness.friction_model, operation,
                            stiffness.foundation_correction, contact.slice_coupling)
 
 

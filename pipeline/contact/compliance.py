@@ -11,7 +11,9 @@ FE influence coefficients are for loads normal to the flank; with friction in
 ``[stiffness]`` the slice model's friction change is added on their diagonal
 (:class:`pipeline.contact.source.FrictionCorrected`), so every source sees the same
 friction. The FE settings come from the ``[fe]`` table (:mod:`pipeline.config`), the
-slices across the face from ``[contact] slices`` for all three.
+slices across the face from ``[contact] slices`` for all three
+(:meth:`~pipeline.contact.options.ContactOptions.face_slices`: one for a spur pair without
+lead crowning or helix slope deviation).
 """
 
 from __future__ import annotations
@@ -89,8 +91,9 @@ def compliance_source(
     settings = fe_settings(contact.compliance, fe, contact)
     if settings is None:
         return slices
+    settings = dataclasses.replace(settings, slices=slices.slices)
     if prebuilt is not None:
-        base = dataclasses.replace(prebuilt, pair=pair)
+        base = dataclasses.replace(prebuilt, pair=pair, settings=settings)
     elif contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 

@@ -12,7 +12,8 @@
   those tables and summed over the two gears; contact radii outside the tabulated
   range (the last ``0.11 m_n`` of arc below the tips) are extrapolated linearly.
 * Candidate points are the slices of :class:`pipeline.contact.source.SliceCompliance`
-  (one per tooth pair for spur gears). Two points are coupled when they lie in the
+  (``settings.slices`` across the face; one per tooth pair for a spur pair without lead
+  modifications when built by ``compliance_source``). Two points are coupled when they lie in the
   same transverse section (same ``z``): the 2D model couples the tooth pairs in
   contact through the rims; different sections are independent, as in Yang et al. (2026)'s
   slice method. Per slice of width ``w`` the 2D per-unit-width compliance is

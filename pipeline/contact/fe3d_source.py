@@ -13,7 +13,8 @@ Method
 ------
 * Tables: one structural table per gear (:mod:`pipeline.contact.fe3d_table`).
 * Candidate points are the slices of :func:`pipeline.contact.source.slice_points`
-  (``slices`` across a helical face, one slice for spur gears), so results compare
+  (``settings.slices`` across the face; ``compliance_source`` gives a spur pair without lead
+  modifications one), so results compare
   directly with :class:`~pipeline.contact.source.SliceCompliance` and
   :class:`~pipeline.contact.fe2d_source.FE2DCompliance`.
 * Each candidate point stands for a uniform load on its piece of contact line

@@ -41,7 +41,8 @@ class FE2DSettings:
         loaded teeth (:meth:`SectorSettings2D.graded`; every tooth for ``mesh =
         "uniform"``, :meth:`SectorSettings2D.for_gear`).
     kind : "plane_strain" or "plane_stress".
-    slices : slices across the face width for helical pairs (spur: 1).
+    slices : slices across the face width (``compliance_source`` sets ``[contact] slices``,
+        one for a spur pair without lead modifications).
     cuts : "clamped" or "free" sector cut faces.
     mesh : "graded" (default: fine on the loaded teeth, coarser away from them; module
         docstring) or "uniform" (every tooth at the flank size; the reference).
@@ -108,7 +109,8 @@ class FE3DSettings:
         patch half-widths (0..10; 1 keeps every patch whole on the flank).
     cuts : "clamped" or "free" sector cut faces (a whole gear has none).
     ends : "free" or "sliding" (u_z = 0) end faces.
-    slices : slices across the face width of a helical pair (spur: 1).
+    slices : slices across the face width (``compliance_source`` sets ``[contact] slices``,
+        one for a spur pair without lead modifications).
     hub_depth : if given, the body is clamped at ``max(bore, r_f - hub_depth m_n)``
         instead of the bore (1..100 modules): a shallower body for deep gears.
     method : solver (:func:`pipeline.fem.solvers.solver_named`, 3D).

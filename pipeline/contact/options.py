@@ -4,7 +4,7 @@
     [contact]
     compliance = "analytical"      # "analytical" (slices), "fe2d", "fe3d" (settings: [fe])
     positions = 60                 # mesh positions over one cycle
-    slices = 30                    # slices across the face (helical gears)
+    slices = 30                    # slices across the face (helical, or lead-modified spur)
     local_contact = "weber"        # "weber" (Yang et al. 2026, eq. 24), "linear", "none"
     slice_coupling = 0.0           # kappa in [0, 0.25): 0 = independent slices (Yang et al. 2026)
     tip_relief_pinion_um = 0.0     # C_a at the pinion tip, along the line of action
@@ -24,11 +24,12 @@ and ``[operation]`` tables, as for ``gearpipe stiffness``.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 from pipeline.contact.ltca import LOCAL_MODELS
 from pipeline.contact.separations import FlankModifications
-from pipeline.validation import check_choice, check_int_range, check_range
+from pipeline.validation import PhysicsWarning, check_choice, check_int_range, check_range
 
 COMPLIANCES = ("analytical", "fe2d", "fe3d")
 """Compliance sources of the loaded contact (:mod:`pipeline.contact.compliance`)."""
@@ -46,7 +47,8 @@ class ContactOptions:
     compliance : compliance source, "analytical", "fe2d" or "fe3d"
         (:mod:`pipeline.contact.compliance`).
     positions : mesh positions per cycle, 2 .. 10000.
-    slices : slices across the face of a helical gear (1 .. :data:`MAX_SLICES`).
+    slices : slices across the face (1 .. :data:`MAX_SLICES`) of a helical pair, or of a spur
+        pair with lead crowning or a helix slope deviation (:meth:`face_slices`).
     local_contact : "weber", "linear" or "none".
     slice_coupling : kappa in [0, 0.25).
     modifications : flank modifications and errors (m).
@@ -71,3 +73,18 @@ class ContactOptions:
         check_range("contact.slice_coupling", self.slice_coupling, 0.0, 0.25, hi_open=True)
         check_int_range("contact.load_map_profile_points", self.load_map_profile_points, 2,
                         2_000)
+        if self.slices == 1 and self.modifications.varies_across_face:
+            warnings.warn("contact.slices = 1 cannot resolve lead crowning or a helix slope "
+                          "deviation across the face (the line load stays even, K_Hbeta = 1); "
+                          "use 20 or more", PhysicsWarning, stacklevel=2)
+
+    def face_slices(self, pair) -> int:
+        """Slices across the face the contact solve of ``pair`` (a GearPair) uses.
+
+        ``slices`` for a helical pair, and for a spur pair whose gap varies along the face
+        (lead crowning, helix slope deviation); one slice for any other spur pair, whose line
+        load is uniform over the face by construction (the same loads at 1/30 of the cost).
+        """
+        if pair.pinion.is_helical or self.modifications.varies_across_face:
+            return self.slices
+        return 1

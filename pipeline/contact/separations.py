@@ -86,6 +86,12 @@ class FlankModifications:
         object.__setattr__(self, "pitch_errors", errs)
 
     @property
+    def varies_across_face(self) -> bool:
+        """Lead crowning or a helix slope deviation: the gap changes along the face, so even a
+        spur pair's line load does (the solve needs slices across the face)."""
+        return bool(self.crowning or self.slope_deviation)
+
+    @property
     def is_zero(self) -> bool:
         return not (self.tip_relief_pinion or self.tip_relief_gear or self.crowning
                     or self.slope_deviation or any(self.pitch_errors))

@@ -129,12 +129,12 @@ def slice_grid(pair: GearPair, slices: int, position: float
     """Slice contact grid at mesh ``position`` (m of roll of the leading pair).
 
     Returns roll coordinates (K, N) in m, slice centres z (N,) in m, tooth pair
-    indices (K,) and the slice width in m; ``slices`` applies to helical gears,
-    spur gears use one slice.
+    indices (K,) and the slice width in m; ``slices`` slices across the face, spur or helical
+    (:meth:`~pipeline.contact.options.ContactOptions.face_slices` says how many a gearbox
+    file's contact uses).
     """
-    n = slices if pair.pinion.is_helical else 1
-    dz = pair.face_width / n
-    z = (np.arange(n) + 0.5) * dz
+    dz = pair.face_width / slices
+    z = (np.arange(slices) + 0.5) * dz
     k = pair.pair_indices()
     s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
         pair.pinion.base_helix_angle)
@@ -157,7 +157,8 @@ class SliceCompliance:
     Attributes
     ----------
     model : tooth models of the pair (:class:`~pipeline.stiffness.mesh.PairModel`).
-    slices : slices across the face width of a helical gear (spur gears use one).
+    slices : slices across the face width, as given (:func:`~pipeline.contact.analysis.
+        analytical_compliance` gives a spur pair without lead modifications one).
     friction : friction model (sign convention of :mod:`pipeline.stiffness.friction`);
         friction changes the bending/compression split of each slice (Yang et al. 2026, eqs.
         19-23).

@@ -210,9 +210,9 @@ def load_distribution_section(dist: LoadDistribution, pair: GearPair,
              "in contact, the largest over the cycle (from the computed load sharing, not ISO "
              "6336-1's formula)."]
     if dist.slices_across_face == 1:
-        notes.append("Spur pair analysed with one slice across the face: the line load is "
-                     "uniform by construction, and lead crowning and helix slope deviation do "
-                     "not enter the solve (K_Hbeta = 1).")
+        notes.append("Spur pair without lead crowning or helix slope deviation, analysed "
+                     "with one slice across the face: the line load is uniform by "
+                     "construction (K_Hbeta = 1).")
     return Section("load_distribution", "Line load and load factors", (
         quantity("K_Hbeta", "face load factor K_Hbeta", "-", dist.k_hbeta),
         quantity("K_Hbeta_position_max", "largest instantaneous max/mean line load", "-",
