@@ -2,10 +2,15 @@
 
 A cached figure is copied, not redrawn; a changed argument redraws it. Figures queued
 for parallel drawing come out byte-identical to those drawn in turn, and one figure
-whose drawing fails is named in one error while the others are still written.
+whose drawing fails is named in one error while the others are still written. The
+early-started drawer gives the same files; drawings that do not pickle, or a drawer that
+died, are drawn in this process instead; a block that fails ends the drawer.
 """
 
 from __future__ import annotations
+
+import os
+import signal
 
 import numpy as np
 import pytest
@@ -65,3 +70,58 @@ def test_a_failing_figure_is_named_and_the_others_are_written(tmp_path):
     assert all(p.is_file() for p in good)
     assert not (tmp_path / "broken.png").exists()
     assert not list(tmp_path.glob(".*"))  # no temporary files left behind
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_prestarted_drawer_draws_the_same_figures(tmp_path, workers):
+    serial = _figures(FigureCache().save, tmp_path / "serial")
+    with parallel_figures(FigureCache(), workers, prestart=True) as figures:
+        drawer = figures.queue.drawer
+        assert drawer is not None and drawer.process.is_alive()
+        queued = _figures(figures.save, tmp_path / "drawer")
+        figures.queue.draw_all(workers)
+        assert figures.queue.drawer is None  # used once
+    assert not drawer.process.is_alive() and drawer.process.exitcode == 0
+    for s, q in zip(serial, queued, strict=True):
+        assert q.read_bytes() == s.read_bytes(), q.name
+
+
+def test_drawings_that_do_not_pickle_are_drawn_here(tmp_path):
+    scale = 2.0
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = figures.queue.drawer
+        # a local function does not pickle: the queue draws it in this process
+        out = figures.save(tmp_path / "local.png", lambda y, title: draw_line(scale * y, title),
+                           np.arange(3.0), "local")
+    assert out.is_file() and not drawer.process.is_alive()
+    expected = FigureCache().save(tmp_path / "ref.png", draw_line, 2.0 * np.arange(3.0), "local")
+    assert out.read_bytes() == expected.read_bytes()
+
+
+def test_a_dead_drawer_is_replaced_by_this_process(tmp_path):
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = figures.queue.drawer
+        os.kill(drawer.process.pid, signal.SIGKILL)
+        drawer.process.join()
+        queued = _figures(figures.save, tmp_path, n=3)
+    assert all(p.is_file() for p in queued)
+    assert not list(tmp_path.glob(".*"))
+
+
+def test_the_drawer_names_a_failing_figure(tmp_path):
+    with pytest.raises(RuntimeError, match=r"broken\.png: ValueError: cannot draw the broken"):
+        with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+            good = _figures(figures.save, tmp_path, n=3)
+            figures.save(tmp_path / "broken.png", draw_broken, np.zeros(2), "the broken one")
+    assert all(p.is_file() for p in good)
+    assert not (tmp_path / "broken.png").exists()
+
+
+def test_a_failing_block_ends_the_drawer_without_drawing(tmp_path):
+    with pytest.raises(KeyError):
+        with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+            drawer = figures.queue.drawer
+            queued = _figures(figures.save, tmp_path, n=2)
+            raise KeyError("the run failed")
+    assert not drawer.process.is_alive()
+    assert not any(p.exists() for p in queued)

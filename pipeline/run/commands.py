@@ -107,20 +107,22 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     folder = cache_folder(args)
     options = RunOptions(full=args.full, cache=folder is not None, cache_dir=folder,
                          show_progress=not args.json)
-    result = run_pipeline(box, options)
-    with staged_output(target) as out:
-        with result.log.step("writing tables and figures", long=True), \
-                parallel_figures(figure_cache(options)) as figures:
-            files = write_run(result, out, args.full, figures)
-        if result.meshes:  # the report embeds the figures drawn above: after the queue
-            from pipeline.report import write_reports
+    # the drawer imports matplotlib while the stages compute (pipeline.viz.figure_queue)
+    with parallel_figures(figure_cache(options), prestart=True) as figures:
+        result = run_pipeline(box, options)
+        with staged_output(target) as out:
+            with result.log.step("writing tables and figures", long=True):
+                files = write_run(result, out, args.full, figures)
+                figures.queue.draw_all()
+            if result.meshes:  # the report embeds the figures drawn above: after them
+                from pipeline.report import write_reports
 
-            with result.log.step("load distribution reports", long=True):
-                files += write_reports(result, out, figure_cache(options),
-                                       command=f"gearpipe {command} {args.config}",
-                                       show_progress=options.show_progress)
-        summary = result.summary()
-        files.append(write_json(out / "summary.json", summary))
-        record(out, args, box, files)
+                with result.log.step("load distribution reports", long=True):
+                    files += write_reports(result, out, figure_cache(options),
+                                           command=f"gearpipe {command} {args.config}",
+                                           show_progress=options.show_progress)
+            summary = result.summary()
+            files.append(write_json(out / "summary.json", summary))
+            record(out, args, box, files)
     emit(args, summary, target)
     return 0

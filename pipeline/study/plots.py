@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import matplotlib.pyplot as plt
 import numpy as np
 
 from pipeline.study.spec import StudySpec
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 def _numeric(col: list[Any]) -> bool:
@@ -32,13 +35,12 @@ def reference_values(spec: StudySpec, table: dict[str, list]) -> dict[str, Any]:
     return ref
 
 
-def plot_sensitivity(spec: StudySpec, table: dict[str, list], kpis: list[str]) -> plt.Figure:
+def plot_sensitivity(spec: StudySpec, table: dict[str, list], kpis: list[str]) -> Figure:
     """KPIs (rows) against each axis (columns). A grid: one-at-a-time lines through the
     reference point (:func:`reference_values`); a Latin hypercube: every point."""
     axes_l = spec.axes
-    fig, axs = plt.subplots(len(kpis), len(axes_l), squeeze=False,
-                            figsize=(3.6 * len(axes_l) + 0.8, 2.3 * len(kpis) + 0.6),
-                            constrained_layout=True)
+    fig = new_figure((3.6 * len(axes_l) + 0.8, 2.3 * len(kpis) + 0.6), "constrained")
+    axs = fig.subplots(len(kpis), len(axes_l), squeeze=False)
     ref = reference_values(spec, table) if spec.method == "grid" else None
     n = len(table["point"])
     for j, a in enumerate(axes_l):
@@ -76,11 +78,12 @@ def _more(keys: tuple[str, ...]) -> str:
 
 
 def plot_tradeoff(table: dict[str, list], kx: str, ky: str, best: int | None,
-                  title: str) -> plt.Figure:
+                  title: str) -> Figure:
     """KPI ``ky`` against ``kx`` over all points, the Pareto front (both minimised) and the
     best point."""
     x, y = np.array(table[kx], dtype=float), np.array(table[ky], dtype=float)
-    fig, ax = plt.subplots(figsize=(5.5, 4.2), constrained_layout=True)
+    fig = new_figure((5.5, 4.2), "constrained")
+    ax = fig.subplots()
     ax.plot(x, y, "o", ms=4, alpha=0.6, label="design points")
     ok = np.flatnonzero(np.isfinite(x) & np.isfinite(y))
     front = [i for i in ok if not np.any((x[ok] <= x[i]) & (y[ok] <= y[i])

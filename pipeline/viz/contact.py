@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-from matplotlib.figure import Figure
 
 from pipeline.contact.results import LoadedMeshCycle
+from pipeline.viz.canvas import new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
@@ -14,7 +19,7 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
     load sharing over the cycle, three panels; returns the figure."""
     if fig is None:
-        fig = Figure(figsize=(9, 8), layout="constrained")
+        fig = new_figure((9, 8), "constrained")
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
     k = stiffness_in_plot_unit

@@ -10,13 +10,17 @@ mm, angles deg.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 N_PER_UM = 1e-6  # N/m -> N/um
 N_PER_MM = 1e-3  # N/m -> N/mm
@@ -31,7 +35,7 @@ def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
                               k_iso: float, compliance: str, title: str) -> Figure:
     """Analytical k(t), the LTCA tangent k(t) on ``compliance`` and ISO 6336-1's
     c_gamma_alpha b over one mesh cycle (N/m in, N/um drawn)."""
-    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    fig = new_figure((7.0, 3.6), "constrained")
     ax = fig.add_subplot()
     ax.plot(_cycle_fraction(pair, s0_analytical), np.asarray(k_analytical) * N_PER_UM,
             label="analytical (potential energy)")
@@ -53,7 +57,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
                             title: str) -> Figure:
     """Loaded static TE over the cycle (um), the amplitudes of mesh orders 1-10 (um) and the
     load share of every tooth pair."""
-    fig = Figure(figsize=(10.0, 3.4), layout="constrained")
+    fig = new_figure((10.0, 3.4), "constrained")
     a1, a2, a3 = fig.subplots(1, 3, width_ratios=(1.3, 1.0, 1.3))
     x = _cycle_fraction(pair, s0)
     a1.plot(x, dist.transmission_error * 1e6, "o-", ms=3)
@@ -83,7 +87,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
 def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     """Line load over the face width at every position (grey), its envelope and its mean over
     the cycle, with the mean P/b (N/mm against mm)."""
-    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    fig = new_figure((7.0, 3.6), "constrained")
     ax = fig.add_subplot()
     z, w, env, mean = dist.z * 1e3, dist.line_load, dist.envelope, dist.cycle_mean
     if z.size == 1:  # one slice stands for the whole face
@@ -134,7 +138,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
     over the diameter of each flank (mm) and the face width (mm); the maximum is marked."""
     s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
     r1, r2 = pair.contact_radii(s)
-    fig = Figure(figsize=(10.0, 3.8), layout="constrained")
+    fig = new_figure((10.0, 3.8), "constrained")
     axes = fig.subplots(1, 2, sharey=True)
     vmax = max(env.max() * 1e-6, 1e-9)
     zz = z * 1e3
@@ -166,7 +170,7 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ``curves`` : (name, arc length from the middle of the tooth space in mm, stress in MPa,
     ISO 6336-3 nominal stress in MPa or None) per gear.
     """
-    fig = Figure(figsize=(7.0, 3.6), layout="constrained")
+    fig = new_figure((7.0, 3.6), "constrained")
     ax = fig.add_subplot()
     for i, (name, arc, sigma, iso) in enumerate(curves):
         ax.plot(arc, sigma, color=f"C{i}", label=f"{name}: FE 2D, envelope over the cycle")

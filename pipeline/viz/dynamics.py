@@ -9,23 +9,27 @@ one, otherwise into a new :class:`~matplotlib.figure.Figure`, and returns it.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from pipeline.dynamics.results import HarmonicResponse, Response
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 
 def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
     """``rows x cols`` axes (always 2D) on ``fig`` or on a new constrained-layout figure."""
     if fig is None:
-        fig = Figure(figsize=size, constrained_layout=True)
+        fig = new_figure(size, "constrained")
     return fig, fig.subplots(rows, cols, squeeze=False)
 
 
 def _axes(ax: Axes | None, size=(8, 4.5)) -> Axes:
-    return Figure(figsize=size, constrained_layout=True).subplots() if ax is None else ax
+    return new_figure(size, "constrained").subplots() if ax is None else ax
 
 
 def plot_time_history(

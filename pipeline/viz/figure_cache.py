@@ -108,18 +108,21 @@ class FigureCache:
                     return atomic_write(path, lambda p: shutil.copyfile(cached, p))
                 warnings.warn(f"cached figure {cached} is not a whole PNG; redrawn",
                               CacheWarning, stacklevel=2)
-        job = partial(self._draw, Path(path), cached, draw, args, kwargs)
+        job = partial(draw_figure, Path(path), cached, self.dpi, draw, args, kwargs)
         return job() if self.queue is None else self.queue.add(path, job)
 
-    def _draw(self, path: Path, cached: Path | None, draw: Callable[..., Any],
-              args: tuple, kwargs: dict) -> Path:
-        out = save(draw(*args, **kwargs), path, self.dpi)
-        if cached is not None:
-            try:
-                atomic_write(cached, lambda p: shutil.copyfile(out, p))
-            except OSError:
-                pass  # a read-only or full cache only costs the next run a redraw
-        return out
+
+def draw_figure(path: Path, cached: Path | None, dpi: int, draw: Callable[..., Any],
+                args: tuple, kwargs: dict) -> Path:
+    """Draw ``draw(*args, **kwargs)`` into ``path`` (PNG at ``dpi``) and keep a copy as
+    ``cached``; a module-level function, so a queued drawing pickles."""
+    out = save(draw(*args, **kwargs), path, dpi)
+    if cached is not None:
+        try:
+            atomic_write(cached, lambda p: shutil.copyfile(out, p))
+        except OSError:
+            pass  # a read-only or full cache only costs the next run a redraw
+    return out
 
 
 _PNG_START = b"\x89PNG\r\n\x1a\n"

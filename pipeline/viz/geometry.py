@@ -7,21 +7,24 @@ Every function draws into ``ax`` when given one, otherwise into a new
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
-from matplotlib.patches import Rectangle
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.profile import INVOLUTE, ToothProfile, gear_outline
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 
 def plot_line_of_action(pair: GearPair, title: str = "", ax: Axes | None = None) -> Axes:
     """Path of contact on the line of action: single/double contact zones and the pitch point."""
     if ax is None:
-        ax = Figure(figsize=(8, 2.8)).subplots()
+        ax = new_figure((8, 2.8)).subplots()
     pb = pair.base_pitch
     s_a, s_e, s_c = pair.s_start * 1e3, pair.s_end * 1e3, pair.s_pitch * 1e3
     ax.plot([0, pair.t1t2 * 1e3], [0, 0], color="0.6", lw=1, label="line of action T1-T2")
@@ -52,7 +55,9 @@ def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = N
     if ax is None:
         length, b = pair.path_length, pair.face_width
         height = min(8.0, max(2.5, 5.5 * b / length))
-        ax = Figure(figsize=(8.0, height + 1.2), layout="constrained").subplots()
+        ax = new_figure((8.0, height + 1.2), "constrained").subplots()
+    from matplotlib.patches import Rectangle
+
     b = pair.face_width * 1e3
     ax.add_patch(Rectangle((pair.s_start * 1e3, 0), pair.path_length * 1e3, b, fill=False,
                            ec="k", lw=1, label="path of contact x face width"))
@@ -75,7 +80,7 @@ def plot_profile(prof: ToothProfile, ax: Axes | None = None, teeth: int = 3) -> 
     Circles: root (dashed), base (dotted), form (dash-dot), tip (thin).
     """
     if ax is None:
-        ax = Figure(figsize=(5, 5)).subplots()
+        ax = new_figure((5, 5)).subplots()
     g = prof.gear
     out = gear_outline(g, teeth) * 1e3
     ax.plot(out[:, 0], out[:, 1], color="0.3", lw=1.0, label="outline")
@@ -97,7 +102,7 @@ def plot_profile(prof: ToothProfile, ax: Axes | None = None, teeth: int = 3) -> 
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
     """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
-    fig = Figure(figsize=(9, 4 * len(gears)))
+    fig = new_figure((9, 4 * len(gears)))
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)

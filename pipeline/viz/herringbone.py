@@ -4,9 +4,14 @@ Fig. 5): each half's mesh stiffness over a mesh cycle, and the change of its max
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
+
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 def plot_groove_mesh_stiffness(
@@ -29,7 +34,7 @@ def plot_groove_mesh_stiffness(
         left and right stiffness from K_1 to K_5 (-).
     """
     Kj = np.asarray(Kj, dtype=float)
-    fig = Figure(figsize=(12, 5.0), layout="constrained")
+    fig = new_figure((12, 5.0), "constrained")
     ax = fig.subplots(1, 3)
     m = k_left.shape[1]
     x = np.arange(m) / m

@@ -9,10 +9,9 @@ import, so it is imported inside :func:`render_load_map` only.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
 from pipeline.contact.loadmap import (
     FlankLoadMap,
@@ -21,6 +20,10 @@ from pipeline.contact.loadmap import (
     tooth_body_grid,
 )
 from pipeline.geometry.pair import GearPair
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 
 def _fit_camera(plotter, bounds, aspect: float, margin: float = 1.08) -> None:
@@ -151,7 +154,7 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     z (mm) to the right, pinion contact radius (mm) up, as :func:`render_load_map` shows the
     flank; returns the Axes."""
     if ax is None:
-        ax = Figure(figsize=(7.5, 4.8), layout="constrained").subplots()
+        ax = new_figure((7.5, 4.8), "constrained").subplots()
     p = load_map.unit_load * 1e-3
     mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3, p,
                          shading="gouraud", cmap="viridis", vmin=0.0, vmax=float(p.max()))

@@ -19,15 +19,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, FancyArrowPatch
 
 from pipeline.dynamics.layout import BodyPlace, ModelLayout
 from pipeline.dynamics.results import ModalResult
+from pipeline.viz.canvas import new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 PER_PAGE = 12
 """Modes per page (3 rows of 4 panels)."""
@@ -76,6 +78,8 @@ def _anchor(p: BodyPlace, layout: ModelLayout) -> tuple[np.ndarray, float, float
 
 
 def _arc(ax: Axes, centre, r: float, a0: float, span: float, colour: str) -> None:
+    from matplotlib.patches import FancyArrowPatch
+
     span = float(np.clip(span, -1.9 * math.pi, 1.9 * math.pi))
     t = np.linspace(a0, a0 + span, max(8, int(abs(span) * 24)))
     x, y = centre[0] + r * np.cos(t), centre[1] + r * np.sin(t)
@@ -100,8 +104,10 @@ def energy_shares(result: ModalResult, k: int) -> dict[str, float]:
 def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
                         ax: Axes | None = None) -> Axes:
     """Draw mode ``k`` of ``result`` on ``layout`` (module docstring); returns the Axes."""
+    from matplotlib.patches import Circle, FancyArrowPatch
+
     if ax is None:
-        ax = Figure(figsize=(4, 4)).subplots()
+        ax = new_figure((4, 4)).subplots()
     phi = result.real_shapes()[:, k]
     if layout.schematic and result.weights is not None:
         phi = phi * result.weights  # unit circles: compare kinetic-energy amplitudes instead
@@ -152,6 +158,8 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
 def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[int],
                      cols: int = 4, title: str = "", fig: Figure | None = None) -> Figure:
     """A grid of :func:`plot_mode_on_layout` panels for the mode indices ``modes``."""
+    from matplotlib.lines import Line2D
+
     n = max(len(modes), 1)
     cols = min(cols, n)
     rows = math.ceil(n / cols)
@@ -161,8 +169,8 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     aspect = (max(xs) - min(xs) + 2 * r) / (max(ys) - min(ys) + 2 * r)
     w = 3.4 if aspect < 1.6 else 5.0
     if fig is None:
-        fig = Figure(figsize=(w * cols, w / max(min(aspect, 3.0), 0.5) * rows + 0.9),
-                     layout="constrained")
+        fig = new_figure((w * cols, w / max(min(aspect, 3.0), 0.5) * rows + 0.9),
+                         "constrained")
     axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
     for a, k in zip(axes, modes, strict=False):
         plot_mode_on_layout(result, layout, k, ax=a)

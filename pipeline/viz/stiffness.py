@@ -7,12 +7,16 @@ given one, otherwise into a new :class:`~matplotlib.figure.Figure`, and returns 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.figure import Figure
 
+from pipeline.viz.canvas import new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 
 def plot_stiffness_curves(
@@ -25,7 +29,7 @@ def plot_stiffness_curves(
 ) -> Axes:
     """Overlay stiffness curves ``(label, x, k [N/m])``; optional per-pair curves of the first."""
     if ax is None:
-        ax = Figure(figsize=(8, 4.2)).subplots()
+        ax = new_figure((8, 4.2)).subplots()
     for i, (label, x, k) in enumerate(curves):
         ax.plot(x, stiffness_in_plot_unit(k), lw=1.6, color=f"C{i}", label=label)
     if pairs is not None and pairs_x is not None:
@@ -46,7 +50,7 @@ def plot_friction_coefficients(x: np.ndarray, kf: np.ndarray, kt1: np.ndarray, k
                                title: str = "", fig: Figure | None = None) -> Figure:
     """Friction stiffness (N/m) and friction torque coefficients (N) over a mesh cycle."""
     if fig is None:
-        fig = Figure(figsize=(10, 3.8))
+        fig = new_figure((10, 3.8))
     a1, a2 = fig.subplots(1, 2)
     a1.plot(x, stiffness_in_plot_unit(kf))
     a1.set_ylabel(stiffness_label("friction stiffness K_f"))
