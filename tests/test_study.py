@@ -203,3 +203,5 @@ def test_load_distribution_kpis_are_the_reports(tmp_path):
     worst = max(root.pinion, root.gear, key=lambda g: g.max_stress)
     assert row["root_stress_max_MPa"] == pytest.approx(worst.max_stress * 1e-6, rel=1e-12)
     assert abs(worst.max_stress / worst.iso.sigma_f0 - 1.0) < 0.10
+    # the point's FE tables are cached, its contact cycle is not (one file per point)
+    assert list(tmp_path.glob("fe2dtable-*")) and not list(tmp_path.glob("contactcycle-*"))

@@ -23,6 +23,7 @@ takes from the one before:
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -52,12 +53,16 @@ class RunOptions:
     cache : read and write the on-disk cache of FE tables and contact cycles.
     cache_dir : cache folder (default :func:`pipeline.fem.cache.default_cache_dir`).
     show_progress : a line per step and progress bars on stderr.
+    cache_cycles : keep loaded contact cycles in the cache (with ``cache``); a design study
+        turns it off: one file per design point would fill the cache with cycles that are
+        never read again.
     """
 
     full: bool = False
     cache: bool = True
     cache_dir: Path | None = None
     show_progress: bool = True
+    cache_cycles: bool = True
 
 
 @dataclass(frozen=True)
@@ -166,9 +171,11 @@ def mesh_cases(box: Gearbox) -> list[MeshCase]:
 
 
 def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
-                   options: RunOptions) -> tuple[LoadedMeshCycle, bool]:
+                   options: RunOptions, prebuilt: Any = None) -> tuple[LoadedMeshCycle, bool]:
     """The loaded contact cycle of one mesh, from the cache when its inputs are unchanged.
 
+    ``prebuilt`` is an FE source of the same gears and FE settings built earlier (a design
+    study builds one per geometry): its tables are used instead of building or reading them.
     Returns (cycle, True if read from the cache).
     """
     actual = stiffness.actual
@@ -179,20 +186,21 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
         source = compliance_source(actual, case.operation, box.contact, box.stiffness,
                                    box.fe_source, cache=options.cache,
                                    cache_dir=options.cache_dir, model=stiffness.model,
-                                   show_progress=options.show_progress)
+                                   show_progress=options.show_progress, prebuilt=prebuilt)
         return analyse_contact(source, case.operation, box.contact,
                                show_progress=options.show_progress)
 
     cycle, _, hit = cached_file("contactcycle", inputs, build, load_cycle, save_cycle,
-                                options.cache_dir, options.cache)
+                                options.cache_dir, options.cache and options.cache_cycles)
     if hit:
         warn_physics(cycle)  # a cycle solved now has warned already
     return cycle, hit
 
 
 def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLog,
-                  contact: bool = True) -> MeshStages:
-    """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh."""
+                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
+    """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
+    (``prebuilt``: :func:`loaded_contact`)."""
     tag = "" if case.name == "mesh" else f" [{case.name}]"
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -203,7 +211,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
     cycle = None
     if contact:
         with log.step(f"loaded contact ({box.contact.compliance}){tag}", long=True) as note:
-            cycle, hit = loaded_contact(box, case, stiffness, options)
+            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt)
             note["cached"] = hit
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
                             f"{cycle.mesh_stiffness.mean():.4g} N/m")
@@ -217,12 +225,14 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
     return stages
 
 
-def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool = True
-                ) -> dict[str, MeshStages]:
-    """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``)."""
+def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool = True,
+                prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
+    """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
+    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
-    return {case.name: static_stages(box, case, options, log, contact)
+    return {case.name: static_stages(box, case, options, log, contact,
+                                     None if prebuilt is None else prebuilt[case.name])
             for case in mesh_cases(box)}
 
 

@@ -80,27 +80,15 @@ def build_fe_tables(doc: Mapping[str, Any], *, cache: bool = True,
 def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
                  speed_range_rpm: tuple[float, float] | None = None, speed_points: int = 40,
                  cache: bool = True, cache_dir: str | None = None) -> PointResult:
-    """Static stages of every mesh and, with ``speed_range_rpm``, a sweep of the dynamic
-    model over that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
-    from pipeline.contact.analysis import analyse_contact
-    from pipeline.contact.compliance import compliance_source
-    from pipeline.geometry.analysis import analyse_geometry
-    from pipeline.run.chain import MeshStages, RunResult, mesh_cases
+    """Static stages of every mesh (:func:`pipeline.run.chain.mesh_stages`, contact cycles
+    not kept in the cache) and, with ``speed_range_rpm``, a sweep of the dynamic model over
+    that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
+    from pipeline.run.chain import RunOptions, RunResult, mesh_stages
     from pipeline.run.steps import StepLog
-    from pipeline.stiffness.analysis import analyse_stiffness
 
-    meshes = {}
-    for case in mesh_cases(box):
-        geometry = analyse_geometry(case.pair, case.assembly_errors)
-        stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
-                                      assembly_errors=case.assembly_errors)
-        source = compliance_source(stiffness.actual, case.operation, box.contact,
-                                   box.stiffness, box.fe_source, cache=cache,
-                                   cache_dir=cache_dir, model=stiffness.model,
-                                   prebuilt=None if fe is None else fe[case.name])
-        cycle = analyse_contact(source, case.operation, box.contact)
-        meshes[case.name] = MeshStages(case, geometry, stiffness, cycle,
-                                       box.contact.compliance)
+    options = RunOptions(cache=cache, cache_dir=cache_dir, show_progress=False,
+                         cache_cycles=False)
+    meshes = mesh_stages(box, options, StepLog(show=False), prebuilt=fe)
     run = RunResult(box, meshes, None, StepLog(show=False))
     if speed_range_rpm is None:
         return PointResult(run, cache=cache, cache_dir=cache_dir)
