@@ -4,7 +4,8 @@ Each case is a way a run can fail or be pointed wrong (a full or read-only disk,
 where a folder should be, a folder holding other files, an input refused after the
 work began, a name inside the file that tries to leave ``results/``); each checks the
 one-line error, the exit status and that nothing partial is left. Files get the
-permissions the umask gives, and temporary files of dead processes are removed.
+permissions the umask gives, and temporary files of dead processes are removed. Runs
+writing into one folder at the same time leave one whole result, the last one's.
 """
 
 from __future__ import annotations
@@ -274,3 +275,46 @@ def test_an_error_in_the_computation_is_not_an_output_error(tmp_path):
     assert (out / "a.txt").read_text() == "previous" and hidden(tmp_path) == []
     with pytest.raises(OutputError, match="No space left"), staged_output(out):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+
+def _writer(target: str, writer: int, rounds: int, barrier, portable: bool) -> None:
+    """Write ``rounds`` complete results (three files naming ``writer``) into ``target``."""
+    import pipeline.output_folder as of
+
+    if portable:
+        of.exchange = lambda a, b: False  # the two-rename swap of other systems
+    for r in range(rounds):
+        barrier.wait()
+        with staged_output(target) as out:
+            for name in ("a.txt", "b.txt"):
+                atomic_write_text(out / name, f"{writer} {r} {name}\n" * 2000)
+            atomic_write_text(out / "run.json",
+                              json.dumps({"writer": writer, "round": r,
+                                          "outputs": ["a.txt", "b.txt", "run.json"]}))
+
+
+@pytest.mark.parametrize("portable", [False, True], ids=["exchange", "two_renames"])
+def test_concurrent_runs_on_one_target_leave_one_whole_result(tmp_path, portable):
+    """Three processes write results into the same folder at the same moments, 15 rounds
+    each: after every one has finished, the folder holds one writer's whole result of one
+    round (the last writer wins), and no staging, old or temporary entry is left."""
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("fork")
+    target = tmp_path / "out"
+    writers, rounds = 3, 15
+    barrier = ctx.Barrier(writers)
+    procs = [ctx.Process(target=_writer, args=(str(target), w, rounds, barrier, portable))
+             for w in range(writers)]
+    for p in procs:
+        p.start()
+    for p in procs:
+        p.join(timeout=120)
+    assert [p.exitcode for p in procs] == [0] * writers
+    record = json.loads((target / "run.json").read_text())
+    w, r = record["writer"], record["round"]
+    assert r == rounds - 1
+    assert sorted(os.listdir(target)) == ["a.txt", "b.txt", "run.json"]
+    for name in ("a.txt", "b.txt"):
+        assert (target / name).read_text() == f"{w} {r} {name}\n" * 2000
+    assert sorted(os.listdir(tmp_path)) == ["out"]
