@@ -27,6 +27,7 @@ import os
 import re
 import secrets
 import shutil
+import stat
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -44,8 +45,12 @@ class OutputError(Exception):
 
 
 def _foreign_entries(folder: Path) -> list[str]:
-    """Entries of ``folder`` that no ``run.json`` in it lists (sorted)."""
-    entries = sorted(os.listdir(folder))
+    """Entries of ``folder`` that no ``run.json`` in it lists (sorted); none if the folder
+    is gone (another run is swapping its result in)."""
+    try:
+        entries = sorted(os.listdir(folder))
+    except FileNotFoundError:
+        return []
     if not entries:
         return []
     try:
@@ -65,8 +70,12 @@ def check_target(target: str | os.PathLike) -> Path:
     """
     shown = Path(target)
     path = shown.resolve()
-    if path.exists():
-        if not path.is_dir():
+    try:
+        mode = path.stat().st_mode  # one look: another run may be swapping the folder
+    except (FileNotFoundError, NotADirectoryError):  # new, or under a file (checked below)
+        mode = None
+    if mode is not None:
+        if not stat.S_ISDIR(mode):
             raise OutputError(f"{shown} is a file, not a folder; give --out a folder "
                               "(new, empty, or an earlier result)")
         foreign = _foreign_entries(path)
@@ -135,15 +144,21 @@ def _commit(staging: Path, target: Path) -> None:
     """Swap the finished staging folder in for ``target`` (see the module docstring)."""
     os.chmod(staging, 0o777 & ~process_umask())
     fsync_path(staging, directory=True)
-    if target.is_dir() and exchange(staging, target):  # staging now holds the old result
-        fsync_path(target.parent, directory=True)
-        shutil.rmtree(staging, ignore_errors=True)
-        return
+    try:
+        if target.is_dir() and exchange(staging, target):  # staging now holds the old result
+            fsync_path(target.parent, directory=True)
+            shutil.rmtree(staging, ignore_errors=True)
+            return
+    except FileNotFoundError:
+        pass  # another run moved the target away just now: rename ours in below
     olds: list[Path] = []
     for attempt in range(5):
-        if target.exists():
-            olds.append(_aside(target))
-            os.rename(target, olds[-1])
+        old = _aside(target)
+        try:
+            os.rename(target, old)
+            olds.append(old)
+        except FileNotFoundError:
+            pass  # no previous result, or another run moved it away just now
         try:
             os.rename(staging, target)
             break

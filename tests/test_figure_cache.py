@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import signal
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,6 +28,12 @@ def draw_line(y: np.ndarray, title: str) -> Figure:
     ax.plot(y)
     ax.set_title(title)
     return fig
+
+
+def draw_and_note_pid(note: Path, title: str) -> Figure:
+    """A figure that also writes the drawing process's id to ``note``."""
+    note.write_text(str(os.getpid()))
+    return draw_line(np.arange(3.0), title)
 
 
 def draw_broken(y: np.ndarray, title: str) -> Figure:
@@ -86,6 +93,13 @@ def test_prestarted_drawer_draws_the_same_figures(tmp_path, workers):
         assert q.read_bytes() == s.read_bytes(), q.name
 
 
+def test_the_drawer_draws_them_not_this_process(tmp_path):
+    with parallel_figures(FigureCache(), 1, prestart=True) as figures:
+        drawer_pid = figures.queue.drawer.process.pid
+        figures.save(tmp_path / "a.png", draw_and_note_pid, tmp_path / "pid.txt", "a")
+    assert int((tmp_path / "pid.txt").read_text()) == drawer_pid != os.getpid()
+
+
 def test_drawings_that_do_not_pickle_are_drawn_here(tmp_path):
     scale = 2.0
     with parallel_figures(FigureCache(), 2, prestart=True) as figures:
@@ -94,6 +108,7 @@ def test_drawings_that_do_not_pickle_are_drawn_here(tmp_path):
         out = figures.save(tmp_path / "local.png", lambda y, title: draw_line(scale * y, title),
                            np.arange(3.0), "local")
     assert out.is_file() and not drawer.process.is_alive()
+    assert drawer.process.exitcode == -9  # never sent anything: killed, not waited for
     expected = FigureCache().save(tmp_path / "ref.png", draw_line, 2.0 * np.arange(3.0), "local")
     assert out.read_bytes() == expected.read_bytes()
 
@@ -125,3 +140,15 @@ def test_a_failing_block_ends_the_drawer_without_drawing(tmp_path):
             raise KeyError("the run failed")
     assert not drawer.process.is_alive()
     assert not any(p.exists() for p in queued)
+
+
+def test_a_run_with_every_figure_cached_does_not_wait_for_the_drawer(tmp_path):
+    cache = FigureCache(tmp_path / "cache")
+    _figures(cache.save, tmp_path / "first", n=2)
+    with parallel_figures(cache, 2, prestart=True) as figures:
+        drawer = figures.queue.drawer
+        copied = _figures(figures.save, tmp_path / "again", n=2)  # both from the cache
+        assert all(p.is_file() for p in copied) and not figures.queue.jobs
+        figures.queue.draw_all()
+        assert figures.queue.drawer is None
+    assert not drawer.process.is_alive() and drawer.process.exitcode == -9  # killed, not used

@@ -7,17 +7,19 @@ the 15th file of the result folder, and in the middle of the portable two-rename
 holds the previous complete result (or, after the swap kill, nothing visible until the
 next run puts the previous result back); the next uninterrupted run leaves no hidden
 staging folder or temporary file in the results or the cache, and its files are
-bit-identical to those of an uninterrupted run (``run.json`` differs in its times, and
-``summary.json`` in its ``timing`` section, only). The figures of a rerun come from the
-figure cache; the second case checks that figures drawn afresh are bit-identical as
-well. Both are marked slow (five and three processes of ``gearpipe run``); the default
-suite covers the same clean-up with simulated leftovers (``test_output_folder.py``).
+bit-identical to those of an uninterrupted run (``run.json`` differs in its times,
+``summary.json`` in its ``timing`` section, and the report in its two clock times, only).
+The figures of a rerun come from the figure cache; the second case checks that figures
+drawn afresh are bit-identical as well. Both are marked slow (five and three processes of
+``gearpipe run``); the default suite covers the same clean-up with simulated leftovers
+(``test_output_folder.py``).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -70,12 +72,29 @@ def _gearpipe(point: str, cfg: Path, out: Path, cache: Path) -> int:
     return proc.returncode
 
 
+_REPORT_TIMES = ("time_utc", "run_time")  # the report's provenance rows that are clock times
+
+
 def _files(folder: Path) -> dict[str, bytes]:
-    """Every file's bytes, but ``run.json`` and the step timings of ``summary.json``."""
+    """Every file's bytes, but ``run.json``, the step timings of ``summary.json`` and the
+    report's clock times (written at, run time, "written in ... s")."""
     files = {p.name: p.read_bytes() for p in sorted(folder.iterdir()) if p.name != "run.json"}
     summary = json.loads(files.pop("summary.json"))
     summary.pop("timing")
-    return files | {"summary.json": json.dumps(summary, sort_keys=True).encode()}
+    files["summary.json"] = json.dumps(summary, sort_keys=True).encode()
+    if "report.json" in files:
+        report = json.loads(files["report.json"])
+        for key in _REPORT_TIMES:
+            report["sections"]["provenance"]["quantities"].pop(key)
+        files["report.json"] = json.dumps(report, sort_keys=True).encode()
+        rows = files["report.csv"].decode().splitlines()
+        files["report.csv"] = "\n".join(
+            r for r in rows if not any(r.startswith(f"provenance,{k},") for k in _REPORT_TIMES)
+        ).encode()
+        html = files["report.html"].decode()
+        html = re.sub(r'(data-key="provenance\.(?:time_utc|run_time)">)[^<]*', r"\1", html)
+        files["report.html"] = re.sub(r"written in [0-9.]+ s", "", html).encode()
+    return files
 
 
 def _temps(folder: Path) -> list[str]:

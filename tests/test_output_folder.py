@@ -287,7 +287,7 @@ def _writer(target: str, writer: int, rounds: int, barrier, portable: bool) -> N
         barrier.wait()
         with staged_output(target) as out:
             for name in ("a.txt", "b.txt"):
-                atomic_write_text(out / name, f"{writer} {r} {name}\n" * 2000)
+                atomic_write_text(out / name, f"{writer} {r} {name}\n" * 200)
             atomic_write_text(out / "run.json",
                               json.dumps({"writer": writer, "round": r,
                                           "outputs": ["a.txt", "b.txt", "run.json"]}))
@@ -302,19 +302,46 @@ def test_concurrent_runs_on_one_target_leave_one_whole_result(tmp_path, portable
 
     ctx = multiprocessing.get_context("fork")
     target = tmp_path / "out"
-    writers, rounds = 3, 15
-    barrier = ctx.Barrier(writers)
-    procs = [ctx.Process(target=_writer, args=(str(target), w, rounds, barrier, portable))
-             for w in range(writers)]
-    for p in procs:
-        p.start()
-    for p in procs:
-        p.join(timeout=120)
+    writers, rounds = 4, 40
+    barrier = ctx.Barrier(writers, timeout=20)  # a writer that fails breaks it: no hang
+    procs = [ctx.Process(target=_writer, args=(str(target), w, rounds, barrier, portable),
+                         daemon=True) for w in range(writers)]
+    try:
+        for p in procs:
+            p.start()
+        for p in procs:
+            p.join(timeout=120)
+    finally:
+        for p in procs:
+            if p.is_alive():
+                p.kill()
     assert [p.exitcode for p in procs] == [0] * writers
     record = json.loads((target / "run.json").read_text())
     w, r = record["writer"], record["round"]
     assert r == rounds - 1
     assert sorted(os.listdir(target)) == ["a.txt", "b.txt", "run.json"]
     for name in ("a.txt", "b.txt"):
-        assert (target / name).read_text() == f"{w} {r} {name}\n" * 2000
+        assert (target / name).read_text() == f"{w} {r} {name}\n" * 200
     assert sorted(os.listdir(tmp_path)) == ["out"]
+
+
+def test_a_target_moved_away_during_the_swap_is_no_error(tmp_path, monkeypatch):
+    """The portable swap: another run moves the previous result away between our check and
+    our rename (the race the test above runs into); ours still goes in whole."""
+    import pipeline.output_folder as of
+
+    target = tmp_path / "out"
+    with staged_output(target) as out:
+        atomic_write_text(out / "run.json", json.dumps({"outputs": ["run.json"], "n": 1}))
+    monkeypatch.setattr(of, "exchange", lambda a, b: False)
+    rename = os.rename
+
+    def racing_rename(src, dst):
+        if Path(src) == target and ".old-" in str(dst) and target.exists():
+            rename(target, tmp_path / "elsewhere")  # the other run's move
+        return rename(src, dst)
+
+    monkeypatch.setattr(of.os, "rename", racing_rename)
+    with staged_output(target) as out:
+        atomic_write_text(out / "run.json", json.dumps({"outputs": ["run.json"], "n": 2}))
+    assert json.loads((target / "run.json").read_text())["n"] == 2

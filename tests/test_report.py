@@ -256,3 +256,27 @@ def test_misaligned_spur_pair_face_load_factor(tmp_path):
     assert k_hbeta > 1.2  # a real effect (1.395 measured; ISO 1.408)
     iso = 1.0 + f_hb * k.mean() / (2.0 * load)  # c_gamma b = mean k, F_m = P
     assert k_hbeta == pytest.approx(iso, rel=1.0 / n)
+
+
+def test_one_slice_with_lead_crowning_is_stated_as_such():
+    """slices = 1 with lead crowning: the note says the crowning cannot shape the line load
+    (not that the pair has none); without modifications, the plain one-slice note."""
+    from pipeline.contact import analyse_contact, analytical_compliance
+    from pipeline.contact.options import ContactOptions
+    from pipeline.contact.separations import FlankModifications
+    from pipeline.report.content import load_distribution_section
+    from pipeline.validation import PhysicsWarning
+
+    box = gearbox_from_text(SMALL, "small")
+    pair = box.actual_pair
+    mods = FlankModifications(crowning=8e-6)
+    with pytest.warns(PhysicsWarning, match="contact.slices = 1"):
+        opts = ContactOptions(positions=6, slices=1, modifications=mods)
+    cyc = analyse_contact(analytical_compliance(pair, box.operation, opts), box.operation, opts)
+    dist = load_distribution(cyc, pair, box.operation)
+    crowned = load_distribution_section(dist, pair, [], mods).notes
+    plain = load_distribution_section(dist, pair, [], FlankModifications()).notes
+    assert any("cannot shape the line load" in n and "raise [contact] slices" in n
+               for n in crowned)
+    assert not any("without lead crowning" in n for n in crowned)
+    assert any("without lead crowning" in n for n in plain)

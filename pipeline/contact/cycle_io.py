@@ -21,8 +21,9 @@ from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
 
-# Bump when LoadedMeshCycle's fields or the contact solver change what a key produces.
-CYCLE_FORMAT = 1
+# Bump when LoadedMeshCycle's fields or the contact solver change what a key produces
+# (2: a spur pair with lead crowning or slope deviation is solved with slices).
+CYCLE_FORMAT = 2
 _SCALARS = {"load": float, "local_contact": str}
 # ContactOptions fields that only shape the outputs, not the cycle
 _PRESENTATION = ("load_map_profile_points", "render")

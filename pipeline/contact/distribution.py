@@ -114,9 +114,9 @@ class LoadDistribution:
     mesh_stiffness : (m,) tangent mesh stiffness dP/dx_s, N/m.
     load : P, total load along the transverse line of action, N.
     face_width : b, m.
-    slices_across_face : number of distinct face positions (1 for spur pairs with one slice:
-        then the face distribution is uniform by construction and lead modifications do not
-        enter the solve).
+    slices_across_face : number of distinct face positions (1 for a spur pair solved with one
+        slice, as ``ContactOptions.face_slices`` gives one without lead crowning or helix
+        slope deviation: then the face distribution is uniform by construction).
     """
 
     z: np.ndarray

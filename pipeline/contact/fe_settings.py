@@ -41,8 +41,8 @@ class FE2DSettings:
         loaded teeth (:meth:`SectorSettings2D.graded`; every tooth for ``mesh =
         "uniform"``, :meth:`SectorSettings2D.for_gear`).
     kind : "plane_strain" or "plane_stress".
-    slices : slices across the face width (``compliance_source`` sets ``[contact] slices``,
-        one for a spur pair without lead modifications).
+    slices : slices across the face width, or ``None``: 30 across a helical face, one for a
+        spur pair (``compliance_source`` sets the count of the contact options).
     cuts : "clamped" or "free" sector cut faces.
     mesh : "graded" (default: fine on the loaded teeth, coarser away from them; module
         docstring) or "uniform" (every tooth at the flank size; the reference).
@@ -56,7 +56,7 @@ class FE2DSettings:
     radii: int = 30
     refinement: float = DEFAULT_REFINEMENT
     kind: str = "plane_strain"
-    slices: int = 30
+    slices: int | None = None
     cuts: str = "clamped"
     mesh: str = "graded"
     tooth_size: float = GRADED_TOOTH
@@ -69,7 +69,8 @@ class FE2DSettings:
         check_int_range("fe.radii", self.radii, 4, 1000)
         check_range("fe.refinement", self.refinement, 0.1, 20.0)
         check_choice("fe.kind", self.kind, PLANE_KINDS)
-        check_int_range("fe.slices", self.slices, 1, MAX_SLICES)
+        if self.slices is not None:
+            check_int_range("fe.slices", self.slices, 1, MAX_SLICES)
         check_choice("fe.cuts", self.cuts, CUTS)
         check_choice("fe.mesh", self.mesh, MESHES)
         check_range("fe.tooth_size", self.tooth_size, 0.05, 2.0, unit="m_n")
@@ -109,8 +110,8 @@ class FE3DSettings:
         patch half-widths (0..10; 1 keeps every patch whole on the flank).
     cuts : "clamped" or "free" sector cut faces (a whole gear has none).
     ends : "free" or "sliding" (u_z = 0) end faces.
-    slices : slices across the face width (``compliance_source`` sets ``[contact] slices``,
-        one for a spur pair without lead modifications).
+    slices : slices across the face width, or ``None``: 30 across a helical face, one for a
+        spur pair (``compliance_source`` sets the count of the contact options).
     hub_depth : if given, the body is clamped at ``max(bore, r_f - hub_depth m_n)``
         instead of the bore (1..100 modules): a shallower body for deep gears.
     method : solver (:func:`pipeline.fem.solvers.solver_named`, 3D).
@@ -125,7 +126,7 @@ class FE3DSettings:
     face_margin: float = 1.0
     cuts: str = "clamped"
     ends: str = "free"
-    slices: int = 30
+    slices: int | None = None
     hub_depth: float | None = None
     method: str = "auto"
 
@@ -144,7 +145,8 @@ class FE3DSettings:
         check_range("fe3d.face_margin", self.face_margin, 0.0, 10.0)
         check_choice("fe3d.cuts", self.cuts, CUTS)
         check_choice("fe3d.ends", self.ends, ENDS)
-        check_int_range("fe3d.slices", self.slices, 1, MAX_SLICES)
+        if self.slices is not None:
+            check_int_range("fe3d.slices", self.slices, 1, MAX_SLICES)
         if self.hub_depth is not None:
             check_range("fe3d.hub_depth", self.hub_depth, 1.0, 100.0, unit="m_n")
         check_choice("fe3d.method", self.method, SOLVERS)

@@ -124,24 +124,37 @@ class ComplianceSource(Protocol):
     def matrix(self, position: float) -> np.ndarray: ...
 
 
-def slice_grid(pair: GearPair, slices: int, position: float
+DEFAULT_SLICES = 30
+"""Slices across a helical face when a source is built without a count."""
+
+
+def slice_count(pair: GearPair, slices: int | None) -> int:
+    """``slices`` as given; ``None``: :data:`DEFAULT_SLICES` for a helical pair, one for a
+    spur pair (a gearbox file's contact decides by its modifications too,
+    :meth:`~pipeline.contact.options.ContactOptions.face_slices`)."""
+    if slices is not None:
+        return slices
+    return DEFAULT_SLICES if pair.pinion.is_helical else 1
+
+
+def slice_grid(pair: GearPair, slices: int | None, position: float
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
     """Slice contact grid at mesh ``position`` (m of roll of the leading pair).
 
     Returns roll coordinates (K, N) in m, slice centres z (N,) in m, tooth pair
-    indices (K,) and the slice width in m; ``slices`` slices across the face, spur or helical
-    (:meth:`~pipeline.contact.options.ContactOptions.face_slices` says how many a gearbox
-    file's contact uses).
+    indices (K,) and the slice width in m, for ``slices`` slices across the face
+    (:func:`slice_count`).
     """
-    dz = pair.face_width / slices
-    z = (np.arange(slices) + 0.5) * dz
+    n = slice_count(pair, slices)
+    dz = pair.face_width / n
+    z = (np.arange(n) + 0.5) * dz
     k = pair.pair_indices()
     s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
         pair.pinion.base_helix_angle)
     return s, z, k, dz
 
 
-def slice_points(pair: GearPair, slices: int, position: float) -> ContactPoints:
+def slice_points(pair: GearPair, slices: int | None, position: float) -> ContactPoints:
     """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
     s, z, k, dz = slice_grid(pair, slices, position)
     inside = (s >= pair.s_start) & (s <= pair.s_end)
@@ -157,8 +170,9 @@ class SliceCompliance:
     Attributes
     ----------
     model : tooth models of the pair (:class:`~pipeline.stiffness.mesh.PairModel`).
-    slices : slices across the face width, as given (:func:`~pipeline.contact.analysis.
-        analytical_compliance` gives a spur pair without lead modifications one).
+    slices : slices across the face width, or ``None``: 30 across a helical face, one for a
+        spur pair (:func:`slice_count`). :func:`~pipeline.contact.analysis.
+        analytical_compliance` gives the count of the contact options.
     friction : friction model (sign convention of :mod:`pipeline.stiffness.friction`);
         friction changes the bending/compression split of each slice (Yang et al. 2026, eqs.
         19-23).
@@ -170,14 +184,15 @@ class SliceCompliance:
     """
 
     model: PairModel
-    slices: int = 30
+    slices: int | None = None
     friction: FrictionModel = field(default_factory=FrictionModel)
     operating: OperatingPoint = field(default_factory=OperatingPoint)
     foundation_correction: float = 1.0
     coupling: float = 0.0
 
     def __post_init__(self) -> None:
-        check_int_range("contact.slices", self.slices, 1, 10_000)
+        if self.slices is not None:
+            check_int_range("contact.slices", self.slices, 1, 10_000)
         check_range("contact.foundation_correction", self.foundation_correction, 0.5, 2.0)
         check_range("contact.slice_coupling", self.coupling, 0.0, 0.25, hi_open=True)
         if self.model.pair.pinion.herringbone:

@@ -15,6 +15,7 @@ import numpy as np
 
 from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.options import ContactOptions
+from pipeline.contact.separations import FlankModifications
 from pipeline.geometry.analysis import GeometryResult
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
@@ -201,7 +202,8 @@ def transmission_error_section(dist: LoadDistribution, figures: Sequence[Figure]
 
 
 def load_distribution_section(dist: LoadDistribution, pair: GearPair,
-                              figures: Sequence[Figure]) -> Section:
+                              figures: Sequence[Figure],
+                              modifications: FlankModifications | None = None) -> Section:
     """Line load over the face, K_Hbeta and K_Halpha."""
     w = dist.line_load_max
     notes = ["K_Hbeta = largest over mean of the line load averaged over the mesh cycle "
@@ -209,7 +211,13 @@ def load_distribution_section(dist: LoadDistribution, pair: GearPair,
              "mean unit load of a tooth pair over the mean unit load of all contact lines "
              "in contact, the largest over the cycle (from the computed load sharing, not ISO "
              "6336-1's formula)."]
-    if dist.slices_across_face == 1:
+    if dist.slices_across_face == 1 and modifications is not None \
+            and modifications.varies_across_face:
+        notes.append("Analysed with one slice across the face ([contact] slices = 1): the "
+                     "lead crowning / helix slope deviation of this file cannot shape the "
+                     "line load, which is uniform by construction (K_Hbeta = 1); raise "
+                     "[contact] slices.")
+    elif dist.slices_across_face == 1:
         notes.append("Spur pair without lead crowning or helix slope deviation, analysed "
                      "with one slice across the face: the line load is uniform by "
                      "construction (K_Hbeta = 1).")

@@ -94,7 +94,7 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                                       st.stiffness.assembled),
         content.stiffness_section(st.stiffness, dist, st.compliance, [k_fig]),
         content.transmission_error_section(dist, [te_fig]),
-        content.load_distribution_section(dist, actual, [w_fig]),
+        content.load_distribution_section(dist, actual, [w_fig], box.contact.modifications),
         content.contact_pressure_section(dist, [p_fig]),
     ]
     if root_stress is not None:

@@ -164,8 +164,8 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         cycle, c_hit = cached_herringbone_cycle(
             pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
             box.contact, box.stiffness, box.herringbone, fe=box.fe_source,
-            model=stages.stiffness.model, cache=options.cache, cache_dir=options.cache_dir,
-            show_progress=options.show_progress)
+            model=stages.stiffness.model, cache=options.cache and options.cache_cycles,
+            cache_dir=options.cache_dir, show_progress=options.show_progress)
         note["cached"] = c_hit
         s = cycle.summary()
         note["text"] = (f"load left/right {s['left']['load_share_mean']:.3f} / "

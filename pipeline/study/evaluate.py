@@ -5,6 +5,11 @@ mesh (geometry, analytical stiffness, the ``[contact] compliance`` source, loade
 contact) and, with a speed range, the dynamic model of :mod:`pipeline.run.dynamics`
 swept over it; the KPIs of :mod:`pipeline.study.kpis` are read from the result.
 
+The stages are those of ``gearpipe run`` (:func:`pipeline.run.chain.mesh_stages`), so a
+herringbone sun with a ``[groove]`` table also gets its groove stage (the groove FE read from
+the FE cache of the machine the point runs on, the two-half contact solved per point);
+contact cycles are not kept in the cache (one file per point).
+
 FE tables depend only on the gears and the FE settings, not on flank modifications,
 load or assembly errors, so a study builds them once per distinct geometry
 (:func:`fe_geometry_key`, :func:`build_fe_tables`) and hands the built sources to every

@@ -75,6 +75,9 @@ class FigureQueue:
         RuntimeError : naming the figures whose drawing failed (their files not written).
         """
         jobs, self.jobs = self.jobs, []
+        if not jobs:  # every figure came from the cache: the drawer is not waited for
+            self.stop()
+            return
         drawer, self.drawer = self.drawer, None
         failures = drawer.draw(jobs, workers) if drawer is not None else None
         if failures is None:
@@ -140,8 +143,13 @@ def _warm_up() -> None:
     FigureCanvasAgg(fig).draw()
 
 
-def _serve(conn) -> None:
-    """The drawer: warm up, wait for one batch of jobs, draw it, report the failures."""
+def _serve(conn, parents_end) -> None:
+    """The drawer: warm up, wait for one batch of jobs, draw it, report the failures.
+
+    ``parents_end`` is the parent's end of the pipe, inherited through the fork: closed
+    first, so that the parent's death (or :meth:`_Drawer.close`) ends ``conn.recv()``.
+    """
+    parents_end.close()
     try:
         try:
             _warm_up()
@@ -175,7 +183,7 @@ class _Drawer:
         ours, theirs = ctx.Pipe()
         # not a daemon: a daemon may not fork the children it draws with; it ends when this
         # end of the pipe closes (close(), or this process's death)
-        process = ctx.Process(target=_serve, args=(theirs,), daemon=False)
+        process = ctx.Process(target=_serve, args=(theirs, ours), daemon=False)
         process.start()
         theirs.close()
         return cls(process, ours)
@@ -187,7 +195,7 @@ class _Drawer:
         try:
             payload = pickle.dumps((jobs, workers), protocol=pickle.HIGHEST_PROTOCOL)
         except Exception:  # noqa: BLE001 - any argument that does not pickle: draw here
-            self.close()
+            self.close(kill=True)
             return None
         try:
             if not self.process.is_alive():

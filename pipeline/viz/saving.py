@@ -21,8 +21,8 @@ def save(fig, path: str | Path, dpi: int = 130) -> Path:
     fig : matplotlib Figure, or an Axes (its figure is saved), or an off-screen
         pyvista Plotter (its screenshot is saved and the plotter closed).
     path : PNG file to write; parent folders are created.
-    dpi : resolution of matplotlib figures, dots per inch (cropped to a tight bounding box
-        unless the figure has a layout engine, which fits it already).
+    dpi : resolution of matplotlib figures, dots per inch (tight bounding box: a legend
+        or title wider than the figure, which constrained layout does not fit, is kept).
     """
     if hasattr(fig, "screenshot"):  # pyvista Plotter: render once, then free the window
         try:
@@ -31,8 +31,5 @@ def save(fig, path: str | Path, dpi: int = 130) -> Path:
             fig.close()
     if not hasattr(fig, "savefig"):  # an Axes
         fig = fig.figure
-    # a layout engine (constrained layout) already fits every label into the figure; the
-    # tight bounding box would draw the whole figure once more only to crop its margins
-    tight = None if fig.get_layout_engine() is not None else "tight"
-    return atomic_write(path, lambda p: fig.savefig(p, dpi=dpi, bbox_inches=tight,
+    return atomic_write(path, lambda p: fig.savefig(p, dpi=dpi, bbox_inches="tight",
                                                      format="png"))
