@@ -54,6 +54,20 @@ def gmsh_session(verbosity: int = 0, threads: int = 1) -> Iterator[object]:
             gmsh.finalize()
 
 
+
+def size_from_fields(gmsh, fields: list[int]) -> None:
+    """Make the smallest of the size ``fields`` the element size everywhere: they become
+    the background mesh (through a ``Min`` field if there are several), and the sizes
+    Gmsh would take from boundaries, points and curvature are switched off."""
+    fld = gmsh.model.mesh.field
+    if len(fields) > 1:
+        smallest = fld.add("Min")
+        fld.setNumbers(smallest, "FieldsList", fields)
+        fields = [smallest]
+    fld.setAsBackgroundMesh(fields[0])
+    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{opt}", 0)
+
 @dataclass(frozen=True)
 class TetMeshData:
     """A tetrahedral mesh taken out of Gmsh, free of Gmsh types.

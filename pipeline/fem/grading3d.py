@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from pipeline.fem.gmsh_session import size_from_fields
+
 if TYPE_CHECKING:
     from pipeline.fem.sector3d import SectorSettings3D
 
@@ -46,11 +48,5 @@ def tooth_size_field(gmsh, settings: SectorSettings3D, groups: dict[str, list[in
         fld.setNumber(thr, "DistMin", d_min)
         fld.setNumber(thr, "DistMax", settings.grading)
         thresholds.append(thr)
-    if len(thresholds) > 1:
-        smallest = fld.add("Min")
-        fld.setNumbers(smallest, "FieldsList", thresholds)
-        thresholds = [smallest]
-    fld.setAsBackgroundMesh(thresholds[0])
-    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{opt}", 0)
+    size_from_fields(gmsh, thresholds)
     gmsh.option.setNumber("Mesh.MeshSizeMax", settings.size_body)

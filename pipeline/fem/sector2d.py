@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.fem.cache import cached_tet_mesh, unlabelled
-from pipeline.fem.gmsh_session import TetMeshData, gmsh_session
+from pipeline.fem.gmsh_session import TetMeshData, gmsh_session, size_from_fields
 from pipeline.fem.options import GRADED_BODY, GRADED_GROWTH, GRADED_TOOTH
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector2d_size import check_size
@@ -263,13 +263,7 @@ def _mesh_and_extract(gmsh, curves: dict[str, list[int]], outline_curves: list[i
         # coarse teeth: a few samples per element along their curves are enough
         fields.append(_threshold(fld, other, settings.size_tooth or settings.size_flank,
                                  settings, sampling=40))
-    if len(fields) > 1:
-        low = fld.add("Min")
-        fld.setNumbers(low, "FieldsList", fields)
-        fields = [low]
-    fld.setAsBackgroundMesh(fields[0])
-    for opt in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{opt}", 0)
+    size_from_fields(gmsh, fields)
     gmsh.option.setNumber("Mesh.Algorithm", 6)
     # Gmsh integrates 1/size along each curve to place the 1D nodes; its default precision
     # (1e-9) made 1D meshing of the whole-gear splines take 1.3 s instead of 0.09 s

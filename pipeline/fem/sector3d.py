@@ -248,13 +248,20 @@ def check_sector_teeth(gear: GearSpec, settings: SectorSettings3D) -> None:
                          f"or = z (whole gear)")
 
 
+def loft_inputs(gear: GearSpec, settings: SectorSettings3D, teeth: int
+                ) -> tuple[float, float, float, list]:
+    """What a lofted 3D model of ``teeth`` teeth is built from, after checking the tooth
+    count: bore radius (m), meshed width (m), twist rate along the face (rad/m, signed by
+    the hand) and the outline pieces of :func:`pipeline.fem.sector2d.outline_pieces`."""
+    check_sector_teeth(gear, settings)
+    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
+    return (inner_radius(gear, settings), meshed_width(gear), rate,
+            outline_pieces(gear, teeth, settings.profile_points))
+
+
 def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
     """Loft and mesh the sector in Gmsh (OpenCASCADE); see the module docstring."""
-    check_sector_teeth(gear, settings)
-    r_in = inner_radius(gear, settings)
-    b = meshed_width(gear)
-    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
-    pieces = outline_pieces(gear, settings.teeth, settings.profile_points)
+    r_in, b, rate, pieces = loft_inputs(gear, settings, settings.teeth)
     names = [n for n, _ in pieces] + ["cut_left", "bore", "cut_right"]
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ

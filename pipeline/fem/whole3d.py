@@ -29,24 +29,13 @@ import numpy as np
 
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
-from pipeline.fem.sector2d import inner_radius, outline_pieces
-from pipeline.fem.sector3d import (
-    SectorSettings3D,
-    check_sector_teeth,
-    generate_curved_tets,
-    helix_sign,
-    meshed_width,
-)
+from pipeline.fem.sector3d import SectorSettings3D, generate_curved_tets, loft_inputs
 from pipeline.geometry.gear import GearSpec
 
 
 def build_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
     """Loft, cut the bore and mesh the whole gear in Gmsh (module docstring)."""
-    check_sector_teeth(gear, settings)
-    r_in = inner_radius(gear, settings)
-    b = meshed_width(gear)
-    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
-    pieces = outline_pieces(gear, gear.teeth, settings.profile_points)
+    r_in, b, rate, pieces = loft_inputs(gear, settings, gear.teeth)
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
         wires = [_outline_wire(occ, pieces, rate * (z - 0.5 * b), z)
