@@ -17,37 +17,25 @@ load average printed with the figures.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parents[2]
+from child_runs import print_steps, timed_child
 
-from pipeline.io import library_versions, write_json  # noqa: E402
+from pipeline.io import write_json
+from pipeline.provenance import library_versions
+
+HERE = Path(__file__).resolve().parents[2]
 
 STUDY = HERE / "workflows" / "herringbone_groove_study.py"
 
 
 def one_run(out: Path, cache: Path) -> dict:
-    """Run the study in a child process; wall time (s), steps (s), peak RSS (MB)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-    t0 = time.perf_counter()
-    subprocess.run([sys.executable, str(STUDY), "--out", str(out), "--cache-dir", str(cache)],
-                   check=True, cwd=HERE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                   env={**os.environ, "PYVISTA_OFF_SCREEN": "true", "MPLBACKEND": "Agg",
-                        "PYTHONPATH": str(HERE)})
-    wall = time.perf_counter() - t0
-    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss  # KiB, max over children
-    timing = json.loads((out / "timing.json").read_text())
-    return {"wall_s": wall, "steps_s": timing["steps_s"], "from_cache": timing["from_cache"],
-            "outside_steps_s": wall - timing["total_s"],
-            "peak_rss_MB": peak / 1024 if peak > before else None,
-            "load_average": os.getloadavg()}
+    """The study in a child process (:func:`child_runs.timed_child`)."""
+    return timed_child([sys.executable, str(STUDY), "--out", str(out), "--cache-dir",
+                        str(cache)], out / "timing.json")
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -65,10 +53,7 @@ def main(argv: list[str] | None = None) -> dict:
         la = ", ".join(f"{x:.1f}" for x in f["load_average"])
         print(f"  {name:6s} {f['wall_s']:7.1f} s ({f['wall_s'] / cold:5.3f} of cold), "
               f"peak RSS {rss}, load average after {la}")
-        for step, s in f["steps_s"].items():
-            mark = "  (cache)" if step in f["from_cache"] else ""
-            print(f"      {step:42s} {s:7.2f} s{mark}")
-        print(f"      {'interpreter, imports, run record':42s} {f['outside_steps_s']:7.2f} s")
+        print_steps(f, digits=2)
     result = {"figures": figures, "cpus": os.cpu_count(), "versions": library_versions()}
     out = HERE / "results" / "benchmarks"
     write_json(out / "herringbone_study.json", result)

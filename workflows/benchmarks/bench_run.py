@@ -19,18 +19,15 @@ load average at the start; writes results/benchmarks/run.json.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(HERE / "workflows"))
 
+from child_runs import print_steps, timed_child  # noqa: E402
 from default_case import DEFAULT  # noqa: E402
 
 from pipeline.io import write_json  # noqa: E402
@@ -38,24 +35,10 @@ from pipeline.provenance import library_versions  # noqa: E402
 
 
 def one_run(config: Path, out: Path, cache: Path) -> dict:
-    """Run ``gearpipe run`` in a child process; wall time (s), CPU time of the process and
-    its children (s), steps (s), peak RSS (MB)."""
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    before, cpu0 = usage.ru_maxrss, usage.ru_utime + usage.ru_stime
-    t0 = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "pipeline.cli", "run", str(config), "--out", str(out),
-                    "--cache-dir", str(cache), "--json"], check=True, cwd=HERE,
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                   env={**os.environ, "PYVISTA_OFF_SCREEN": "true", "MPLBACKEND": "Agg"})
-    wall = time.perf_counter() - t0
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    peak = usage.ru_maxrss  # max over children, KiB
-    cpu = usage.ru_utime + usage.ru_stime - cpu0
-    timing = json.loads((out / "summary.json").read_text())["timing"]
-    return {"wall_s": wall, "cpu_s": cpu, "steps_s": timing["steps_s"],
-            "from_cache": timing["from_cache"],
-            "outside_steps_s": wall - timing["total_s"],
-            "peak_rss_MB": peak / 1024 if peak > before else None}
+    """``gearpipe run`` in a child process (:func:`child_runs.timed_child`)."""
+    return timed_child([sys.executable, "-m", "pipeline.cli", "run", str(config), "--out",
+                        str(out), "--cache-dir", str(cache), "--json"],
+                       out / "summary.json", key="timing")
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -82,10 +65,7 @@ def main(argv: list[str] | None = None) -> dict:
         rss = f"{f['peak_rss_MB']:.0f} MB" if f["peak_rss_MB"] else "n/a"
         print(f"  {name:24s} {f['wall_s']:6.2f} s  ({f['wall_s'] / cold:5.3f} of cold), "
               f"CPU {f['cpu_s']:6.2f} s, peak RSS {rss}")
-        for step, s in f["steps_s"].items():
-            mark = "  (cache)" if step in f["from_cache"] else ""
-            print(f"      {step:42s} {s:7.3f} s{mark}")
-        print(f"      {'interpreter, imports, run record':42s} {f['outside_steps_s']:7.3f} s")
+        print_steps(f)
     result = {"compliance": args.compliance, "figures": figures, "cpus": os.cpu_count(),
               "load_average": load,
               "versions": library_versions()}
