@@ -638,8 +638,8 @@ def test_ring_tooth_and_body_against_whole_ring_fe(z, alpha, rim):
     from pipeline.stiffness.foundation import foundation_coefficients
 
     g = ring(z, alpha_deg=alpha, rim_modules=rim)
-    tab = gear_table(g, FE2DSettings(teeth=None, radii=9, refinement=1.0, kind="plane_stress"),
-                     np.array([0]))
+    tab, _ = gear_table(g, FE2DSettings(teeth=None, radii=9, refinement=1.0,
+                                        kind="plane_stress"), np.array([0]))
     fe = np.diag(tab.structural)
     model = tooth_model(g)
     c = tooth_compliance(model, tab.points.radius)

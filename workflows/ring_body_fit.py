@@ -68,8 +68,8 @@ def samples(cases, refinement: float, radii: int, show_progress: bool = True) ->
                                              "fe_m2_per_N")}
     for z, a, t in progress(cases, "ring FE", enabled=show_progress):
         g = ring(z, a, t)
-        tab = gear_table(g, FE2DSettings(teeth=None, radii=radii, refinement=refinement,
-                                         kind="plane_stress"), np.array([0]))
+        tab, _ = gear_table(g, FE2DSettings(teeth=None, radii=radii, refinement=refinement,
+                                            kind="plane_stress"), np.array([0]))
         r = tab.points.radius
         for k, v in (("teeth", z), ("alpha_n_deg", a), ("rim_over_m", t), ("radius_m", r),
                      ("fe_m2_per_N", np.diag(tab.structural))):
