@@ -67,6 +67,8 @@ PLANETARY = (
     Key("planets", I, field="n_planets", required=True, help="number of planets"),
     Key("planet_angles_deg", L, field="planet_angles"),
     Key("direction", I, help="+1: sun turns counter-clockwise relative to the carrier"),
+    Key("centre_distance_mm", N, help="carrier radius, the operating centre distance of both "
+                                      "meshes (default: from the profile shifts)"),
 )
 
 OPERATION = (

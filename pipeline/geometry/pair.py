@@ -110,16 +110,27 @@ class GearPair:
 
     @cached_property
     def zero_backlash_pressure_angle(self) -> float:
-        """alpha_wt from inv(alpha_wt) = inv(alpha_t) + 2 tan(alpha_n) (x2 +- x1)/(z2 +- z1)."""
+        """alpha_wt of zero backlash from the profile shifts (ISO 21771), rad.
+
+        ISO 21771 writes one relation for both kinds with a negative tooth count for an
+        internal gear: ``inv(alpha_wt) = inv(alpha_t) + 2 tan(alpha_n) (x1 + x2) / (z1 + z2)``.
+        With the tooth counts positive, as here, that is ``(x1 + x2) / (z2 + z1)`` for an
+        external pair and ``-(x1 + x2) / (z2 - z1)`` for an internal one: a positive ring
+        shift (ISO 21771: the ring's teeth move towards its axis and grow thicker on the
+        reference circle) pulls the pinion's centre towards the ring's, like a negative
+        shift of an external gear.
+        """
         p, g = self.pinion, self.gear
         at = p.transverse_pressure_angle
-        num = g.profile_shift + self.sign * p.profile_shift
+        num = self.sign * (g.profile_shift + p.profile_shift)
         den = g.teeth + self.sign * p.teeth
         v = float(inv(at)) + 2.0 * math.tan(p.pressure_angle) * num / den
         if v <= 0:
+            sense = "positive" if g.internal else "negative"
             raise InputError(
                 f"profile shifts pinion.profile_shift = {p.profile_shift}, gear.profile_shift = "
-                f"{g.profile_shift} give no operating pressure angle (sum too negative)"
+                f"{g.profile_shift} give no operating pressure angle (their sum is too {sense}: "
+                f"inv(alpha_wt) = {v:.4g} <= 0)"
             )
         return float(inv_inverse(v))
 
@@ -144,6 +155,22 @@ class GearPair:
         """Operating pitch radii (r_w1, r_w2) in m."""
         a = math.cos(self.operating_pressure_angle)
         return self.pinion.base_radius / a, self.gear.base_radius / a
+
+    @cached_property
+    def circular_backlash(self) -> float:
+        """Transverse circular backlash j_wt on the operating pitch circles, m.
+
+        ``j_wt = p_wt - s_wt1 - s_wt2``: the operating transverse pitch ``2 pi r_w1 / z1`` less
+        each gear's own arc tooth thickness on its operating pitch circle,
+        ``s_wti = 2 r_wi psi_i(r_wi)`` (:meth:`GearSpec.half_tooth_angle`; for a ring its tooth,
+        the metal between two spaces, whose space the pinion tooth fills). Zero at the
+        zero-backlash centre distance; negative where the flanks would overlap (interference).
+        """
+        p, g = self.pinion, self.gear
+        rw1, rw2 = self.operating_pitch_radii
+        s1 = 2.0 * rw1 * float(p.half_tooth_angle(rw1))
+        s2 = 2.0 * rw2 * float(g.half_tooth_angle(rw2))
+        return 2.0 * math.pi * rw1 / p.teeth - s1 - s2
 
     @cached_property
     def gear_ratio(self) -> float:
@@ -346,5 +373,6 @@ class GearPair:
             "s_pitch_m": self.s_pitch,
             "s_end_m": self.s_end,
             "line_of_action_T1T2_m": self.t1t2,
+            "circular_backlash_m": self.circular_backlash,
             "gear_ratio": self.gear_ratio,
         }

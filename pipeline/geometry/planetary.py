@@ -27,6 +27,11 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import InputError, check_int_range
 
+BACKLASH_TOLERANCE = 2e-4
+"""Interference a planetary mesh may have, over m_n: what rounding the profile shifts to
+4 decimals changes the tooth thicknesses by (2 tan(alpha_n) x 1e-4 m_n for the two gears of a
+mesh, at most 1.4e-4 m_n up to alpha_n = 35 deg), with a margin: 0.6 um at m_n = 3 mm."""
+
 
 def dec(x: np.ndarray | float) -> np.ndarray:
     """Fractional part in [0, 1) (robust to round-off just below an integer)."""
@@ -46,6 +51,13 @@ class PlanetarySet:
     planet_angles : optional angles psi_n of the planets (rad, planet 1 at 0);
         default: equally spaced.
     direction : +1 when the sun turns counter-clockwise relative to the carrier, -1 otherwise.
+    centre_distance : the carrier radius a_w in m, the operating centre distance of both
+        meshes, from which each mesh's operating pressure angle and backlash follow; ``None``
+        takes the mean of the two meshes' zero-backlash distances (ISO 21771), allowed only
+        when they agree to within :data:`BACKLASH_TOLERANCE` of backlash.
+
+    Either way each mesh's circular backlash (:attr:`GearPair.circular_backlash`) is at least
+    ``-BACKLASH_TOLERANCE m_n``: interference beyond it is refused, naming the mesh.
     """
 
     sun: GearSpec
@@ -54,6 +66,7 @@ class PlanetarySet:
     n_planets: int
     planet_angles: tuple[float, ...] | None = None
     direction: int = 1
+    centre_distance: float | None = None
 
     def __post_init__(self) -> None:
         check_int_range("planetary.n_planets", self.n_planets, 1, 64)
@@ -63,15 +76,20 @@ class PlanetarySet:
             raise InputError("sun and planet must be external gears")
         if self.direction not in (1, -1):
             raise InputError(f"planetary.direction = {self.direction!r} is not one of +1, -1")
-        a_sp = self.sun_planet.operating_centre_distance
-        a_pr = self.planet_ring.operating_centre_distance
-        if not math.isclose(a_sp, a_pr, rel_tol=1e-9):
-            raise InputError(
-                f"sun-planet centre distance {a_sp * 1e3:.6g} mm differs from planet-ring "
-                f"{a_pr * 1e3:.6g} mm: with no profile shifts ring.teeth must equal "
-                f"sun.teeth + 2 planet.teeth = {self.sun.teeth + 2 * self.planet.teeth} "
-                f"(ring.teeth = {self.ring.teeth}); otherwise adjust the profile shifts"
-            )
+        if self.centre_distance is None:
+            self._check_zero_backlash_distances()
+        for name, pair, fix in (("sun-planet", self.sun_planet, "enlarge"),
+                                ("planet-ring", self.planet_ring, "reduce")):
+            j = pair.circular_backlash
+            if j < -BACKLASH_TOLERANCE * self.sun.module:
+                raise InputError(
+                    f"{name} mesh: circular backlash {j * 1e6:.4g} um at the carrier radius "
+                    f"{self.carrier_radius * 1e3:.6g} mm is an interference beyond the allowed "
+                    f"{BACKLASH_TOLERANCE * self.sun.module * 1e6:.3g} um (profile shifts "
+                    f"{pair.pinion.name} {pair.pinion.profile_shift}, {pair.gear.name} "
+                    f"{pair.gear.profile_shift}); {fix} planetary.centre_distance_mm or "
+                    "change the shifts"
+                )
         ang = self.angles
         if len(ang) != self.n_planets:
             raise InputError(
@@ -89,7 +107,7 @@ class PlanetarySet:
         # planets must not overlap: tip circles closer than the centre spacing
         if self.n_planets > 1:
             gaps = np.diff(np.concatenate([np.sort(ang), [np.sort(ang)[0] + 2 * math.pi]]))
-            chord = 2 * a_sp * math.sin(gaps.min() / 2)
+            chord = 2 * self.carrier_radius * math.sin(gaps.min() / 2)
             if chord <= 2 * self.planet.tip_radius_:
                 raise InputError(
                     f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm "
@@ -99,13 +117,36 @@ class PlanetarySet:
                        else "(planet_angles put neighbours too close)")
                 )
 
+    def _check_zero_backlash_distances(self) -> None:
+        """Without a carrier radius the two meshes' zero-backlash distances must agree."""
+        a_sp, a_pr = self.zero_backlash_distances
+        mean = 0.5 * (a_sp + a_pr)
+        backlash = (GearPair(self.sun, self.planet, mean).circular_backlash,
+                    GearPair(self.planet, self.ring, mean).circular_backlash)
+        if max(abs(j) for j in backlash) > BACKLASH_TOLERANCE * self.sun.module:
+            raise InputError(
+                f"sun-planet zero-backlash centre distance {a_sp * 1e3:.6g} mm differs from "
+                f"planet-ring {a_pr * 1e3:.6g} mm (ISO 21771, from the profile shifts sun "
+                f"{self.sun.profile_shift}, planet {self.planet.profile_shift}, ring "
+                f"{self.ring.profile_shift}): give the carrier radius as "
+                "planetary.centre_distance_mm, or with no profile shifts make ring.teeth = "
+                f"sun.teeth + 2 planet.teeth = {self.sun.teeth + 2 * self.planet.teeth} "
+                f"(ring.teeth = {self.ring.teeth})"
+            )
+
+    @cached_property
+    def zero_backlash_distances(self) -> tuple[float, float]:
+        """Zero-backlash centre distances (sun-planet, planet-ring) of the shifts, m."""
+        return (GearPair(self.sun, self.planet).operating_centre_distance,
+                GearPair(self.planet, self.ring).operating_centre_distance)
+
     @cached_property
     def sun_planet(self) -> GearPair:
-        return GearPair(self.sun, self.planet)
+        return GearPair(self.sun, self.planet, self.carrier_radius)
 
     @cached_property
     def planet_ring(self) -> GearPair:
-        return GearPair(self.planet, self.ring)
+        return GearPair(self.planet, self.ring, self.carrier_radius)
 
     @cached_property
     def angles(self) -> np.ndarray:
@@ -114,10 +155,13 @@ class PlanetarySet:
             return 2 * math.pi * np.arange(self.n_planets) / self.n_planets
         return np.asarray(self.planet_angles, dtype=float)
 
-    @property
+    @cached_property
     def carrier_radius(self) -> float:
-        """Planet centre radius r_c = a_sp, m."""
-        return self.sun_planet.operating_centre_distance
+        """Planet centre radius r_c = a_w of both meshes, m (given, or the mean of the two
+        zero-backlash distances)."""
+        if self.centre_distance is not None:
+            return self.centre_distance
+        return 0.5 * sum(self.zero_backlash_distances)
 
     def planet_centres(self) -> np.ndarray:
         """Planet centres in the carrier frame, shape (N, 2), m."""
@@ -183,6 +227,8 @@ class PlanetarySet:
             "n_planets": self.n_planets,
             "planet_angles_deg": np.degrees(self.angles).tolist(),
             "carrier_radius_m": self.carrier_radius,
+            "sun_planet_backlash_m": self.sun_planet.circular_backlash,
+            "planet_ring_backlash_m": self.planet_ring.circular_backlash,
             "sun_planet_contact_ratio": self.sun_planet.total_contact_ratio,
             "planet_ring_contact_ratio": self.planet_ring.total_contact_ratio,
             "lambda_sn": self.sun_phases.tolist(),

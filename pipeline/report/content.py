@@ -113,6 +113,8 @@ def pair_section(actual: GearPair, nominal: GearPair) -> Section:
            nominal.operating_centre_distance * MM),
         quantity("operating_pressure_angle", "transverse operating pressure angle alpha_wt", "deg",
            math.degrees(a.operating_pressure_angle)),
+        quantity("circular_backlash", "transverse circular backlash j_wt on the operating "
+                 "pitch circles (negative: interference)", "um", a.circular_backlash * UM),
         quantity("transverse_contact_ratio", "transverse contact ratio eps_alpha", "-",
            a.transverse_contact_ratio),
         quantity("overlap_ratio", "overlap ratio eps_beta", "-", a.overlap_ratio),
@@ -168,6 +170,8 @@ def stiffness_section(stiffness: StiffnessResult, dist: LoadDistribution, compli
            k.mean() * N_PER_UM),
         quantity("loaded_min", "loaded, min", "N/um", k.min() * N_PER_UM),
         quantity("loaded_max", "loaded, max", "N/um", k.max() * N_PER_UM),
+        quantity("iso_gear_1", "ISO 6336-1 gear 1 (fewer virtual teeth; an internal gear is "
+                 "gear 2)", "", iso.gear_1),
         quantity("iso_single", "ISO 6336-1 single stiffness c'", "N/(mm um)", iso.c_single * 1e-9),
         quantity("iso_mesh_per_width", "ISO 6336-1 mesh stiffness c_gamma_alpha", "N/(mm um)",
            iso.c_gamma_alpha * 1e-9),

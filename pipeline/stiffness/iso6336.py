@@ -12,6 +12,12 @@ ISO 6336-1:2019, 9.3:
 * mesh stiffness ``c_gamma_alpha = c' (0.75 eps_alpha + 0.25)``, and
   ``c_gamma_beta = 0.85 c_gamma_alpha``.
 
+Gear numbering follows ISO 6336-1: gear 1 is the one with fewer virtual teeth,
+``z_n1 <= z_n2``, and an internal gear is always gear 2 (``z_n2 = inf``), whatever order the
+pair gives them (:func:`iso_gears`); a sun with more teeth than its planets is gear 2 of its
+mesh. The basic rack factor is ``C_B = (C_B1 + C_B2) / 2`` with
+``C_Bi = (1 + 0.5 (1.2 - h_fPi / m_n)) (1 - 0.02 (20 deg - alpha_n))``.
+
 Stiffness per unit face width is N/(mm um) in the standard; here everything is
 returned in SI (N/m per m of face width, i.e. N/m^2; multiply by the face width
 in m for N/m). For herringbone gears every value refers to one helical half.
@@ -24,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import check_range
 
@@ -43,6 +50,7 @@ class IsoStiffness:
     c_gamma_beta : 0.85 c_gamma_alpha, N/m^2.
     face_width : b, m.
     factors : the factors C_M, C_R, C_B, cos(beta) and the load factor used.
+    gear_1 : name of the gear the standard numbers 1 (fewer virtual teeth), for reports.
     """
 
     q_prime: float
@@ -52,6 +60,7 @@ class IsoStiffness:
     c_gamma_beta: float
     face_width: float
     factors: dict[str, float]
+    gear_1: str = ""
 
     @property
     def single_pair_stiffness(self) -> float:
@@ -70,6 +79,22 @@ def q_prime(zn1: float, zn2: float, x1: float, x2: float) -> float:
     i2 = 0.0 if math.isinf(zn2) else 1.0 / zn2
     return (0.04723 + 0.15551 * i1 + 0.25791 * i2 - 0.00635 * x1 - 0.11654 * x1 * i1
             - 0.00193 * x2 - 0.24188 * x2 * i2 + 0.00529 * x1**2 + 0.00182 * x2**2)
+
+
+def iso_gears(pair: GearPair) -> tuple[GearSpec, GearSpec]:
+    """ISO 6336-1's gear 1 and gear 2 of a pair: gear 1 has fewer virtual teeth (z_n1 <= z_n2;
+    the pinion on a tie), an internal gear is gear 2."""
+    p, g = pair.pinion, pair.gear
+    if g.internal or p.equivalent_teeth <= g.equivalent_teeth:
+        return p, g
+    return g, p
+
+
+def basic_rack_factor(gear: GearSpec) -> float:
+    """C_B of one gear's basic rack: ``(1 + 0.5 (1.2 - h_fP/m_n)) (1 - 0.02 (20 - alpha_n))``,
+    alpha_n in degrees."""
+    return (1.0 + 0.5 * (1.2 - gear.dedendum_coef)) * (
+        1.0 - 0.02 * (20.0 - math.degrees(gear.pressure_angle)))
 
 
 def blank_factor_cr(rim_thickness_ratio: float | None, web_ratio: float | None) -> float:
@@ -96,20 +121,19 @@ def iso_stiffness(
 
     Parameters
     ----------
-    pair : the gear pair (basic rack from the pinion's h_f* and alpha_n).
+    pair : the gear pair, in any order (ISO numbering by :func:`iso_gears`).
     tangential_load : F_t in N at the reference circle (for the load correction
         below 100 N/mm); ``None`` assumes at least 100 N/mm.
     application_factor : K_A (-).
     c_m : theoretical correction factor C_M (0.8 for solid discs in ISO).
     c_r : gear blank factor C_R (see :func:`blank_factor_cr`).
     """
-    p, g = pair.pinion, pair.gear
-    zn1 = p.equivalent_teeth
-    zn2 = math.inf if g.internal else g.equivalent_teeth
-    q = q_prime(zn1, zn2, p.profile_shift, g.profile_shift)
+    g1, g2 = iso_gears(pair)
+    zn2 = math.inf if g2.internal else g2.equivalent_teeth
+    q = q_prime(g1.equivalent_teeth, zn2, g1.profile_shift, g2.profile_shift)
     c_th = 1.0 / q
-    alpha_n_deg = math.degrees(p.pressure_angle)
-    c_b = (1.0 + 0.5 * (1.2 - p.dedendum_coef)) * (1.0 - 0.02 * (20.0 - alpha_n_deg))
+    c_b = 0.5 * (basic_rack_factor(g1) + basic_rack_factor(g2))
+    p = pair.pinion
     cos_b = math.cos(p.helix_angle)
     b = pair.face_width  # one helical half for herringbone gears
     load = 1.0
@@ -127,6 +151,7 @@ def iso_stiffness(
         c_gamma_beta=0.85 * cga * N_PER_MM_UM,
         face_width=b,
         factors={"C_M": c_m, "C_R": c_r, "C_B": c_b, "cos_beta": cos_b, "load": load},
+        gear_1=g1.name,
     )
 
 
