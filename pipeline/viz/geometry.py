@@ -154,7 +154,9 @@ def _draw_roll_strip(ax: Axes, lay: TransverseLayout) -> None:
     # zones: n + 1 pairs near both ends (length g_alpha - n p_b each), n between
     n = math.floor(pair.transverse_contact_ratio)
     extra = pair.path_length - n * pb
-    ax.axvspan(s_a, s_a + extra * 1e3, color="C1", alpha=0.25, label=f"{n + 1} pairs in contact")
+    where = " (in a transverse section)" if pair.overlap_ratio > 0 else ""
+    ax.axvspan(s_a, s_a + extra * 1e3, color="C1", alpha=0.25,
+               label=f"{n + 1} pairs in contact{where}")
     ax.axvspan(s_e - extra * 1e3, s_e, color="C1", alpha=0.25)
     ax.axvline(s_c, color="k", ls="--", lw=1, label="pitch point C")
     named = sorted(lay.rolls.items(), key=lambda kv: kv[1])
