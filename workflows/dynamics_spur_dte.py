@@ -121,7 +121,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             plot_time_history(
                 [responses[i] for i in base],
                 [labels[i] for i in base],
-                title="Spur pair, condition 1: friction",
+                title="Spur pair, condition 1: DTE and mesh force, friction 0 / 0.05 / 0.1",
             ),
             out / "dte_friction.png",
         )
@@ -131,7 +131,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             plot_time_history(
                 [responses[i] for i in mu05],
                 [labels[i] for i in mu05],
-                title="Spur pair, mu = 0.05: assembly errors",
+                title="Spur pair, mu = 0.05: DTE and mesh force, assembly-error conditions",
             ),
             out / "dte_conditions.png",
         )
@@ -141,7 +141,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             plot_spectrum(
                 [responses[i] for i in base],
                 [labels[i] for i in base],
-                title="DTE spectrum, condition 1",
+                title="Spur pair, condition 1: DTE spectrum, friction 0 / 0.05 / 0.1",
             ),
             out / "spectrum_friction.png",
         )
@@ -151,7 +151,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             plot_spectrum(
                 [responses[i] for i in mu05],
                 [labels[i] for i in mu05],
-                title="DTE spectrum, mu = 0.05: assembly errors",
+                title="Spur pair, mu = 0.05: DTE spectrum, assembly-error conditions",
             ),
             out / "spectrum_conditions.png",
         )

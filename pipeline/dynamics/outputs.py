@@ -41,6 +41,7 @@ def write_response(result: ResponseResult, out: Path, name: str,
                    figures: FigureCache = NO_CACHE) -> list[Path]:
     """Time history, DTE spectrum (CSV + PNG) and harmonic contributions (PNG)."""
     from pipeline.viz.dynamics import (
+        mesh_title,
         plot_harmonic_contributions,
         plot_spectrum,
         plot_time_history,
@@ -51,7 +52,8 @@ def write_response(result: ResponseResult, out: Path, name: str,
     f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
     files.append(figures.save(out / "time_history.png", plot_time_history, [resp], [name],
-                              title=f"{name}: {resp.mesh_names[0]}"))
+                              title=f"{name}: " + mesh_title("DTE and dynamic mesh force",
+                                                             resp.mesh_names[:1])))
     files.append(figures.save(out / "dte_spectrum.png", plot_spectrum, [resp], [name]))
     if hr is not None:
         files.append(figures.save(out / "harmonics.png", plot_harmonic_contributions, [hr],

@@ -5,5 +5,6 @@ All lengths in m, angles in rad.
 
 from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.transverse import TransverseLayout
 
-__all__ = ["GearSpec", "Material", "GearPair"]
+__all__ = ["GearSpec", "Material", "GearPair", "TransverseLayout"]

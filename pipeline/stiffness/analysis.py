@@ -83,8 +83,8 @@ class StiffnessResult:
             "mesh_stiffness [N/m]": m.total,
             "contact_line_method [N/m]": self.contact_line.total,
             "friction_stiffness [N/m]": m.friction_stiffness,
-            "friction_torque_coef_pinion [N]": m.friction_torque_pinion,
-            "friction_torque_coef_gear [N]": m.friction_torque_gear,
+            "friction_torque_coef_pinion [N m/m]": m.friction_torque_pinion,
+            "friction_torque_coef_gear [N m/m]": m.friction_torque_gear,
             "contact_length [m]": m.contact_length,
         }
 

@@ -65,7 +65,8 @@ class MeshStiffness:
     total : shape (m,), mesh stiffness k(t), N/m.
     pairs : shape (m, K), stiffness of each tooth pair (0 when out of contact), N/m.
     friction_stiffness : shape (m,), K_f = sum lam mu k (Jin et al. 2018, eq. 15), N/m.
-    friction_torque_pinion, friction_torque_gear : shape (m,), KT_f,i = sum lam mu k rho_i, N.
+    friction_torque_pinion, friction_torque_gear : shape (m,), KT_f,i = sum lam mu k rho_i,
+        N m/m (friction torque on gear i per metre of mesh deflection).
     mu : shape (m, K, N), friction coefficient at every slice contact (0 out of contact).
     contact_length : shape (m,), total contact line length, m.
     mesh_period : duration of one mesh cycle at the operating speed, s.

@@ -132,10 +132,27 @@ def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: Gea
     return s_grid, z, filled
 
 
+def _with_margin(lo: float, hi: float, share: float = 0.05) -> tuple[float, float]:
+    """``(lo, hi)`` widened by ``share`` of its length on both sides (pcolormesh keeps no
+    margin of its own, and a marker at the edge would be cut in half)."""
+    pad = share * (hi - lo)
+    return lo - pad, hi + pad
+
+
+def flank_axis_label(name: str, internal: bool) -> str:
+    """x label of a flank drawn over its diameter, growing to the right: an external gear's
+    root is its smallest diameter (left), an internal gear's (ring's) its largest (right)."""
+    if internal:
+        return f"{name} (internal) diameter [mm], root side right"
+    return f"{name} diameter [mm], root side left"
+
+
 def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
                           title: str, profile_points: int = 80) -> Figure:
     """Hertz pressure envelope over the cycle on the pinion and the gear flank (MPa), drawn
-    over the diameter of each flank (mm) and the face width (mm); the maximum is marked."""
+    over the diameter of each flank (mm, growing to the right; the x label says on which
+    side the root is) and the face width (mm); the maximum is marked, inside a margin of
+    5 % of each axis so that a maximum at the end of the path or the face is not cut."""
     s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
     r1, r2 = pair.contact_radii(s)
     fig = new_figure((10.0, 3.8), "constrained")
@@ -146,17 +163,18 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
         zz = np.array([0.0, pair.face_width * 1e3])
         env = np.repeat(env, 2, axis=1)
     h = dist.hertz_max
-    for ax, r, rmax, name in ((axes[0], r1, h.pinion_radius, "pinion"),
-                              (axes[1], r2, h.gear_radius, "gear")):
+    for ax, r, rmax, name, internal in (
+            (axes[0], r1, h.pinion_radius, "pinion", False),
+            (axes[1], r2, h.gear_radius, "gear", pair.gear.internal)):
         d = 2e3 * r
         order = np.argsort(d)
         m = ax.pcolormesh(d[order], zz, env[order].T * 1e-6, shading="gouraud",
                           cmap="inferno", vmin=0.0, vmax=vmax)
-        ax.plot(2e3 * rmax, h.z * 1e3, "c+", ms=12, mew=2,
-                label=f"max {h.value * 1e-6:.0f} MPa")
-        ax.set_xlabel(f"{name} diameter [mm] (root side left)")
-        ax.set_title(f"{name} flank", fontsize=9)
-        ax.legend(fontsize=8, loc="upper right")
+        ax.plot(2e3 * rmax, h.z * 1e3, "P", ms=11, mfc="w", mec="k", mew=1.0)
+        ax.set_xlabel(flank_axis_label(name, internal))
+        ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9)
+        ax.set_xlim(*_with_margin(d.min(), d.max()))
+    axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
     axes[0].set_ylabel("face position z [mm]")
     fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
     fig.suptitle(title, fontsize=9)

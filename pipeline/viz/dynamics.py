@@ -21,6 +21,13 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
+def mesh_title(what: str, meshes: Sequence[str]) -> str:
+    """``what`` followed by the meshes it shows: ``"DTE spectrum, mesh s-p1"``. A pair's
+    only mesh is named "mesh" and goes unnamed (``"DTE spectrum"``), not "mesh mesh"."""
+    named = [m for m in meshes if m != "mesh"]
+    return f"{what}, mesh {', '.join(named)}" if named else what
+
+
 def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
     """``rows x cols`` axes (always 2D) on ``fig`` or on a new constrained-layout figure."""
     if fig is None:
@@ -48,10 +55,11 @@ def plot_time_history(
         ax[0, 0].plot(t, r.dte[i, s:] * 1e6, label=lab)
         ax[1, 0].plot(t, r.mesh_force[i, s:] / 1e3, label=lab)
     ax[0, 0].set_ylabel("DTE [um]")
-    ax[1, 0].set_ylabel("mesh force [kN]")
+    ax[1, 0].set_ylabel("dynamic mesh force [kN]")
     ax[1, 0].set_xlabel("time [mesh periods]")
     ax[0, 0].legend(fontsize=8)
-    ax[0, 0].set_title(title or (mesh or "mesh"))
+    names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
+    ax[0, 0].set_title(title or mesh_title("DTE and dynamic mesh force", names))
     for a in ax[:, 0]:
         a.grid(alpha=0.3)
     return fig
@@ -128,7 +136,7 @@ def plot_spectrum(
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
     ax.set_xlabel("frequency / mesh frequency (mesh order) [-]")
     ax.set_ylabel("DTE amplitude [um]")
-    ax.set_title(title or f"DTE spectrum, mesh {', '.join(names)}")
+    ax.set_title(title or mesh_title("DTE spectrum", names))
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -166,7 +174,7 @@ def plot_harmonic_contributions(
     names = sorted({hr.response.mesh_names[mesh] for hr in results})
     ax.set_xlabel("harmonic order (multiple of the mesh frequency) [-]")
     ax.set_ylabel("contribution to DTE [-]")
-    ax.set_title(title or f"harmonic contributions to the DTE, mesh {', '.join(names)}")
+    ax.set_title(title or mesh_title("harmonic contributions to the DTE", names))
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -206,7 +214,7 @@ def plot_sweep(
         same = [meshes[i] for i, c in enumerate(curves)
                 if np.allclose(c, y, rtol=1e-9, atol=1e-9 * np.abs(y).max())]
         curves.append(y)
-        a.set_ylabel(f"mesh force {m} [kN]")
+        a.set_ylabel(f"{mesh_title('RMS mesh force', [m])} [kN]")
         if same:
             a.set_title(f"{m}: equal to {same[0]} (symmetric model)", fontsize=9)
         a.set_ylim(bottom=0.0, top=1.08 * float(y.max()) / 1e3)

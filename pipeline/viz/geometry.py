@@ -1,7 +1,9 @@
 """Pair geometry figures: line of action, contact lines, tooth profile (axes in mm).
 
-Every function draws into ``ax`` when given one, otherwise into a new
-:class:`~matplotlib.figure.Figure`, and returns the Axes.
+The one-panel functions draw into ``ax`` when given one, otherwise into a new
+:class:`~matplotlib.figure.Figure`, and return the Axes; the several-panel ones
+(:func:`plot_line_of_action`, :func:`plot_profiles`) return the Figure. Geometry is drawn
+at equal scale.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import numpy as np
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.profile import INVOLUTE, ToothProfile, gear_outline
+from pipeline.geometry.transverse import TransverseLayout
 from pipeline.viz.canvas import new_figure
 
 if TYPE_CHECKING:
@@ -21,29 +24,150 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
-def plot_line_of_action(pair: GearPair, title: str = "", ax: Axes | None = None) -> Axes:
-    """Path of contact on the line of action: single/double contact zones and the pitch point."""
-    if ax is None:
-        ax = new_figure((8, 2.8)).subplots()
+def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = None) -> Figure:
+    """The pair in its transverse plane and its path of contact on the line of action.
+
+    Three panels, lengths in mm: the whole pair at equal scale (centres O1, O2, base, pitch
+    and tip circles, the line of action tangent to both base circles at T1 and T2); the
+    same at equal scale near the line of action, with the named points T1, T2, A, B, C, D,
+    E (:class:`~pipeline.geometry.transverse.TransverseLayout`); and the roll coordinate
+    s along the line of action with the zones of one and two tooth pairs in contact. For
+    an internal pair T2 lies behind T1 (``s = -T1T2``), on the same side of the pitch
+    point.
+    """
+    if fig is None:
+        fig = new_figure((12.0, 8.5), "constrained")
+    lay = TransverseLayout(pair)
+    top, strip = fig.subfigures(2, 1, height_ratios=(2.6, 1.0))
+    whole, near = top.subplots(1, 2, width_ratios=(1.0, 1.5))
+    _draw_transverse(whole, lay)
+    _name_centres(whole, lay)
+    whole.set_title("whole pair, to scale", fontsize=9)
+    _draw_transverse(near, lay)
+    _name_points(near, lay)
+    _zoom_to_line(near, lay)
+    near.set_title("near the line of action, to scale", fontsize=9)
+    handles, names = whole.get_legend_handles_labels()
+    top.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
+    _draw_roll_strip(strip.subplots(), lay)
+    kind = "internal" if pair.gear.internal else "external"
+    fig.suptitle(title or f"{kind} pair: eps_alpha = {pair.transverse_contact_ratio:.3f}, "
+                 f"eps_beta = {pair.overlap_ratio:.3f}, "
+                 f"alpha_wt = {math.degrees(pair.operating_pressure_angle):.3f} deg, "
+                 f"a_w = {pair.operating_centre_distance * 1e3:.3f} mm")
+    return fig
+
+
+def _line_span(lay: TransverseLayout) -> tuple[float, float]:
+    """Roll coordinates (m) from the first to the last of T1, T2, A, E, with a margin."""
+    s = list(lay.rolls.values())
+    lo, hi = min(s), max(s)
+    pad = 0.08 * (hi - lo)
+    return lo - pad, hi + pad
+
+
+def _draw_transverse(ax: Axes, lay: TransverseLayout) -> None:
+    """Centres, circles, radii to T1 and T2, the line of action and the path of contact (mm),
+    equal axes."""
+    pair = lay.pair
+    mm = 1e3
+    t = np.linspace(0.0, 2.0 * math.pi, 721)
+    circle = np.column_stack([np.cos(t), np.sin(t)])
+    r_w1, r_w2 = pair.operating_pitch_radii
+    for i, (g, o, r_w) in enumerate(((pair.pinion, lay.pinion_centre, r_w1),
+                                     (pair.gear, lay.gear_centre, r_w2))):
+        for r, style, lw, what in ((g.base_radius, ":", 1.0, "base circle"),
+                                   (r_w, "--", 0.8, "operating pitch circle"),
+                                   (g.tip_radius_, "-", 0.6, "tip circle")):
+            xy = (o + r * circle) * mm
+            ax.plot(xy[:, 0], xy[:, 1], style, color=f"C{i}", lw=lw,
+                    label=f"{'pinion' if i == 0 else 'gear'} {what}")
+        ax.plot(*(o * mm), "+", color=f"C{i}", ms=9, mew=1.5)
+    for o, t_pt in ((lay.pinion_centre, lay.t1), (lay.gear_centre, lay.points["T2"])):
+        ax.plot([o[0] * mm, t_pt[0] * mm], [o[1] * mm, t_pt[1] * mm], color="0.5", lw=0.7)
+    ends = lay.point(np.array(_line_span(lay))) * mm
+    ax.plot(ends[:, 0], ends[:, 1], color="k", lw=0.9, label="line of action")
+    path = lay.point(np.array([pair.s_start, pair.s_end])) * mm
+    ax.plot(path[:, 0], path[:, 1], color="C2", lw=3.5, solid_capstyle="butt",
+            label="path of contact A-E")
+    c = lay.points["C"] * mm
+    ax.plot(c[0], c[1], "o", color="k", ms=4, label="pitch point C")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y along the centre line [mm]")
+    ax.grid(alpha=0.2)
+
+
+def _label_offsets(n: int) -> list[tuple[float, float]]:
+    """(side, distance in points) of ``n`` labels in the order of their points along a line:
+    alternately on either side and, every second pair, further out, so that close
+    neighbours (B, C, D can lie within 1 mm) do not print over each other."""
+    return [((1.0, -1.0)[k % 2], (10.0, 10.0, 24.0, 24.0)[k % 4]) for k in range(n)]
+
+
+def _name_points(ax: Axes, lay: TransverseLayout) -> None:
+    """Dots and letters at T1, T2, A..E (alternately on either side of the line) and the
+    centres O1, O2."""
+    mm = 1e3
+    u = lay.direction
+    normal = np.array([-u[1], u[0]])
+    named = sorted(lay.rolls.items(), key=lambda kv: kv[1])
+    for (name, s), (side, dist) in zip(named, _label_offsets(len(named)), strict=True):
+        xy = lay.point(s) * mm
+        ax.plot(*xy, "o", color="k", ms=3)
+        ax.annotate(name, xy, xytext=tuple(side * dist * normal), textcoords="offset points",
+                    ha="center", va="center", fontsize=9)
+    _name_centres(ax, lay)
+
+
+def _name_centres(ax: Axes, lay: TransverseLayout) -> None:
+    for name, o, i in (("O1", lay.pinion_centre, 0), ("O2", lay.gear_centre, 1)):
+        ax.annotate(name, o * 1e3, xytext=(6, 6), textcoords="offset points", color=f"C{i}",
+                    fontsize=9, annotation_clip=True)
+
+
+def _zoom_to_line(ax: Axes, lay: TransverseLayout, height_ratio: float = 0.7) -> None:
+    """Equal-scale limits around T1, T2 and the path of contact (mm): a margin of a quarter
+    of its length, then the shorter side widened to ``height_ratio`` (height / width), so
+    the axes box, shrunk to equal scale, nearly fills its panel."""
+    xy = lay.point(np.array(_line_span(lay))) * 1e3
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    pad = 0.25 * float(np.hypot(*(hi - lo)))
+    mid, half = (lo + hi) / 2.0, (hi - lo) / 2.0 + pad
+    half = np.maximum(half, [half[1] / height_ratio, half[0] * height_ratio])
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlim(mid[0] - half[0], mid[0] + half[0])
+    ax.set_ylim(mid[1] - half[1], mid[1] + half[1])
+
+
+def _draw_roll_strip(ax: Axes, lay: TransverseLayout) -> None:
+    """The roll coordinate s (mm): line of action, path of contact, contact zones, named
+    points."""
+    pair = lay.pair
     pb = pair.base_pitch
     s_a, s_e, s_c = pair.s_start * 1e3, pair.s_end * 1e3, pair.s_pitch * 1e3
-    ax.plot([0, pair.t1t2 * 1e3], [0, 0], color="0.6", lw=1, label="line of action T1-T2")
-    ax.plot([s_a, s_e], [0, 0], color="C0", lw=6, solid_capstyle="butt", label="path of contact")
-    # zones: double contact near both ends (length (eps-1) p_b each)
+    lo, hi = _line_span(lay)
+    ax.plot([lo * 1e3, hi * 1e3], [0, 0], color="0.6", lw=1,
+            label="line of action (tangent to both base circles)")
+    ax.plot([s_a, s_e], [0, 0], color="C2", lw=6, solid_capstyle="butt",
+            label="path of contact A-E")
+    # zones: n + 1 pairs near both ends (length g_alpha - n p_b each), n between
     n = math.floor(pair.transverse_contact_ratio)
     extra = pair.path_length - n * pb
-    ax.axvspan(s_a, s_a + extra * 1e3, color="C1", alpha=0.25, label=f"{n + 1} pairs in contact")
+    where = " (in a transverse section)" if pair.overlap_ratio > 0 else ""
+    ax.axvspan(s_a, s_a + extra * 1e3, color="C1", alpha=0.25,
+               label=f"{n + 1} pairs in contact{where}")
     ax.axvspan(s_e - extra * 1e3, s_e, color="C1", alpha=0.25)
-    ax.axvline(s_c, color="k", ls="--", lw=1, label="pitch point")
-    for x, lab in ((0, "T1"), (pair.t1t2 * 1e3, "T2"), (s_a, "A"), (s_e, "E")):
-        ax.annotate(lab, (x, 0), xytext=(0, 10), textcoords="offset points", ha="center")
-    ax.set_xlabel("roll coordinate s along the line of action [mm]")
+    ax.axvline(s_c, color="k", ls="--", lw=1, label="pitch point C")
+    named = sorted(lay.rolls.items(), key=lambda kv: kv[1])
+    for (name, s), (side, dist) in zip(named, _label_offsets(len(named)), strict=True):
+        ax.annotate(name, (s * 1e3, 0), xytext=(0, side * dist), textcoords="offset points",
+                    ha="center", va="center")
+    ax.set_xlim(lo * 1e3, hi * 1e3)
+    ax.set_xlabel("roll coordinate s along the line of action, from T1 [mm]")
     ax.set_yticks([])
-    ax.set_title(title or f"eps_alpha = {pair.transverse_contact_ratio:.3f}, "
-                 f"eps_beta = {pair.overlap_ratio:.3f}, "
-                 f"alpha_wt = {math.degrees(pair.operating_pressure_angle):.3f} deg")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.35), ncol=4, fontsize=8)
-    return ax
+    ax.set_ylim(-1.0, 1.0)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=4, fontsize=8)
 
 
 def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None) -> Axes:
@@ -94,10 +218,17 @@ def plot_profile(prof: ToothProfile, ax: Axes | None = None, teeth: int = 3) -> 
         ax.plot(r * 1e3 * np.sin(span), r * 1e3 * np.cos(span), style, color="tab:blue",
                 lw=0.6, label=f"{name} circle")
     ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax
+
+
+def profile_title(gear: GearSpec, prof: ToothProfile) -> str:
+    """Title of a tooth-profile panel: name, kind, teeth and whether the flank is undercut."""
+    kind = "internal" if gear.internal else "external"
+    cut = "undercut" if prof.undercut else "no undercut"
+    return f"{gear.name} ({kind}): z = {gear.teeth}, {cut}"
 
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
@@ -106,5 +237,5 @@ def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)
-        ax.set_title(f"{g.name}: z = {g.teeth}, undercut = {prof.undercut}")
+        ax.set_title(profile_title(g, prof))
     return fig

@@ -14,6 +14,8 @@ import numpy as np
 from pipeline.viz.canvas import new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
+_PER_M_TO_PER_UM = 1e-6  # N m/m (a torque per metre of mesh deflection) -> N m/um
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -48,15 +50,17 @@ def plot_stiffness_curves(
 
 def plot_friction_coefficients(x: np.ndarray, kf: np.ndarray, kt1: np.ndarray, kt2: np.ndarray,
                                title: str = "", fig: Figure | None = None) -> Figure:
-    """Friction stiffness (N/m) and friction torque coefficients (N) over a mesh cycle."""
+    """Friction stiffness K_f (N/m in, N/um drawn) and friction torque coefficients KT_f1,
+    KT_f2 of the pinion and the gear (N m/m in, N m/um drawn: the friction torque on each
+    gear per unit mesh deflection, :mod:`pipeline.stiffness.friction`) over a mesh cycle."""
     if fig is None:
-        fig = new_figure((10, 3.8))
+        fig = new_figure((10, 3.8), "constrained")
     a1, a2 = fig.subplots(1, 2)
     a1.plot(x, stiffness_in_plot_unit(kf))
     a1.set_ylabel(stiffness_label("friction stiffness K_f"))
-    a2.plot(x, kt1 * 1e-3, label="driving gear")
-    a2.plot(x, kt2 * 1e-3, label="driven gear")
-    a2.set_ylabel("friction torque coefficient KT_f [kN]")
+    a2.plot(x, kt1 * _PER_M_TO_PER_UM, label="pinion, KT_f1")
+    a2.plot(x, kt2 * _PER_M_TO_PER_UM, label="gear, KT_f2")
+    a2.set_ylabel("friction torque coefficient KT_f\n(torque per mesh deflection) [N m/um]")
     a2.legend(fontsize=8)
     for a in (a1, a2):
         a.set_xlabel("pinion rotation over one mesh cycle [deg]")
