@@ -143,6 +143,7 @@ class Assembly:
         system = LinearPeriodicSystem(
             dof_names=self.dof_names,
             basis=B,
+            coordinate_mass=M.diagonal().copy(),
             M=red(M),
             C=red(C),
             K=red(K),

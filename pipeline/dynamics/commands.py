@@ -91,12 +91,15 @@ def run_modes(args) -> int:
         files = write_modes(res, staging, model_layout(model), title=box.name)
         record(staging, args, box, files)
     summary = {**res.summary(), "out": str(out)}
-    lines = [f"{len(res.dof_names)} DOF, results in {out}",
-             "  #   f [Hz]      kind           mult"]
+    shares = res.energy_shares()
+    lines = [f"{len(res.dof_names)} DOF, results in {out}; each mode's kinetic energy in "
+             "in-plane translation, rotation and axial translation (%)",
+             "  #   f [Hz]      kind           mult  in-plane [%]  rotation [%]  axial [%]"]
     lines += [
-        f"{k:3d} {f:10.2f}  {kd:14s} {m}"
-        for k, (f, kd, m) in enumerate(
-            zip(res.frequencies, res.kinds, res.multiplicity, strict=True)
+        f"{k:3d} {f:10.2f}  {kd:14s} {m:<4d} {100 * ip:12.1f}  {100 * rot:12.1f}  {100 * ax:9.1f}"
+        for k, (f, kd, m, ip, rot, ax) in enumerate(
+            zip(res.frequencies, res.kinds, res.multiplicity, shares["in-plane"],
+                shares["rotation"], shares["axial"], strict=True)
         )
     ]
     _emit(args, summary, lines)

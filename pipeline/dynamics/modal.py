@@ -2,13 +2,45 @@
 
 The eigenproblem uses the mean stiffness (periodic mesh stiffness replaced by its
 mean), without the non-conservative friction terms. With a carrier speed and
-gyroscopic terms the state-space eigenproblem is solved instead and the
-frequencies are ``|Im(lambda)| / 2 pi``.
+gyroscopic terms the state-space eigenproblem is solved instead: the elastic
+frequencies are ``Im(lambda) / 2 pi``, and the rigid-body modes (a double zero
+eigenvalue each there) are those of the undamped problem, counted once.
 
-Mode types of planetary sets (Lin and Parker 1999): in a *rotational* mode the
-central members (sun, ring, carrier) only rotate, in a *translational* mode they
-only translate (multiplicity 2), in a *planet* mode they do not move at all
-(multiplicity N - 3).
+Mode types (:func:`classify_modes`) are read from where a mode keeps its kinetic
+energy (:meth:`ModalResult.energy_shares`: in-plane translation ``x, y``, rotation
+``theta``, axial translation ``z``, each named coordinate weighted by its own body's
+mass or inertia), in this order:
+
+* *rigid*: 0 Hz.
+* *axial*: the axial share is at least :data:`AXIAL_SHARE` = 1/2.
+* otherwise the in-plane coordinates (``x, y, theta``) are typed as Lin and Parker
+  (1999) do: in a *rotational* mode the central members (sun, ring, carrier) only
+  rotate, in a *translational* mode they only translate (multiplicity 2), in a
+  *planet* mode they do not move at all (multiplicity N - 3); *mixed* when they both
+  translate and rotate (planets not equally spaced, for instance). "Does not move" is
+  tested against round-off (``tol``), since these types are exact properties of
+  cyclically symmetric sets.
+
+Why 1/2: the kind then names the motion that holds most of the mode's energy, the
+shares printed beside it in ``modes.csv`` and the mode-shape panels, so a label never
+contradicts its shares. For a herringbone set whose halves mirror each other (equal
+left and right meshes; halves, and the sun halves' translations, tied;
+:mod:`pipeline.dynamics.models.herringbone_planetary`) the rule also gives an exact
+count. The mirror plane between the halves splits the modes: the symmetric ones move
+the halves alike in the plane and not axially (axial share 0); the antisymmetric ones
+move the members axially (one ``z`` per member, N + 3) and twist the sun halves against
+each other on the groove, coupled through the helix. Mass-normalised modes make
+``sqrt(M) Phi`` orthogonal, so over the antisymmetric modes the axial shares add up to
+N + 3 and the twist shares to 1: at most one of these N + 4 modes can hold less than
+half its energy axially, and N + 3 modes are "axial" (N + 4 if the twist spread over
+several modes, none holding half of it). With spur halves (no helix) the axial
+coordinates decouple and these N + 3 modes are purely axial. Measured: in
+``herringbone_planetary_lumped.toml`` and ``wind_turbine_herringbone_planetary.toml`` every
+axial share is above 0.999 or below 0.001, so the labels do not hang on the threshold;
+where the halves are joined by softer springs (the sun groove of 5e9 N/m in the
+hand-built wind-turbine model, ``half_coupling``) the halves also move axially against
+each other in symmetric modes, shares in between occur (0.92 and 0.08 there) and the
+majority decides.
 """
 
 from __future__ import annotations
@@ -38,6 +70,31 @@ def _multiplicity(f: np.ndarray, rtol: float) -> np.ndarray:
     return close.sum(axis=1)
 
 
+def _gyroscopic_modes(system: LinearPeriodicSystem, K: np.ndarray, rigid: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """Frequencies (Hz) and mass-normalised complex shapes of ``M q'' + Omega G q' + K q = 0``.
+
+    A rigid-body mode is a double zero eigenvalue of the state-space matrix (a Jordan
+    block), which round-off splits into two small eigenvalues, real or imaginary; so
+    the r rigid-body modes are taken from the undamped problem (``rigid``, shape (n, r))
+    and the elastic ones are the n - r eigenvalues with the largest positive imaginary
+    part, one of each conjugate pair.
+    """
+    n, r = system.n, rigid.shape[1]
+    M = system.M
+    Minv = np.linalg.inv(M)
+    A = np.block(
+        [[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ (system.carrier_speed * system.G)]]
+    )
+    lam, vec = np.linalg.eig(A)
+    top = np.argsort(lam.imag)[::-1][: n - r]
+    order = top[np.argsort(lam[top].imag)]
+    shapes = vec[:n, order]
+    shapes = shapes / np.sqrt(np.abs(np.einsum("im,ij,jm->m", shapes.conj(), M, shapes)))
+    f = np.concatenate([np.zeros(r), lam[order].imag / (2 * np.pi)])
+    return f, np.hstack([rigid.astype(complex), shapes])
+
+
 def modal_analysis(
     system: LinearPeriodicSystem, gyroscopic: bool = False, rtol: float = 1e-6
 ) -> ModalResult:
@@ -56,25 +113,14 @@ def modal_analysis(
     """
     K = conservative_mean_stiffness(system)
     M = system.M
+    w2, undamped = sla.eigh(K, M)
+    w2 = np.where(w2 < 1e-9 * max(w2.max(), 1e-300), 0.0, w2)
+    f = np.sqrt(w2) / (2 * np.pi)
+    shapes = undamped
     if gyroscopic and system.carrier_speed != 0.0:
-        n = system.n
-        Minv = np.linalg.inv(M)
-        A = np.block(
-            [[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ (system.carrier_speed * system.G)]]
-        )
-        lam, vec = np.linalg.eig(A)
-        keep = lam.imag >= -1e-9 * np.abs(lam).max()
-        lam, vec = lam[keep], vec[:n, keep]
-        order = np.argsort(np.abs(lam.imag))[:n]
-        f = np.abs(lam[order].imag) / (2 * np.pi)
-        shapes = vec[:, order]
-        shapes = shapes / np.sqrt(np.abs(np.einsum("im,ij,jm->m", shapes.conj(), M, shapes)))
-    else:
-        w2, shapes = sla.eigh(K, M)
-        w2 = np.where(w2 < 1e-9 * max(w2.max(), 1e-300), 0.0, w2)
-        f = np.sqrt(w2) / (2 * np.pi)
+        f, shapes = _gyroscopic_modes(system, K, undamped[:, w2 == 0.0])
     full = system.basis @ shapes
-    weights = np.sqrt(np.abs(np.einsum("ij,jk,ik->i", system.basis, M, system.basis)))
+    weights = np.sqrt(system.coordinate_mass)
     return ModalResult(
         frequencies=f,
         shapes=full,
@@ -85,34 +131,46 @@ def modal_analysis(
     )
 
 
+AXIAL_SHARE = 0.5
+"""A mode whose axial kinetic-energy share is at least this is "axial" (module docstring)."""
+
+
 def classify_modes(
     result: ModalResult,
     central_translations: Sequence[str],
     central_rotations: Sequence[str],
     tol: float = 1e-6,
 ) -> ModalResult:
-    """Label planetary modes "rigid", "rotational", "translational", "planet" or "mixed".
+    """Label modes "rigid", "axial", "rotational", "translational", "planet" or "mixed".
+
+    The rule and its threshold :data:`AXIAL_SHARE` are in the module docstring.
 
     Parameters
     ----------
-    result : modal result.
-    central_translations : names (``"sun.x"`` ...) of the central members' translations.
+    result : modal result of :func:`modal_analysis` (its ``weights`` give the shares).
+    central_translations : names (``"sun.x"`` ...) of the central members' in-plane
+        translations.
     central_rotations : names of their rotations.
     tol : a group "does not move" when its largest entry is below ``tol`` times the
-        largest entry of the (mass-normalised) mode.
+        largest in-plane entry (``x``, ``y``, ``theta``) of the mass-normalised mode.
     """
     idx = {n: i for i, n in enumerate(result.dof_names)}
     it = [idx[n] for n in central_translations]
     ir = [idx[n] for n in central_rotations]
+    plane = [i for i, n in enumerate(result.dof_names) if not n.endswith(".z")]
+    axial = result.energy_shares()["axial"]
     kinds = []
     for k in range(result.frequencies.size):
-        phi = np.abs(result.shapes[:, k])
         if result.frequencies[k] == 0.0:
             kinds.append("rigid")
             continue
+        if axial[k] >= AXIAL_SHARE:
+            kinds.append("axial")
+            continue
+        phi = np.abs(result.shapes[:, k])
         # Compare displacement-like amplitudes: rotations scaled by a typical radius are
         # not needed because "zero" is tested against round-off, not a physical scale.
-        top = phi.max()
+        top = phi[plane].max()
         t_still = phi[it].max(initial=0.0) < tol * top
         r_still = phi[ir].max(initial=0.0) < tol * top
         if t_still and r_still:

@@ -9,6 +9,12 @@ import numpy as np
 MODE_KINDS = ("", "rigid", "rotational", "translational", "planet", "mixed", "axial")
 """Mode kinds in the order of their codes in ``modes.csv``."""
 
+MOTIONS = ("in-plane", "rotation", "axial")
+"""Groups of coordinates whose kinetic-energy shares a mode reports: in-plane translations
+(``x``, ``y``), rotations about the gear axes (``theta``) and axial translations (``z``)."""
+
+_MOTION_DOFS = {"in-plane": ("x", "y"), "rotation": ("theta",), "axial": ("z",)}
+
 
 @dataclass(frozen=True)
 class Response:
@@ -136,10 +142,11 @@ class ModalResult:
     shapes : shape (n_full, m), mass-normalised mode shapes of the named coordinates.
     dof_names : labels of the rows of ``shapes``.
     kinds : shape (m,) labels ("rigid", "rotational", "translational", "planet",
-        "axial", or "" when not classified).
+        "mixed", "axial", or "" when not classified; rule in :mod:`pipeline.dynamics.modal`).
     multiplicity : shape (m,), number of modes sharing the frequency (rel. tol 1e-6).
-    weights : shape (n_full,), sqrt of the mass on each coordinate (kg^0.5 or
-        (kg m^2)^0.5); ``weights * shape`` is the kinetic-energy amplitude used for plots,
+    weights : shape (n_full,), sqrt of the mass (or polar moment of inertia) of each named
+        coordinate's own body (kg^0.5 or (kg m^2)^0.5); ``weights * shape`` is the
+        kinetic-energy amplitude (its squares sum to 1 over the coordinates of a mode),
         which puts rotations and translations on one scale.
     """
 
@@ -150,16 +157,45 @@ class ModalResult:
     multiplicity: np.ndarray
     weights: np.ndarray | None = None
 
+    def energy_shares(self) -> dict[str, np.ndarray]:
+        """Share (-) of each mode's kinetic energy in each group of :data:`MOTIONS`.
+
+        Returns
+        -------
+        ``{"in-plane": (m,), "rotation": (m,), "axial": (m,)}``: the sums of
+        ``(weights * |shape|)**2`` over the coordinates ending in ``.x``/``.y``,
+        ``.theta`` and ``.z``, divided by their total; the three add up to 1 for every
+        mode. A model without ``z`` coordinates has axial shares 0.
+        """
+        if self.weights is None:
+            raise ValueError("energy shares need the coordinate masses (ModalResult.weights)")
+        e = np.abs(np.asarray(self.weights)[:, None] * self.shapes) ** 2
+        total = e.sum(axis=0)
+        total = np.where(total > 0.0, total, 1.0)
+        dof = np.array([n.rsplit(".", 1)[-1] for n in self.dof_names])
+        return {g: e[np.isin(dof, _MOTION_DOFS[g])].sum(axis=0) / total for g in MOTIONS}
+
     def summary(self) -> dict:
-        """Frequencies (Hz), mode kinds and multiplicities, and the DOF count."""
-        return {"frequencies_Hz": self.frequencies, "kinds": list(self.kinds),
-                "multiplicity": self.multiplicity, "dofs": len(self.dof_names)}
+        """Frequencies (Hz), mode kinds, multiplicities, kinetic-energy shares (-) of
+        in-plane translation, rotation and axial translation, and the DOF count."""
+        out = {"frequencies_Hz": self.frequencies, "kinds": list(self.kinds),
+               "multiplicity": self.multiplicity, "dofs": len(self.dof_names)}
+        if self.weights is not None:
+            out["energy_shares"] = self.energy_shares()
+        return out
 
     def columns(self) -> dict[str, np.ndarray]:
-        """One row per mode: frequency (Hz), multiplicity, kind code."""
+        """One row per mode: frequency (Hz), multiplicity, kind code and the kinetic-energy
+        shares (-) the kind is read from (:meth:`energy_shares`)."""
         codes = np.array([MODE_KINDS.index(k) if k in MODE_KINDS else 5 for k in self.kinds])
-        return {"frequency [Hz]": self.frequencies, "multiplicity [-]": self.multiplicity,
+        cols = {"frequency [Hz]": self.frequencies, "multiplicity [-]": self.multiplicity,
                 "kind [0 none,1 rigid,2 rot,3 trans,4 planet,5 mixed,6 axial]": codes}
+        if self.weights is not None:
+            names = {"in-plane": "in-plane translation", "rotation": "rotation",
+                     "axial": "axial translation"}
+            for g, v in self.energy_shares().items():
+                cols[f"{names[g]} energy share [-]"] = v
+        return cols
 
     def real_shapes(self) -> np.ndarray:
         """Mode shapes as real vectors, shape (n_full, m), same units as ``shapes``.

@@ -120,6 +120,10 @@ class LinearPeriodicSystem:
     ----------
     dof_names : names of the full coordinates, ``"body.dof"``, length n_full.
     basis : (n_full, n), ``q_full = basis @ q``.
+    coordinate_mass : (n_full,), mass (kg) or polar moment of inertia (kg m^2) of each
+        named coordinate's own body, so that ``M = basis.T @ diag(coordinate_mass) @ basis``
+        and ``coordinate_mass * q_full**2`` splits the kinetic energy over the named
+        coordinates (tied coordinates each keep their own body's share).
     M, C, K, G, K_omega : (n, n) mass (kg, kg m^2), damping, constant stiffness,
         gyroscopic (per unit carrier speed) and centripetal (per unit Omega^2) matrices.
     f0 : (n,) constant generalized force (N, N m).
@@ -133,6 +137,7 @@ class LinearPeriodicSystem:
 
     dof_names: tuple[str, ...]
     basis: np.ndarray
+    coordinate_mass: np.ndarray
     M: np.ndarray
     C: np.ndarray
     K: np.ndarray

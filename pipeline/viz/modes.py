@@ -5,14 +5,18 @@ the grey circles are the bodies at rest (base circles, the carrier as the circle
 through the planet centres); a body's translation is an arrow from its centre
 (ring and carrier: from a point of their circle); its rotation is an arc along its
 circle whose length is the rotation times the circle's radius (the tangential
-displacement at the base circle). Translations and rim displacements share one scale
-per panel (the largest is 90 % of the smallest gear's radius): the amplitude of a mode
-is arbitrary, its proportions are not. On a schematic layout (unit circles) the arrows
-and arcs are the kinetic-energy amplitudes sqrt(m) u and sqrt(I) theta instead, which
-compare translations and rotations without a radius.
-Axial motion (``z``) cannot be drawn in the plane; the panel gives the share of the
-kinetic energy in axial, translational and rotational coordinates. Herringbone halves
-are drawn in two colours (left, right).
+displacement at the base circle); its axial translation ``z`` (along the gear axes,
+normal to the drawing) is a circle beside the arrow's start whose *diameter* is ``|z|``,
+with a dot inside for +z (out of the page, x-y-z right-handed) and a cross for -z.
+Translations, rim displacements and axial translations share one scale per panel (the
+largest is 90 % of the smallest gear's radius, so an axial circle fits inside the
+smallest gear): the amplitude of a mode is arbitrary, its proportions are not. On a
+schematic layout (unit circles) the marks are the kinetic-energy amplitudes sqrt(m) u,
+sqrt(I) theta and sqrt(m) z instead, which compare translations and rotations without
+a radius. Each panel's title gives the mode's kind and the shares of its kinetic energy
+in in-plane translation, rotation and axial translation that the kind is read from
+(:mod:`pipeline.dynamics.modal`). Herringbone halves are drawn in two colours (left,
+right) and side by side, the left half's marks to the left.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ PER_PAGE = 12
 
 _TRANSLATION = {"": "tab:blue", "L": "tab:blue", "R": "tab:cyan"}
 _ROTATION = {"": "tab:red", "L": "tab:red", "R": "tab:orange"}
+_AXIAL = {"": "tab:green", "L": "tab:green", "R": "tab:olive"}
 
 
 def mode_pages(result: ModalResult, per_page: int = PER_PAGE, skip_rigid: bool = True,
@@ -49,8 +54,10 @@ def mode_pages(result: ModalResult, per_page: int = PER_PAGE, skip_rigid: bool =
     return [idx[i:i + per_page] for i in range(0, len(idx), per_page)]
 
 
-def _motion(result: ModalResult, phi: np.ndarray, p: BodyPlace) -> tuple[np.ndarray, float]:
-    """(in-plane translation (2,) in the drawing frame, m; rim displacement r theta, m)."""
+def _motion(result: ModalResult, phi: np.ndarray, p: BodyPlace
+            ) -> tuple[np.ndarray, float, float]:
+    """(in-plane translation (2,) in the drawing frame, m; rim displacement r theta, m;
+    axial translation z, m)."""
     idx = {n: i for i, n in enumerate(result.dof_names)}
 
     def q(d: str) -> float:
@@ -59,7 +66,7 @@ def _motion(result: ModalResult, phi: np.ndarray, p: BodyPlace) -> tuple[np.ndar
 
     c, s = math.cos(p.frame_angle), math.sin(p.frame_angle)
     x, y = q("x"), q("y")
-    return np.array([c * x - s * y, s * x + c * y]), p.radius * q("theta")
+    return np.array([c * x - s * y, s * x + c * y]), p.radius * q("theta"), q("z")
 
 
 def _anchor(p: BodyPlace, layout: ModelLayout) -> tuple[np.ndarray, float, float]:
@@ -77,6 +84,16 @@ def _anchor(p: BodyPlace, layout: ModelLayout) -> tuple[np.ndarray, float, float
     return centre, 0.72 * p.radius, 0.5 * math.pi
 
 
+def _axial_mark(ax: Axes, centre, z: float, scale: float, colour: str) -> None:
+    """Circle of diameter ``scale |z|`` at ``centre`` with a dot inside for +z, a cross for
+    -z; the dot and cross keep one size in points so that the sign of a small circle shows."""
+    from matplotlib.patches import Circle
+
+    ax.add_patch(Circle(tuple(centre), 0.5 * scale * abs(z), fill=False, ec=colour, lw=1.8))
+    sign = dict(marker="o", ms=3.5, mew=0) if z > 0 else dict(marker="x", ms=5.5, mew=1.6)
+    ax.plot([centre[0]], [centre[1]], ls="", color=colour, **sign)
+
+
 def _arc(ax: Axes, centre, r: float, a0: float, span: float, colour: str) -> None:
     from matplotlib.patches import FancyArrowPatch
 
@@ -87,18 +104,6 @@ def _arc(ax: Axes, centre, r: float, a0: float, span: float, colour: str) -> Non
     ax.add_patch(FancyArrowPatch((x[-2], y[-2]), (x[-1], y[-1]), arrowstyle="-|>",
                                  mutation_scale=14, color=colour, lw=2.4, shrinkA=0,
                                  shrinkB=0))
-
-
-def energy_shares(result: ModalResult, k: int) -> dict[str, float]:
-    """Shares (-) of mode ``k``'s kinetic energy in translations in the plane (x, y), axial
-    translations (z) and rotations (theta), from ``weights * shape``."""
-    w = np.ones(len(result.dof_names)) if result.weights is None else result.weights
-    e = np.abs(w * result.shapes[:, k]) ** 2
-    total = e.sum() or 1.0
-    kind = np.array([n.rsplit(".", 1)[-1] for n in result.dof_names])
-    return {"in-plane": float(e[np.isin(kind, ("x", "y"))].sum() / total),
-            "axial": float(e[kind == "z"].sum() / total),
-            "rotation": float(e[kind == "theta"].sum() / total)}
 
 
 def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
@@ -112,10 +117,11 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
     if layout.schematic and result.weights is not None:
         phi = phi * result.weights  # unit circles: compare kinetic-energy amplitudes instead
     motion = {p.name: _motion(result, phi, p) for p in layout.places}
-    big = max([np.hypot(*u) for u, _ in motion.values()]
-              + [abs(t) for _, t in motion.values()] + [0.0])
+    big = max([np.hypot(*u) for u, _, _ in motion.values()]
+              + [max(abs(t), abs(z)) for _, t, z in motion.values()] + [0.0])
     gears = [p.radius for p in layout.places if p.role not in ("ring", "carrier")]
-    scale = 0.9 * min(gears or [p.radius for p in layout.places]) / big if big > 0 else 0.0
+    smallest = min(gears or [p.radius for p in layout.places])
+    scale = 0.9 * smallest / big if big > 0 else 0.0
     drawn = set()
     for p in layout.places:
         key = (p.centre, p.radius, p.role)
@@ -128,11 +134,13 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
                 ax.annotate(label, p.centre, xytext=(0, -3), textcoords="offset points",
                             ha="center", va="top", fontsize=7, color="0.35")
     for p in layout.places:
-        u, t = motion[p.name]
+        u, t, z = motion[p.name]
         colour = _TRANSLATION[p.side]
         start, rr, a0 = _anchor(p, layout)
+        beside = start
         if p.side:  # the two halves of a herringbone member side by side, not on top
             shift = (-0.14 if p.side == "L" else 0.14) * p.radius
+            beside = start + np.array([(-0.5 if p.side == "L" else 0.5) * smallest, 0.0])
             start = start + np.array([shift, 0.0])
             rr = rr * (0.8 if p.side == "L" else 1.0)
         du = scale * u
@@ -142,15 +150,16 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
                                          shrinkA=0, shrinkB=0))
         if abs(scale * t) > 1e-3 * scale * big:
             _arc(ax, p.centre, rr, a0, scale * t / rr, _ROTATION[p.side])
+        if abs(z) > 1e-3 * big:
+            _axial_mark(ax, beside, z, scale, _AXIAL[p.side])
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_axis_off()
-    sh = energy_shares(result, k)
+    sh = {g: float(v[k]) for g, v in result.energy_shares().items()}
     kind = f" {result.kinds[k]}" if result.kinds[k] else ""
-    small = " (plane motion magnified)" if sh["in-plane"] + sh["rotation"] < 0.05 else ""
     ax.set_title(f"mode {k}: {result.frequencies[k]:.1f} Hz{kind} (x{result.multiplicity[k]})"
                  f"\nenergy: in-plane {100 * sh['in-plane']:.0f} %, rotation "
-                 f"{100 * sh['rotation']:.0f} %, axial {100 * sh['axial']:.0f} %{small}",
+                 f"{100 * sh['rotation']:.0f} %, axial {100 * sh['axial']:.0f} %",
                  fontsize=8)
     return ax
 
@@ -184,8 +193,17 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     handles += [Line2D([], [], color=_ROTATION[s], lw=2.4,
                        label=f"{prefix[s]}rotation (arc: r theta at the base circle)")
                 for s in sides]
-    handles += [Line2D([], [], color="0.6", lw=1.0, label="bodies at rest")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=min(len(handles), 3),
+    axial = any(n.endswith(".z") for n in result.dof_names)
+    if axial:
+        handles += [Line2D([], [], color=_AXIAL[s], ls="", marker=r"$\odot$", ms=11,
+                           label=f"{prefix[s]}axial z (circle: diameter |z|; "
+                                 "dot +z out of the page, cross -z)")
+                    for s in sides]
+    marks = "arrows, arcs and circles" if axial else "arrows and arcs"
+    handles += [Line2D([], [], color="0.6", lw=1.0,
+                       label=f"bodies at rest; {marks} on one length scale")]
+    fig.legend(handles=handles, loc="outside lower center",
+               ncol=min(len(handles), 2 if axial else 3),
                fontsize=8)
     if title or layout.schematic:
         note = " (bodies placed on a grid: schematic layout)" if layout.schematic else ""
