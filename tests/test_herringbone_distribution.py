@@ -9,6 +9,8 @@ halves is equal and equal to the single helical half's at half the torque).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -83,11 +85,14 @@ def test_mirror_symmetric_set_is_two_equal_halves_at_half_torque(case, groove, e
     to round-off, and the helical-half LTCA at T / 2 gives them too (the solver's tolerance
     1e-10 of the approach bounds the difference)."""
     src, pair, op, _ = case
-    cycle, hd = solve(case, groove, torque_entry=entry)
+    single = loaded_mesh_cycle(src, 0.5 * op.torque / pair.pinion.base_radius,
+                               positions=POSITIONS)
+    ref = load_distribution(single, pair, OperatingPoint(0.5 * op.torque, op.speed))
+    cycle = herringbone_mesh_cycle(src, op.torque / pair.pinion.base_radius, groove,
+                                   case[3], options=HerringboneOptions(torque_entry=entry),
+                                   positions=POSITIONS)
+    hd = herringbone_distribution(cycle, pair, op, equal_split=single)
     np.testing.assert_allclose(cycle.groove_twist, 0.0, atol=1e-15)
-    half_op = OperatingPoint(0.5 * op.torque, op.speed, "pinion")
-    ref = load_distribution(loaded_mesh_cycle(src, 0.5 * op.torque / pair.pinion.base_radius,
-                                              positions=POSITIONS), pair, half_op)
     L, R = hd.left.distribution, hd.right.distribution
     for d, rtol in ((R, 1e-12), (ref, 1e-10)):
         np.testing.assert_allclose(d.line_load, L.line_load, rtol=0,
@@ -99,7 +104,12 @@ def test_mirror_symmetric_set_is_two_equal_halves_at_half_torque(case, groove, e
                                                            rel=rtol), name
     np.testing.assert_allclose(hd.left.share, 0.5, rtol=1e-12)
     assert hd.left.operation.torque == pytest.approx(0.5 * op.torque, rel=1e-12)
+    assert hd.equal_split.operation.torque == pytest.approx(0.5 * op.torque, rel=1e-12)
+    np.testing.assert_allclose(hd.equal_split.share, 0.5, rtol=1e-12)
+    assert hd.equal_split.distribution.k_hbeta == ref.k_hbeta
     assert hd.line_load_ratio == pytest.approx(1.0, abs=1e-12)
+    for side in ("left", "right"):
+        assert hd.over_equal_split(side) == pytest.approx(1.0, abs=1e-10)
 
 
 def test_operating_point_must_be_the_cycles(case):
@@ -107,3 +117,6 @@ def test_operating_point_must_be_the_cycles(case):
     cycle, _ = solve(case, GrooveFlankCoupling.rigid())
     with pytest.raises(InputError, match="solved at P"):
         herringbone_distribution(cycle, pair, OperatingPoint(0.5 * op.torque, op.speed))
+    with pytest.raises(InputError, match="not half the mesh load"):
+        herringbone_distribution(cycle, pair, op, equal_split=dataclasses.replace(
+            cycle.left, load=2.0 * cycle.left.load))
