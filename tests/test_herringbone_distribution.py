@@ -75,6 +75,11 @@ def test_shares_sum_to_one_and_line_loads_integrate_to_the_half_loads(case):
     assert hd.right.share.mean() > 0.5 > hd.left.share.mean()
     assert hd.governing == "right" and hd.line_load_ratio > 1.0
     assert hd.right.max_line_load == max(h.max_line_load for h in (hd.left, hd.right))
+    s = hd.summary()
+    assert s["governing"] == "right"
+    assert s["left"]["load_share_mean"] + s["right"]["load_share_mean"] == pytest.approx(
+        1.0, abs=1e-12)
+    assert s["right"]["max_line_load_N_per_m"] == hd.right.max_line_load
 
 
 @pytest.mark.parametrize("groove,entry", [(GrooveFlankCoupling.rigid(), "right"),

@@ -95,8 +95,12 @@ def test_halves_with_their_torque_and_speeds(report):
     op = json.loads((out / "sun_planet_report.json").read_text())["sections"]["operation"]
     assert "relative to the carrier" in op["quantities"]["speed"]["label"]
     assert op["quantities"]["speed_sun"]["value"] == pytest.approx(SUN_RPM, rel=1e-12)
-    assert "herringbone" not in json.loads(
-        (out / "planet_ring_report.json").read_text())["sections"]
+    ring = json.loads((out / "planet_ring_report.json").read_text())["sections"]
+    assert "herringbone" not in ring
+    assert ring["operation"]["quantities"]["torque"]["label"].startswith(
+        "torque on the planet at its ring mesh, one helical half")
+    assert ring["operation"]["quantities"]["speed"]["value"] == pytest.approx(
+        (SUN_RPM - carrier) * 21 / 37, rel=1e-12)
 
 
 def test_csv_rows_per_half(report):

@@ -50,6 +50,7 @@ class PlanetaryMesh:
 
     Attributes
     ----------
+    mesh : "sun_planet" (the sun drives it) or "planet_ring" (the planet drives it).
     sun_torque : T_s, torque on the sun from all planets (both halves), N m.
     n_planets : N.
     herringbone : the mesh is one helical half of a herringbone set at an equal split.
@@ -57,6 +58,7 @@ class PlanetaryMesh:
     speeds : the set's speeds, ring fixed (rad/s).
     """
 
+    mesh: str
     sun_torque: float
     n_planets: int
     herringbone: bool
@@ -64,10 +66,11 @@ class PlanetaryMesh:
     speeds: PlanetarySpeeds
 
 
-def _planetary_rows(driver: str, operation: OperatingPoint, planetary: PlanetaryMesh
+def _planetary_rows(operation: OperatingPoint, planetary: PlanetaryMesh
                     ) -> tuple[list[Quantity], tuple[str, ...]]:
     """Torque and speed rows of a planetary mesh, saying what they are, and a note."""
     v, n = planetary.speeds, planetary.n_planets
+    driver = "sun" if planetary.mesh == "sun_planet" else "planet"
     half = ", one helical half at an equal split of the mesh load" if planetary.herringbone \
         else ""
     rows = [
@@ -110,7 +113,7 @@ def operation_section(pair: GearPair, operation: OperatingPoint, contact: Contac
                          operation.speed * RPM)]
         notes: tuple[str, ...] = ()
     else:
-        head, notes = _planetary_rows(driver.name, operation, planetary)
+        head, notes = _planetary_rows(operation, planetary)
     return Section("operation", "Operating point and analysis", (
         *head,
         quantity("load_line_of_action", "load along the transverse line of action P", "N",

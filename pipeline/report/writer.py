@@ -61,14 +61,15 @@ def _stage_figures(out: Path, prefix: str, mesh_level: bool) -> dict[str, list[F
     return found
 
 
-def _planetary_mesh(box: Any, st: Any) -> content.PlanetaryMesh | None:
-    """How a planetary set's mesh is loaded and turns (None for a pair)."""
+def _planetary_mesh(box: Any, name: str, st: Any) -> content.PlanetaryMesh | None:
+    """How a planetary set's mesh ``name`` is loaded and turns (None for a pair)."""
     if box.kind != "planetary":
         return None
     from pipeline.geometry.planetary_speeds import planetary_speeds
 
     ps = box.planetary
-    return content.PlanetaryMesh(box.operation.torque, ps.n_planets, ps.sun.herringbone,
+    return content.PlanetaryMesh(name, box.operation.torque, ps.n_planets,
+                                 ps.sun.herringbone,
                                  st.herringbone is not None,
                                  planetary_speeds(ps, box.operation.speed))
 
@@ -129,7 +130,7 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                 viz.plot_line_load, dist, title)
     p_fig = fig("report_contact_pressure.png", "Hertz contact pressure over both flanks",
                 viz.plot_contact_pressure, st.contact, dist, actual, title)
-    planetary = _planetary_mesh(box, st)
+    planetary = _planetary_mesh(box, name, st)
     sections = [
         content.operation_section(actual, op, box.contact, st.compliance, dist, planetary),
         content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
