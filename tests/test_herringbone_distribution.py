@@ -64,6 +64,9 @@ def test_shares_sum_to_one_and_line_loads_integrate_to_the_half_loads(case):
         assert d.z.size * widths[0] == pytest.approx(pair.face_width, rel=1e-12)
         np.testing.assert_allclose(d.line_load.sum(axis=1) * widths[0], h.load, rtol=0,
                                    atol=1e-12 * P)
+        # the tooth pairs share the half's own load P_h(t), which moves over the cycle
+        assert np.ptp(h.load) > 0.05 * h.load.mean()
+        np.testing.assert_allclose(d.load_share.sum(axis=1), 1.0, rtol=0, atol=1e-12)
         # the half's torque is its mean load on the sun's base radius; N of them on the sun
         assert h.operation.torque == pytest.approx(h.load.mean() * pair.pinion.base_radius,
                                                    rel=1e-12)
