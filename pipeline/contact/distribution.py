@@ -16,11 +16,12 @@ loads of every candidate point at every mesh position) into:
   of uniform mesh stiffness ``c_gamma`` (N/m per m of face) with a helix slope deviation
   ``f_Hb`` has ISO 6336-1's closed form ``1 + f_Hb c_gamma / (2 P / b)`` while the whole
   face carries load (``sqrt(2 f_Hb c_gamma / (P / b))`` once part of it lifts off at one
-  position). ``k_hbeta_position`` is the same ratio at every position (``max_z w / (P/b)``).
+  position). ``k_hbeta_position`` is the same ratio at every position
+  (``max_z w / (P(t) / b)``).
 * **Transverse load factor** ``K_Halpha``: how unevenly the tooth pairs in contact share the
   load, from the computed sharing: at each position the largest mean unit load of a tooth
   pair, ``F_k / L_k`` (its load over its contact-line length on the plane of action), over
-  the mean unit load of all its contact lines ``P / sum_k L_k``; ``K_Halpha`` is the largest
+  the mean unit load of all its contact lines ``P(t) / sum_k L_k``; ``K_Halpha`` is the largest
   over the cycle (1 in single contact, and for pairs sharing in proportion to their contact
   lengths). This is the LTCA's own measure, not ISO 6336-1's empirical formula (which is
   built to go with the contact ratio factor ``Z_eps``).
@@ -32,7 +33,12 @@ loads of every candidate point at every mesh position) into:
 * **Loaded static transmission error** (m, and as a pinion angle in rad), its
   peak-to-peak, and the amplitudes of mesh orders 1..10 (single-sided, from the DFT of the
   equally spaced positions; orders at or above half the number of positions are NaN).
-* **Load sharing** ``F_k / P`` of every tooth pair at every position.
+* **Load sharing** ``F_k / P(t)`` of every tooth pair at every position.
+
+``P(t)`` is the load the cycle carries at each position (the sum of its point loads): the
+constant ``P`` of a pair solved at one load (to the solver's tolerance), and a helical half's
+own share of a herringbone mesh, which moves over the cycle
+(:mod:`pipeline.contact.herringbone_distribution`); ``P`` (``load``) is its mean.
 
 Conventions: SI inside; the summary keys carry their units.
 """
@@ -98,7 +104,7 @@ class LoadDistribution:
     envelope : (n_z,) largest line load at each face position over the cycle, N/m.
     cycle_mean : (n_z,) mean line load at each face position over the cycle, N/m.
     k_hbeta : face load factor K_Hbeta (-).
-    k_hbeta_position : (m,) max_z w(z, t) / (P / b) at each position (-).
+    k_hbeta_position : (m,) max_z w(z, t) / (P(t) / b) at each position (-).
     k_halpha : transverse load factor K_Halpha (-).
     k_halpha_position : (m,) the same ratio at each position (-).
     hertz_pressure : (n_total,) Hertz maximum pressure p_H of every candidate point of the
@@ -110,9 +116,9 @@ class LoadDistribution:
     te_peak_to_peak : m; te_peak_to_peak_angle : as pinion angle, rad.
     te_orders : (10,) single-sided amplitudes of mesh orders 1..10, m (NaN when the
         positions cannot resolve an order).
-    pair_index : (K,) tooth-pair indices; load_share : (m, K) F_k / P (-).
+    pair_index : (K,) tooth-pair indices; load_share : (m, K) F_k / P(t) (-).
     mesh_stiffness : (m,) tangent mesh stiffness dP/dx_s, N/m.
-    load : P, total load along the transverse line of action, N.
+    load : P, total load along the transverse line of action (its mean over the cycle), N.
     face_width : b, m.
     slices_across_face : number of distinct face positions (1 for a spur pair solved with one
         slice, as ``ContactOptions.face_slices`` gives one without lead crowning or helix
@@ -242,15 +248,20 @@ def _line_loads(cycle: LoadedMeshCycle) -> tuple[np.ndarray, np.ndarray]:
     return z, w
 
 
+def position_loads(cycle: LoadedMeshCycle) -> np.ndarray:
+    """(m,) load P(t) the cycle carries at each position, N: the sum of its point loads."""
+    return np.bincount(cycle.point_position, weights=cycle.point_load, minlength=len(cycle))
+
+
 def _transverse_factor(cycle: LoadedMeshCycle, pair: GearPair) -> np.ndarray:
-    """max_k (F_k / L_k) / (P / sum_k L_k) at every position (module docstring)."""
+    """max_k (F_k / L_k) / (P(t) / sum_k L_k) at every position (module docstring)."""
     lengths = pair.contact_line_lengths(cycle.s0)  # (m, K) on the plane of action, m
     k_all = pair.pair_indices()
     cols = np.searchsorted(k_all, cycle.pair_index)
     L = lengths[:, cols]
     loaded = (cycle.pair_loads > 0.0) & (L > 0.0)
     unit = np.where(loaded, cycle.pair_loads / np.where(L > 0.0, L, 1.0), 0.0)
-    mean_unit = cycle.load / np.where(loaded, L, 0.0).sum(axis=1)
+    mean_unit = position_loads(cycle) / np.where(loaded, L, 0.0).sum(axis=1)
     return unit.max(axis=1) / mean_unit
 
 
@@ -280,6 +291,10 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
                          f"{operation.torque:.6g} N m on the {operation.driver}); pass the "
                          f"pair and operating point the cycle was solved for")
     z, w = _line_loads(cycle)
+    p_t = position_loads(cycle)
+    if not np.all(p_t > 0.0):
+        raise InputError("load distribution: the contact cycle carries no load at some mesh "
+                         "positions")
     b = pair.face_width
     w_m = cycle.load / b
     cycle_mean = w.mean(axis=0)
@@ -292,11 +307,12 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
     rb1 = pair.pinion.base_radius
     return LoadDistribution(
         z=z, line_load=w, mean_line_load=float(w_m), envelope=w.max(axis=0),
-        cycle_mean=cycle_mean, k_hbeta=k_hb, k_hbeta_position=w.max(axis=1) / w_m,
+        cycle_mean=cycle_mean, k_hbeta=k_hb,
+        k_hbeta_position=w.max(axis=1) / (p_t / b),
         k_halpha=float(kha.max()), k_halpha_position=kha, hertz_pressure=hertz,
         hertz_max=_peak(hertz, cycle, pair), line_load_max=_peak(line_at_point, cycle, pair),
         pinion_angle=cycle.pinion_angle, transmission_error=te,
         te_peak_to_peak=float(np.ptp(te)), te_peak_to_peak_angle=float(np.ptp(te) / rb1),
         te_orders=mesh_order_amplitudes(te), pair_index=np.array(cycle.pair_index),
-        load_share=cycle.load_share, mesh_stiffness=cycle.mesh_stiffness,
+        load_share=cycle.pair_loads / p_t[:, None], mesh_stiffness=cycle.mesh_stiffness,
         load=float(cycle.load), face_width=float(b), slices_across_face=int(z.size))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -18,6 +19,7 @@ from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications
 from pipeline.geometry.analysis import GeometryResult
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.planetary_speeds import PlanetarySpeeds
 from pipeline.operation import OperatingPoint
 from pipeline.report.model import Figure, Quantity, Section
 from pipeline.stiffness.analysis import StiffnessResult
@@ -42,16 +44,78 @@ def _plain(v: Any) -> Any:
     return v
 
 
+@dataclass(frozen=True)
+class PlanetaryMesh:
+    """Where the operating point of a planetary set's mesh sits in the set.
+
+    Attributes
+    ----------
+    mesh : "sun_planet" (the sun drives it) or "planet_ring" (the planet drives it).
+    sun_torque : T_s, torque on the sun from all planets (both halves), N m.
+    n_planets : N.
+    herringbone : the mesh is one helical half of a herringbone set at an equal split.
+    halves_solved : the report also shows both halves solved through the groove.
+    speeds : the set's speeds, ring fixed (rad/s).
+    """
+
+    mesh: str
+    sun_torque: float
+    n_planets: int
+    herringbone: bool
+    halves_solved: bool
+    speeds: PlanetarySpeeds
+
+
+def _planetary_rows(operation: OperatingPoint, planetary: PlanetaryMesh
+                    ) -> tuple[list[Quantity], tuple[str, ...]]:
+    """Torque and speed rows of a planetary mesh, saying what they are, and a note."""
+    v, n = planetary.speeds, planetary.n_planets
+    driver = "sun" if planetary.mesh == "sun_planet" else "planet"
+    half = ", one helical half at an equal split of the mesh load" if planetary.herringbone \
+        else ""
+    rows = [
+        quantity("torque", f"torque on the {driver} at its mesh with one planet{half}"
+                 if driver == "sun" else f"torque on the planet at its ring mesh{half}", "N m",
+                 operation.torque),
+        quantity("sun_torque", f"sun torque T_s (all {n} planets"
+                 f"{', both halves' if planetary.herringbone else ''})", "N m",
+                 planetary.sun_torque),
+        quantity("speed", f"speed of the {driver} relative to the carrier, magnitude (the "
+                 "frame the contact is solved in)", "rpm", operation.speed * RPM),
+        quantity("speed_sun", "sun speed (ring fixed)", "rpm", v.sun * RPM),
+        quantity("speed_carrier", "carrier speed", "rpm", v.carrier * RPM),
+        quantity("speed_planet", "planet speed (+ in the sun's sense)", "rpm", v.planet * RPM),
+    ]
+    notes: tuple[str, ...] = ()
+    if planetary.herringbone:
+        notes = ("One helical half of the herringbone set with half the mesh load "
+                 f"(T_s / (2 N) on the sun, N = {n}), as if the halves shared it equally; "
+                 + ("both halves solved together through the sun's relief groove are in "
+                    "the section 'Herringbone halves through the groove'."
+                    if planetary.halves_solved else
+                    "the halves are not solved together (a [groove] table of the sun "
+                    "gives them through its relief groove)." if driver == "sun" else
+                    "the two halves of the planet-ring mesh are not solved together."),)
+    return rows, notes
+
+
 def operation_section(pair: GearPair, operation: OperatingPoint, contact: ContactOptions,
-                      compliance: str, dist: LoadDistribution) -> Section:
-    """Operating point and how the contact was solved."""
+                      compliance: str, dist: LoadDistribution,
+                      planetary: PlanetaryMesh | None = None) -> Section:
+    """Operating point and how the contact was solved; for a planetary set's mesh
+    (``planetary``) the torque and speed say which member and frame they are."""
     driver = pair.pinion if operation.driver == "pinion" else pair.gear
     f_t = operation.torque / driver.reference_radius
+    if planetary is None:
+        head = [quantity("torque", f"torque on the driving gear ({operation.driver})", "N m",
+                         operation.torque),
+                quantity("speed", f"speed of the driving gear ({operation.driver})", "rpm",
+                         operation.speed * RPM)]
+        notes: tuple[str, ...] = ()
+    else:
+        head, notes = _planetary_rows(operation, planetary)
     return Section("operation", "Operating point and analysis", (
-        quantity("torque", f"torque on the driving gear ({operation.driver})", "N m",
-            operation.torque),
-        quantity("speed", f"speed of the driving gear ({operation.driver})", "rpm",
-           operation.speed * RPM),
+        *head,
         quantity("load_line_of_action", "load along the transverse line of action P", "N",
            dist.load),
         quantity("tangential_load", "nominal tangential load F_t at the reference circle", "N",
@@ -60,7 +124,7 @@ def operation_section(pair: GearPair, operation: OperatingPoint, contact: Contac
         quantity("local_contact", "local contact model", "", contact.local_contact),
         quantity("positions", "mesh positions per cycle", "-", len(dist.transmission_error)),
         quantity("slices", "slices across the face width", "-", dist.slices_across_face),
-    ))
+    ), notes=notes)
 
 
 def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequence[Figure]

@@ -8,7 +8,9 @@ draws the report's own figures (:mod:`pipeline.viz.distribution`), embeds them a
 stage figures it finds in the folder, and writes, per mesh (prefix ``<mesh>_`` for a
 planetary set):
 
-* ``report.html`` - the self-contained report (:mod:`pipeline.report.html`);
+* ``report.html`` - the self-contained report (:mod:`pipeline.report.html`); the
+  sun-planet mesh of a herringbone set solved through its groove gets a section with both
+  halves (:mod:`pipeline.report.herringbone_section`);
 * ``report.json`` - every number of it, by section and key, with labels and units;
 * ``report.csv`` - the same numbers as rows ``section,key,column,quantity,value,unit``;
 * ``report_cycle.csv`` - per mesh position: TE, mesh stiffness, load factors, load
@@ -59,9 +61,51 @@ def _stage_figures(out: Path, prefix: str, mesh_level: bool) -> dict[str, list[F
     return found
 
 
+def _planetary_mesh(box: Any, name: str, st: Any) -> content.PlanetaryMesh | None:
+    """How a planetary set's mesh ``name`` is loaded and turns (None for a pair)."""
+    if box.kind != "planetary":
+        return None
+    from pipeline.geometry.planetary_speeds import planetary_speeds
+
+    ps = box.planetary
+    return content.PlanetaryMesh(name, box.operation.torque, ps.n_planets,
+                                 ps.sun.herringbone,
+                                 st.herringbone is not None,
+                                 planetary_speeds(ps, box.operation.speed))
+
+
+def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
+                         half_roots: dict[str, Any], out: Path, prefix: str, fig) -> Any:
+    """The herringbone section with its figures: the halves' line loads and the existing
+    load maps of both sun flanks."""
+    from pipeline.report.herringbone_section import herringbone_section
+    from pipeline.viz.herringbone import plot_half_line_loads
+
+    stage = st.herringbone
+    shares = " / ".join(f"{100 * halves.half(s).share.mean():.1f} %" for s in ("left", "right"))
+    figs = [fig("report_herringbone_line_load.png",
+                "Line load over the face of each helical half (left / right, from the contact "
+                "through the groove) and of one half at an equal split",
+                plot_half_line_loads, halves,
+                f"herringbone sun-planet: load left / right {shares}; sun "
+                f"{planetary.sun_torque:.6g} N m at {planetary.speeds.sun * content.RPM:.4g} "
+                "rpm")]
+    for side in ("left", "right"):
+        file = f"{prefix}herringbone_load_map_{side}.png"
+        if (out / file).is_file():
+            figs.append(Figure(file, f"Unit load over the {side} sun flank (contact through "
+                                     "the groove)"))
+    return herringbone_section(halves, half_roots, planetary.speeds, stage,
+                               sun_torque=planetary.sun_torque, figures=figs)
+
+
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
-                command: str, root_stress: Any = None) -> tuple[MeshReport, LoadDistribution]:
-    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report."""
+                command: str, root_stress: Any = None, halves: Any = None,
+                half_roots: dict[str, Any] | None = None
+                ) -> tuple[MeshReport, LoadDistribution]:
+    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report;
+    ``halves`` (:class:`~pipeline.contact.herringbone_distribution.HerringboneDistribution`)
+    and ``half_roots`` (root stress by column) add the herringbone section."""
     from pipeline.viz import distribution as viz
 
     st = result.meshes[name]
@@ -86,8 +130,9 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                 viz.plot_line_load, dist, title)
     p_fig = fig("report_contact_pressure.png", "Hertz contact pressure over both flanks",
                 viz.plot_contact_pressure, st.contact, dist, actual, title)
+    planetary = _planetary_mesh(box, name, st)
     sections = [
-        content.operation_section(actual, op, box.contact, st.compliance, dist),
+        content.operation_section(actual, op, box.contact, st.compliance, dist, planetary),
         content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
         content.pair_section(actual, st.stiffness.nominal),
         content.modifications_section(box.contact, st.case.assembly_errors,
@@ -103,6 +148,9 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         r_fig = fig("report_root_stress.png", "Largest principal stress along the fillets",
                     viz.plot_root_stress, root_stress.curves(), title)
         sections.append(root_stress_section(root_stress, [r_fig]))
+    if halves is not None:
+        sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, out,
+                                             prefix, fig))
     if stage.get("load_maps"):
         sections.append(content.figures_section("load_maps", "Tooth-surface load maps",
                                                 stage["load_maps"]))
@@ -142,6 +190,26 @@ def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, pre
     ]
 
 
+def _herringbone_halves(st: Any, box: Any, root: Any, show_progress: bool
+                        ) -> tuple[Any, dict[str, Any] | None]:
+    """Both halves of a herringbone sun-planet mesh from its contact through the groove,
+    beside the mesh's own cycle (one half at an equal split), and the root stress under
+    each; (None, None) for any other mesh."""
+    if st.herringbone is None:
+        return None, None
+    from pipeline.contact.herringbone_distribution import herringbone_distribution
+    from pipeline.contact.root_stress import analyse_root_stress
+
+    stage = st.herringbone
+    halves = herringbone_distribution(stage.cycle, stage.pair, stage.operation,
+                                      equal_split=st.contact)
+    roots = {side: analyse_root_stress(halves.half(side).cycle, stage.pair,
+                                       halves.half(side).operation, box.fe_source,
+                                       show_progress=show_progress)
+             for side in ("left", "right")}
+    return halves, {**roots, "equal split": root}
+
+
 def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
                   command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
     """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
@@ -162,8 +230,9 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
                  f"{math.degrees(pair.pinion.helix_angle):g} deg")
         root = analyse_root_stress(st.contact, pair, st.case.operation, box.fe_source,
                                    show_progress=show_progress)
+        halves, half_roots = _herringbone_halves(st, box, root, show_progress)
         report, dist = mesh_report(result, name, out, figures, title=title, command=command,
-                                   root_stress=root)
+                                   root_stress=root, halves=halves, half_roots=half_roots)
         subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
                     f"{len(st.contact)} mesh positions; written in "
                     f"{time.perf_counter() - t0:.1f} s")

@@ -1,5 +1,6 @@
-"""Figures of the herringbone sun-planet contact against the groove stiffness (Xu et al. 2020,
-Fig. 5): each half's mesh stiffness over a mesh cycle, and the change of its maximum."""
+"""Figures of the herringbone sun-planet contact: against the groove stiffness (Xu et al. 2020,
+Fig. 5), each half's mesh stiffness over a mesh cycle and the change of its maximum; in a
+report, the line load over the face of each half."""
 
 from __future__ import annotations
 
@@ -12,6 +13,8 @@ from pipeline.viz.canvas import new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+
+    from pipeline.contact.herringbone_distribution import HerringboneDistribution
 
 
 def plot_groove_mesh_stiffness(
@@ -68,4 +71,44 @@ def plot_groove_mesh_stiffness(
     ax[2].set_title("from the stiffest groove")
     if title:
         fig.suptitle(title)
+    return fig
+
+
+def plot_half_line_loads(halves: HerringboneDistribution, title: str = "") -> Figure:
+    """Line load over the face of each helical half of a herringbone mesh: its envelope
+    (solid) and its mean over the mesh cycle (dashed), N/mm against mm, beside one helical
+    half at an equal split of the load when the distribution has it.
+
+    The halves are mirror images, so each is drawn over its own face coordinate z: equal
+    z lie at equal distances from the groove.
+    """
+    from matplotlib.lines import Line2D
+
+    fig = new_figure((7.0, 3.8), "constrained")
+    ax = fig.add_subplot()
+    sides = [("left", "C0"), ("right", "C3")]
+    if halves.equal_split is not None:
+        sides.append(("equal split", "0.45"))
+    handles = []
+    for side, colour in sides:
+        h = halves.half(side)
+        d = h.distribution
+        z = d.z * 1e3
+        ax.plot(z, d.envelope * 1e-3, color=colour, lw=2.0)
+        ax.plot(z, d.cycle_mean * 1e-3, color=colour, lw=1.3, ls="--")
+        label = (f"{side} half, {100 * h.share.mean():.1f} % of the load"
+                 f"{' (governs)' if side == halves.governing else ''}"
+                 if side != "equal split" else "one half at an equal split, 50 %")
+        handles.append(Line2D([], [], color=colour, lw=2.0, label=label))
+    handles += [Line2D([], [], color="k", lw=2.0, label="envelope over the cycle"),
+                Line2D([], [], color="k", lw=1.3, ls="--", label="mean over the cycle")]
+    top = max(float(halves.half(s).distribution.envelope.max()) for s, _ in sides) * 1e-3
+    ax.set_xlabel("face position z in each half [mm] (mirror images: equal z, equal "
+                  "distance from the groove)", fontsize=8)
+    ax.set_ylabel("line load w [N/mm]")
+    ax.set_xlim(0.0, halves.left.distribution.face_width * 1e3)
+    ax.set_ylim(0.0, max(top * 1.4, 1e-9))
+    ax.grid(alpha=0.3)
+    ax.legend(handles=handles, fontsize=7, loc="upper center", ncol=3)
+    ax.set_title(title, fontsize=9)
     return fig
