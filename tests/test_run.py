@@ -137,6 +137,9 @@ def test_cli_writes_one_folder_with_one_summary(tmp_path, capsys):
         assert (out / name).is_file(), name
     record = json.loads((out / "run.json").read_text())
     assert str(tmp_path / "c") in record["arguments"] and record["options"] == {"full": False}
+    # the report's FE root-stress tables go to the run's cache folder, like every FE table
+    assert sorted(p.name.split("-")[0] for p in (tmp_path / "c").rglob("filletstress*")), \
+        "no root-stress table in --cache-dir"
 
 
 def test_run_refuses_a_single_gear(tmp_path, capsys):

@@ -190,7 +190,7 @@ def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, pre
     ]
 
 
-def _herringbone_halves(st: Any, box: Any, root: Any, show_progress: bool
+def _herringbone_halves(st: Any, root: Any, root_stress: Any
                         ) -> tuple[Any, dict[str, Any] | None]:
     """Both halves of a herringbone sun-planet mesh from its contact through the groove,
     beside the mesh's own cycle (one half at an equal split), and the root stress under
@@ -198,22 +198,21 @@ def _herringbone_halves(st: Any, box: Any, root: Any, show_progress: bool
     if st.herringbone is None:
         return None, None
     from pipeline.contact.herringbone_distribution import herringbone_distribution
-    from pipeline.contact.root_stress import analyse_root_stress
 
     stage = st.herringbone
     halves = herringbone_distribution(stage.cycle, stage.pair, stage.operation,
                                       equal_split=st.contact)
-    roots = {side: analyse_root_stress(halves.half(side).cycle, stage.pair,
-                                       halves.half(side).operation, box.fe_source,
-                                       show_progress=show_progress)
+    roots = {side: root_stress(halves.half(side).cycle, stage.pair, halves.half(side).operation)
              for side in ("left", "right")}
     return halves, {**roots, "equal split": root}
 
 
 def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
-                  command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
+                  command: str = "gearpipe run", show_progress: bool = False,
+                  cache: bool = True, cache_dir: Path | None = None) -> list[Path]:
     """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
-    the files. A run without gear meshes (a lumped model) has none."""
+    the files. A run without gear meshes (a lumped model) has none. ``cache``, ``cache_dir``:
+    the on-disk cache of the FE root-stress tables (the run's own)."""
     from pipeline.contact.root_stress import analyse_root_stress
 
     files: list[Path] = []
@@ -228,9 +227,12 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
         title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
                  f"{pair.pinion.module * 1e3:g} mm, beta "
                  f"{math.degrees(pair.pinion.helix_angle):g} deg")
-        root = analyse_root_stress(st.contact, pair, st.case.operation, box.fe_source,
-                                   show_progress=show_progress)
-        halves, half_roots = _herringbone_halves(st, box, root, show_progress)
+        def root_stress(cycle, on_pair, operation):
+            return analyse_root_stress(cycle, on_pair, operation, box.fe_source, cache=cache,
+                                       cache_dir=cache_dir, show_progress=show_progress)
+
+        root = root_stress(st.contact, pair, st.case.operation)
+        halves, half_roots = _herringbone_halves(st, root, root_stress)
         report, dist = mesh_report(result, name, out, figures, title=title, command=command,
                                    root_stress=root, halves=halves, half_roots=half_roots)
         subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
