@@ -65,8 +65,10 @@ pitch_errors_um = [0.0, 3.0, -2.0]
 """
 
 
-def _edit(path: Path, pattern: str, value: str) -> str:
-    text, n = re.subn(pattern, value, path.read_text(), count=1, flags=re.MULTILINE)
+def _edit(base: Path | str, pattern: str, value: str) -> str:
+    """``base`` (a file or the text of one) with the first match of ``pattern`` replaced."""
+    text = base.read_text() if isinstance(base, Path) else base
+    text, n = re.subn(pattern, value, text, count=1, flags=re.MULTILINE)
     assert n == 1, pattern
     return text
 
@@ -122,6 +124,19 @@ REFUSED = [
      'groove.gear = "planet": a planetary set\'s [groove] is the sun\'s (its halves are '
      "joined through it in the contact and the dynamics); analyse the planet's groove from a "
      "file with that gear alone"),
+    ("bearings of a torsional pair model", SPUR, r'^dofs = "lateral_torsional"$',
+     'dofs = "torsional"',
+     'dynamics.bearing_stiffness_N_per_m = 1e+08 N/m applies to dofs = "lateral_torsional" '
+     'only; this table\'s dofs is "torsional"'),
+    ("excitation replaced by an explicit mesh stiffness", SPUR, r"^damping_ratio = 0.07$",
+     'damping_ratio = 0.07\nfriction = false\nexcitation = "contact"\n'
+     '[dynamics.mesh_stiffness]\nkind = "constant"\nvalue_N_per_m = 3.0e8',
+     'dynamics.excitation = "contact" does nothing: [dynamics.mesh_stiffness] replaces the '
+     'mesh excitation and friction = false; leave it out'),
+    ("axial stiffness of a spur planetary set", PLANETARY, r"^\[contact\]",
+     "[dynamics]\nsun_axial_stiffness_N_per_m = 1.0e9\n[contact]",
+     "dynamics.sun_axial_stiffness_N_per_m = 1e+09 N/m applies to a herringbone set; this "
+     "planetary set has no herringbone gears"),
     ("axial support of a free sun", WIND, r'^sun_axial = "held".*$', 'sun_axial = "free"',
      '[herringbone]: herringbone.axial_support_stiffness = 1e+09 N/m applies to a held sun '
      '(sun_axial = "held"); a free sun has no axial support'),
@@ -134,7 +149,10 @@ COMMAND = {"51 pitch errors on 50 teeth": "contact", "EHL roughness with a const
            "time-integration periods of a harmonic balance": "response",
            "planets of a distributed groove coupling": "groove",
            "tooth-force groove with other planets than the set": "groove",
-           "the planet's groove in a planetary set": "groove"}
+           "the planet's groove in a planetary set": "groove",
+           "bearings of a torsional pair model": "modes",
+           "excitation replaced by an explicit mesh stiffness": "modes",
+           "axial stiffness of a spur planetary set": "modes"}
 
 
 @pytest.mark.parametrize(("case", "base", "pattern", "value", "message"), REFUSED,

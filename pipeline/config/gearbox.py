@@ -402,9 +402,42 @@ def _solver_options(factory, table: Any, keys, where: str):
     return opts
 
 
-def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
+def _dynamics_keys_act(table: Mapping[str, Any], opts: Any, herringbone: bool) -> None:
+    """Refuse ``[dynamics]`` keys the chosen model would not read.
+
+    A pair's bearings with ``dofs = "torsional"`` (no lateral motion to support); the
+    ``excitation`` when explicit mesh stiffness tables replace every mesh excitation (a
+    pair's also needs ``friction = false``: otherwise the excitation gives the friction
+    terms); a planetary set's herringbone keys when its gears are not herringbone (refused
+    here, before the static stages run, rather than when the model is built).
+    """
+    if isinstance(opts, PairDynamicsOptions):
+        _only_with(table, "dynamics", ("bearing_stiffness_N_per_m", "bearing_damping_Ns_per_m"),
+                   "dofs", ("lateral_torsional",), opts.dofs)
+        replaced = "mesh_stiffness" in table and not opts.friction
+        why = "[dynamics.mesh_stiffness] replaces the mesh excitation and friction = false"
+    else:
+        replaced = "sun_mesh_stiffness" in table and "ring_mesh_stiffness" in table
+        why = ("[dynamics.sun_mesh_stiffness] and [dynamics.ring_mesh_stiffness] replace both "
+               "mesh excitations")
+        if not herringbone:
+            given = {k.target: k.name for k in T.DYNAMICS_PLANETARY}
+            for name in opts.herringbone_keys:
+                key = given[name]
+                value = table[key]
+                shown = (f'"{value}"' if isinstance(value, str)
+                         else format_value(value, unit_of_key(key)))
+                raise InputError(f"dynamics.{key} = {shown} applies to a herringbone set; this "
+                                 "planetary set has no herringbone gears")
+    if replaced and "excitation" in table:
+        raise InputError(f'dynamics.excitation = "{opts.excitation}" does nothing: {why}; '
+                         "leave it out")
+
+
+def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone: bool = False
               ) -> PairDynamicsOptions | PlanetaryDynamicsOptions | None:
-    """``[dynamics]``: a pair's options, or a planetary set's (its own keys)."""
+    """``[dynamics]``: a pair's options, or a planetary set's (its own keys); keys the model
+    would not read are refused (:func:`_dynamics_keys_act`)."""
     if "dynamics" not in doc:
         return None
     table = doc["dynamics"]
@@ -420,7 +453,9 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
         if name.endswith("mesh_stiffness") and name in table:
             values[name] = signal_from_table(table[name], f"dynamics.{name}", base)
     with restated("dynamics", keys, table):
-        return (PlanetaryDynamicsOptions if planetary else PairDynamicsOptions)(**values)
+        opts = (PlanetaryDynamicsOptions if planetary else PairDynamicsOptions)(**values)
+    _dynamics_keys_act(table, opts, herringbone)
+    return opts
 
 
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
@@ -484,7 +519,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         fe_source=fe_source,
         groove=_groove(doc, gears, kw.get("planetary")),
         herringbone=_herringbone(doc, kind, gears),
-        dynamics=_dynamics(doc, base, kind),
+        dynamics=_dynamics(doc, base, kind,
+                           kind == "planetary" and gears["sun"].herringbone),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
