@@ -137,6 +137,19 @@ REFUSED = [
      "[dynamics]\nsun_axial_stiffness_N_per_m = 1.0e9\n[contact]",
      "dynamics.sun_axial_stiffness_N_per_m = 1e+09 N/m applies to a herringbone set; this "
      "planetary set has no herringbone gears"),
+    ("groove torque other than the sun's", WIND, r"^torque_Nm = 148000.0 .*as \[groove\].*$",
+     "torque_Nm = 150000.0",
+     "groove.torque_Nm = 148000 N m contradicts operation.torque_Nm = 150000 N m, the sun's "
+     "torque of this planetary set: leave groove.torque_Nm out (it follows [operation])"),
+    ("slice coupling of an FE compliance", SPUR, r"^\[dynamics\]",
+     '[contact]\ncompliance = "fe2d"\nslice_coupling = 0.1\n[dynamics]',
+     'contact.slice_coupling = 0.1 applies to compliance = "analytical" only; this table\'s '
+     'compliance is "fe2d"'),
+    ("a web beside both mass and inertia", SPUR, r"^bore_radius_mm = 21.0$",
+     "bore_radius_mm = 21.0\nmass_kg = 2.52\ninertia_kgm2 = 7.4e-3\nweb_width_mm = 8.0\n"
+     "rim_inner_radius_mm = 60.0\nhub_radius_mm = 35.0",
+     "pinion.web_width_mm = 8 mm changes nothing: [pinion] gives both mass_kg and "
+     "inertia_kgm2, the only quantities the web shapes"),
     ("axial support of a free sun", WIND, r'^sun_axial = "held".*$', 'sun_axial = "free"',
      '[herringbone]: herringbone.axial_support_stiffness = 1e+09 N/m applies to a held sun '
      '(sun_axial = "held"); a free sun has no axial support'),
@@ -152,7 +165,10 @@ COMMAND = {"51 pitch errors on 50 teeth": "contact", "EHL roughness with a const
            "the planet's groove in a planetary set": "groove",
            "bearings of a torsional pair model": "modes",
            "excitation replaced by an explicit mesh stiffness": "modes",
-           "axial stiffness of a spur planetary set": "modes"}
+           "axial stiffness of a spur planetary set": "modes",
+           "groove torque other than the sun's": "groove",
+           "slice coupling of an FE compliance": "contact",
+           "a web beside both mass and inertia": "modes"}
 
 
 @pytest.mark.parametrize(("case", "base", "pattern", "value", "message"), REFUSED,

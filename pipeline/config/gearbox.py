@@ -32,6 +32,7 @@ allowed range in that unit.
 from __future__ import annotations
 
 import dataclasses
+import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -221,6 +222,12 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
         values["hand"] = "right"
     if "material" in table:
         values["material"] = _material(table["material"], f"{role}.material")
+    if body.get("mass") is not None and body.get("inertia") is not None:
+        for name in ("web_width_mm", "rim_inner_radius_mm", "hub_radius_mm"):
+            if name in table:  # the web shapes nothing but the derived mass and inertia
+                raise InputError(f"{role}.{name} = {format_value(table[name], unit_of_key(name))}"
+                                 f" changes nothing: [{role}] gives both mass_kg and "
+                                 "inertia_kgm2, the only quantities the web shapes")
     with restated(role, keys, table):
         gear = GearSpec(**values)
         return gear, GearBody(gear, **body)
@@ -309,7 +316,12 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     mod_fields = {k.target for k in T.MODIFICATIONS}
     mods = {k: values.pop(k) for k in list(values) if k in mod_fields}
     with restated("contact", keys, table):
-        return ContactOptions(modifications=FlankModifications(**mods), **values)
+        opts = ContactOptions(modifications=FlankModifications(**mods), **values)
+    # the FE sources have their own coupling across the face; the slice coupling would only
+    # shape the analytical slices, which they use for the friction change on the diagonal
+    _only_with(table, "contact", ("slice_coupling",), "compliance", ("analytical",),
+               opts.compliance)
+    return opts
 
 
 def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOptions, Any]:
@@ -347,11 +359,12 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
 
 
 def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
-            planetary: PlanetarySet | None) -> GrooveSpec | None:
+            planetary: PlanetarySet | None, operation: OperatingPoint) -> GrooveSpec | None:
     """``[groove]``. In a planetary set it is the sun's groove, the one the sun-planet contact
     and the dynamic model join the sun's halves through, so ``gear`` can only be the sun
     (the groove of another gear: a single-gear file); ``planets`` (the tooth-force coupling's)
-    defaults to ``[planetary] planets`` and must equal it. ``planets`` sets only the
+    defaults to ``[planetary] planets`` and must equal it, ``torque_Nm`` (the twist reported
+    by ``gearpipe groove``) likewise to ``[operation] torque_Nm``, the sun's. ``planets`` sets only the
     ``"tooth_forces"`` coupling and is refused with another coupling."""
     if "groove" not in doc:
         return None
@@ -369,6 +382,12 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
                          f"analyse the {role}'s groove from a file with that gear alone")
     coupling = values.get("coupling", "distributed")
     _only_with(table, "groove", ("planets",), "coupling", ("tooth_forces",), coupling)
+    if planetary is not None:  # [operation] holds the sun's torque, the one the run applies
+        torque = values.setdefault("sun_torque", operation.torque)
+        if not math.isclose(torque, operation.torque, rel_tol=1e-9):
+            raise InputError(f"groove.torque_Nm = {torque:.6g} N m contradicts operation."
+                             f"torque_Nm = {operation.torque:.6g} N m, the sun's torque of this "
+                             "planetary set: leave groove.torque_Nm out (it follows [operation])")
     if planetary is not None and coupling == "tooth_forces":
         n = values.setdefault("planets", planetary.n_planets)
         if n != planetary.n_planets:
@@ -507,17 +526,18 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
     contact = contact_options_from_table(doc.get("contact"))
     fe, fe_source = _fe(doc, contact)
+    operation = _operation(doc)
     box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
         gears=gears,
         bodies=bodies,
-        operation=_operation(doc),
+        operation=operation,
         stiffness=_stiffness(doc),
         contact=contact,
         fe=fe,
         fe_source=fe_source,
-        groove=_groove(doc, gears, kw.get("planetary")),
+        groove=_groove(doc, gears, kw.get("planetary"), operation),
         herringbone=_herringbone(doc, kind, gears),
         dynamics=_dynamics(doc, base, kind,
                            kind == "planetary" and gears["sun"].herringbone),
