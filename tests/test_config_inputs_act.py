@@ -213,8 +213,9 @@ def test_typed_groove_acts_without_the_fe_groove_in_the_dynamics():
 
 def test_pitch_errors_of_pairs_that_never_mesh_are_one_warning(tmp_path, capsys):
     """z 50/50, m 3 mm, 20 deg: epsilon_alpha = (2 sqrt(78^2 - r_b^2) - 150 sin(20 deg)) /
-    (3 pi cos(20 deg)) = 1.7547 (ISO 21771 (2007), 5.4; r_b = 75 cos(20 deg) mm), so tooth pairs k = 0 and 1 mesh in a
-    mesh cycle (k p_bt < g_alpha) and the entries for k = 2, 3 change nothing."""
+    (3 pi cos(20 deg)) = 1.7547 (ISO 21771 (2007), 5.4; r_b = 75 cos(20 deg) mm), so tooth
+    pairs k = 0 and 1 mesh in a mesh cycle (k p_bt < g_alpha) and the entries for k = 2, 3
+    change nothing."""
     text = _edit(SPUR, r"^\[dynamics\]", _pitch([0.0, 3.0, 2.0, -1.0]))
     message = ("contact.pitch_errors_um[2:] = [2, -1] um change nothing: only tooth pairs "
                "k = 0 to 1 mesh in the analysed mesh cycle (pair k meshes when k < transverse "
@@ -307,3 +308,30 @@ def test_an_accepted_pitch_error_shifts_the_loaded_te_by_the_model_amount(local)
         np.testing.assert_allclose(shift[~single], expected, rtol=0, atol=1e-18)
     # the shift lies between none and the whole error: 0.43-0.58 e here
     assert np.all((shift[~single] > 0.4 * e) & (shift[~single] < 0.6 * e))
+
+
+@pytest.mark.parametrize(("config", "pairs"), [("spur_pair_assembly_errors", 2),
+                                               ("traction_helical_pair", 3),
+                                               ("planet_ring_pair", 2)])
+def test_the_pairs_that_mesh_are_those_the_contact_solve_sees(config, pairs):
+    """Which entries can act, seen from the solver: over 60 positions of the cycle the tooth
+    pairs k >= 0 with candidate points on the path of contact are exactly k = 0 ..
+    meshing_pairs - 1 = ceil(epsilon_alpha) - 1, for a spur pair (epsilon_alpha 1.755), a
+    helical pair (2.052, where pair k = -1 also meshes through the far face end and has no
+    entry) and an internal pair (1.938)."""
+    import dataclasses
+
+    from pipeline.config import load_gearbox
+    from pipeline.contact.separations import meshing_pairs
+
+    box = load_gearbox(CONFIGS / f"{config}.toml")
+    pair = box.actual_pair
+    opts = dataclasses.replace(box.contact, positions=60)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cycle = analyse_contact(analytical_compliance(pair, box.operation, opts, box.stiffness),
+                                box.operation, opts)
+    on_path = set(cycle.point_pair[np.isfinite(cycle.point_separation)].tolist())
+    assert meshing_pairs(pair) == pairs == int(np.ceil(pair.transverse_contact_ratio))
+    assert {k for k in on_path if k >= 0} == set(range(pairs))
+    assert set(cycle.point_pair[cycle.point_load > 0].tolist()) == on_path

@@ -26,7 +26,12 @@ dynamics (override with ``[dynamics.mesh_stiffness]``).
 
 Unknown tables and keys, wrong types and out-of-range values are refused with
 one line naming the key as written, the value in the file's unit and the
-allowed range in that unit.
+allowed range in that unit. So is a key that would change nothing: one the chosen
+method, model or source never reads (``n_harmonics`` of a Floquet response, bearings of a
+torsional pair, ``slice_coupling`` of an FE compliance, ...), or one another table
+overrides (a ``[dynamics]`` groove stiffness beside the ``[groove]`` FE the dynamics use).
+Pitch errors for tooth pairs that never mesh in the analysed mesh cycle are kept and
+named in one :class:`~pipeline.validation.InputWarning` line per mesh.
 """
 
 from __future__ import annotations
@@ -364,8 +369,8 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
     and the dynamic model join the sun's halves through, so ``gear`` can only be the sun
     (the groove of another gear: a single-gear file); ``planets`` (the tooth-force coupling's)
     defaults to ``[planetary] planets`` and must equal it, ``torque_Nm`` (the twist reported
-    by ``gearpipe groove``) likewise to ``[operation] torque_Nm``, the sun's. ``planets`` sets only the
-    ``"tooth_forces"`` coupling and is refused with another coupling."""
+    by ``gearpipe groove``) likewise to ``[operation] torque_Nm``, the sun's. ``planets``
+    sets only the ``"tooth_forces"`` coupling and is refused with another coupling."""
     if "groove" not in doc:
         return None
     table = doc["groove"]
