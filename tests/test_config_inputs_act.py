@@ -335,3 +335,21 @@ def test_the_pairs_that_mesh_are_those_the_contact_solve_sees(config, pairs):
     assert meshing_pairs(pair) == pairs == int(np.ceil(pair.transverse_contact_ratio))
     assert {k for k in on_path if k >= 0} == set(range(pairs))
     assert set(cycle.point_pair[cycle.point_load > 0].tolist()) == on_path
+
+
+def test_a_density_beside_both_mass_and_inertia_is_one_warning(tmp_path, capsys):
+    """The density sets only the derived mass and inertia; with both given it is unused (a
+    material is stated whole, so this is a warning, not a refusal)."""
+    text = _edit(SPUR, r"^bore_radius_mm = 21.0$",
+                 "bore_radius_mm = 21.0\nmass_kg = 2.52\ninertia_kgm2 = 7.4e-3")
+    message = ("pinion.material.density_kg_m3 = 7850 kg/m^3 changes nothing: [pinion] gives "
+               "both mass_kg and inertia_kgm2, the only quantities the density sets")
+    with pytest.warns(InputWarning) as record:
+        box = gearbox_from_text(text)
+    assert [str(r.message) for r in record] == [message]
+    assert (box.bodies["pinion"].mass_, box.bodies["pinion"].inertia_) == (2.52, 7.4e-3)
+    cfg = tmp_path / "warned.toml"
+    cfg.write_text(text)
+    assert cli(["modes", str(cfg), "--out", str(tmp_path / "out")]) == 0
+    err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
+    assert err == [f"gearpipe modes: warning: {message}"]

@@ -233,6 +233,14 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
                 raise InputError(f"{role}.{name} = {format_value(table[name], unit_of_key(name))}"
                                  f" changes nothing: [{role}] gives both mass_kg and "
                                  "inertia_kgm2, the only quantities the web shapes")
+        material = table.get("material", {})
+        if isinstance(material, Mapping) and "density_kg_m3" in material:
+            # warned, not refused: a material is stated whole, though here only its
+            # elastic constants act
+            rho = format_value(material["density_kg_m3"], unit_of_key("density_kg_m3"))
+            warnings.warn(f"{role}.material.density_kg_m3 = {rho} changes nothing: [{role}] "
+                          "gives both mass_kg and inertia_kgm2, the only quantities the density "
+                          "sets", InputWarning, stacklevel=3)
     with restated(role, keys, table):
         gear = GearSpec(**values)
         return gear, GearBody(gear, **body)
