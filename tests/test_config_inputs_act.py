@@ -151,8 +151,8 @@ REFUSED = [
      "pinion.web_width_mm = 8 mm changes nothing: [pinion] gives both mass_kg and "
      "inertia_kgm2, the only quantities the web shapes"),
     ("axial support of a free sun", WIND, r'^sun_axial = "held".*$', 'sun_axial = "free"',
-     '[herringbone]: herringbone.axial_support_stiffness = 1e+09 N/m applies to a held sun '
-     '(sun_axial = "held"); a free sun has no axial support'),
+     'herringbone.axial_support_stiffness_N_per_m = 1e+09 N/m applies to sun_axial = "held" '
+     'only; this table\'s sun_axial is "free"'),
 ]
 
 

@@ -418,7 +418,12 @@ def _herringbone(doc: Mapping[str, Any], kind: str, gears: Mapping[str, GearSpec
     if kind != "planetary" or not gears["sun"].herringbone or "groove" not in doc:
         raise InputError("[herringbone] applies to a planetary set with a herringbone sun and "
                          "its [groove] table (the sun-planet contact through the groove)")
-    return build(HerringboneOptions, doc["herringbone"], T.HERRINGBONE, "herringbone")
+    table = doc["herringbone"]
+    if isinstance(table, Mapping) and table.get("sun_axial") == "free":
+        # a free sun finds its own axial position on no support
+        _only_with(table, "herringbone", ("axial_slide_mm", "axial_support_stiffness_N_per_m"),
+                   "sun_axial", ("held",), "free")
+    return build(HerringboneOptions, table, T.HERRINGBONE, "herringbone")
 
 
 _METHOD_KEYS = {"n_harmonics": ("harmonic_balance",), "segments": ("floquet", "time"),
