@@ -9,8 +9,9 @@ is one line on stderr, ``gearpipe <command>: error: ...``, with exit status 2; a
 folder that cannot be written (a file in the way, a full or read-only disk) is one such
 line with exit status 1, and the folder keeps its previous result; a solve that fails
 (the contact iteration does not converge, a singular or too large model) is one such line
-with exit status 1. Warnings (an unusable cache, a loaded contact ratio below 1, ...) are
-one line each, ``gearpipe <command>: warning: ...``, and the run goes on.
+with exit status 1. Warnings (an unusable cache, a loaded contact ratio below 1, input
+values that change nothing, ...) are one line each, ``gearpipe <command>: warning: ...``,
+and the run goes on.
 """
 
 from __future__ import annotations

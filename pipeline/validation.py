@@ -32,6 +32,12 @@ class PhysicsWarning(UserWarning):
     beyond its fitted range); the message gives the value."""
 
 
+class InputWarning(UserWarning):
+    """An input that is accepted but in part has no effect on any result (e.g. pitch errors
+    for tooth pairs that never mesh in the analysed mesh cycle); the message names the key
+    as written, the unused values in the file's unit and why they are unused."""
+
+
 def _fmt(v: float) -> str:
     return f"{v:.6g}" if isinstance(v, float) else repr(v)
 

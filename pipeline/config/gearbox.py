@@ -26,12 +26,19 @@ dynamics (override with ``[dynamics.mesh_stiffness]``).
 
 Unknown tables and keys, wrong types and out-of-range values are refused with
 one line naming the key as written, the value in the file's unit and the
-allowed range in that unit.
+allowed range in that unit. So is a key that would change nothing: one the chosen
+method, model or source never reads (``n_harmonics`` of a Floquet response, bearings of a
+torsional pair, ``slice_coupling`` of an FE compliance, ...), or one another table
+overrides (a ``[dynamics]`` groove stiffness beside the ``[groove]`` FE the dynamics use).
+Pitch errors for tooth pairs that never mesh in the analysed mesh cycle are kept and
+named in one :class:`~pipeline.validation.InputWarning` line per mesh.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -42,9 +49,10 @@ from pipeline.config import tables as T
 from pipeline.config.schema import build, read_table, restated, unknown
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
-from pipeline.contact.herringbone import HerringboneOptions
+from pipeline.config.units import format_value, unit_of_key
+from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
 from pipeline.contact.options import ContactOptions
-from pipeline.contact.separations import FlankModifications
+from pipeline.contact.separations import FlankModifications, meshing_pairs
 from pipeline.dynamics.options import (
     PairDynamicsOptions,
     PlanetaryDynamicsOptions,
@@ -60,7 +68,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.geometry.planetary import PlanetarySet
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
-from pipeline.validation import InputError, check_range
+from pipeline.validation import InputError, InputWarning, check_range
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
@@ -154,6 +162,29 @@ class Gearbox:
         """The assembly-error geometry, or ``None`` without errors."""
         return assemble(self.require_pair(), self.assembly_errors)
 
+    @property
+    def fe_groove_in_dynamics(self) -> bool:
+        """True when the dynamic model joins the herringbone sun's halves by the 3D FE of the
+        ``[groove]`` table: a planetary set with a herringbone sun, a ``[groove]`` table and
+        ``[dynamics] excitation = "contact"`` without an explicit ``sun_mesh_stiffness``
+        (the sun meshes are then excited left/right from the contact through that groove,
+        :mod:`pipeline.run.dynamics`); ``[dynamics]`` groove keys are refused then."""
+        d = self.dynamics
+        return (self.kind == "planetary" and self.planetary.sun.herringbone
+                and self.groove is not None and isinstance(d, PlanetaryDynamicsOptions)
+                and d.excitation == "contact" and d.sun_mesh_stiffness is None)
+
+    def contact_meshes(self) -> tuple[tuple[str, GearPair], ...]:
+        """The meshes the contact stage analyses, by name ("mesh"; "sun_planet",
+        "planet_ring"), as installed; a herringbone pair stands for its helical halves, which
+        share its transverse geometry. Empty for a single gear or a lumped model."""
+        if self.kind == "pair":
+            return (("mesh", self.actual_pair),)
+        if self.kind == "planetary":
+            ps = self.planetary
+            return (("sun_planet", ps.sun_planet), ("planet_ring", ps.planet_ring))
+        return ()
+
     def require_pair(self) -> GearPair:
         """The pair; a clear error when the file describes something else."""
         if self.pair is None:
@@ -196,6 +227,20 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
         values["hand"] = "right"
     if "material" in table:
         values["material"] = _material(table["material"], f"{role}.material")
+    if body.get("mass") is not None and body.get("inertia") is not None:
+        for name in ("web_width_mm", "rim_inner_radius_mm", "hub_radius_mm"):
+            if name in table:  # the web shapes nothing but the derived mass and inertia
+                raise InputError(f"{role}.{name} = {format_value(table[name], unit_of_key(name))}"
+                                 f" changes nothing: [{role}] gives both mass_kg and "
+                                 "inertia_kgm2, the only quantities the web shapes")
+        material = table.get("material", {})
+        if isinstance(material, Mapping) and "density_kg_m3" in material:
+            # warned, not refused: a material is stated whole, though here only its
+            # elastic constants act
+            rho = format_value(material["density_kg_m3"], unit_of_key("density_kg_m3"))
+            warnings.warn(f"{role}.material.density_kg_m3 = {rho} changes nothing: [{role}] "
+                          "gives both mass_kg and inertia_kgm2, the only quantities the density "
+                          "sets", InputWarning, stacklevel=3)
     with restated(role, keys, table):
         gear = GearSpec(**values)
         return gear, GearBody(gear, **body)
@@ -249,6 +294,29 @@ def _kind(doc: Mapping[str, Any]) -> str:
                      "[gear] (one gear) or [lumped_model]")
 
 
+def _only_with(table: Mapping[str, Any], where: str, keys: tuple[str, ...], choice: str,
+               allowed: tuple[str, ...], actual: Any) -> None:
+    """Refuse ``keys`` of ``table`` that act only when ``choice`` is one of ``allowed``."""
+    if actual in allowed:
+        return
+    for k in keys:
+        if k in table:
+            shown = " or ".join(f'"{a}"' for a in allowed)
+            now = f'"{actual}"' if isinstance(actual, str) else f"{actual:g}"
+            raise InputError(f"{where}.{k} = {format_value(table[k], unit_of_key(k))} applies "
+                             f"to {choice} = {shown} only; this table's {choice} is {now}"
+                             + ("" if choice in table else " (the default)"))
+
+
+def _stiffness(doc: Mapping[str, Any]) -> StiffnessOptions:
+    """``[stiffness]``; the roughness and viscosity act only in the EHL friction model."""
+    table = doc.get("stiffness", {})
+    opts = build(StiffnessOptions, table, T.STIFFNESS, "stiffness")
+    _only_with(table, "stiffness", ("roughness_um", "viscosity_mPas"), "friction", ("ehl",),
+               opts.friction)
+    return opts
+
+
 def _operation(doc: Mapping[str, Any]) -> OperatingPoint:
     return build(OperatingPoint, doc.get("operation", {}), T.OPERATION, "operation")
 
@@ -261,7 +329,12 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     mod_fields = {k.target for k in T.MODIFICATIONS}
     mods = {k: values.pop(k) for k in list(values) if k in mod_fields}
     with restated("contact", keys, table):
-        return ContactOptions(modifications=FlankModifications(**mods), **values)
+        opts = ContactOptions(modifications=FlankModifications(**mods), **values)
+    # the FE sources have their own coupling across the face; the slice coupling would only
+    # shape the analytical slices, which they use for the friction change on the diagonal
+    _only_with(table, "contact", ("slice_coupling",), "compliance", ("analytical",),
+               opts.compliance)
+    return opts
 
 
 def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOptions, Any]:
@@ -298,17 +371,43 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
     return sector, fe_settings(contact.compliance, source, contact)
 
 
-def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]) -> GrooveSpec | None:
+def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
+            planetary: PlanetarySet | None, operation: OperatingPoint) -> GrooveSpec | None:
+    """``[groove]``. In a planetary set it is the sun's groove, the one the sun-planet contact
+    and the dynamic model join the sun's halves through, so ``gear`` can only be the sun
+    (the groove of another gear: a single-gear file); ``planets`` (the tooth-force coupling's)
+    defaults to ``[planetary] planets`` and must equal it, ``torque_Nm`` (the twist reported
+    by ``gearpipe groove``) likewise to ``[operation] torque_Nm``, the sun's. ``planets``
+    sets only the ``"tooth_forces"`` coupling and is refused with another coupling."""
     if "groove" not in doc:
         return None
-    values = read_table(doc["groove"], T.GROOVE, "groove")
+    table = doc["groove"]
+    values = read_table(table, T.GROOVE, "groove")
     role = values.pop("gear_role", None)
     if role is None:
         role = next((r for r, g in gears.items() if g.herringbone), "sun" if "sun" in gears
                     else "gear")
     if role not in gears:
         raise unknown(role, list(gears), "[groove] gear")
-    with restated("groove", T.GROOVE, doc["groove"]):
+    if planetary is not None and role != "sun":
+        raise InputError(f"groove.gear = \"{role}\": a planetary set's [groove] is the sun's "
+                         "(its halves are joined through it in the contact and the dynamics); "
+                         f"analyse the {role}'s groove from a file with that gear alone")
+    coupling = values.get("coupling", "distributed")
+    _only_with(table, "groove", ("planets",), "coupling", ("tooth_forces",), coupling)
+    if planetary is not None:  # [operation] holds the sun's torque, the one the run applies
+        torque = values.setdefault("sun_torque", operation.torque)
+        if not math.isclose(torque, operation.torque, rel_tol=1e-9):
+            raise InputError(f"groove.torque_Nm = {torque:.6g} N m contradicts operation."
+                             f"torque_Nm = {operation.torque:.6g} N m, the sun's torque of this "
+                             "planetary set: leave groove.torque_Nm out (it follows [operation])")
+    if planetary is not None and coupling == "tooth_forces":
+        n = values.setdefault("planets", planetary.n_planets)
+        if n != planetary.n_planets:
+            raise InputError(f"groove.planets = {n} contradicts planetary.planets = "
+                             f"{planetary.n_planets}: leave groove.planets out (it follows "
+                             "the set)")
+    with restated("groove", T.GROOVE, table):
         return GrooveSpec(gear=gears[role], **values)
 
 
@@ -319,12 +418,63 @@ def _herringbone(doc: Mapping[str, Any], kind: str, gears: Mapping[str, GearSpec
     if kind != "planetary" or not gears["sun"].herringbone or "groove" not in doc:
         raise InputError("[herringbone] applies to a planetary set with a herringbone sun and "
                          "its [groove] table (the sun-planet contact through the groove)")
-    return build(HerringboneOptions, doc["herringbone"], T.HERRINGBONE, "herringbone")
+    table = doc["herringbone"]
+    if isinstance(table, Mapping) and table.get("sun_axial") == "free":
+        # a free sun finds its own axial position on no support
+        _only_with(table, "herringbone", ("axial_slide_mm", "axial_support_stiffness_N_per_m"),
+                   "sun_axial", ("held",), "free")
+    return build(HerringboneOptions, table, T.HERRINGBONE, "herringbone")
 
 
-def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
+_METHOD_KEYS = {"n_harmonics": ("harmonic_balance",), "segments": ("floquet", "time"),
+                "periods": ("time",)}
+"""Keys of ``[dynamics.response]`` / ``[dynamics.sweep]`` -> the methods that read them."""
+
+
+def _solver_options(factory, table: Any, keys, where: str):
+    """A response or sweep table; a key its ``method`` does not read is refused."""
+    opts = build(factory, table, keys, where)
+    for key, methods in _METHOD_KEYS.items():
+        _only_with(table, where, (key,), "method", methods, opts.method)
+    return opts
+
+
+def _dynamics_keys_act(table: Mapping[str, Any], opts: Any, herringbone: bool) -> None:
+    """Refuse ``[dynamics]`` keys the chosen model would not read.
+
+    A pair's bearings with ``dofs = "torsional"`` (no lateral motion to support); the
+    ``excitation`` when explicit mesh stiffness tables replace every mesh excitation (a
+    pair's also needs ``friction = false``: otherwise the excitation gives the friction
+    terms); a planetary set's herringbone keys when its gears are not herringbone (refused
+    here, before the static stages run, rather than when the model is built).
+    """
+    if isinstance(opts, PairDynamicsOptions):
+        _only_with(table, "dynamics", ("bearing_stiffness_N_per_m", "bearing_damping_Ns_per_m"),
+                   "dofs", ("lateral_torsional",), opts.dofs)
+        replaced = "mesh_stiffness" in table and not opts.friction
+        why = "[dynamics.mesh_stiffness] replaces the mesh excitation and friction = false"
+    else:
+        replaced = "sun_mesh_stiffness" in table and "ring_mesh_stiffness" in table
+        why = ("[dynamics.sun_mesh_stiffness] and [dynamics.ring_mesh_stiffness] replace both "
+               "mesh excitations")
+        if not herringbone:
+            given = {k.target: k.name for k in T.DYNAMICS_PLANETARY}
+            for name in opts.herringbone_keys:
+                key = given[name]
+                value = table[key]
+                shown = (f'"{value}"' if isinstance(value, str)
+                         else format_value(value, unit_of_key(key)))
+                raise InputError(f"dynamics.{key} = {shown} applies to a herringbone set; this "
+                                 "planetary set has no herringbone gears")
+    if replaced and "excitation" in table:
+        raise InputError(f'dynamics.excitation = "{opts.excitation}" does nothing: {why}; '
+                         "leave it out")
+
+
+def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone: bool = False
               ) -> PairDynamicsOptions | PlanetaryDynamicsOptions | None:
-    """``[dynamics]``: a pair's options, or a planetary set's (its own keys)."""
+    """``[dynamics]``: a pair's options, or a planetary set's (its own keys); keys the model
+    would not read are refused (:func:`_dynamics_keys_act`)."""
     if "dynamics" not in doc:
         return None
     table = doc["dynamics"]
@@ -332,14 +482,17 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str
     keys = T.DYNAMICS_PLANETARY if planetary else T.DYNAMICS
     subtables = T.DYNAMICS_PLANETARY_SUBTABLES if planetary else T.DYNAMICS_SUBTABLES
     values = read_table(table, keys, "dynamics", subtables=subtables)
-    values["response"] = build(ResponseOptions, table.get("response", {}), T.RESPONSE,
-                               "dynamics.response")
-    values["sweep"] = build(SweepOptions, table.get("sweep", {}), T.SWEEP, "dynamics.sweep")
+    values["response"] = _solver_options(ResponseOptions, table.get("response", {}),
+                                         T.RESPONSE, "dynamics.response")
+    values["sweep"] = _solver_options(SweepOptions, table.get("sweep", {}), T.SWEEP,
+                                      "dynamics.sweep")
     for name in subtables:
         if name.endswith("mesh_stiffness") and name in table:
             values[name] = signal_from_table(table[name], f"dynamics.{name}", base)
     with restated("dynamics", keys, table):
-        return (PlanetaryDynamicsOptions if planetary else PairDynamicsOptions)(**values)
+        opts = (PlanetaryDynamicsOptions if planetary else PairDynamicsOptions)(**values)
+    _dynamics_keys_act(table, opts, herringbone)
+    return opts
 
 
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
@@ -391,19 +544,21 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
     contact = contact_options_from_table(doc.get("contact"))
     fe, fe_source = _fe(doc, contact)
+    operation = _operation(doc)
     box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
         gears=gears,
         bodies=bodies,
-        operation=_operation(doc),
-        stiffness=build(StiffnessOptions, doc.get("stiffness", {}), T.STIFFNESS, "stiffness"),
+        operation=operation,
+        stiffness=_stiffness(doc),
         contact=contact,
         fe=fe,
         fe_source=fe_source,
-        groove=_groove(doc, gears),
+        groove=_groove(doc, gears, kw.get("planetary"), operation),
         herringbone=_herringbone(doc, kind, gears),
-        dynamics=_dynamics(doc, base, kind),
+        dynamics=_dynamics(doc, base, kind,
+                           kind == "planetary" and gears["sun"].herringbone),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
@@ -411,7 +566,91 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "pair":
         with restated("pair", T.PAIR, doc.get("pair", {})):
             box.actual_pair  # noqa: B018 - the displaced pair must still mesh (cached)
+    _check_groove_sources(box, doc)
+    _check_pitch_errors(box)
     return box
+
+
+PITCH_ERRORS_KEY = "pitch_errors_um"
+GROOVE_DYNAMICS_KEYS = ("groove_torsional_stiffness_Nm_per_rad",
+                        "groove_lateral_stiffness_N_per_m")
+"""``[dynamics]`` keys of a herringbone sun's groove that the ``[groove]`` FE replaces."""
+
+
+def _list_text(values: tuple[float, ...], key: str) -> str:
+    """SI values of a list key in the file's unit, as written: ``[0, 4, 2, ...] um``."""
+    u = unit_of_key(key)
+    shown = ", ".join(f"{u.from_si(v):.6g}" for v in values[:6])
+    return f"[{shown}{', ...' if len(values) > 6 else ''}]" + (f" {u.label}" if u.label else "")
+
+
+def _check_pitch_errors(box: Gearbox) -> None:
+    """``[contact] pitch_errors_um`` against the meshes it applies to.
+
+    Entry k offsets tooth pair k of the analysed mesh cycle (:mod:`pipeline.contact.
+    separations`). A list longer than the tooth count of the mesh's smaller gear cannot be
+    tooth pairs of one mesh (pairs k and k + z share a tooth of that gear): refused. Entries
+    of pairs that never reach the path of contact during the cycle (k >= epsilon_alpha,
+    :func:`~pipeline.contact.separations.meshing_pairs`) are kept but change nothing: one
+    warning per mesh names them. They are not refused, because a list of the right length
+    for one mesh of a planetary set may be too long only for the other, and making them act
+    would need an analysis over more than one mesh cycle.
+    """
+    errors = box.contact.modifications.pitch_errors
+    key = f"contact.{PITCH_ERRORS_KEY}"
+    meshes = box.contact_meshes()
+    for name, pair in meshes:
+        fewer = min((pair.pinion, pair.gear), key=lambda g: g.teeth)
+        if len(errors) > fewer.teeth:
+            where = f" of the {name} mesh" if len(meshes) > 1 else ""
+            raise InputError(
+                f"{key} = {_list_text(errors, PITCH_ERRORS_KEY)} has {len(errors)} entries, "
+                f"more than the {fewer.teeth} teeth of the {fewer.name}{where}: entry k offsets "
+                f"tooth pair k of the mesh cycle, and pairs k and k + {fewer.teeth} would share "
+                f"a tooth (allowed: at most {fewer.teeth} entries)")
+    for name, pair in meshes:
+        n = meshing_pairs(pair)
+        if len(errors) > n:
+            pairs = "tooth pair k = 0 meshes" if n == 1 else f"tooth pairs k = 0 to {n - 1} mesh"
+            where = f" of the {name} mesh" if len(meshes) > 1 else ""
+            warnings.warn(
+                f"{key}[{n}:] = {_list_text(errors[n:], PITCH_ERRORS_KEY)} change nothing: "
+                f"only {pairs} in the analysed mesh cycle{where} (pair k meshes when k < "
+                f"transverse contact ratio {pair.transverse_contact_ratio:.4g})",
+                InputWarning, stacklevel=3)
+
+
+def _check_groove_sources(box: Gearbox, doc: Mapping[str, Any]) -> None:
+    """One groove per herringbone sun in the dynamics.
+
+    When the model takes the ``[groove]`` table's FE (:attr:`Gearbox.fe_groove_in_dynamics`),
+    a typed ``[dynamics]`` groove stiffness is refused, not overridden nor preferred: the
+    left/right sun-mesh excitations come from the contact through the FE groove and carry
+    its static twist in their transmission errors, so a different groove spring in the same
+    model would contradict them. The sun's load side follows ``[herringbone] torque_entry``
+    (where that contact took the torque out); a ``sun_load_side`` that says otherwise is
+    refused, the same side is accepted.
+    """
+    if not box.fe_groove_in_dynamics:
+        return
+    table = doc["dynamics"]
+    for name in GROOVE_DYNAMICS_KEYS:
+        if name in table:
+            raise InputError(
+                f"dynamics.{name} = {format_value(table[name], unit_of_key(name))} contradicts "
+                "the [groove] table: with excitation = \"contact\" the sun's halves are joined "
+                "by the groove's 3D FE stiffness (the left/right sun-mesh excitations carry its "
+                "static twist); remove this key, or the [groove] table to use it")
+    entry = box.herringbone.torque_entry
+    side = SUN_LOAD_SIDE[entry]
+    if "sun_load_side" in table and box.dynamics.sun_load_side != side:
+        given = "" if "torque_entry" in doc.get("herringbone", {}) else " (the default)"
+        raise InputError(
+            f"dynamics.sun_load_side = \"{box.dynamics.sun_load_side}\" contradicts "
+            f"herringbone.torque_entry = \"{entry}\"{given}: with the [groove] table and "
+            "excitation = \"contact\" the sun is loaded where the contact through the groove "
+            f"takes its torque out (sun_load_side = \"{side}\"); give the same side in both "
+            "or leave sun_load_side out")
 
 
 def load_gearbox(path: str | Path) -> Gearbox:

@@ -67,6 +67,8 @@ from pipeline.validation import InputError, check_choice, check_int_range, check
 
 TORQUE_ENTRIES = LEFT_FRACTION
 """Fraction of the sun torque entering at O_L for each ``torque_entry``."""
+SUN_LOAD_SIDE = {"right": "R", "left": "L", "both": "both"}
+"""``torque_entry`` -> the herringbone planetary model's ``sun_load_side`` (the same entry)."""
 SUN_AXIAL = ("held", "free")
 
 
@@ -101,6 +103,9 @@ class HerringboneOptions:
         if self.sun_axial == "free" and self.axial_slide != 0.0:
             raise InputError("herringbone: a free sun (sun_axial = \"free\") finds its own "
                              "axial position; an axial slide applies to a held sun")
+        if self.sun_axial == "free" and k != math.inf:
+            raise InputError(f"herringbone.axial_support_stiffness = {k:g} N/m applies to a "
+                             "held sun (sun_axial = \"held\"); a free sun has no axial support")
 
 
 def _stack_hertz(h: HertzLineContact) -> HertzLineContact:

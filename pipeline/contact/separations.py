@@ -20,7 +20,8 @@ Contributions add up:
   the start of the analysed mesh cycle (pinion driving; with the gear driving it
   is the pair about to leave), ``k = 1`` the one a base pitch further along ``s``;
   see :meth:`GearPair.pair_indices`); pairs without an entry get 0. Positive: the
-  flank lies behind its nominal position.
+  flank lies behind its nominal position. Only the first :func:`meshing_pairs` entries
+  can act: the later pairs never reach the path of contact during the analysed cycle.
 
 Centre-distance assembly errors do not appear here: an involute pair stays
 conjugate when its centres move in the plane, so they change the path of contact
@@ -31,6 +32,7 @@ shift acts the same way, through the gear geometry.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -112,6 +114,21 @@ class FlankModifications:
             parts.append("pitch errors " + "/".join(f"{e * 1e6:.3g}" for e in self.pitch_errors)
                          + " um")
         return ", ".join(parts) or "none"
+
+
+def meshing_pairs(pair: GearPair) -> int:
+    """Number of tooth pairs k = 0, 1, ... that mesh during the analysed mesh cycle.
+
+    Over the cycle the leading pair's roll coordinate at z = 0 runs through
+    ``s0 in [s_start, s_start + p_bt)``, and pair k lies at ``s0 + k p_bt + z tan(beta_b)``
+    for z in [0, b], so its smallest roll coordinate is ``s_start + k p_bt``: it meets the
+    path of contact ``[s_start, s_end]`` exactly when ``k p_bt < g_alpha``, i.e.
+    ``k < epsilon_alpha``, for spur and helical pairs alike. The entries of
+    ``FlankModifications.pitch_errors`` from ``k = ceil(epsilon_alpha)`` on change nothing.
+    (Pairs k < 0 of a helical pair reach the path through the far face end; they have no
+    entry and get 0.)
+    """
+    return max(1, math.ceil(pair.transverse_contact_ratio - 1e-9))
 
 
 def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarray:

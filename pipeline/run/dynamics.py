@@ -128,8 +128,10 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
                     opts.excitation)
         hb = meshes["sun_planet"].herringbone if "sun_planet" in meshes else None
         extra = {}
-        if hb is not None and opts.excitation == "contact" and opts.sun_mesh_stiffness is None:
-            # both halves through the groove: left/right excitation, the same FE groove
+        if hb is not None and box.fe_groove_in_dynamics:
+            # both halves through the groove: left/right excitation, the same FE groove and
+            # torque entry (the file cannot also give [dynamics] groove keys or another
+            # sun_load_side: the loader refuses them, see pipeline.config.gearbox)
             from pipeline.dynamics.herringbone_excitation import excitation_from_herringbone
             from pipeline.run.herringbone import TORQUE_SIDE
 

@@ -29,7 +29,11 @@ from pipeline.contact.analysis import line_of_action_load
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.cycle_io import cycle_cache_inputs
 from pipeline.contact.groove_flank import GrooveFlankCoupling
-from pipeline.contact.herringbone import HerringboneOptions, herringbone_mesh_cycle
+from pipeline.contact.herringbone import (
+    SUN_LOAD_SIDE,
+    HerringboneOptions,
+    herringbone_mesh_cycle,
+)
 from pipeline.contact.herringbone_results import (
     HerringboneCycle,
     load_herringbone,
@@ -46,7 +50,7 @@ from pipeline.stiffness.options import StiffnessOptions
 
 HERRINGBONE_FORMAT = 1  # bump when the herringbone solve or its stored layout changes
 GROOVE_FORMAT = 1
-TORQUE_SIDE = {"right": "R", "left": "L", "both": "both"}
+TORQUE_SIDE = SUN_LOAD_SIDE
 """``[herringbone] torque_entry`` -> the herringbone model's ``sun_load_side``."""
 
 
