@@ -30,13 +30,14 @@ T_SUN = 148000.0  # N m, all 4 planets
 
 
 def coarse_config(folder: Path) -> Path:
-    """The set without dynamics, on a coarse contact and groove mesh."""
+    """The set without dynamics, on a coarse contact and groove mesh, no pyvista maps."""
     text = CONFIG.read_text(encoding="utf-8")
     text = text[:text.index("\n[dynamics]")]
     for old, new in (("positions = 60", "positions = 8"), ("slices = 20", "slices = 6"),
                      ("mesh_size_mm = 30.0", "mesh_size_mm = 60.0")):
         assert old in text
         text = text.replace(old, new)
+    text = text.replace("[contact]", "[contact]\nrender = false", 1)
     path = folder / "herringbone.toml"
     path.write_text(text, encoding="utf-8")
     return path
@@ -148,3 +149,13 @@ def test_numbers_are_the_distributions(report):
         assert q["K_Hbeta"]["values"][col] == h.distribution.k_hbeta
         assert q["max_hertz_pressure"]["values"][col] == h.distribution.hertz_max.value * 1e-6
         assert q["torque"]["values"][col] == h.operation.torque
+
+
+def test_render_false_leaves_out_the_halves_pyvista_maps(report):
+    """``[contact] render = false`` acts on the herringbone halves' maps too: their VTU files
+    and the per-position table are written, the pyvista PNGs are not."""
+    out, _, _ = report
+    names = {p.name for p in out.iterdir()}
+    assert {"sun_planet_herringbone.csv", "sun_planet_herringbone_load_map_left.vtu",
+            "sun_planet_herringbone_load_map_right.vtu"} <= names
+    assert not [n for n in names if n.endswith(".png") and "load_map" in n and "2d" not in n]

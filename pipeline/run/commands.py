@@ -75,7 +75,7 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
         from pipeline.run.herringbone import write_herringbone
 
         files += write_herringbone(st.herringbone, out, prefix, figures,
-                                   opts.load_map_profile_points)
+                                   opts.load_map_profile_points, opts.render)
     return files
 
 

@@ -178,10 +178,11 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
 
 
 def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
-                      profile_points: int = 80) -> list[Path]:
+                      profile_points: int = 80, render: bool = True) -> list[Path]:
     """``<prefix>herringbone.csv`` (per position: loads, flank approaches, own and whole-mesh
     stiffness, groove twist and torque, sun axial position) and the left/right sun-flank
-    load maps ``<prefix>herringbone_load_map_{left,right}.png/.vtu``; returns the files."""
+    load maps ``<prefix>herringbone_load_map_{left,right}.vtu`` and, with ``render``
+    (``[contact] render``), their pyvista ``.png``; returns the files."""
     from pipeline.contact.herringbone_maps import (
         half_load_maps,
         half_pair,
@@ -194,6 +195,8 @@ def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
     maps = half_load_maps(stage.cycle, stage.pair, profile_points)
     files = [write_csv(out / f"{prefix}herringbone.csv", stage.cycle.columns())]
     files += write_half_vtus(maps, stage.pair, out, f"{prefix}herringbone_load_map")
+    if not render:
+        return files
     top = max(m.unit_load.max() for m in maps.values()) * 1e-3
     for side, m in maps.items():
         lo, hi = loaded_range(m)
