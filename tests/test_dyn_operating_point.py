@@ -189,6 +189,9 @@ def test_wind_turbine_report_sections(wind_run):
     # 10 modes up to 338.1 Hz, modes 7 and 8 (290.713 Hz, to 1e-6) in one row
     assert len(modes) == 9 and s["natural_frequencies_Hz"][5] == pytest.approx(290.713, 1e-6)
     assert modes[5].label.startswith("modes 7, 8 (repeated)")
+    # f_n / f_m once per row: 160.02 / 27.709 = 5.775, 181.18 / 27.709 = 6.539, ...
+    ratios = main.notes[-1].split(": ")[1].split(". ")[0].split(", ")
+    assert len(ratios) == 9 and ratios[:2] == ["5.77", "6.54"]
     meshes = dynamics_meshes_section(s, "sun_planet")
     assert meshes.columns == ("planets 1, 3", "planets 2, 4")
     assert len(meshes.quantities) == 10

@@ -171,7 +171,8 @@ def dynamics_section(summary: Mapping[str, Any]) -> Section:
     rows.append(quantity("natural_frequency_cut", "natural frequencies listed up to "
                          "max(10 f_m, highest mesh frequency of the sweep)", "Hz", cut))
     listed = summary["modes_listed"]
-    rows += _mode_rows(listed)
+    mode_rows = _mode_rows(listed)
+    rows += mode_rows
     rows.append(quantity("elastic_modes_above_cut", "elastic modes above that (in modes.csv)",
                          "-", summary["elastic_modes_above_cut"]))
     rows.append(quantity("rigid_body_modes", "rigid-body modes (0 Hz, not listed)", "-",
@@ -181,10 +182,11 @@ def dynamics_section(summary: Mapping[str, Any]) -> Section:
         notes.append(f"The sweep ({sw['f_min_Hz']:.4g}-{sw['f_max_Hz']:.4g} Hz, as given) "
                      f"leaves out the operating mesh frequency {f_m:.4g} Hz.")
     if listed:
-        ratios = ", ".join(f"{m['frequency_Hz'] / f_m:.3g}" for m in listed)
-        notes.append(f"f_n / f_m of the listed modes: {ratios}. At the operating speed mesh "
-                     "harmonic h excites the modes near h f_m (a whole number: resonance); "
-                     "sweep.png marks f_m, its harmonics and the natural frequencies.")
+        ratios = ", ".join(f"{r.values[0] / f_m:.3g}" for r in mode_rows)
+        notes.append(f"f_n / f_m of the listed frequencies: {ratios}. A mode whose f_n / f_m "
+                     "is near a whole number h resonates with mesh harmonic h at the "
+                     "operating speed; sweep.png marks f_m, its harmonics and the natural "
+                     "frequencies.")
     else:
         notes.append(f"No elastic mode below {cut:.4g} Hz: mesh harmonics 1-10 at the "
                      "operating speed excite no resonance.")
