@@ -169,7 +169,7 @@ def test_numbers_are_the_stages(report):
     prov = s["provenance"]["quantities"]
     assert prov["configuration_hash"]["value"] == content_hash(box.to_dict())
     assert prov["code_revision"]["value"]
-    assert "dynamics" in s and val("dynamics", "mesh_dynamic_factor") > 1.0
+    assert "dynamics" in s and val("dynamics_meshes", "dynamic_factor") > 1.0
 
 
 def test_report_numbers_match_the_distribution(report):

@@ -29,7 +29,8 @@ Package map (data flows top to bottom):
 - :mod:`.integrate` - exact piecewise propagators, Floquet steady state;
   :mod:`.quasi_static` - the zero-speed limit (:func:`quasi_static_response`).
 - :mod:`.sweep` - mesh-force sweeps over speed (local or Dask executors), load sharing;
-  :mod:`.peaks` refines peak frequencies.
+  :mod:`.peaks` refines peak frequencies; :mod:`.operating` - the operating mesh
+  frequency, the members' speeds at any mesh frequency, the modes that matter there.
 - :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
 - :mod:`.reduction`, :mod:`.signals` - rigid-body-mode removal and exact segment means
   / Fourier coefficients shared by the solvers.

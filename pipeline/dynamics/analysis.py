@@ -70,15 +70,22 @@ def analyse_response(model, options: ResponseOptions | None = None, *,
 
 def analyse_sweep(model, options: SweepOptions | None = None, *, full: bool = False,
                   executor: Executor | str | None = "auto",
-                  show_progress: bool = False) -> SweepResult:
+                  show_progress: bool = False,
+                  natural_frequencies: np.ndarray | None = None) -> SweepResult:
     """RMS, mean and maximum dynamic mesh force against mesh frequency.
 
-    ``executor``: "auto" runs sweeps of 50 points or more in a local process pool, ``None``
-    serially, or any ``concurrent.futures.Executor``.
+    The range is the one of ``options`` (:meth:`SweepOptions.bounds`): the given ends,
+    the others derived from the model's operating mesh frequency (1 / its period) and
+    its natural frequencies (``natural_frequencies`` in Hz, computed when ``None`` and
+    needed). ``executor``: "auto" runs sweeps of 50 points or more in a local process
+    pool, ``None`` serially, or any ``concurrent.futures.Executor``.
     """
     options = options or SweepOptions()
     system = model.assembly().assemble()
-    freqs = options.frequencies(full)
+    if natural_frequencies is None and (options.f_min is None or options.f_max is None):
+        natural_frequencies = analyse_modes(model).frequencies
+    freqs = options.frequencies(full, system.frequency,
+                                () if natural_frequencies is None else natural_frequencies)
     if executor == "auto":
         executor = "local" if freqs.size >= 50 else None
     return mesh_force_sweep(system, freqs, options.method, options.n_harmonics,

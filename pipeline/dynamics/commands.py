@@ -30,7 +30,7 @@ from pipeline.dynamics.layout import model_layout
 from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.io import to_jsonable, write_json
 from pipeline.output_folder import staged_output
-from pipeline.run.dynamics import dynamics_options
+from pipeline.run.dynamics import dynamics_options, operating_frequency
 from pipeline.validation import InputError
 
 
@@ -114,7 +114,8 @@ def run_response(args) -> int:
     resp = result.response
     summary = {**result.summary(), "out": str(out)}
     with staged_output(out) as staging:
-        files = write_response(result, staging, box.name)
+        files = write_response(result, staging, box.name,
+                               operating=operating_frequency(box, model))
         files.append(write_json(staging / "summary.json", summary))
         record(staging, args, box, files)
     lines = [
@@ -132,18 +133,23 @@ def run_response(args) -> int:
 def run_sweep(args) -> int:
     """RMS dynamic mesh force against mesh frequency."""
     box, model, out = _setup(args, "sweep")
+    fn = analyse_modes(model).frequencies
     res = analyse_sweep(model, dynamics_options(box).sweep, full=args.full,
-                        show_progress=not args.json)
+                        show_progress=not args.json, natural_frequencies=fn)
     freqs = res.frequencies
+    operating = operating_frequency(box, model)
     with staged_output(out) as staging:
-        files = write_sweep(res, staging, box.name,
-                            natural_frequencies=analyse_modes(model).frequencies)
+        files = write_sweep(res, staging, box.name, natural_frequencies=fn,
+                            operating=operating)
         record(staging, args, box, files)
     shown = shown_meshes(res)
     peaks = {m: res.peaks(m) for m in shown}
-    summary = {"points": int(freqs.size), "peaks_Hz": peaks, "out": str(out)}
+    summary = {"points": int(freqs.size), "f_min_Hz": float(freqs[0]),
+               "f_max_Hz": float(freqs[-1]), "operating_point": operating.summary(),
+               "peaks_Hz": peaks, "out": str(out)}
     lines = [
-        f"{box.name}: {freqs.size} points {freqs[0]:.0f}-{freqs[-1]:.0f} Hz, results in {out}"
+        f"{box.name}: {freqs.size} points {freqs[0]:.4g}-{freqs[-1]:.4g} Hz (operating mesh "
+        f"frequency {operating.mesh_frequency:.4g} Hz), results in {out}"
     ]
     lines += [f"  {m}: peaks at {', '.join(f'{p:.0f}' for p in v)} Hz" for m, v in peaks.items()]
     _emit(args, summary, lines)

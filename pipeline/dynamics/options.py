@@ -3,12 +3,21 @@ response solver, the frequency sweep (all SI)."""
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from pipeline.dynamics.operating import MESH_ORDERS, elastic_modes
 from pipeline.signals import PeriodicSignal
-from pipeline.validation import InputError, check_choice, check_int_range, check_range
+from pipeline.validation import (
+    InputError,
+    PhysicsWarning,
+    check_choice,
+    check_int_range,
+    check_positive,
+    check_range,
+)
 
 RESPONSE_METHODS = ("harmonic_balance", "floquet", "time")
 EXCITATIONS = ("analytical", "contact")
@@ -44,37 +53,115 @@ class ResponseOptions:
         check_int_range("response.periods", self.periods, 1, 100_000)
 
 
+SWEEP_LOW_FRACTION = 0.25
+"""Default lower end of a sweep: f_min = SWEEP_LOW_FRACTION f_m."""
+SWEEP_HARMONICS = 4
+"""Default upper end of a sweep reaches at least SWEEP_HARMONICS f_m."""
+SWEEP_MODE_MARGIN = 1.25
+"""... and SWEEP_MODE_MARGIN times the natural frequency it must cover (the resonance
+peak and its fall beyond, for mesh damping ratios up to about 0.1)."""
+
+
+def default_sweep_range(mesh_frequency: float,
+                        natural_frequencies: np.ndarray = ()) -> tuple[float, float]:
+    """The default sweep range (Hz) at the operating mesh frequency f_m (Hz).
+
+    ``f_min = f_m / 4`` and ``f_max = max(4 f_m, 1.25 f_n*)``, f_n* the highest elastic
+    natural frequency up to 10 f_m (:data:`~pipeline.dynamics.operating.MESH_ORDERS`: the
+    modes mesh harmonics 1-10 excite at the operating speed), or the lowest elastic one
+    when none lies there; ``natural_frequencies`` in Hz, rigid-body modes skipped
+    (:func:`~pipeline.dynamics.operating.elastic_modes`). The sweep then holds the
+    operating point, its harmonics 2-4 f_m and the first-order resonance of every mode
+    that matters at the operating speed.
+    """
+    check_positive("operating mesh frequency", mesh_frequency, "Hz")
+    fn = np.asarray(natural_frequencies, dtype=float)
+    elastic = fn[elastic_modes(fn)]
+    top = SWEEP_HARMONICS * mesh_frequency
+    if elastic.size:
+        reached = elastic[elastic <= MESH_ORDERS * mesh_frequency]
+        f_star = float(reached.max()) if reached.size else float(elastic.min())
+        top = max(top, SWEEP_MODE_MARGIN * f_star)
+    return SWEEP_LOW_FRACTION * mesh_frequency, top
+
+
 @dataclass(frozen=True)
 class SweepOptions:
     """Frequency sweep settings (mesh frequencies in Hz).
 
     Attributes
     ----------
-    f_min, f_max : first and last mesh frequency, Hz, 0 < f_min < f_max <= 1e6.
+    f_min, f_max : first and last mesh frequency, Hz, 0 < f_min < f_max <= 1e6, or
+        ``None`` (the default) for the range derived from the operating point
+        (:func:`default_sweep_range`): f_min = f_m / 4 and f_max = max(4 f_m, 1.25 f_n*),
+        f_m the operating mesh frequency, f_n* the highest elastic natural frequency of
+        the model up to 10 f_m (the lowest one when none lies there). The default sweep
+        holds the operating point, its harmonics 2-4 f_m and the first-order resonance of
+        every mode that mesh harmonics 1-10 excite at the operating speed. A given end is
+        used as given (a range that leaves out f_m is warned about in one line).
     points : frequencies of the full sweep, in [2, 100000].
     points_coarse : frequencies of the default (coarse) sweep, in [2, 100000].
     method : "harmonic_balance" or "floquet".
     n_harmonics : harmonics of the harmonic balance, in [1, 500].
     """
 
-    f_min: float = 10.0
-    f_max: float = 5000.0
+    f_min: float | None = None
+    f_max: float | None = None
     points: int = 500
     points_coarse: int = 100
     method: str = "harmonic_balance"
     n_harmonics: int = 20
 
     def __post_init__(self) -> None:
-        check_range("sweep.f_min", self.f_min, 0.0, 1e6, lo_open=True, unit="Hz")
-        check_range("sweep.f_max", self.f_max, self.f_min, 1e6, lo_open=True, unit="Hz")
+        if self.f_min is not None:
+            check_range("sweep.f_min", self.f_min, 0.0, 1e6, lo_open=True, unit="Hz")
+        if self.f_max is not None:
+            check_range("sweep.f_max", self.f_max, self.f_min or 0.0, 1e6, lo_open=True,
+                        unit="Hz")
         check_int_range("sweep.points", self.points, 2, 100_000)
         check_int_range("sweep.points_coarse", self.points_coarse, 2, 100_000)
         check_choice("sweep.method", self.method, ("harmonic_balance", "floquet"))
         check_int_range("sweep.n_harmonics", self.n_harmonics, 1, 500)
 
-    def frequencies(self, full: bool) -> np.ndarray:
-        """Mesh frequencies of the sweep, shape (points,), Hz."""
-        return np.linspace(self.f_min, self.f_max, self.points if full else self.points_coarse)
+    @property
+    def given(self) -> bool:
+        """True when the file gives either end of the range."""
+        return self.f_min is not None or self.f_max is not None
+
+    def bounds(self, mesh_frequency: float,
+               natural_frequencies: np.ndarray = ()) -> tuple[float, float]:
+        """(f_min, f_max) in Hz: the given ends, the others from :func:`default_sweep_range`
+        at the operating mesh frequency ``mesh_frequency`` (Hz) and the model's
+        ``natural_frequencies`` (Hz). Warns (:class:`PhysicsWarning`) when the range
+        leaves out the operating mesh frequency."""
+        lo, hi = default_sweep_range(mesh_frequency, natural_frequencies)
+        lo = lo if self.f_min is None else self.f_min
+        hi = hi if self.f_max is None else self.f_max
+        if lo >= hi:
+            name, value = (("f_min_Hz", self.f_min) if self.f_min is not None
+                           else ("f_max_Hz", self.f_max))
+            raise InputError(f"dynamics.sweep.{name} = {value:g} Hz leaves an empty range "
+                             f"with the default other end ({lo:.6g}-{hi:.6g} Hz at the "
+                             f"operating mesh frequency {mesh_frequency:.6g} Hz); give both "
+                             "f_min_Hz and f_max_Hz")
+        if not lo <= mesh_frequency <= hi:
+            warnings.warn(f"dynamics.sweep: the range {lo:.6g}-{hi:.6g} Hz leaves out the "
+                          f"operating mesh frequency {mesh_frequency:.6g} Hz (omit f_min_Hz "
+                          "and f_max_Hz for a range around it)", PhysicsWarning, stacklevel=2)
+        return lo, hi
+
+    def frequencies(self, full: bool, mesh_frequency: float | None = None,
+                    natural_frequencies: np.ndarray = ()) -> np.ndarray:
+        """Mesh frequencies of the sweep, shape (points,), Hz, evenly spaced over
+        :meth:`bounds` (``mesh_frequency`` is needed unless both ends are given)."""
+        if mesh_frequency is None:
+            if self.f_min is None or self.f_max is None:
+                raise ValueError("a sweep without a given range needs the operating mesh "
+                                 "frequency")
+            lo, hi = self.f_min, self.f_max
+        else:
+            lo, hi = self.bounds(mesh_frequency, natural_frequencies)
+        return np.linspace(lo, hi, self.points if full else self.points_coarse)
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ import numpy as np
 from pipeline.dynamics.analysis import ResponseResult
 from pipeline.dynamics.layout import ModelLayout
 from pipeline.dynamics.modal import ModalResult
+from pipeline.dynamics.operating import OperatingFrequency
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.io import write_csv
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
@@ -37,9 +38,23 @@ def write_modes(res: ModalResult, out: Path, layout: ModelLayout,
     return files
 
 
+def operating_title(operating: OperatingFrequency | None) -> str:
+    """``"at f_m = 27.71 Hz (sun 96.67 rpm)"``: the operating point a figure is drawn at
+    (mesh frequency, the driver's speed), or "" without one."""
+    if operating is None:
+        return ""
+    text = f"at f_m = {operating.mesh_frequency:.4g} Hz"
+    if operating.members:
+        m = operating.members[0]
+        text += f" ({m} {operating.rpm(m):.4g} rpm)"
+    return text
+
+
 def write_response(result: ResponseResult, out: Path, name: str,
-                   figures: FigureCache = NO_CACHE) -> list[Path]:
-    """Time history, DTE spectrum (CSV + PNG) and harmonic contributions (PNG)."""
+                   figures: FigureCache = NO_CACHE,
+                   operating: OperatingFrequency | None = None) -> list[Path]:
+    """Time history, DTE spectrum (CSV + PNG) and harmonic contributions (PNG); the
+    titles name the ``operating`` mesh frequency (Hz) and driver speed (rpm) when given."""
     from pipeline.viz.dynamics import (
         mesh_title,
         plot_harmonic_contributions,
@@ -48,16 +63,20 @@ def write_response(result: ResponseResult, out: Path, name: str,
     )
 
     resp, hr = result.response, result.harmonic
+    meshes = resp.mesh_names[:1]
+    at = f" {operating_title(operating)}".rstrip()
     files = [write_csv(out / "time_history.csv", result.columns())]
     f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
     files.append(figures.save(out / "time_history.png", plot_time_history, [resp], [name],
                               title=f"{name}: " + mesh_title("DTE and dynamic mesh force",
-                                                             resp.mesh_names[:1])))
-    files.append(figures.save(out / "dte_spectrum.png", plot_spectrum, [resp], [name]))
+                                                             meshes) + at))
+    files.append(figures.save(out / "dte_spectrum.png", plot_spectrum, [resp], [name],
+                              title=mesh_title("DTE spectrum", meshes) + at if at else ""))
     if hr is not None:
-        files.append(figures.save(out / "harmonics.png", plot_harmonic_contributions, [hr],
-                                  [name]))
+        files.append(figures.save(
+            out / "harmonics.png", plot_harmonic_contributions, [hr], [name],
+            title=mesh_title("harmonic contributions to the DTE", meshes) + at if at else ""))
     return files
 
 
@@ -70,12 +89,15 @@ def shown_meshes(res: SweepResult) -> list[str]:
 
 def write_sweep(res: SweepResult, out: Path, name: str,
                 figures: FigureCache = NO_CACHE,
-                natural_frequencies: np.ndarray | None = None) -> list[Path]:
+                natural_frequencies: np.ndarray | None = None,
+                operating: OperatingFrequency | None = None) -> list[Path]:
     """``sweep.csv`` (every mesh: RMS, max, mean and alternating RMS force in N, dynamic
     factor) and ``sweep.png`` (RMS force of :func:`shown_meshes`, with the model's
-    ``natural_frequencies`` in Hz marked)."""
+    ``natural_frequencies`` in Hz, the ``operating`` mesh frequency and its harmonics
+    marked, the driver's speed in rpm on the top axis)."""
     from pipeline.viz.dynamics import plot_sweep
 
     return [write_csv(out / "sweep.csv", res.columns()),
             figures.save(out / "sweep.png", plot_sweep, [res], [name], shown_meshes(res),
-                         title=name, natural_frequencies=natural_frequencies)]
+                         title=name, natural_frequencies=natural_frequencies,
+                         operating=operating)]

@@ -326,26 +326,6 @@ def figures_section(key: str, title: str, figures: Sequence[Figure],
     return Section(key, title, tuple(rows), figures=tuple(figures), notes=tuple(notes))
 
 
-def dynamics_rows(summary: dict[str, Any]) -> list[Quantity]:
-    """Dynamic factor and mesh forces at the operating speed, sweep maxima, first modes."""
-    rows = [quantity("excitation", "mesh excitation of the dynamic model", "",
-        summary["excitation"])]
-    for name, m in summary["response_at_operating_speed"]["meshes"].items():
-        rows.append(quantity(f"{name}_dynamic_factor", f"{name}: dynamic factor at the operating "
-                       "speed (max / mean mesh force)", "-", m["dynamic_factor"]))
-        rows.append(quantity(f"{name}_max_force", f"{name}: largest dynamic mesh force", "N",
-                       m["max_force_N"]))
-    sw = summary["sweep"]
-    for name, v in sw["max_dynamic_factor"].items():
-        rows.append(quantity(f"{name}_sweep_max_dynamic_factor", f"{name}: largest dynamic factor "
-                       f"over {sw['f_min_Hz']:g}-{sw['f_max_Hz']:g} Hz mesh frequency", "-", v))
-        rows.append(quantity(f"{name}_sweep_max_at", f"{name}: at mesh frequency", "Hz",
-                       sw["max_dynamic_factor_at_Hz"][name]))
-    for i, f in enumerate(summary["natural_frequencies_Hz"][:6]):
-        rows.append(quantity(f"natural_frequency_{i}", f"natural frequency {i}", "Hz", f))
-    return rows
-
-
 def provenance_section(record: dict[str, Any]) -> Section:
     """Configuration hash, code revision, versions, run time."""
     rows = [

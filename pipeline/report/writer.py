@@ -29,6 +29,7 @@ from typing import Any
 from pipeline.contact.distribution import LoadDistribution, load_distribution
 from pipeline.io import atomic_write_text, write_csv, write_json
 from pipeline.report import content
+from pipeline.report.dynamics_section import dynamics_meshes_section, dynamics_section
 from pipeline.report.html import render_html
 from pipeline.report.model import Figure, MeshReport
 from pipeline.report.provenance import provenance
@@ -40,7 +41,9 @@ STAGE_FIGURES = (
     ("tooth_profiles.png", "Tooth profiles (involute and trochoidal fillet)", "geometry"),
     ("load_map.png", "Tooth-surface load map", "load_maps"),
     ("load_map_2d.png", "Unit load over the plane of action", "load_maps"),
-    ("sweep.png", "Dynamic mesh force and dynamic factor over mesh frequency", "dynamics"),
+    ("sweep.png", "RMS dynamic mesh force over mesh frequency (the first planet's sun "
+     "meshes of a planetary set), with the operating mesh frequency, its harmonics and the "
+     "natural frequencies marked", "dynamics"),
     ("dte_spectrum.png", "Dynamic transmission error spectrum", "dynamics"),
     ("harmonics.png", "Harmonic contributions of the response", "dynamics"),
 )
@@ -156,8 +159,9 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                                                 stage["load_maps"]))
     if result.dynamics is not None:
         dyn = _stage_figures(out, prefix, False).get("dynamics", [])
-        sections.append(content.figures_section(
-            "dynamics", "Dynamics", dyn, content.dynamics_rows(result.dynamics.summary())))
+        summary = result.dynamics.summary()
+        sections.append(dynamics_section(summary))
+        sections.append(dynamics_meshes_section(summary, name, dyn))
     run_s = result.log.summary()["total_s"]
     src = box.source
     record = provenance(box.to_dict(), file_sha256=src.sha256 if src else None,

@@ -94,9 +94,10 @@ def write_run(result: RunResult, out: Path, full: bool = False,
     dyn = result.dynamics
     if dyn is not None:
         files += write_modes(dyn.modes, out, model_layout(dyn.model), figures, box.name)
-        files += write_response(dyn.response, out, box.name, figures)
+        files += write_response(dyn.response, out, box.name, figures, dyn.operating)
         files += write_sweep(dyn.sweep, out, box.name, figures,
-                             natural_frequencies=dyn.modes.frequencies)
+                             natural_frequencies=dyn.modes.frequencies,
+                             operating=dyn.operating)
     return files
 
 

@@ -30,6 +30,14 @@ from pipeline.dynamics.mesh_input import (
     excitation_from_stiffness,
 )
 from pipeline.dynamics.modal import ModalResult
+from pipeline.dynamics.operating import (
+    OperatingFrequency,
+    elastic_modes,
+    modes_that_matter,
+    pair_operating_frequency,
+    planetary_operating_frequency,
+    system_operating_frequency,
+)
 from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.run.steps import StepLog
@@ -46,6 +54,10 @@ class DynamicsStages:
     modes : natural frequencies (Hz) and mode shapes.
     response : steady response at the operating speed.
     sweep : mesh force and dynamic factor against mesh frequency.
+    operating : the operating mesh frequency (Hz) and the members' mesh orders.
+    sweep_given : True when the file gives an end of the sweep range, False when the
+        range is the default around the operating point
+        (:func:`pipeline.dynamics.options.default_sweep_range`).
     """
 
     model: Any
@@ -53,9 +65,14 @@ class DynamicsStages:
     modes: ModalResult
     response: ResponseResult
     sweep: SweepResult
+    operating: OperatingFrequency
+    sweep_given: bool = False
 
-    def summary(self, modes: int = 8) -> dict[str, Any]:
-        """First natural frequencies (Hz), response per mesh (N, m), dynamic factors (-)."""
+    def summary(self) -> dict[str, Any]:
+        """Operating mesh frequency (Hz) and speeds (rpm); the elastic natural frequencies
+        (Hz) up to ``max(10 f_m, top of the sweep)``
+        (:func:`~pipeline.dynamics.operating.modes_that_matter`); response per mesh (N, m)
+        and dynamic factors (-) at the operating speed and over the sweep."""
         resp = self.response.response
         per_mesh = self.response.summary()["meshes"]
         force = resp.mesh_force[:, resp.steady_slice()]
@@ -65,13 +82,24 @@ class DynamicsStages:
             per_mesh[name]["dynamic_factor"] = float(force[i].max() / mean) if mean else np.nan
         sw = self.sweep
         k = np.argmax(sw.dynamic_factor, axis=1)
+        fn = self.modes.frequencies
+        listed, cut = modes_that_matter(fn, self.operating.mesh_frequency,
+                                        float(sw.frequencies[-1]))
+        elastic = elastic_modes(fn)
         return {
             "excitation": self.excitation,
             "dofs": len(self.modes.dof_names),
-            "natural_frequencies_Hz": [float(f) for f in self.modes.frequencies[:modes]],
+            "operating_point": self.operating.summary(),
+            "natural_frequencies_Hz": [float(fn[i]) for i in listed],
+            "modes_listed": [{"mode": int(i), "frequency_Hz": float(fn[i]),
+                              "kind": self.modes.kinds[i]} for i in listed],
+            "natural_frequency_cut_Hz": cut,
+            "rigid_body_modes": int(fn.size - elastic.size),
+            "elastic_modes_above_cut": int(elastic.size - listed.size),
             "response_at_operating_speed": {"method": resp.method, "mesh_period_s": resp.period,
                                             "meshes": per_mesh},
             "sweep": {**sw.summary(),
+                      "range": "given" if self.sweep_given else "default",
                       "max_dynamic_factor": {m: float(sw.dynamic_factor[i, k[i]])
                                              for i, m in enumerate(sw.mesh_names)},
                       "max_dynamic_factor_at_Hz": {m: float(sw.frequencies[k[i]])
@@ -150,11 +178,25 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
     return model, opts.excitation
 
 
+def operating_frequency(box: Gearbox, model: Any) -> OperatingFrequency:
+    """The operating mesh frequency of a gearbox (Hz) and its members' mesh orders, from
+    its tooth counts and the driver's speed (:mod:`pipeline.dynamics.operating`); a
+    ``[lumped_model]`` from its system's period."""
+    if box.kind == "planetary":
+        ps = box.planetary
+        return planetary_operating_frequency(ps.sun.teeth, ps.ring.teeth, box.operation.speed)
+    if box.kind == "lumped":
+        return system_operating_frequency(model.assembly().assemble())
+    pair = box.pair
+    return pair_operating_frequency(pair.pinion.teeth, pair.gear.teeth, box.operation.speed)
+
+
 def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> DynamicsStages:
     """Model, modes, response at the operating speed and speed sweep."""
     opts = dynamics_options(box)
     with log.step("dynamic model"):
         model, excitation = dynamic_model(box, meshes)
+        operating = operating_frequency(box, model)
     with log.step("modes") as note:
         modes = analyse_modes(model)
         note["text"] = f"{len(modes.dof_names)} DOF"
@@ -162,6 +204,10 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> Dynami
         response = analyse_response(model, opts.response, refine=2 if options.full else 1)
     with log.step("speed sweep", long=True) as note:
         sweep = analyse_sweep(model, opts.sweep, full=options.full,
-                              show_progress=options.show_progress)
-        note["text"] = f"{sweep.frequencies.size} speeds"
-    return DynamicsStages(model, excitation, modes, response, sweep)
+                              show_progress=options.show_progress,
+                              natural_frequencies=modes.frequencies)
+        note["text"] = (f"{sweep.frequencies.size} speeds, {sweep.frequencies[0]:.4g}-"
+                        f"{sweep.frequencies[-1]:.4g} Hz (operating mesh frequency "
+                        f"{operating.mesh_frequency:.4g} Hz)")
+    return DynamicsStages(model, excitation, modes, response, sweep, operating,
+                          opts.sweep.given)

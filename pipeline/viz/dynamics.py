@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from pipeline.dynamics.operating import OperatingFrequency
+from pipeline.dynamics.options import SWEEP_HARMONICS
 from pipeline.dynamics.results import HarmonicResponse, Response
 from pipeline.viz.canvas import new_figure
 
@@ -181,19 +183,56 @@ def plot_harmonic_contributions(
     return ax
 
 
+def _mark_operating(a: Axes, operating: OperatingFrequency, fmin: float, fmax: float,
+                    first: bool) -> None:
+    """The operating mesh frequency f_m (solid) and its harmonics 2 f_m .. 4 f_m
+    (dash-dotted) inside ``[fmin, fmax]``; a note on the panel when f_m lies outside."""
+    f_m = operating.mesh_frequency
+    text = f"operating mesh frequency f_m = {f_m:.4g} Hz"
+    if operating.members:
+        m = operating.members[0]
+        text += f" ({m} {operating.rpm(m):.4g} rpm)"
+    if fmin <= f_m <= fmax:
+        a.axvline(f_m, color="C3", lw=1.4, label=text if first else None, gid="operating")
+    else:
+        a.text(0.01 if f_m < fmin else 0.99, 0.04, f"{text}: {'below' if f_m < fmin else 'above'}"
+               " the sweep", transform=a.transAxes, fontsize=8, color="C3",
+               ha="left" if f_m < fmin else "right")
+    h = [k for k in range(2, SWEEP_HARMONICS + 1) if fmin <= k * f_m <= fmax]
+    for j, k in enumerate(h):
+        a.axvline(k * f_m, color="C3", lw=0.9, ls="-.", gid=f"harmonic_{k}",
+                  label=(f"harmonics {h[0]}-{h[-1]} f_m (excitation at the operating speed)"
+                         if len(h) > 1 else f"harmonic {k} f_m (excitation at the operating "
+                         "speed)")
+                  if first and j == 0 else None)
+
+
+def _speed_axis(a: Axes, operating: OperatingFrequency) -> None:
+    """A top x axis with the driver's speed (rpm) at each mesh frequency."""
+    m = operating.members[0]
+    per_hz = operating.rpm(m, 1.0)
+    top = a.secondary_xaxis("top", functions=(lambda f: f * per_hz, lambda n: n / per_hz))
+    top.set_xlabel(f"{m} speed [rpm]")
+
+
 def plot_sweep(
     sweeps: Sequence, labels: Sequence[str], meshes: Sequence[str], title: str = "",
     natural_frequencies: np.ndarray | None = None, fig: Figure | None = None,
+    operating: OperatingFrequency | None = None,
 ) -> Figure:
     """RMS dynamic mesh force (kN, solid) and its alternating part (RMS of the force minus
     its mean, dashed) against mesh frequency (Hz), one panel per mesh.
 
     Every y axis starts at 0. ``natural_frequencies`` (Hz, the undamped modes of the
     model) are marked as vertical lines where the mesh frequency equals them (first-order
-    resonance). A panel whose curves equal those of an earlier panel to 1e-9 says so (the
-    left and right halves of a symmetric herringbone set carry equal forces).
+    resonance). ``operating`` marks the operating mesh frequency f_m (solid, with the
+    driver's speed in rpm in the legend), its harmonics 2 f_m .. 4 f_m (where one meets
+    a natural frequency, that mode resonates at the operating speed) and adds the
+    driver's speed (rpm) as a top axis. A panel whose curves equal those of an earlier
+    panel to 1e-9 says so (the left and right halves of a symmetric herringbone set carry
+    equal forces).
     """
-    fig, ax = _panels(fig, len(meshes), 1, (8, 3.2 * len(meshes)))
+    fig, ax = _panels(fig, len(meshes), 1, (8, 3.2 * len(meshes) + 0.4))
     fmin = min(float(sw.frequencies[0]) for sw in sweeps)
     fmax = max(float(sw.frequencies[-1]) for sw in sweeps)
     fn = np.asarray([] if natural_frequencies is None else natural_frequencies, dtype=float)
@@ -204,6 +243,8 @@ def plot_sweep(
         for j, f in enumerate(fn):
             a.axvline(f, color="0.55", ls=":", lw=0.8,
                       label="natural frequencies (undamped)" if j == 0 else None)
+        if operating is not None:
+            _mark_operating(a, operating, fmin, fmax, k == 0)
         y = np.concatenate([sw.rms_force[sw.mesh_names.index(m)] for sw in sweeps])
         for c, (sw, lab) in enumerate(zip(sweeps, labels, strict=True)):
             i = sw.mesh_names.index(m)
@@ -220,6 +261,8 @@ def plot_sweep(
         a.set_ylim(bottom=0.0, top=1.08 * float(y.max()) / 1e3)
         a.set_xlim(fmin, fmax)
         a.grid(alpha=0.3)
+    if operating is not None and operating.members:
+        _speed_axis(ax[0, 0], operating)
     ax[-1, 0].set_xlabel("mesh frequency [Hz]")
     handles, names = ax[0, 0].get_legend_handles_labels()
     fig.legend(handles, names, loc="outside lower center", fontsize=8,
