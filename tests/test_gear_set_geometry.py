@@ -66,7 +66,7 @@ def test_backlash_is_zero_at_the_zero_backlash_distance(internal, helical, x1, x
     operating transverse pitch is exactly filled by the two gears' own tooth thicknesses on
     their operating pitch circles, j_wt = p_wt - s_w1 - s_w2 = 0 to 1e-9 m, for shifts of both
     signs on either gear. (With the ring's shift taken with the wrong sign, as before, the
-    (0.3, 0.2) planet-ring pair had a_w 1.1 mm too large and j_wt = -0.62 mm.)"""
+    (0.3, 0.2) planet-ring pair had a_w 1.34 mm too large and j_wt = -0.87 mm.)"""
     beta, h1, h2 = (D(12.0), "right", "right" if internal else "left") if helical else \
         (0.0, "none", "none")
     pinion = spur(30, "planet", profile_shift=x1, bore_radius=0.01, helix_angle=beta, hand=h1)
