@@ -49,3 +49,16 @@ def _one_blas_thread_in_dynamics_tests(request):
 
     with threadpool_limits(limits=1):
         yield
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _temporary_cache_folder(tmp_path_factory):
+    """Every test caches into one temporary folder of the session (GEARPIPE_CACHE_DIR, which
+    subprocesses inherit), never into the checkout's meshes/ or the user's cache: a user's
+    first run after the tests stays cold, and no test depends on what an earlier run left.
+    A test that names its own --cache-dir or sets the variable itself still wins."""
+    from pipeline.fem.cache_dir import CACHE_ENV
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv(CACHE_ENV, str(tmp_path_factory.mktemp("gearpipe-cache")))
+        yield

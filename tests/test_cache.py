@@ -255,3 +255,11 @@ def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
         out = figures.save(tmp_path / "c.png", draw, np.arange(3.0))
     assert len(drawn) == 2 and out.read_bytes()[-8:] == b"IEND\xaeB`\x82"
     assert cached.read_bytes() == out.read_bytes()  # the cache holds the whole figure again
+
+
+def test_the_test_session_caches_outside_the_checkout(tmp_path_factory):
+    """The suite's own cache folder (conftest) is a temporary one: neither the checkout's
+    meshes/ nor the user's cache folder receives anything from a test run."""
+    folder = default_cache_dir().resolve()
+    assert folder.is_relative_to(tmp_path_factory.getbasetemp().resolve())
+    assert folder != source_checkout_cache()
