@@ -19,6 +19,9 @@ from numpy.typing import ArrayLike
 
 from pipeline.validation import InputError
 
+MIN_SAMPLES = 4
+"""Fewest samples of one period a :class:`PeriodicSignal` takes."""
+
 
 @dataclass(frozen=True)
 class FourierSeries:
@@ -67,12 +70,13 @@ class PeriodicSignal:
 
     def __post_init__(self) -> None:
         v = np.asarray(self.values, dtype=float)
-        if v.ndim != 1 or v.size < 4:
+        if v.ndim != 1 or v.size < MIN_SAMPLES:
             raise InputError(
-                f"PeriodicSignal.values has shape {v.shape}; need 1-D with >= 4 samples"
+                f"a periodic signal has samples of shape {v.shape}; it needs one period as a "
+                f"1-D array of at least {MIN_SAMPLES} samples"
             )
         if not np.all(np.isfinite(v)):
-            raise InputError("PeriodicSignal.values contains non-finite samples")
+            raise InputError("a periodic signal has samples that are not finite (nan or inf)")
         object.__setattr__(self, "values", v)
 
     @property

@@ -14,16 +14,19 @@ class InputError(ValueError):
 
     Range errors raised by :func:`check_range` also carry the checked ``field``
     (as named by the input dataclass), the ``value`` and the bounds in the unit
-    of the check (SI), so that :mod:`pipeline.config` can restate them in the
-    key and unit the user wrote in the input file.
+    of the check (SI), and the ``note`` saying where bounds that depend on other inputs
+    come from, so that :mod:`pipeline.config` can restate them in the key and unit the
+    user wrote in the input file.
     """
 
     def __init__(self, message: str, *, field: str | None = None,
-                 value: float | None = None, bounds: tuple | None = None) -> None:
+                 value: float | None = None, bounds: tuple | None = None,
+                 note: str = "") -> None:
         super().__init__(message)
         self.field = field
         self.value = value
         self.bounds = bounds  # (lo, hi, lo_open, hi_open)
+        self.note = note
 
 
 class PhysicsWarning(UserWarning):
@@ -51,6 +54,7 @@ def check_range(
     lo_open: bool = False,
     hi_open: bool = False,
     unit: str = "",
+    note: str = "",
 ) -> float:
     """Return ``value`` if it lies in the interval, else raise :class:`InputError`.
 
@@ -60,6 +64,8 @@ def check_range(
     value : the value given.
     lo, hi : interval bounds; ``lo_open``/``hi_open`` exclude the bound.
     unit : unit shown in the message (the unit of ``value`` as passed, SI inside).
+    note : where the bounds come from when other inputs set them (``"the path of
+        contact"``), shown in brackets after the range.
     """
     try:
         v = float(value)
@@ -75,8 +81,8 @@ def check_range(
         u = f" {unit}" if unit else ""
         raise InputError(
             f"{field} = {_fmt(v)}{u} is outside the allowed range "
-            f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}{u}",
-            field=field, value=v, bounds=(lo, hi, lo_open, hi_open),
+            f"{lb}{_fmt(lo)}, {_fmt(hi)}{rb}{u}" + (f" ({note})" if note else ""),
+            field=field, value=v, bounds=(lo, hi, lo_open, hi_open), note=note,
         )
     return value
 

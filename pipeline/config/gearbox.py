@@ -46,7 +46,7 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.config import tables as T
-from pipeline.config.schema import build, read_table, restated, unknown
+from pipeline.config.schema import Scope, build, read_table, restated, unknown
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
@@ -72,6 +72,8 @@ from pipeline.validation import InputError, InputWarning, check_range
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
+EXTERNAL_ROLES = ("pinion", "sun", "planet")
+"""Gear tables that describe external gears only."""
 STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "herringbone",
                 "dynamics")
 TABLES = PAIR_ROLES + PLANETARY_ROLES + ("carrier", "pair", "planetary", "lumped_model") \
@@ -214,11 +216,19 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
     body_fields = {k.target for k in T.BODY}
     body = {k: values.pop(k) for k in list(values) if k in body_fields}
     internal = values.get("internal", False)
+    if internal and role in EXTERNAL_ROLES:
+        raise InputError(f"{role}.internal = true: the {role} of a "
+                         f"{'gear pair' if role == 'pinion' else 'planetary set'} is an "
+                         "external gear; leave internal out (only [gear] of a pair and [ring] "
+                         "can be internal)")
     for name, ok in (("rim_outer_radius_mm", internal), ("bore_radius_mm", not internal)):
         if name in table and not ok:
             right = "rim_outer_radius_mm" if internal else "bore_radius_mm"
-            raise InputError(f"{role}.{name}: {'an internal' if internal else 'an external'} "
-                             f"gear takes {right} instead")
+            what = ("an internal gear's outer rim radius" if internal
+                    else "an external gear's bore radius")
+            raise InputError(f"{role}.{name} = {format_value(table[name], unit_of_key(name))}: "
+                             f"[{role}] is {'an internal' if internal else 'an external'} gear;"
+                             f" give {what} as {right} instead")
     if internal and "rim_outer_radius_mm" not in table:
         raise InputError(f"[{role}] is an internal gear and needs the key 'rim_outer_radius_mm' "
                          "(outer radius of the ring's rim)")
@@ -241,9 +251,20 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
             warnings.warn(f"{role}.material.density_kg_m3 = {rho} changes nothing: [{role}] "
                           "gives both mass_kg and inertia_kgm2, the only quantities the density "
                           "sets", InputWarning, stacklevel=3)
-    with restated(role, keys, table):
+    with restated(role, keys, table, also=_gear_scopes({role: table}, {role: values["name"]})):
         gear = GearSpec(**values)
         return gear, GearBody(gear, **body)
+
+
+def _gear_scopes(tables: Mapping[str, Any], names: Mapping[str, str]) -> dict[str, Scope]:
+    """The gear tables by the prefixes the geometry's messages use: each gear's role and
+    its ``name`` (``gear.module``, ``Sun gear.teeth``)."""
+    out = {}
+    for role, table in tables.items():
+        scope = Scope(role, T.GEAR + T.BODY, table if isinstance(table, Mapping) else ())
+        out[names.get(role, role)] = scope
+        out[role] = scope
+    return out
 
 
 def _check_tables(doc: Mapping[str, Any]) -> None:
@@ -252,7 +273,7 @@ def _check_tables(doc: Mapping[str, Any]) -> None:
             "this is a dynamics file of the old format (top-level 'model' and [parameters]): "
             "describe the gears instead ([pinion] and [gear], or [sun], [planet], [ring], "
             "[carrier], [planetary]) and put the model options in [dynamics], as in "
-            "workflows/configs/spur_pair_dynamics.toml; a published lumped model without "
+            "workflows/configs/spur_pair_assembly_errors.toml; a published lumped model without "
             "gear geometry goes into a [lumped_model] table (workflows/configs/"
             "lin_parker_planetary.toml)")
     for k, v in doc.items():
@@ -407,7 +428,8 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
             raise InputError(f"groove.planets = {n} contradicts planetary.planets = "
                              f"{planetary.n_planets}: leave groove.planets out (it follows "
                              "the set)")
-    with restated("groove", T.GROOVE, table):
+    scopes = _gear_scopes({role: doc[role]}, {role: gears[role].name})
+    with restated("groove", T.GROOVE, table, also=scopes):
         return GrooveSpec(gear=gears[role], **values)
 
 
@@ -514,10 +536,11 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     for role in roles:
         gears[role], bodies[role] = _gear(doc, role)
     kw: dict[str, Any] = {}
+    gear_scopes = _gear_scopes({r: doc[r] for r in roles}, {r: g.name for r, g in gears.items()})
     if kind == "pair":
         values = read_table(doc.get("pair", {}), T.PAIR, "pair")
         cd = values.pop("centre_distance", None)
-        with restated("pair", T.PAIR, doc.get("pair", {})):
+        with restated("pair", T.PAIR, doc.get("pair", {}), also=gear_scopes):
             kw["assembly_errors"] = AssemblyErrors(**values)
             kw["pair"] = GearPair(gears["pinion"], gears["gear"], cd)
     elif "pair" in doc:
@@ -526,7 +549,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "planetary":
         kw["carrier"] = build(Carrier, doc["carrier"], T.CARRIER, "carrier")
         values = read_table(doc["planetary"], T.PLANETARY, "planetary")
-        with restated("planetary", T.PLANETARY, doc["planetary"]):
+        with restated("planetary", T.PLANETARY, doc["planetary"], also=gear_scopes):
             kw["planetary"] = PlanetarySet(gears["sun"], gears["planet"], gears["ring"],
                                            **values)
     if kind == "lumped":
@@ -564,11 +587,20 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         **kw,
     )
     if kind == "pair":
-        with restated("pair", T.PAIR, doc.get("pair", {})):
+        with restated("pair", T.PAIR, doc.get("pair", {}), also=gear_scopes):
             box.actual_pair  # noqa: B018 - the displaced pair must still mesh (cached)
     _check_groove_sources(box, doc)
+    _check_relief_lengths(box, doc)
     _check_pitch_errors(box)
     return box
+
+
+def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:
+    """Each tip relief length at most the path of contact of every analysed mesh."""
+    meshes = box.contact_meshes()
+    with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
+        for name, pair in meshes:
+            box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
 
 
 PITCH_ERRORS_KEY = "pitch_errors_um"

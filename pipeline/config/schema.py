@@ -23,7 +23,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
-from pipeline.config.units import DIMENSIONLESS, Unit, unit_of_key
+from pipeline.config.units import DIMENSIONLESS, UNITS, Unit, unit_of_key
 from pipeline.validation import InputError
 
 KINDS = ("number", "integer", "boolean", "string", "numbers", "number_or_string")
@@ -193,7 +193,31 @@ def read_table(table: Any, keys: Sequence[Key], where: str,
     return out
 
 
-_INDEX = re.compile(r"^(.*?)(\[(\d+)\])?$")
+@dataclass(frozen=True)
+class Scope:
+    """A table whose keys an error message may name.
+
+    Attributes
+    ----------
+    where : its path in the file (``"pinion"``, ``"dynamics.response"``).
+    keys : its keys.
+    present : the keys it gave (they win when two keys set one field).
+    """
+
+    where: str
+    keys: Sequence[Key]
+    present: Collection[str] = ()
+
+    def key(self, name: str) -> tuple[Key, bool] | None:
+        """The key a field name or key name refers to, and whether ``name`` is already the
+        key as written (its value is then in the file's unit)."""
+        for k in self.keys:
+            if k.name == name:
+                return k, True
+        matches = [k for k in self.keys if name in (k.target, _stem(k))]
+        if not matches:
+            return None
+        return next((k for k in matches if k.name in self.present), matches[0]), False
 
 
 def _stem(key: Key) -> str:
@@ -201,49 +225,150 @@ def _stem(key: Key) -> str:
     return key.name[: -len(suffix) - 1] if suffix else key.name
 
 
-def _restate(exc: InputError, where: str, keys: Sequence[Key],
-             present: Collection[str]) -> InputError | None:
+_NUMBER = r"-?(?:inf|\d+(?:\.\d*)?(?:e[+-]?\d+)?)"
+_SI_LABELS = sorted({u.si for u in UNITS} - {"-"}, key=len, reverse=True)
+_SI = "|".join(re.escape(label) for label in _SI_LABELS)
+_MENTION = re.compile(
+    r"(?<![\w.\[\]'\"])(?:(?P<prefix>[A-Za-z_]\w*(?:\.[A-Za-z_]\w*)*)\.)?"
+    r"(?P<name>[A-Za-z_]\w*)(?P<index>\[\d+\])?(?![\w.(])"
+    r"(?: = (?P<value>'[^']*'|\"[^\"]*\"|True|False|true|false|" + _NUMBER + r")"
+    rf"(?: (?P<unit>{_SI})(?![\w/^]))?"
+    r"(?P<range> is outside the allowed range (?P<lb>[\[(])(?P<lo>" + _NUMBER + r"), "
+    r"(?P<hi>" + _NUMBER + r")(?P<rb>[\])])(?: (?P<runit>" + _SI + r")(?![\w/^]))?)?)?")
+"""A quantity an input dataclass names in a message: ``prefix.field[i] = value unit`` with
+an optional ``is outside the allowed range [lo, hi] unit`` after it."""
+
+
+def _show_si(x: float, u: Unit) -> str:
+    return f"{u.from_si(x):.6g}" if math.isfinite(x) else ("-inf" if x < 0 else "inf")
+
+
+def _number(text: str) -> float:
+    return float(text.replace("inf", "Infinity")) if "inf" in text else float(text)
+
+
+def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> str:
+    """``text`` with every field an input dataclass names replaced by the key as written.
+
+    A field names a key when its prefix names a table (``pinion.module``, ``gear.module``
+    in a pair's message) or, without a known prefix, when it is given a value
+    (``fe3d.method = 'x'``, ``n_harmonics = 40``) or has an underscore (``web_width``) and
+    is a field of ``primary``; values and allowed ranges in SI are shown in the key's unit.
+    Other words are left alone.
+    """
+    aliases = {name: f"__scope{i}__" for i, name in enumerate(scopes) if not name.isidentifier()}
+    for name in sorted(aliases, key=len, reverse=True):
+        text = text.replace(f"{name}.", f"{aliases[name]}.")
+    by_alias = {aliases.get(name, name): scope for name, scope in scopes.items()}
+    back = {v: k for k, v in aliases.items()}
+
+    def replace(m: re.Match) -> str:
+        prefix, name = m.group("prefix"), m.group("name")
+        scope = by_alias.get(prefix) if prefix else None
+        if scope is None and (m.group("value") is not None or "_" in name):
+            scope = primary
+        found = scope.key(name) if scope is not None else None
+        if found is None:
+            whole = m.group(0)
+            return f"{back[prefix]}{whole[len(prefix):]}" if prefix in back else whole
+        key, as_written = found
+        bare = prefix is None and m.group("value") is None
+        out = (key.name if bare else _key_text(scope.where, key.name)) + (m.group("index") or "")
+        value = m.group("value")
+        if value is None:
+            return out
+        u = key.unit
+        convert = not as_written and u is not DIMENSIONLESS and m.group("unit") == u.si
+        label = f" {u.label}" if u.label and (convert or as_written) else (
+            f" {m.group('unit')}" if m.group("unit") else "")
+        if value.startswith("'"):
+            value = '"' + value[1:-1] + '"'
+        elif value in ("True", "False"):
+            value = value.lower()
+        elif convert:
+            value = _show_si(_number(value), u)
+        out += f" = {value}{label}"
+        if m.group("range"):
+            rconvert = not as_written and u is not DIMENSIONLESS and m.group("runit") == u.si
+            lo, hi = m.group("lo"), m.group("hi")
+            if rconvert:
+                lo, hi = _show_si(_number(lo), u), _show_si(_number(hi), u)
+            runit = label if (rconvert or as_written) else (
+                f" {m.group('runit')}" if m.group("runit") else "")
+            out += (f" is outside the allowed range {m.group('lb')}{lo}, {hi}{m.group('rb')}"
+                    f"{runit}")
+        return out
+
+    return _MENTION.sub(replace, text)
+
+
+def _scopes(primary: Scope, also: Mapping[str, Scope]) -> dict[str, Scope]:
+    """The tables a message may name by prefix: ``also`` and the primary table under its
+    path and its last part (``dynamics.sweep`` and ``sweep``)."""
+    out = dict(also)
+    if primary.where:
+        out.setdefault(primary.where.rsplit(".", 1)[-1], primary)
+        out[primary.where] = primary
+    return out
+
+
+def _restate(exc: InputError, primary: Scope, scopes: Mapping[str, Scope]) -> InputError | None:
     """The error of a range check on a dataclass field, in the file's key and unit."""
     if exc.field is None or exc.bounds is None:
         return None
-    m = _INDEX.match(exc.field.rsplit(".", 1)[-1])
-    base, index = m.group(1), m.group(3)
-    matches = [k for k in keys if base in (k.target, _stem(k))]
-    key = next((k for k in matches if k.name in present), matches[0] if matches else None)
-    if key is None:
+    m = _MENTION.fullmatch(exc.field)
+    if m is None:
         return None
-    u = key.unit if key.unit is not DIMENSIONLESS else DIMENSIONLESS
+    prefix, base, index = m.group("prefix"), m.group("name"), m.group("index")
+    scope = scopes.get(prefix) if prefix else None
+    scope = scope or primary
+    found = scope.key(base)
+    if found is None:
+        return None
+    key, as_written = found
+    u = DIMENSIONLESS if as_written else key.unit
     lo, hi, lo_open, hi_open = exc.bounds
-
-    def show(x: float) -> str:
-        return f"{u.from_si(x):.6g}" if math.isfinite(x) else ("-inf" if x < 0 else "inf")
-
-    label = u.label and f" {u.label}"
-    name = key.name + (f"[{index}]" if index is not None else "")
+    label = f" {key.unit.label}" if key.unit.label else ""
+    note = f" ({exc.note})" if exc.note else ""
     return InputError(
-        f"{_key_text(where, name)} = {show(exc.value)}{label} is outside the allowed range "
-        f"{'(' if lo_open else '['}{show(lo)}, {show(hi)}{')' if hi_open else ']'}{label}",
-        field=exc.field, value=exc.value, bounds=exc.bounds)
+        f"{_key_text(scope.where, key.name + (index or ''))} = {_show_si(exc.value, u)}{label} "
+        f"is outside the allowed range {'(' if lo_open else '['}{_show_si(lo, u)}, "
+        f"{_show_si(hi, u)}{')' if hi_open else ']'}{label}{note}",
+        field=exc.field, value=exc.value, bounds=exc.bounds, note=exc.note)
 
 
 @contextmanager
-def restated(where: str, keys: Sequence[Key], present: Collection[str] = ()) -> Iterator[None]:
-    """Re-raise range errors of the input dataclasses built inside in the file's terms.
+def restated(where: str, keys: Sequence[Key], present: Collection[str] = (), *,
+             also: Mapping[str, Scope] | None = None) -> Iterator[None]:
+    """Re-raise the errors of the input dataclasses built inside in the file's terms.
 
-    ``present`` are the keys the table gave (they win when two keys set one field).
-    Errors the keys of ``where`` cannot explain are prefixed with the table name.
+    A range error becomes ``table.key = value unit is outside the allowed range [lo, hi]
+    unit`` in the key's unit; in any other message each field the dataclass names is
+    replaced by the key as written, with its value in the file's unit
+    (:func:`_in_file_terms`). ``present`` are the keys the table gave (they win when two
+    keys set one field); ``also`` maps the prefixes under which the dataclasses name fields
+    of other tables (a pair's ``pinion.module``) to those tables. A message that does not
+    begin with a key of the file is prefixed with the table name.
     """
     try:
         yield
     except InputError as exc:
-        again = _restate(exc, where, keys, present)
+        primary = Scope(where, keys, present)
+        scopes = _scopes(primary, also or {})
+        again = _restate(exc, primary, scopes)
         if again is not None:
             raise again from None
-        text = str(exc)
-        if where and not text.startswith("["):
-            raise InputError(f"{where_text(where)}: {text}", field=exc.field, value=exc.value,
-                             bounds=exc.bounds) from None
-        raise
+        text = _in_file_terms(str(exc), primary, scopes)
+        for alias, scope in scopes.items():  # "pinion: ..." -> "[pinion]: ..."
+            if scope.where and text.startswith(f"{alias}: "):
+                text = f"{where_text(scope.where)}: {text[len(alias) + 2:]}"
+                break
+        named = {s.where for s in scopes.values() if s.where}
+        if where and not text.startswith("[") and not any(
+                text.startswith(f"{w}.") for w in named):
+            text = f"{where_text(where)}: {text}"
+        raise InputError(text, field=exc.field, value=exc.value, bounds=exc.bounds,
+                         note=exc.note) from None
 
 
 def build(factory: Callable[..., Any], table: Any, keys: Sequence[Key], where: str,

@@ -18,7 +18,7 @@ import numpy as np
 
 from pipeline.config.schema import Key, read_table, restated, unknown
 from pipeline.config.tables import SIGNAL, SIGNAL_KINDS
-from pipeline.signals import PeriodicSignal
+from pipeline.signals import MIN_SAMPLES, PeriodicSignal
 from pipeline.validation import InputError
 
 
@@ -87,23 +87,49 @@ def referenced_files(document: Mapping[str, Any], base: Path | None,
     return out
 
 
+def path_problem(path: Path) -> str | None:
+    """Why ``path`` cannot be read as a data file, or ``None``: missing, a folder, or not a
+    regular file (a device such as ``/dev/zero``, a pipe, a socket: reading one may never
+    end)."""
+    if not path.exists():
+        return "does not exist"
+    if path.is_dir():
+        return "is a folder, not a file"
+    if not path.is_file():
+        return "is not a regular file (a device, pipe or socket)"
+    return None
+
+
 def _csv_signal(kw: dict[str, Any], where: str, base: Path | None) -> PeriodicSignal:
     path = csv_path(kw["path"], base)
-    if not path.is_file():
-        raise InputError(f"{where}.path = {str(path)!r} does not exist")
+    key = f'{where}.path = "{path}"'
+    problem = path_problem(path)
+    if problem is not None:
+        raise InputError(f"{key} {problem}; give a CSV file with one mesh period of stiffness "
+                         "values (N/m) in a column")
     try:
-        with path.open(encoding="utf-8") as f:
-            names = [n.strip() for n in next(csv.reader(f), [])]
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{where}.path = {str(path)!r} cannot be read ({exc})") from None
+        with path.open(encoding="utf-8", newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as exc:
+        raise InputError(f"{key} cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{key} is not a UTF-8 text file (a CSV table is)") from None
+    names = [n.strip() for n in rows[0]] if rows else []
     col = kw.get("column", names[-1] if names else "")
     if col not in names:
         raise unknown(col, names, f"{where}.column")
-    try:
-        values = np.loadtxt(path, delimiter=",", skiprows=1, usecols=names.index(col), ndmin=1)
-    except ValueError as exc:
-        raise InputError(f"{where}.path = {str(path)!r} is not a CSV table of numbers "
-                         f"({exc})") from None
-    if values.size < 2 or not np.all(np.isfinite(values)):
-        raise InputError(f"{where}.column = {col!r}: {path} needs at least 2 finite values")
-    return PeriodicSignal(values)
+    j = names.index(col)
+    values = []
+    for line, row in enumerate(rows[1:], start=2):
+        if not row:
+            continue
+        cell = row[j].strip() if j < len(row) else ""
+        try:
+            values.append(float(cell))
+        except ValueError:
+            raise InputError(f"{key}: line {line}, column {col!r} holds {cell!r}, not a "
+                             "number") from None
+    if len(values) < MIN_SAMPLES or not np.all(np.isfinite(values)):
+        raise InputError(f"{key}: column {col!r} holds {len(values)} values; one mesh period "
+                         f"needs at least {MIN_SAMPLES} finite values")
+    return PeriodicSignal(np.asarray(values))

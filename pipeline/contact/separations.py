@@ -87,6 +87,14 @@ class FlankModifications:
             check_range(f"contact.pitch_errors[{j}]", e, -_MAX_MOD, _MAX_MOD, unit="m")
         object.__setattr__(self, "pitch_errors", errs)
 
+    def check_fits(self, pair: GearPair, mesh: str = "") -> None:
+        """Refuse a relief length longer than the path of contact of ``pair`` (named
+        ``mesh`` in the message when given)."""
+        where = f" of the {mesh} mesh" if mesh else ""
+        for who in ("pinion", "gear"):
+            check_range(f"contact.relief_length_{who}", getattr(self, f"relief_length_{who}"),
+                        0.0, pair.path_length, unit="m", note=f"the path of contact{where}")
+
     @property
     def varies_across_face(self) -> bool:
         """Lead crowning or a helix slope deviation: the gap changes along the face, so even a
@@ -144,10 +152,7 @@ def initial_separations(pair: GearPair, points: ContactPoints,
 
     Points outside the path of contact ``[s_start, s_end]`` get ``+inf`` (out of mesh).
     """
-    for who, length in (("pinion", mods.relief_length_pinion), ("gear", mods.relief_length_gear)):
-        if length > pair.path_length:
-            raise InputError(f"contact.relief_length_{who} = {length:.6g} m is outside the "
-                             f"allowed range [0, {pair.path_length:.6g}] m (the path of contact)")
+    mods.check_fits(pair)
     s, z = points.s, points.z
     power = 1 if mods.relief_shape == "linear" else 2
     eps = _relief(s - (pair.s_end - mods.relief_length_pinion), mods.tip_relief_pinion,

@@ -155,7 +155,8 @@ class GearSpec:
         if self.herringbone and self.helix_angle == 0:
             raise InputError(f"{p}.herringbone = true needs {p}.helix_angle > 0")
         if not self.herringbone and self.groove_width > 0:
-            raise InputError(f"{p}.groove_width = {self.groove_width:.6g} m needs herringbone")
+            raise InputError(f"{p}.groove_width = {self.groove_width:.6g} m needs {p}.herringbone "
+                             "= true: the relief groove separates a herringbone gear's halves")
         if self.tip_radius is not None:
             lo, hi = (self.base_radius, self.reference_radius + 2 * self.module) if not \
                 self.internal else (self.reference_radius - 2 * self.module, self.root_radius)
