@@ -19,7 +19,7 @@ import numpy as np
 from pipeline.config.schema import Key, read_table, restated, unknown
 from pipeline.config.tables import SIGNAL, SIGNAL_KINDS
 from pipeline.signals import MIN_SAMPLES, PeriodicSignal
-from pipeline.validation import InputError
+from pipeline.validation import InputError, check_range
 
 
 def signal_from_table(table: Mapping[str, Any], where: str, base: Path | None) -> PeriodicSignal:
@@ -50,6 +50,7 @@ def signal_from_table(table: Mapping[str, Any], where: str, base: Path | None) -
 
 def _build(kind: str, kw: dict[str, Any], where: str, keys, table, base) -> PeriodicSignal:
     from pipeline.dynamics.excitation import (
+        MAX_MESH_STIFFNESS,
         contact_line_stiffness,
         harmonic_signal,
         rectangular_mesh_stiffness,
@@ -63,7 +64,9 @@ def _build(kind: str, kw: dict[str, Any], where: str, keys, table, base) -> Peri
         if kind == "harmonic":
             return harmonic_signal(**kw)
         if kind == "constant":
-            return PeriodicSignal(np.full(8, float(kw["value"])))
+            value = check_range("value", kw["value"], 0.0, MAX_MESH_STIFFNESS, lo_open=True,
+                                unit="N/m")
+            return PeriodicSignal(np.full(8, float(value)))
     return _csv_signal(kw, where, base)
 
 

@@ -14,6 +14,10 @@ import numpy as np
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError, check_int_range, check_positive, check_range
 
+MAX_MESH_STIFFNESS = 1e14
+"""Largest mesh stiffness level or amplitude, N/m (as the bearing stiffnesses of
+:mod:`pipeline.dynamics.options`; real meshes are 1e8-1e10 N/m)."""
+
 
 def rectangular_mesh_stiffness(
     k_single: float,
@@ -37,9 +41,10 @@ def rectangular_mesh_stiffness(
     -------
     :class:`PeriodicSignal` of the stiffness in N/m.
     """
-    check_positive("k_single", k_single, "N/m")
-    check_positive("k_double", k_double, "N/m")
+    check_range("k_single", k_single, 0.0, MAX_MESH_STIFFNESS, lo_open=True, unit="N/m")
+    check_range("k_double", k_double, 0.0, MAX_MESH_STIFFNESS, lo_open=True, unit="N/m")
     check_range("contact_ratio", contact_ratio, 1.0, 2.0, lo_open=True)
+    check_range("start", start, 0.0, 1.0, hi_open=True)
     n = check_int_range("samples", samples, 8, 10_000_000)
     tau = (np.arange(n) / n - start) % 1.0
     return PeriodicSignal(np.where(tau < contact_ratio - 1.0 - 1e-12, k_double, k_single), period)
@@ -59,6 +64,10 @@ def harmonic_signal(
     """
     a = np.atleast_1d(np.asarray(amplitudes, dtype=float))
     p = np.zeros_like(a) if phases is None else np.atleast_1d(np.asarray(phases, dtype=float))
+    check_range("mean", mean, -MAX_MESH_STIFFNESS, MAX_MESH_STIFFNESS)
+    for i, (ai, pi) in enumerate(zip(a, p, strict=True)):
+        check_range(f"amplitudes[{i}]", ai, -MAX_MESH_STIFFNESS, MAX_MESH_STIFFNESS)
+        check_range(f"phases[{i}]", pi, -2 * np.pi, 2 * np.pi, unit="rad")
     n = check_int_range("samples", samples, 8, 10_000_000)
     tau = np.arange(n) / n
     l = np.arange(1, a.size + 1)
@@ -93,7 +102,7 @@ def contact_line_stiffness(
     -------
     :class:`PeriodicSignal` in N/m.
     """
-    check_positive("k_mean", k_mean, "N/m")
+    check_range("k_mean", k_mean, 0.0, MAX_MESH_STIFFNESS, lo_open=True, unit="N/m")
     check_range("transverse_ratio", transverse_ratio, 0.0, 10.0, lo_open=True)
     check_range("overlap_ratio", overlap_ratio, 0.0, 20.0)
     n = check_int_range("samples", samples, 8, 10_000_000)

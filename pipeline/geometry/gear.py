@@ -143,9 +143,14 @@ class GearSpec:
         if self.internal and self.half_tooth_angle(self.root_radius) >= math.pi / self.teeth:
             raise InputError(
                 f"{p}: the tooth spaces of the internal gear close before its root circle "
-                f"(root radius {self.root_radius:.6g} m); reduce {p}.dedendum_coef = "
+                f"(root radius {self.root_radius * 1e3:.6g} mm); reduce {p}.dedendum_coef = "
                 f"{self.dedendum_coef} or raise {p}.profile_shift = {self.profile_shift}"
             )
+        # before the fillet limits below, which are evaluated at the tip radius
+        if self.tip_radius is not None:
+            lo, hi = (self.base_radius, self.reference_radius + 2 * self.module) if not \
+                self.internal else (self.reference_radius - 2 * self.module, self.root_radius)
+            check_range(f"{p}.tip_radius", self.tip_radius, lo, hi, unit="m")
         if self.cutter_tip_radius_coef is None:
             object.__setattr__(self, "cutter_tip_radius_coef",
                                min(0.38, self.max_cutter_tip_radius_coef))
@@ -157,17 +162,14 @@ class GearSpec:
         if not self.herringbone and self.groove_width > 0:
             raise InputError(f"{p}.groove_width = {self.groove_width:.6g} m needs {p}.herringbone "
                              "= true: the relief groove separates a herringbone gear's halves")
-        if self.tip_radius is not None:
-            lo, hi = (self.base_radius, self.reference_radius + 2 * self.module) if not \
-                self.internal else (self.reference_radius - 2 * self.module, self.root_radius)
-            check_range(f"{p}.tip_radius", self.tip_radius, lo, hi, unit="m")
         if self.internal:
             check_range(f"{p}.bore_radius", self.bore_radius, self.root_radius * 1.0001,
                         self.root_radius * 10, unit="m (outer rim radius of the ring)")
             if self.tip_radius_ <= self.base_radius:
                 raise InputError(
-                    f"{p}: internal gear tip radius {self.tip_radius_:.6g} m must exceed the base "
-                    f"radius {self.base_radius:.6g} m (more teeth or a smaller pressure angle)"
+                    f"{p}: internal gear tip radius {self.tip_radius_ * 1e3:.6g} mm must exceed "
+                    f"the base radius {self.base_radius * 1e3:.6g} mm (more teeth or a smaller "
+                    "pressure angle)"
                 )
         else:
             check_range(f"{p}.bore_radius", self.bore_radius, 0.0, self.root_radius * 0.98,

@@ -45,7 +45,12 @@ from pipeline.dynamics.bodies import Body, add_measures
 from pipeline.dynamics.couplings import Bearing, GearMesh, Load, MatrixCoupling, Spring, Tie
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
-from pipeline.dynamics.models.planetary import check_planet_layout
+from pipeline.dynamics.models.planetary import (
+    MAX_SPEED,
+    MAX_TORQUE,
+    check_body_range,
+    check_planet_layout,
+)
 from pipeline.dynamics.reduction import rigid_body_modes
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import (
@@ -195,7 +200,9 @@ class HerringbonePlanetaryModel:
             "carrier_radius",
             "mesh_period",
         ):
-            check_positive(f, getattr(self, f))
+            check_body_range(f, getattr(self, f))
+        check_range("sun_torque", self.sun_torque, -MAX_TORQUE, MAX_TORQUE, unit="N m")
+        check_range("carrier_speed", self.carrier_speed, -MAX_SPEED, MAX_SPEED, unit="rad/s")
         check_range("base_helix_angle", self.base_helix_angle, 0.0, math.radians(45), unit="rad")
         check_range("axial_slide", self.axial_slide, -0.05, 0.05, unit="m")
         for f in ("planet_angles", "phase_sun", "phase_ring"):

@@ -33,7 +33,26 @@ from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
 from pipeline.dynamics.reduction import rigid_body_modes
 from pipeline.signals import PeriodicSignal
-from pipeline.validation import InputError, check_int_range, check_positive, check_range
+from pipeline.validation import InputError, check_int_range, check_range
+
+MAX_TORQUE = 1e8
+"""Largest torque magnitude of a lumped model, N m (as :class:`~pipeline.operation.
+OperatingPoint`)."""
+MAX_SPEED = 1e5
+"""Largest speed magnitude of a lumped model, rad/s (as :class:`~pipeline.operation.
+OperatingPoint`)."""
+_BODY_LIMITS = (("mass_", 1e7, "kg"), ("inertia_", 1e7, "kg m^2"), ("base_radius_", 10.0, "m"),
+                ("carrier_radius", 10.0, "m"), ("mesh_period", 1e3, "s"))
+"""Upper bounds of a lumped model's body quantities by field-name prefix (those of
+:class:`~pipeline.geometry.body.GearBody` for masses and inertias; 10 m radii; a mesh
+frequency of at least 1e-3 Hz)."""
+
+
+def check_body_range(name: str, value: float) -> float:
+    """A lumped model's mass, inertia, radius or mesh period: positive and below its bound
+    (:data:`_BODY_LIMITS`), SI."""
+    hi, unit = next((h, u) for p, h, u in _BODY_LIMITS if name.startswith(p))
+    return check_range(name, value, 0.0, hi, lo_open=True, unit=unit)
 
 
 def check_planet_layout(model) -> None:
@@ -139,7 +158,9 @@ class PlanetaryModel:
             "carrier_radius",
             "mesh_period",
         ):
-            check_positive(f, getattr(self, f))
+            check_body_range(f, getattr(self, f))
+        check_range("sun_torque", self.sun_torque, -MAX_TORQUE, MAX_TORQUE, unit="N m")
+        check_range("carrier_speed", self.carrier_speed, -MAX_SPEED, MAX_SPEED, unit="rad/s")
         for f in ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun", "kt_ring", "kt_carrier"):
             check_range(f, getattr(self, f), 0.0, 1e15)
         for f in ("pressure_angle_sun", "pressure_angle_ring"):

@@ -20,12 +20,13 @@ from pipeline.dynamics.bodies import Body
 from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
 from pipeline.dynamics.mesh_input import MeshExcitation
+from pipeline.dynamics.models.planetary import MAX_SPEED, MAX_TORQUE, check_body_range
 from pipeline.dynamics.options import PairDynamicsOptions
 from pipeline.geometry.body import GearBody
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.signals import PeriodicSignal
-from pipeline.validation import InputError, check_int_range, check_positive, check_range
+from pipeline.validation import InputError, check_int_range, check_range
 
 
 @dataclass(frozen=True)
@@ -72,17 +73,11 @@ class SpurPairModel:
 
     def __post_init__(self) -> None:
         check_int_range("pinion_teeth", self.pinion_teeth, 5, 10_000)
-        for f, u in (
-            ("base_radius_pinion", "m"),
-            ("base_radius_gear", "m"),
-            ("mass_pinion", "kg"),
-            ("mass_gear", "kg"),
-            ("inertia_pinion", "kg m^2"),
-            ("inertia_gear", "kg m^2"),
-            ("torque", "N m"),
-            ("speed", "rad/s"),
-        ):
-            check_positive(f, getattr(self, f), u)
+        for f in ("base_radius_pinion", "base_radius_gear", "mass_pinion", "mass_gear",
+                  "inertia_pinion", "inertia_gear"):
+            check_body_range(f, getattr(self, f))
+        check_range("torque", self.torque, 0.0, MAX_TORQUE, lo_open=True, unit="N m")
+        check_range("speed", self.speed, 0.0, MAX_SPEED, lo_open=True, unit="rad/s")
         check_range("bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
         check_range("bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
