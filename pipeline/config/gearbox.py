@@ -368,8 +368,6 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
     table = doc.get("fe", {})
     values = read_table(table, T.FE, "fe")
     command = {k: v for k, v in values.items() if k in T.FE_COMMAND_KEYS}
-    with restated("fe", T.FE, table):
-        sector = SectorFEOptions(**command)
     mapping = T.FE_SOURCE_FIELDS.get(contact.compliance, {})
     for k in values:
         if k not in command and k not in mapping:
@@ -378,7 +376,7 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
                              f"{' or '.join(repr(c) for c in used)} only; this file's contact "
                              f"compliance is {contact.compliance!r}")
     if not mapping:
-        return sector, None
+        return _sector(command, table), None
     from pipeline.contact.compliance import fe_settings, fe_settings_class
 
     cls = fe_settings_class(contact.compliance)
@@ -387,9 +385,14 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOption
     kw = {mapping[k]: v for k, v in values.items() if k in mapping}
     if contact.compliance == "fe3d" and "teeth" in kw:
         kw["body"] = "sector"  # a tooth count in 3D asks for a sector, not the whole gear
-    with restated("fe", keys, table):
+    with restated("fe", keys, table):  # first: its ranges lie within gearpipe fe's
         source = cls(**kw)
-    return sector, fe_settings(contact.compliance, source, contact)
+    return _sector(command, table), fe_settings(contact.compliance, source, contact)
+
+
+def _sector(command: dict[str, Any], table: Any) -> SectorFEOptions:
+    with restated("fe", T.FE, table):
+        return SectorFEOptions(**command)
 
 
 def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
@@ -596,11 +599,14 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
 
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:
-    """Each tip relief length at most the path of contact of every analysed mesh."""
+    """Each tip relief length at most the path of contact of every analysed mesh (the
+    shortest one's, named when there are several)."""
     meshes = box.contact_meshes()
+    if not meshes:
+        return
+    name, pair = min(meshes, key=lambda m: m[1].path_length)
     with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
-        for name, pair in meshes:
-            box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
+        box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
 
 
 PITCH_ERRORS_KEY = "pitch_errors_um"

@@ -75,10 +75,11 @@ class FlankModifications:
             amount = getattr(self, f"tip_relief_{who}")
             length = getattr(self, f"relief_length_{who}")
             check_range(f"contact.tip_relief_{who}", amount, 0.0, _MAX_MOD, unit="m")
-            check_range(f"contact.relief_length_{who}", length, 0.0, 1.0, unit="m")
+            # at most the path of contact: checked against the pair (check_fits)
+            check_range(f"contact.relief_length_{who}", length, 0.0, math.inf, unit="m")
             if amount > 0.0 and length == 0.0:
-                raise InputError(f"contact.relief_length_{who} = 0 m: a tip relief of "
-                                 f"{amount:.3g} m needs a relief length > 0 m")
+                raise InputError(f"contact.relief_length_{who} = 0 m: contact.tip_relief_{who} "
+                                 f"= {amount:.6g} m needs a relief length > 0 m")
         check_choice("contact.relief_shape", self.relief_shape, ("linear", "parabolic"))
         check_range("contact.crowning", self.crowning, 0.0, _MAX_MOD, unit="m")
         check_range("contact.slope_deviation", self.slope_deviation, -_MAX_MOD, _MAX_MOD, unit="m")

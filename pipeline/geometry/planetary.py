@@ -25,7 +25,7 @@ import numpy as np
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.validation import InputError, check_int_range
+from pipeline.validation import InputError, check_int_range, check_range
 
 BACKLASH_TOLERANCE = 2e-4
 """Interference a planetary mesh may have, over m_n: what rounding the profile shifts to
@@ -95,6 +95,9 @@ class PlanetarySet:
             raise InputError(
                 f"planetary.planet_angles has {len(ang)} values; n_planets = {self.n_planets}"
             )
+        for i, a in enumerate(ang):  # within one turn either way
+            check_range(f"planetary.planet_angles[{i}]", a, -2 * math.pi, 2 * math.pi,
+                        unit="rad")
         turns = (self.sun.teeth + self.ring.teeth) * ang / (2 * math.pi)
         bad = np.abs(turns - np.round(turns)) > 1e-6
         if np.any(bad):

@@ -41,8 +41,11 @@ OperatingPoint`)."""
 MAX_SPEED = 1e5
 """Largest speed magnitude of a lumped model, rad/s (as :class:`~pipeline.operation.
 OperatingPoint`)."""
-_BODY_LIMITS = (("mass_", 1e7, "kg"), ("inertia_", 1e7, "kg m^2"), ("base_radius_", 10.0, "m"),
-                ("carrier_radius", 10.0, "m"), ("mesh_period", 1e3, "s"))
+MAX_RADIUS = 10.0
+"""Largest radius of a lumped model's member, m."""
+_BODY_LIMITS = (("mass_", 1e7, "kg"), ("inertia_", 1e7, "kg m^2"),
+                ("base_radius_", MAX_RADIUS, "m"), ("carrier_radius", MAX_RADIUS, "m"),
+                ("mesh_period", 1e3, "s"))
 """Upper bounds of a lumped model's body quantities by field-name prefix (those of
 :class:`~pipeline.geometry.body.GearBody` for masses and inertias; 10 m radii; a mesh
 frequency of at least 1e-3 Hz)."""
@@ -61,6 +64,11 @@ def check_planet_layout(model) -> None:
     Neighbouring planet centres must be further apart than two planet base radii; the
     ring's base radius must exceed the carrier radius and the sun's must stay below it.
     """
+    check_body_range("carrier_radius", model.carrier_radius)
+    check_range("base_radius_ring", model.base_radius_ring, model.carrier_radius, MAX_RADIUS,
+                lo_open=True, unit="m")
+    check_range("base_radius_sun", model.base_radius_sun, 0.0, model.carrier_radius,
+                lo_open=True, hi_open=True, unit="m")
     psi = np.sort(np.mod(model.angles, 2 * math.pi))
     if psi.size > 1:
         gaps = np.diff(np.concatenate([psi, [psi[0] + 2 * math.pi]]))
@@ -70,10 +78,40 @@ def check_planet_layout(model) -> None:
                 f"planets overlap: neighbouring planet centres are {chord * 1e3:.4g} mm apart, "
                 f"less than two planet base radii ({2e3 * model.base_radius_planet:.4g} mm); "
                 "check planet_angles and n_planets")
-    check_range("base_radius_ring", model.base_radius_ring, model.carrier_radius, math.inf,
-                lo_open=True, unit="m")
-    check_range("base_radius_sun", model.base_radius_sun, 0.0, model.carrier_radius,
-                lo_open=True, hi_open=True, unit="m")
+
+
+def check_lumped_members(model, stiffnesses: tuple[str, ...]) -> None:
+    """The checks a planetary lumped model shares: masses, inertias, planet radius and mesh
+    period positive and bounded (:func:`check_body_range`), torque and speed bounded,
+    ``stiffnesses`` (N/m or N m/rad) in [0, 1e15], transverse pressure angles in (0, 90)
+    deg, planet angles within one turn either way, mesh phases within one mesh period
+    either way, damping ratios in [0, 1], and the layout (:func:`check_planet_layout`).
+    Per-planet tuples are stored as tuples of floats."""
+    n = check_int_range("n_planets", model.n_planets, 1, 64)
+    for f in ("mass_sun", "mass_ring", "mass_carrier", "mass_planet", "inertia_sun",
+              "inertia_ring", "inertia_carrier", "inertia_planet", "base_radius_planet",
+              "mesh_period"):
+        check_body_range(f, getattr(model, f))
+    check_range("sun_torque", model.sun_torque, -MAX_TORQUE, MAX_TORQUE, unit="N m")
+    check_range("carrier_speed", model.carrier_speed, -MAX_SPEED, MAX_SPEED, unit="rad/s")
+    for f in stiffnesses:
+        check_range(f, getattr(model, f), 0.0, 1e15)
+    for f in ("pressure_angle_sun", "pressure_angle_ring"):
+        check_range(f, getattr(model, f), 0.0, math.pi / 2, lo_open=True, hi_open=True,
+                    unit="rad")
+    for f, bound, unit in (("planet_angles", 2 * math.pi, "rad"), ("phase_sun", 1.0, ""),
+                           ("phase_ring", 1.0, "")):
+        v = getattr(model, f)
+        if v is not None:
+            v = tuple(float(a) for a in np.atleast_1d(v))
+            if len(v) != n:
+                raise InputError(f"{f} has {len(v)} entries; need n_planets = {n}")
+            for i, a in enumerate(v):
+                check_range(f"{f}[{i}]", a, -bound, bound, unit=unit)
+            object.__setattr__(model, f, v)
+    for f in ("damping_ratio", "modal_damping_ratio"):
+        check_range(f, getattr(model, f), 0.0, 1.0)
+    check_planet_layout(model)
 
 
 @dataclass(frozen=True)
@@ -142,42 +180,8 @@ class PlanetaryModel:
     extra: dict = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
-        N = check_int_range("n_planets", self.n_planets, 1, 64)
-        for f in (
-            "mass_sun",
-            "mass_ring",
-            "mass_carrier",
-            "mass_planet",
-            "inertia_sun",
-            "inertia_ring",
-            "inertia_carrier",
-            "inertia_planet",
-            "base_radius_sun",
-            "base_radius_ring",
-            "base_radius_planet",
-            "carrier_radius",
-            "mesh_period",
-        ):
-            check_body_range(f, getattr(self, f))
-        check_range("sun_torque", self.sun_torque, -MAX_TORQUE, MAX_TORQUE, unit="N m")
-        check_range("carrier_speed", self.carrier_speed, -MAX_SPEED, MAX_SPEED, unit="rad/s")
-        for f in ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun", "kt_ring", "kt_carrier"):
-            check_range(f, getattr(self, f), 0.0, 1e15)
-        for f in ("pressure_angle_sun", "pressure_angle_ring"):
-            check_range(
-                f, getattr(self, f), 0.0, math.pi / 2, lo_open=True, hi_open=True, unit="rad"
-            )
-        for f in ("planet_angles", "phase_sun", "phase_ring"):
-            v = getattr(self, f)
-            if v is not None:
-                v = tuple(float(a) for a in np.atleast_1d(v))
-                if len(v) != N:
-                    raise InputError(f"{f} has {len(v)} entries; need n_planets = {N}")
-                object.__setattr__(self, f, v)
-
-        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
-        check_range("modal_damping_ratio", self.modal_damping_ratio, 0.0, 1.0)
-        check_planet_layout(self)
+        check_lumped_members(self, ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun",
+                                    "kt_ring", "kt_carrier"))
 
     @property
     def angles(self) -> np.ndarray:
