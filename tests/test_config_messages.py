@@ -82,6 +82,12 @@ def _signal(kind: str) -> dict:
     return _with(doc, "dynamics.mesh_stiffness", {"kind": kind, **SIGNALS[kind]})
 
 
+def _fe_keys(compliance: str) -> tuple[Key, ...]:
+    """The ``[fe]`` keys that act with this contact compliance."""
+    acting = set(T.FE_COMMAND_KEYS) | set(T.FE_SOURCE_FIELDS.get(compliance, {}))
+    return tuple(k for k in T.FE if k.name in acting)
+
+
 # (tables.py name, base document, table path, its keys)
 CONTEXTS = [
     *[("GEAR", PAIR, role, T.GEAR) for role in ("pinion", "gear")],
@@ -99,8 +105,7 @@ CONTEXTS = [
     ("CONTACT", PAIR, "contact", T.CONTACT),
     ("MODIFICATIONS", _with(PAIR, "contact", RELIEFS), "contact", T.MODIFICATIONS),
     ("MODIFICATIONS", _with(PLANETARY, "contact", RELIEFS), "contact", T.MODIFICATIONS),
-    *[("FE", _with(PAIR, "contact", {"compliance": c}), "fe",
-       tuple(k for k in T.FE if k.name in T.FE_COMMAND_KEYS or k.name in T.FE_SOURCE_FIELDS.get(c, {})))
+    *[("FE", _with(PAIR, "contact", {"compliance": c}), "fe", _fe_keys(c))
       for c in ("analytical", "fe2d", "fe3d")],
     ("GROOVE", _with(SUN_GROOVE, "groove", {"coupling": "tooth_forces"}), "groove", T.GROOVE),
     ("HERRINGBONE", PLANETARY, "herringbone", T.HERRINGBONE),
@@ -286,6 +291,25 @@ def test_fe_setting_named_as_in_the_file(tmp_path, capsys):
     msg = _one_line(tmp_path, capsys, text, "stiffness")
     assert msg.startswith('fe.solver = "fast" is not one of '), msg
     assert "fe3d" not in msg and "method" not in msg
+
+
+def test_fe3d_limits_named_as_in_the_file_before_any_meshing(tmp_path, capsys):
+    # a 30 deg helical pair 60 mm wide has tooth pairs -4..4 in contact: 9 sector teeth
+    text = (_spur("face_width_mm = 20.0", 'face_width_mm = 60.0\nhelix_angle_deg = 30.0\n'
+                  'hand = "right"')
+            .replace("[gear]\nteeth = 50\nmodule_mm = 3.0\npressure_angle_deg = 20.0\n"
+                     "face_width_mm = 20.0", '[gear]\nteeth = 50\nmodule_mm = 3.0\n'
+                     'pressure_angle_deg = 20.0\nface_width_mm = 60.0\nhelix_angle_deg = 30.0'
+                     '\nhand = "left"'))
+    text += '[contact]\ncompliance = "fe3d"\n[fe]\nteeth = 3\n'
+    assert _one_line(tmp_path, capsys, text, "stiffness") == (
+        "fe.teeth = 3 is outside the allowed range [9, 99] (the tooth pairs in contact)")
+    ring = (CONFIGS / "planet_ring_pair.toml").read_text(encoding="utf-8")
+    ring += '[fe]\nteeth = 5\n' if "[fe]" not in ring else ""
+    ring = ring.replace("[contact]", '[contact]\ncompliance = "fe3d"', 1)
+    assert _one_line(tmp_path, capsys, ring, "stiffness") == (
+        'contact.compliance = "fe3d": the 3D models are of external gears only; the gear is '
+        'internal: use "fe2d"')
 
 
 def test_internal_pinion_refused_as_such(tmp_path, capsys):

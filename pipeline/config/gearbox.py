@@ -594,8 +594,27 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
             box.actual_pair  # noqa: B018 - the displaced pair must still mesh (cached)
     _check_groove_sources(box, doc)
     _check_relief_lengths(box, doc)
+    _check_fe3d_meshes(box, doc)
     _check_pitch_errors(box)
     return box
+
+
+def _check_fe3d_meshes(box: Gearbox, doc: Mapping[str, Any]) -> None:
+    """The 3D compliance source's limits on the meshes it would model, before any meshing
+    (:meth:`~pipeline.contact.fe3d_source.FE3DCompliance.check_pair`); a herringbone mesh
+    is modelled by its helical halves, checked when they are built."""
+    if box.contact.compliance != "fe3d":
+        return
+    from pipeline.contact.fe3d_source import FE3DCompliance
+
+    meshes = box.contact_meshes()
+    mapping = T.FE_SOURCE_FIELDS["fe3d"]
+    keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE if k.name in mapping)
+    contact = {"contact": Scope("contact", T.CONTACT, doc.get("contact", {}))}
+    with restated("fe", keys, doc.get("fe", {}), also=contact):
+        for name, pair in meshes:
+            if not (pair.pinion.herringbone or pair.gear.herringbone):
+                FE3DCompliance.check_pair(pair, box.fe_source, name if len(meshes) > 1 else "")
 
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:

@@ -149,19 +149,33 @@ class FE3DCompliance:
         settings = settings or FE3DSettings()
         if pair.pinion.herringbone or pair.gear.herringbone:
             raise InputError("fe3d source: analyse one helical half of a herringbone pair")
-        if pair.gear.internal:
-            raise InputError("fe3d source: internal gears are not supported (3D models "
-                             "are external only)")
+        cls.check_pair(pair, settings)
         k = touching_pairs(pair)
         teeth = cls._model_teeth(pair, settings)
-        if settings.body == "sector" and (np.abs(k).max() > teeth[0] // 2
-                                          or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
-            raise InputError(f"fe3d.teeth = {settings.teeth} does not cover tooth pairs "
-                             f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
         tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache, cache_dir,
                               progress)
                   for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
         return cls(pair, settings, *tables)
+
+    @classmethod
+    def check_pair(cls, pair: GearPair, settings: FE3DSettings, mesh: str = "") -> None:
+        """Refuse a pair the 3D models cannot hold (an internal gear; a sector with fewer
+        teeth than the tooth pairs in contact need), before any meshing; ``mesh`` names the
+        mesh in the message."""
+        of = f" of the {mesh} mesh" if mesh else ""
+        if pair.gear.internal:
+            raise InputError(f'contact.compliance = "fe3d": the 3D models are of external gears '
+                             f"only; the {pair.gear.name}{of} is internal: use \"fe2d\"")
+        k = touching_pairs(pair)
+        teeth = cls._model_teeth(pair, settings)
+        if settings.body == "sector" and (np.abs(k).max() > teeth[0] // 2
+                                          or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
+            need = 2 * int(np.abs(k).max()) + 1
+            raise InputError(
+                f"fe3d.teeth = {settings.teeth} is outside the allowed range [{need}, 99]: the "
+                f"sector must hold the tooth pairs {k.min()}..{k.max()} in contact{of}",
+                field="fe3d.teeth", value=settings.teeth, bounds=(need, 99, False, False),
+                note=f"the tooth pairs in contact{of}")
 
     @staticmethod
     def _model_teeth(pair: GearPair, settings: FE3DSettings) -> tuple[int, int]:

@@ -93,7 +93,8 @@ class PlanetarySet:
         ang = self.angles
         if len(ang) != self.n_planets:
             raise InputError(
-                f"planetary.planet_angles has {len(ang)} values; n_planets = {self.n_planets}"
+                f"planetary.planet_angles has {len(ang)} values: give one per planet "
+                f"(planetary.n_planets = {self.n_planets})"
             )
         for i, a in enumerate(ang):  # within one turn either way
             check_range(f"planetary.planet_angles[{i}]", a, -2 * math.pi, 2 * math.pi,

@@ -105,7 +105,8 @@ def check_lumped_members(model, stiffnesses: tuple[str, ...]) -> None:
         if v is not None:
             v = tuple(float(a) for a in np.atleast_1d(v))
             if len(v) != n:
-                raise InputError(f"{f} has {len(v)} entries; need n_planets = {n}")
+                raise InputError(f"{f} has {len(v)} entries: give one per planet "
+                                 f"(n_planets = {n})")
             for i, a in enumerate(v):
                 check_range(f"{f}[{i}]", a, -bound, bound, unit=unit)
             object.__setattr__(model, f, v)
