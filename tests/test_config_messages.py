@@ -312,6 +312,37 @@ def test_fe3d_limits_named_as_in_the_file_before_any_meshing(tmp_path, capsys):
         'internal: use "fe2d"')
 
 
+@pytest.mark.parametrize("edits, expected", [
+    # z 10 at 11.76 deg, x = -0.308, h_f* = 2.414: the rack's tip cuts the whole flank away
+    ([("teeth = 50\nmodule_mm = 3.0\npressure_angle_deg = 20.0",
+       "teeth = 10\nmodule_mm = 3.0\npressure_angle_deg = 11.76\nprofile_shift = -0.308\n"
+       "addendum_coef = 0.36\ndedendum_coef = 2.414\ncutter_tip_radius_coef = 0.30"),
+      ("bore_radius_mm = 21.0", "bore_radius_mm = 3.0")],
+     "[pinion]: the undercut root fillet reaches the tip circle (form radius 16.2365 mm >= "
+     "tip radius 15.156 mm), leaving no involute flank; raise pinion.profile_shift = -0.308 "
+     "or lower pinion.dedendum_coef = 2.414"),
+    # a ring of 29 teeth at 7.75 deg, x = 1.496, h_f* = 1.23: r_f = r + (h_f* - x) m =
+    # 42.702 mm < r_b = r cos(alpha_t) = 43.103 mm (ISO 21771 for internal gears)
+    ([("[gear]\nteeth = 50\nmodule_mm = 3.0\npressure_angle_deg = 20.0\nface_width_mm = 20.0"
+       "\nbore_radius_mm = 21.0",
+       "[gear]\nteeth = 29\nmodule_mm = 3.0\npressure_angle_deg = 7.75\nface_width_mm = 20.0"
+       "\nprofile_shift = 1.496\naddendum_coef = 0.81\ndedendum_coef = 1.23\ninternal = true"
+       "\nrim_outer_radius_mm = 60.0")],
+     "[gear]: the root circle of the internal gear (radius 42.702 mm) lies inside its base "
+     "circle (43.1027 mm), where no involute exists; lower gear.profile_shift = 1.496 or raise "
+     "gear.dedendum_coef = 1.23"),
+])
+def test_gear_without_involute_refused_with_the_fix(tmp_path, capsys, edits, expected):
+    r = 29 * 3.0 / 2  # the ring's numbers, independently: 43.5 mm reference radius
+    assert r + (1.23 - 1.496) * 3.0 == pytest.approx(42.702)
+    assert r * math.cos(math.radians(7.75)) == pytest.approx(43.1027, abs=1e-4)
+    text = SPUR_TEXT
+    for old, new in edits:
+        assert old in text
+        text = text.replace(old, new, 1)
+    assert _one_line(tmp_path, capsys, text) == expected
+
+
 def test_internal_pinion_refused_as_such(tmp_path, capsys):
     text = _spur("bore_radius_mm = 21.0", "bore_radius_mm = 21.0\ninternal = true")
     msg = _one_line(tmp_path, capsys, text)

@@ -66,6 +66,7 @@ from pipeline.geometry.body import GearBody
 from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.planetary import PlanetarySet
+from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
@@ -253,6 +254,7 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
                           "sets", InputWarning, stacklevel=3)
     with restated(role, keys, table, also=_gear_scopes({role: table}, {role: values["name"]})):
         gear = GearSpec(**values)
+        tooth_profile(gear)  # a flank the rack cuts away entirely is refused now (about 1 ms)
         return gear, GearBody(gear, **body)
 
 

@@ -140,6 +140,13 @@ class GearSpec:
         check_range(f"{p}.profile_shift", self.profile_shift, -1.5, 1.5)
         check_range(f"{p}.addendum_coef", self.addendum_coef, 0.3, 2.0)
         check_range(f"{p}.dedendum_coef", self.dedendum_coef, self.addendum_coef, 2.5)
+        if self.internal and self.root_radius <= self.base_radius:
+            raise InputError(
+                f"{p}: the root circle of the internal gear (radius {self.root_radius * 1e3:.6g} "
+                f"mm) lies inside its base circle ({self.base_radius * 1e3:.6g} mm), where no "
+                f"involute exists; lower {p}.profile_shift = {self.profile_shift:.6g} or raise "
+                f"{p}.dedendum_coef = {self.dedendum_coef:.6g}"
+            )
         if self.internal and self.half_tooth_angle(self.root_radius) >= math.pi / self.teeth:
             raise InputError(
                 f"{p}: the tooth spaces of the internal gear close before its root circle "

@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.generation import generate, rack_flank, rack_tip
-from pipeline.validation import check_int_range
+from pipeline.validation import InputError, check_int_range
 
 FILLET, INVOLUTE = 0, 1
 THIN_TIP = 0.2  # tip thickness below THIN_TIP * m_n is reported as a thin tip
@@ -157,8 +157,11 @@ def _external_flank(gear: GearSpec, n: int):
         sx, sy = generate(gear, rack_flank(gear, yn))
         x_f, y_f, r_inv0 = _undercut_envelope(gear, np.r_[tx, sx[1:]], np.r_[ty, sy[1:]])
     if r_inv0 >= ra:
-        raise ValueError(f"{gear.name}: the fillet reaches the tip circle (form radius "
-                         f"{r_inv0:.6g} m >= tip radius {ra:.6g} m)")
+        p = gear.name
+        raise InputError(f"{p}: the undercut root fillet reaches the tip circle (form radius "
+                         f"{r_inv0 * 1e3:.6g} mm >= tip radius {ra * 1e3:.6g} mm), leaving no "
+                         f"involute flank; raise {p}.profile_shift = {gear.profile_shift:.6g} or "
+                         f"lower {p}.dedendum_coef = {gear.dedendum_coef:.6g}")
     ri = _roll_spaced(gear, r_inv0, ra, n)
     ix, iy = _involute(gear, ri)
     x = np.r_[lx, x_f[1:], ix[1:]]
@@ -220,7 +223,10 @@ def _internal_flank(gear: GearSpec, n: int):
         r_form = rf
     else:
         if g(lo) > 0.0:
-            raise ValueError(f"{gear.name}: fillet radius {rho:.4g} m does not fit the tooth")
+            p = gear.name
+            raise InputError(f"{p}: the root fillet (radius {rho * 1e3:.4g} mm) does not fit the "
+                             f"tooth space; lower {p}.cutter_tip_radius_coef = "
+                             f"{gear.cutter_tip_radius_coef:.6g}")
         for _ in range(80):  # bisection on the involute radius
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if g(mid) < 0.0 else (lo, mid)
