@@ -11,6 +11,15 @@ refuses a value, :func:`restated` re-raises the error in the words of the file:
 the key as written, the value in the file's unit and the allowed range in that
 unit, e.g. ``pinion.pressure_angle_deg = 60 deg is outside the allowed range
 (0, 35] deg`` (keys are shown as dotted TOML paths, which name them exactly).
+Any other message of a dataclass is rewritten the same way: each field it names
+(``gear.module = 0.0035 m``, ``fe3d.method = 'x'``, ``web_width``) becomes the key
+of the file's table (``gear.module_mm = 3.5 mm``, ``fe.solver = "x"``,
+``web_width_mm``), found through :class:`Scope` - the table being read, and the
+other tables whose fields the dataclass may name under their own prefix (a
+pair's ``pinion.`` and ``gear.``, also under a gear's own ``name``). So a
+dataclass speaks of its fields in SI, once, and every message reaches the user
+in the file's terms; ``tests/test_config_messages.py`` checks this for every
+key of :mod:`pipeline.config.tables`.
 """
 
 from __future__ import annotations
