@@ -30,7 +30,7 @@ from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_dict
 from pipeline.config import tables as T
 from pipeline.config.lumped import _model_class, model_keys
-from pipeline.config.schema import Key
+from pipeline.config.schema import Key, Scope, restated
 from pipeline.validation import InputError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -382,3 +382,42 @@ def test_files_named_by_the_package_exist():
                                         node.value))
     assert "workflows/configs/spur_pair_assembly_errors.toml" in named  # the old-format hint
     assert [n for n in sorted(named) if not (ROOT / n).is_file()] == []
+
+
+# ---- the rewriting itself ---------------------------------------------------------------
+
+GEAR_SCOPE = {"Driver pinion": Scope("pinion", T.GEAR + T.BODY, {"bore_radius_mm": 1}),
+              "pinion": Scope("pinion", T.GEAR + T.BODY, {"bore_radius_mm": 1}),
+              "gear": Scope("gear", T.GEAR + T.BODY, {"rim_outer_radius_mm": 1})}
+
+
+@pytest.mark.parametrize("where, keys, raised, expected", [
+    # another table's field in SI -> its key in mm (3.5 mm = 0.0035 m)
+    ("pair", T.PAIR, "gear.module = 0.0035 m must equal pinion.module = 0.003 m",
+     "gear.module_mm = 3.5 mm must equal pinion.module_mm = 3 mm"),
+    # a gear's own name as prefix; two keys setting one field: the one the table gave
+    ("pair", T.PAIR, "Driver pinion.bore_radius = 0.021 m; gear.bore_radius = 0.3 m",
+     "pinion.bore_radius_mm = 21 mm; gear.rim_outer_radius_mm = 300 mm"),
+    # an unknown prefix with a value: the table's own key; strings in TOML quotes
+    ("fe", tuple(Key(k.name, k.kind, field="method") if k.name == "solver" else k
+                 for k in T.FE), "fe3d.method = 'x' is not one of 'a', 'b'",
+     'fe.solver = "x" is not one of \'a\', \'b\''),
+    # a range in SI after the value, with a note; degrees from radians
+    ("pinion", T.GEAR, "pinion.helix_angle = 0.785398 rad is outside the allowed range "
+     "[0, 0.785398) rad (why)",
+     "pinion.helix_angle_deg = 45 deg is outside the allowed range [0, 45) deg (why)"),
+    # bare field names with an underscore become key names; prose stays prose
+    ("pinion", T.BODY, "pinion: a web needs web_width and hub_radius; the teeth stay",
+     "[pinion]: a web needs web_width_mm and hub_radius_mm; the teeth stay"),
+    # another table's field under an unknown prefix is not taken for this table's key
+    ("groove", T.GROOVE, "operation.torque = 340 N m differs from groove.sun_torque = 3 N m",
+     "[groove]: operation.torque = 340 N m differs from groove.torque_Nm = 3 N m"),
+    # a key already as written keeps its value; a value in another unit is left alone
+    ("pinion", T.GEAR, "pinion.module_mm = 3 mm, pinion.module = 3 mm",
+     "pinion.module_mm = 3 mm, pinion.module_mm = 3 mm"),
+])
+def test_restated_rewrites_fields_into_the_file_terms(where, keys, raised, expected):
+    with pytest.raises(InputError) as info:
+        with restated(where, keys, also=GEAR_SCOPE):
+            raise InputError(raised)
+    assert str(info.value) == expected

@@ -217,13 +217,15 @@ class Scope:
     keys: Sequence[Key]
     present: Collection[str] = ()
 
-    def key(self, name: str) -> tuple[Key, bool] | None:
+    def key(self, name: str, fields_only: bool = False) -> tuple[Key, bool] | None:
         """The key a field name or key name refers to, and whether ``name`` is already the
-        key as written (its value is then in the file's unit)."""
+        key as written (its value is then in the file's unit); ``fields_only``: only a key
+        whose input field is ``name``."""
         for k in self.keys:
-            if k.name == name:
+            if k.name == name and not fields_only:
                 return k, True
-        matches = [k for k in self.keys if name in (k.target, _stem(k))]
+        matches = [k for k in self.keys
+                   if name == k.target or (name == _stem(k) and not fields_only)]
         if not matches:
             return None
         return next((k for k in matches if k.name in self.present), matches[0]), False
@@ -274,9 +276,12 @@ def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> st
     def replace(m: re.Match) -> str:
         prefix, name = m.group("prefix"), m.group("name")
         scope = by_alias.get(prefix) if prefix else None
-        if scope is None and (m.group("value") is not None or "_" in name):
+        # another prefix (a dataclass's own, "fe3d.method"): a field of the table being read
+        # only by its field name, so that "operation.torque" never becomes "groove.torque_Nm"
+        guess = scope is None and (m.group("value") is not None or "_" in name)
+        if guess:
             scope = primary
-        found = scope.key(name) if scope is not None else None
+        found = scope.key(name, fields_only=guess and prefix is not None) if scope else None
         if found is None:
             whole = m.group(0)
             return f"{back[prefix]}{whole[len(prefix):]}" if prefix in back else whole
@@ -288,8 +293,7 @@ def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> st
             return out
         u = key.unit
         convert = not as_written and u is not DIMENSIONLESS and m.group("unit") == u.si
-        label = f" {u.label}" if u.label and (convert or as_written) else (
-            f" {m.group('unit')}" if m.group("unit") else "")
+        label = f" {u.label}" if convert else (f" {m.group('unit')}" if m.group("unit") else "")
         if value.startswith("'"):
             value = '"' + value[1:-1] + '"'
         elif value in ("True", "False"):
@@ -302,7 +306,7 @@ def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> st
             lo, hi = m.group("lo"), m.group("hi")
             if rconvert:
                 lo, hi = _show_si(_number(lo), u), _show_si(_number(hi), u)
-            runit = label if (rconvert or as_written) else (
+            runit = f" {u.label}" if rconvert else (
                 f" {m.group('runit')}" if m.group("runit") else "")
             out += (f" is outside the allowed range {m.group('lb')}{lo}, {hi}{m.group('rb')}"
                     f"{runit}")
@@ -330,8 +334,8 @@ def _restate(exc: InputError, primary: Scope, scopes: Mapping[str, Scope]) -> In
         return None
     prefix, base, index = m.group("prefix"), m.group("name"), m.group("index")
     scope = scopes.get(prefix) if prefix else None
+    found = scope.key(base) if scope else primary.key(base, fields_only=prefix is not None)
     scope = scope or primary
-    found = scope.key(base)
     if found is None:
         return None
     key, as_written = found
