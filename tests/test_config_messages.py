@@ -153,7 +153,7 @@ def _cases():
 
 
 def _document(doc: dict, path: str, key: Key, value) -> dict:
-    setup = {k: v for k, v in SETUP.get((path, key.name), {}).items()}
+    setup = SETUP.get((path, key.name), {})
     out = _with(doc, path, {k: v for k, v in setup.items() if v is not None})
     table = out
     for part in path.split("."):
@@ -223,6 +223,30 @@ def test_out_of_range_names_the_key_value_and_range_in_its_unit(doc, path, key):
                 outside, inside = bound + sign * step, bound - sign * step
             assert _refuses(doc, path, key, outside), (path, key.name, outside, msg)
             assert not _refuses(doc, path, key, inside), (path, key.name, inside, msg)
+
+
+FREE_TEXT = ("name", "path", "column")
+"""String keys that take any text (a label, a file, a column of it)."""
+
+
+def _word_cases():
+    for _, doc, path, keys in CONTEXTS:
+        where = doc.get("name") or doc["lumped_model"]["model"]
+        for key in keys:
+            if key.kind in ("string", "boolean") and key.name not in FREE_TEXT:
+                yield pytest.param(doc, path, key, id=f"{path}.{key.name}@{where}")
+
+
+@pytest.mark.parametrize("doc, path, key", list(_word_cases()))
+def test_bad_word_names_the_key_and_what_it_takes(doc, path, key):
+    """A string key given an unknown word, a boolean given a string: one line naming the
+    key as written, the value as written (TOML quotes) and what the key takes."""
+    msg = _message(_document(doc, path, key, "bogus"))
+    assert msg is not None and "\n" not in msg
+    if key.kind == "boolean":
+        assert msg == f'{path}.{key.name} = "bogus": expected true or false (without quotes)'
+    else:
+        assert msg.startswith(f'{path}.{key.name} = "bogus" is not one of \''), msg
 
 
 def test_every_table_is_swept():

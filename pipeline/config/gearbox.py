@@ -414,7 +414,8 @@ def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
         role = next((r for r, g in gears.items() if g.herringbone), "sun" if "sun" in gears
                     else "gear")
     if role not in gears:
-        raise unknown(role, list(gears), "[groove] gear")
+        raise InputError(f'groove.gear = "{role}" is not one of '
+                         f"{', '.join(map(repr, gears))} (the gear tables of this file)")
     if planetary is not None and role != "sun":
         raise InputError(f"groove.gear = \"{role}\": a planetary set's [groove] is the sun's "
                          "(its halves are joined through it in the contact and the dynamics); "
