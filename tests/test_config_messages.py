@@ -29,7 +29,7 @@ import pytest
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_dict
 from pipeline.config import tables as T
-from pipeline.config.lumped import _model_class, model_keys
+from pipeline.config.lumped import MODELS, _model_class, model_keys
 from pipeline.config.schema import Key, Scope, restated
 from pipeline.validation import InputError
 
@@ -256,6 +256,7 @@ def test_every_table_is_swept():
     covered = {name for name, *_ in CONTEXTS}
     assert tables - covered == set()
     assert {kind for kind in T.SIGNAL} == set(T.SIGNAL_KINDS)
+    assert set(LUMPED) == set(MODELS)  # every [lumped_model] model
 
 
 # ---- the messages that once leaked internals ------------------------------------------
