@@ -38,6 +38,18 @@ from pipeline.io import fsync_path, pid_alive, process_umask
 # errors of the disk rather than of the computation
 _DISK_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EFBIG}
 
+LONGEST_FILE_NAME = 64
+"""Longest name (bytes) of a file a command writes into its folder; the longest today is
+``planet_ring_report_transmission_error.png`` (41). The length check of a target counts
+on it, so the tests hold every command's outputs to it."""
+_PID_DIGITS = 7  # PID_MAX_LIMIT of Linux is 4194304; other systems stay below it
+_RANDOM = 8  # random characters of tempfile's names
+_STAGING_EXTRA = len("..staging--") + _PID_DIGITS + _RANDOM
+"""What ``.<target>.staging-<pid>-<random>`` adds to the target's name."""
+_LONGEST_TEMP = len("..tmp--") + LONGEST_FILE_NAME + _PID_DIGITS + _RANDOM + len(".parquet")
+"""Longest temporary file name :func:`pipeline.io.atomic_write` makes in a result folder:
+``.<name>.tmp-<pid>-<random><suffix>``."""
+
 
 class OutputError(Exception):
     """The results cannot be written where asked (full or read-only disk, a file in the
@@ -70,6 +82,7 @@ def check_target(target: str | os.PathLike) -> Path:
     """
     shown = Path(target)
     path = shown.resolve()
+    _check_lengths(shown, path)
     try:
         mode = path.stat().st_mode  # one look: another run may be swapping the folder
     except (FileNotFoundError, NotADirectoryError):  # new, or under a file (checked below)
@@ -94,6 +107,59 @@ def check_target(target: str | os.PathLike) -> Path:
                                   f"written to {shown}; give --out another folder")
             break
     return path
+
+
+def _short(text: str) -> str:
+    """A long name cut in the middle, for one-line messages."""
+    return text if len(text) <= 70 else f"{text[:40]}...{text[-25:]}"
+
+
+def _limits(path: Path) -> tuple[int, int]:
+    """(NAME_MAX, PATH_MAX) in bytes of the file system that will hold ``path``: that of
+    its nearest existing parent (POSIX defaults 255 and 4096 where it does not say)."""
+    existing = Path(path.anchor)
+    for p in (path, *path.parents):
+        try:
+            os.stat(p)
+        except OSError:  # missing, or itself a name too long: look further up
+            continue
+        existing = p
+        break
+    limits = []
+    for name, default in (("PC_NAME_MAX", 255), ("PC_PATH_MAX", 4096)):
+        try:
+            limits.append(int(os.pathconf(existing, name)))
+        except (OSError, ValueError, AttributeError):
+            limits.append(default)
+    return limits[0], limits[1]
+
+
+def _check_lengths(shown: Path, path: Path) -> None:
+    """:class:`OutputError` unless every name and path the writer will make for the folder
+    ``path`` fits the file system: each folder name, the staging folder's name beside it
+    (the target's name plus :data:`_STAGING_EXTRA`) and the longest temporary file inside
+    that (:data:`_LONGEST_TEMP`) under PATH_MAX. Checked before any work, so a name that
+    cannot be written never costs a computation."""
+    name_max, path_max = _limits(path)
+    for part in path.parts[1:-1]:
+        if len(os.fsencode(part)) > name_max:
+            raise OutputError(f"the folder name {_short(part)} in {_short(str(shown))} is "
+                              f"{len(os.fsencode(part))} bytes long; the file system allows "
+                              f"at most {name_max}; give --out a shorter path")
+    name = len(os.fsencode(path.name))
+    if name + _STAGING_EXTRA > name_max:
+        raise OutputError(f"the results folder name {_short(path.name)} is {name} bytes long; "
+                          f"it can have at most {name_max - _STAGING_EXTRA} (the file system "
+                          f"allows {name_max} and the writer adds {_STAGING_EXTRA} for its "
+                          "staging folder); give --out a shorter name")
+    longest = len(os.fsencode(str(path))) + _STAGING_EXTRA + 1 + _LONGEST_TEMP
+    if longest > path_max - 1:
+        allowed = path_max - 1 - _STAGING_EXTRA - 1 - _LONGEST_TEMP
+        raise OutputError(f"the results folder {_short(str(path))} is "
+                          f"{len(os.fsencode(str(path)))} bytes long as an absolute path; it "
+                          f"can have at most {allowed} (the file system allows {path_max} for "
+                          "a path, and the files written into it need the rest); give --out a "
+                          "shorter path")
 
 
 def _stale(target: Path) -> list[tuple[str, Path]]:
@@ -238,4 +304,4 @@ def _remove_empty(folders: list[Path]) -> None:
             return
 
 
-__all__ = ["OutputError", "check_target", "recover", "staged_output"]
+__all__ = ["LONGEST_FILE_NAME", "OutputError", "check_target", "recover", "staged_output"]

@@ -42,12 +42,22 @@ class InputFile:
     sha256: str
 
 
-def _depth(v: Any) -> int:
-    if isinstance(v, Mapping):
-        return 1 + max((_depth(x) for x in v.values()), default=0)
-    if isinstance(v, list):
-        return 1 + max((_depth(x) for x in v), default=0)
-    return 0
+def _too_deep(doc: Mapping[str, Any]) -> str | None:
+    """Where the first table or array nested deeper than :data:`MAX_DEPTH` levels starts
+    (a dotted path, ``a.b[0]``, shortened), or None. Iterative and stopping at the limit:
+    a 20000-level table header costs a few steps and no recursion."""
+    stack: list[tuple[Any, str, int]] = [(doc, "", 1)]
+    while stack:
+        value, path, level = stack.pop()
+        items = ((f"{path}.{k}" if path else str(k), x) for k, x in value.items()) \
+            if isinstance(value, Mapping) else \
+            ((f"{path}[{i}]", x) for i, x in enumerate(value))
+        for where, x in items:
+            if isinstance(x, (Mapping, list)):
+                if level + 1 > MAX_DEPTH:
+                    return where if len(where) <= 80 else where[:77] + "..."
+                stack.append((x, where, level + 1))
+    return None
 
 
 def parse_toml(data: bytes, name: str) -> dict[str, Any]:
@@ -74,9 +84,10 @@ def parse_toml(data: bytes, name: str) -> dict[str, Any]:
                          f"{MAX_DEPTH} levels)") from None
     finally:
         sys.setrecursionlimit(limit)
-    if _depth(doc) > MAX_DEPTH:
-        raise InputError(f"{name}: tables or arrays nested too deeply (more than {MAX_DEPTH} "
-                         "levels)")
+    deep = _too_deep(doc)
+    if deep is not None:
+        raise InputError(f"{name}: tables or arrays nested too deeply at {deep} (more than "
+                         f"{MAX_DEPTH} levels)")
     return doc
 
 
