@@ -17,6 +17,7 @@ import pytest
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
 from pipeline.fem.cache_dir import CacheWarning
+from pipeline.output_folder import LONGEST_FILE_NAME
 from pipeline.run import RunOptions, run_pipeline
 
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
@@ -135,6 +136,8 @@ def test_cli_writes_one_folder_with_one_summary(tmp_path, capsys):
                  "time_history.csv", "sweep.csv", "sweep.png", "tooth_profiles.png",
                  "run.json"):
         assert (out / name).is_file(), name
+    # the output folder's length check counts on names of at most LONGEST_FILE_NAME bytes
+    assert max(len(p.name) for p in out.iterdir()) <= LONGEST_FILE_NAME
     record = json.loads((out / "run.json").read_text())
     assert str(tmp_path / "c") in record["arguments"] and record["options"] == {"full": False}
     # the report's FE root-stress tables go to the run's cache folder, like every FE table
