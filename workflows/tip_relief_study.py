@@ -7,7 +7,7 @@ peak-to-peak is smallest at each torque beside the classic estimate, the combine
 deflection at that load F / (b c_gamma_alpha) (ISO 6336-1; 10.96 um at 340 N m).
 ``--full`` doubles the relief grid (1 um steps).
 
-Writes results/tip_relief_study/: everything ``gearpipe study`` writes (study.parquet/csv,
+Writes results/tip_relief_study/workflow/: everything ``gearpipe study`` writes (study.parquet/csv,
 sensitivity.png, tradeoff.png, best_point/), plus optimum.csv.
 
     python workflows/tip_relief_study.py [--full] [--workers N] [--out DIR]
@@ -16,12 +16,15 @@ sensitivity.png, tradeoff.png, best_point/), plus optimum.csv.
 from __future__ import annotations
 
 import argparse
+import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from pipeline.cli import main as gearpipe
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.io import write_csv
 from pipeline.stiffness.analysis import analyse_stiffness
@@ -30,12 +33,13 @@ ROOT = Path(__file__).resolve().parent
 STUDY = ROOT / "configs" / "tip_relief_study.toml"
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--workers", type=int, default=None)
-    ap.add_argument("--out", type=Path, default=Path("results/tip_relief_study"))
-    a = ap.parse_args()
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
+    a = ap.parse_args(argv)
+    a.out = workflow_dir(__file__, a.out, check=False)  # gearpipe study checks it
     study = STUDY
     if a.full:
         study = Path(tempfile.mkdtemp()) / STUDY.name
@@ -44,8 +48,9 @@ def main() -> None:
     args = ["study", str(study), "--out", str(a.out)]
     if a.workers is not None:
         args += ["--workers", str(a.workers)]
-    if gearpipe(args):
-        raise SystemExit(2)
+    status = gearpipe(args)
+    if status:
+        return status
     import pyarrow.parquet as pq
 
     t = pq.read_table(a.out / "study.parquet").to_pydict()
@@ -66,7 +71,8 @@ def main() -> None:
         print(f"{torque:6.0f} N m: TE p-p smallest {y[m][i]:.2f} um at {x[m][i]:.1f} um relief; "
               f"F / (b c_gamma_alpha) = {est:.2f} um")
     write_csv(a.out / "optimum.csv", {k: np.array(v) for k, v in rows.items()})
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run_workflow(__file__, main))
