@@ -90,7 +90,7 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     view = 0.78  # share of the row width the tooth may take (the colour bar takes the rest)
     aspect = float(np.clip(1.1 * b / height / view, 1.6, 7.0))  # row width / height
     row_h = int(window_width / aspect)
-    title_h = 60 if title else 0
+    title_h = 30 * (title.count("\n") + 1) if title else 0  # px per line at font size 9
     weights = [row_h + title_h] + [row_h] * (len(members) - 1)
     plotter = pv.Plotter(off_screen=True, shape=(len(members), 1), border=False,
                          row_weights=weights,
