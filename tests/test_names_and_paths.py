@@ -1,12 +1,14 @@
 """Absurd names and paths are refused in one line before any work, never a traceback after it.
 
 Table-driven: each row is a gearbox file or an ``--out`` folder a user might give (the
-cases of a reliability audit: a 20000-level table header, a 100000-character ``name``, a
-300- or 250-character result folder name, a path beyond PATH_MAX), the exit status and the
-words of the one-line error. Every row runs ``gearpipe run`` with its pipeline replaced by a
-stage that fails the test if called, so a refusal that comes after any stage would show;
-and nothing may be written. The limits are those of Linux (NAME_MAX 255 bytes, PATH_MAX
-4096 bytes, POSIX.1-2017 <limits.h>), read with ``os.pathconf`` as the code does.
+cases of a reliability audit: a 20000-level table header, which tomllib alone parses in
+time quadratic in its parts (6.8 s for a 20000-part dotted key, so such keys are refused
+before parsing); a 100000-character ``name``; a 300- or 250-character result folder name;
+a path beyond PATH_MAX), the exit status and the words of the one-line error. Every row
+runs ``gearpipe run`` with its pipeline replaced by a stage that fails the test if called,
+so a refusal that comes after any stage would show; and nothing may be written. The
+limits are those of Linux (NAME_MAX 255 bytes, PATH_MAX 4096 bytes, POSIX.1-2017
+<limits.h>), read with ``os.pathconf`` as the code does.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SPUR = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
 NAME_MAX = os.pathconf("/tmp", "PC_NAME_MAX")
 PATH_MAX = os.pathconf("/tmp", "PC_PATH_MAX")
+LINES = len(SPUR.read_text().splitlines())
 STAGING_EXTRA = len(".") + len(".staging-") + 7 + len("-") + 8  # .<name>.staging-<pid>-<8>
 LONGEST_TEMP = len(".") + LONGEST_FILE_NAME + len(".tmp-") + 7 + len("-") + 8 + len(".parquet")
 
@@ -50,9 +53,18 @@ def _not_a_stage(*args, **kwargs):
 BAD = [
     # case, gearbox text, --out under tmp_path (callable), exit status, words
     ("20000-level table header", SPUR.read_text() + "[" + ".".join(["a"] * 20000) + "]\nx = 1\n",
+     None, 2, [f"line {LINES + 1}: a key or table header of more than 100 dotted parts",
+               "more than 8 levels"]),
+    ("9-level table header", SPUR.read_text() + "[" + ".".join(["a"] * 9) + "]\nx = 1\n",
      None, 2, ["nested too deeply at a.a.a.a.a.a.a.a", "more than 8 levels"]),
     ("20000-level array", SPUR.read_text() + "x = " + "[" * 20000 + "]" * 20000 + "\n",
      None, 2, ["nested too deeply", "more than 8 levels"]),
+    ("20000-level inline table", SPUR.read_text() + "x = " + "{a = " * 20000 + "1"
+     + "}" * 20000 + "\n", None, 2, ["nested too deeply", "more than 8 levels"]),
+    ("20000-level dotted key", SPUR.read_text() + ".".join(["a"] * 20000) + " = 1\n", None, 2,
+     [f"line {LINES + 1}: a key or table header of more than 100 dotted parts"]),
+    ("7-part dotted key under [dynamics.sweep]", SPUR.read_text() + ".".join(["a"] * 7)
+     + " = 1\n", None, 2, ["nested too deeply at dynamics.sweep.a.a.a.a.a.a"]),
     ("100000-character name", _named("x" * 100_000), None, 2,
      ["name = \"xxx", "is 100000 characters long", "at most 80"]),
     ("81-character gear name", SPUR.read_text().replace(
