@@ -130,14 +130,20 @@ def test_the_longest_allowed_path_holds_the_longest_file(tmp_path):
             raise AssertionError("the block ran")
 
 
-@pytest.mark.parametrize("cache", ["c" * 300, "blocker/meshes"],
-                         ids=["300-character", "under a file"])
+CACHES = [
+    ("300-character name", lambda t: t / ("c" * 300)),
+    ("under a file", lambda t: t / "blocker" / "meshes"),
+    # room for the folder, not for its entries' temporary names (72 bytes below it)
+    ("no room for its entries", lambda t: _deep_path(t, PATH_MAX - 1 - 50)),
+]
+
+
+@pytest.mark.parametrize("cache", [c[1] for c in CACHES], ids=[c[0] for c in CACHES])
 def test_an_unusable_cache_folder_is_one_warning_and_the_run_goes_on(tmp_path, capsys, cache):
     (tmp_path / "blocker").write_text("a file where a folder should be")
     out = tmp_path / "out"
-    assert cli(["contact", str(SPUR), "--out", str(out), "--cache-dir",
-                str(tmp_path / cache)]) == 0
+    assert cli(["run", str(SPUR), "--out", str(out), "--cache-dir", str(cache(tmp_path))]) == 0
     err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
-    assert len(err) == 1 and err[0].startswith("gearpipe contact: warning: cache folder "), err
+    assert len(err) == 1 and err[0].startswith("gearpipe run: warning: cache folder "), err
     assert "running without the cache" in err[0]
-    assert (out / "contact_cycle.csv").is_file()
+    assert (out / "contact_cycle.csv").is_file() and (out / "report.html").is_file()
