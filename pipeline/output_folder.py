@@ -14,7 +14,11 @@ the kill came between the two renames it first puts the previous result back.
 
 A target must be new, empty, or a previous result (a folder whose ``run.json`` lists
 every file in it): a folder holding anything else (``--out .`` in a project folder) is
-refused rather than replaced. Problems with the target are :class:`OutputError`, one line
+refused rather than replaced. So is a target whose name or path the file system cannot
+hold together with what the writer adds: the staging folder's name (the target's plus 26
+bytes) must fit NAME_MAX, and the longest temporary file inside it (a name of up to
+:data:`LONGEST_FILE_NAME` bytes plus its decoration) PATH_MAX; on Linux a result folder's
+name has at most 229 bytes. Problems with the target are :class:`OutputError`, one line
 naming the folder; the command line prints it without a traceback.
 """
 
@@ -77,8 +81,9 @@ def _foreign_entries(folder: Path) -> list[str]:
 def check_target(target: str | os.PathLike) -> Path:
     """The folder ``target`` as it will be written, or :class:`OutputError` if it cannot be.
 
-    Checked before any work: ``target`` is not a file, holds nothing but an earlier result,
-    and its nearest existing parent is a writable folder.
+    Checked before any work: every name and the path fit the file system with what the
+    writer adds (module docstring), ``target`` is not a file, holds nothing but an earlier
+    result, and its nearest existing parent is a writable folder.
     """
     shown = Path(target)
     path = shown.resolve()
