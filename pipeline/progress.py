@@ -1,9 +1,9 @@
 """Progress reporting for long runs on stderr: :func:`progress` (iterations, wraps tqdm) and
 :class:`Steps` (named steps, their wall times).
 
-Both say nothing about work that ends within :data:`REPORT_AFTER` seconds: a run of short
-steps prints only its commands' own lines, and a bar or step line appears only where the
-user would otherwise wait in silence.
+Both say nothing about work that ends within :data:`REPORT_AFTER` seconds (but a step its
+caller announces at once): a run of short steps prints only its commands' own lines, and a
+bar or step line appears only where the user would otherwise wait in silence.
 """
 
 from __future__ import annotations
