@@ -3,10 +3,11 @@
 On Linux, VTK's default render window is an X window. Without a display, VTK (9.4 and
 later) logs ``vtkXOpenGLRenderWindow ... WARN| bad X server connection. DISPLAY=`` on
 stderr when a process makes its first window (each figure-drawing child process again),
-and only then falls back to an EGL window, which renders the same picture. :func:`offscreen_plotter` asks VTK for the EGL window directly, through the
-variable VTK documents for the choice (``VTK_DEFAULT_OPENGL_WINDOW``, "Runtime settings"
-of the VTK documentation), while the plotter's window is made; the variable is put back as
-it was afterwards, so nothing outside this module sees it. It does so only on Linux with
+and only then falls back to an EGL window, which renders the same picture.
+:func:`offscreen_plotter` asks VTK for the EGL window directly, through the variable VTK
+documents for the choice (``VTK_DEFAULT_OPENGL_WINDOW``, "Runtime settings" of the VTK
+documentation), while the plotter's window is made; the variable is put back as it was
+afterwards, so nothing outside this module sees it. It does so only on Linux with
 no ``DISPLAY`` (a Wayland-only session draws through EGL as well), when the user has not
 chosen a window class, and when libEGL can be found; otherwise VTK's own choice stands.
 
