@@ -389,3 +389,33 @@ def test_an_unfinished_study_is_what_resume_continues(tmp_path, capsys, monkeypa
     assert pq.read_table(out / "study.parquet").column("point").to_pylist() == [0, 1]
     record = json.loads((out / "run.json").read_text())
     assert set(os.listdir(out)) <= set(record["outputs"] + ["run.json"])
+
+
+def test_kill_minus_9_during_a_rerun_leaves_the_earlier_result(tmp_path):
+    """A rerun over a finished result computes in the hidden staging folder: kill -9 after
+    three of its part files leaves the earlier result byte-identical, and the next run
+    removes the dead run's staging folder and replaces the result."""
+    values = "[" + ", ".join(f"{0.5 * i:.1f}" for i in range(16)) + "]"
+    study = tiny(tmp_path, values=values)
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1", MPLBACKEND="Agg",
+               GEARPIPE_CACHE_DIR=str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pipeline.cli", "study", str(study), "--workers", "0",
+           "--no-best-run", "--json", "--out", str(out)]
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    before = tree(out)
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    t0 = time.time()
+    while len(list(tmp_path.glob(".out.staging-*/parts/part-*.parquet"))) < 3:
+        assert proc.poll() is None and time.time() - t0 < 120
+        time.sleep(0.02)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert tree(out) == before
+    assert len(list(tmp_path.glob(".out.staging-*"))) == 1
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert not list(tmp_path.glob(".out.*"))
+    assert pq.read_table(out / "study.parquet").num_rows == 16
+    assert (out / "run.json").read_bytes() != before["run.json"]
