@@ -255,8 +255,11 @@ def test_run_killed_in_its_sweep_leaves_no_process(tmp_path):
     try:
         parent = psutil.Process(proc.pid)
         # the drawer and at least one pool worker (the pool has one per core)
-        assert _wait(lambda: len(_forked_children(parent)) >= 2, 120), "no sweep pool seen"
-        proc.send_signal(signal.SIGKILL)
+        pool = lambda: len(_forked_children(parent)) >= 2  # noqa: E731
+        assert _wait(lambda: pool() or proc.poll() is not None, 120) and pool(), "no pool seen"
+        parent.suspend()  # the pool stays as it is until the kill
+        assert pool()
+        parent.kill()
         proc.wait(timeout=10)
         assert _wait(lambda: not _marked(marker), GONE_WITHIN), _marked(marker)
     finally:
@@ -272,8 +275,11 @@ def test_run_killed_while_its_drawer_draws_leaves_no_process(tmp_path):
     try:
         parent = psutil.Process(proc.pid)
         drawing = lambda: any(_forked_children(c) for c in _forked_children(parent))  # noqa: E731
-        assert _wait(drawing, 120), "no drawing child seen"
-        proc.send_signal(signal.SIGKILL)
+        assert _wait(lambda: drawing() or proc.poll() is not None, 120) and drawing(), (
+            "no drawing child seen")
+        parent.suspend()  # it forks nothing more; the drawing goes on
+        assert drawing()
+        parent.kill()
         proc.wait(timeout=10)
         assert _wait(lambda: not _marked(marker), GONE_WITHIN), _marked(marker)
     finally:
@@ -299,7 +305,9 @@ def test_drawer_killed_while_drawing_ends_its_children_and_the_run_finishes(tmp_
                     return True
             return False
 
-        assert _wait(drawer_with_children, 120), "no drawing child seen"
+        assert _wait(lambda: drawer_with_children() or proc.poll() is not None, 120), (
+            "no drawing child seen")
+        assert children, "the run ended before its drawer forked"
         drawer = children[0]
         drawer.suspend()  # it forks no more children while they are listed
         children[:] = [drawer, *_forked_children(drawer)]
@@ -350,7 +358,8 @@ def test_study_killed_with_its_local_cluster_leaves_no_process(tmp_path):
                 return False
             return sum("--multiprocessing-fork" in line for line in lines) >= 2
 
-        assert _wait(workers, 120), "no LocalCluster workers seen"
+        assert _wait(lambda: workers() or proc.poll() is not None, 120) and workers(), (
+            "no LocalCluster workers seen")
         parent.suspend()  # it starts no more processes while they are listed
         children[:] = [c for c in parent.children(recursive=True) if _alive(c)]
         parent.kill()
