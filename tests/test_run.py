@@ -150,3 +150,14 @@ def test_run_refuses_a_single_gear(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1
     assert "gearpipe run: error:" in err[0] and "single gear" in err[0]
+
+
+def test_report_step_lines_name_the_report_command(tmp_path, capsys):
+    """``gearpipe report`` runs the same chain as ``gearpipe run``; its step lines on stderr
+    say ``[gearpipe report]``, the command the user typed."""
+    cfg = tmp_path / "small.toml"
+    cfg.write_text(SMALL.split("[dynamics]")[0], encoding="utf-8")
+    assert cli(["report", str(cfg), "--out", str(tmp_path / "out"), "--cache-dir",
+                str(tmp_path / "c")]) == 0
+    steps = [line for line in capsys.readouterr().err.splitlines() if line.startswith("[")]
+    assert steps and all(line.startswith("[gearpipe report] ") for line in steps), steps

@@ -51,6 +51,7 @@ CLASHES = [
     ("groove_sweep", "sweep"),
     ("ring_body_fit", "samples"),
     ("herringbone_groove_study", "fit_grooves"),
+    ("tip_relief_study", "gearpipe"),
 ]
 
 
@@ -83,13 +84,21 @@ def test_a_workflow_folder_holding_other_files_is_one_line_before_any_work(
     assert (folder / "notes.txt").read_bytes() == b"a user's notes\n"
 
 
-def test_the_study_workflow_hands_its_own_folder_to_gearpipe_study(tmp_path, monkeypatch):
+def test_the_study_workflow_runs_its_study_inside_its_own_folder(tmp_path, monkeypatch):
+    """``gearpipe study`` writes into study/ of the workflow's staging folder; a failed
+    study keeps its exit status and leaves nothing."""
     mod = _load("tip_relief_study")
     seen = []
     monkeypatch.setattr(mod, "gearpipe", lambda args: seen.append(args) or 2)
     monkeypatch.chdir(tmp_path)
-    assert mod.main([]) == 2
-    assert seen[0][seen[0].index("--out") + 1] == "results/tip_relief_study/workflow"
+    with pytest.raises(SystemExit) as exit_:
+        mod.main([])
+    assert exit_.value.code == 2
+    study_out = Path(seen[0][seen[0].index("--out") + 1])
+    assert study_out.name == "study"
+    assert study_out.parent.name.startswith(".workflow.staging-")
+    assert study_out.parent.parent == (tmp_path / "results" / "tip_relief_study").resolve()
+    assert sorted(p.name for p in tmp_path.rglob("*")) == []
 
 
 def test_workflow_and_command_results_of_one_stem_live_side_by_side(tmp_path, monkeypatch,
