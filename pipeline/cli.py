@@ -21,6 +21,9 @@ import importlib
 import sys
 import time
 import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
 
 from pipeline import __version__
 from pipeline.output_folder import OutputError
@@ -84,16 +87,10 @@ def _solve_errors() -> tuple[type[BaseException], ...]:
     return (ContactConvergenceError, LinAlgError, MemoryError)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Run one command; exit status 0 on success, 2 on an input error, 1 when the results
-    cannot be written or a solve fails (one line on stderr each); warnings are one line
-    each."""
-    started = time.time()
-    argv = sys.argv[1:] if argv is None else list(argv)
-    command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
-    args = build_parser(command=command).parse_args(argv)
-    args._argv, args._started = argv, started  # for the run record
-    prefix = f"gearpipe {args.command}"
+def _one_line(prefix: str, call: Callable[[], Any]) -> int:
+    """``call()`` with warnings as one line each and its errors as one line with an exit
+    status: 2 for an input error, 1 for an output folder that cannot be written or a
+    failed solve; otherwise 0 (or ``call``'s own integer status)."""
 
     def one_line(message, category, filename, lineno, file=None, line=None) -> None:
         print(f"{prefix}: warning: {message}", file=sys.stderr, flush=True)
@@ -101,7 +98,8 @@ def main(argv: list[str] | None = None) -> int:
     with warnings.catch_warnings():
         warnings.showwarning = one_line
         try:
-            return int(args._run(args) or 0)
+            status = call()
+            return status if isinstance(status, int) and not isinstance(status, bool) else 0
         except InputError as exc:
             print(f"{prefix}: error: {exc}", file=sys.stderr)
             return 2
@@ -113,6 +111,27 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{prefix}: error: the computation failed ({type(exc).__name__}: "
                   f"{what or 'no detail'})", file=sys.stderr)
             return 1
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; exit status 0 on success, 2 on an input error, 1 when the results
+    cannot be written or a solve fails (one line on stderr each); warnings are one line
+    each."""
+    started = time.time()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv[:1] if a in SUBCOMMANDS), None)
+    args = build_parser(command=command).parse_args(argv)
+    args._argv, args._started = argv, started  # for the run record
+    return _one_line(f"gearpipe {args.command}", lambda: args._run(args))
+
+
+def run_workflow(script: str, main_function: Callable[[list[str]], Any],
+                 argv: list[str] | None = None) -> int:
+    """A workflow script's entry point: ``main_function(argv)`` under the commands' rules
+    (warnings and errors one line each, prefixed by the script's file name; exit status 0,
+    1 or 2 as :func:`main`). Use as ``sys.exit(run_workflow(__file__, main))``."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    return _one_line(Path(script).name, lambda: main_function(argv))
 
 
 if __name__ == "__main__":

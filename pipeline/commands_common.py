@@ -4,6 +4,10 @@ its summary.
 One rule for the output folder: ``results/<file stem>/<command>`` (the stem of the
 gearbox file, never a name written inside it), or ``--out DIR``; it is checked before
 the work starts and written as a unit (:func:`pipeline.output_folder.staged_output`).
+Workflow scripts follow the same shape with ``workflow`` in the command's place,
+``results/<script stem>/workflow`` (:func:`workflow_dir`): no command has that name, so a
+workflow's folder and a command's folder are never the same, nor one inside the other,
+even when a gearbox file and a script share a stem.
 One record (``run.json``, :mod:`pipeline.provenance`). One summary format: a short
 table on stdout, or one JSON object with ``--json``.
 """
@@ -12,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -63,6 +68,24 @@ def output_dir(args: argparse.Namespace, command: str) -> Path:
     out = args.out or Path("results") / Path(args.config).stem / command
     check_target(out)
     return out
+
+
+WORKFLOW_FOLDER = "workflow"
+"""The last part of a workflow script's default folder; never a command's name."""
+
+
+def workflow_dir(script: str | os.PathLike, out: str | os.PathLike | None = None, *,
+                 check: bool = True) -> Path:
+    """The folder a workflow script writes: ``out`` (its ``--out``) or
+    ``results/<script stem>/workflow``; with ``check``, checked now
+    (:func:`pipeline.output_folder.check_target`), so that a folder holding other files is
+    refused in one line before any work. ``check=False`` for a script that hands the
+    folder to a command which checks it itself."""
+    target = Path(out) if out is not None else \
+        Path("results") / Path(script).stem / WORKFLOW_FOLDER
+    if check:
+        check_target(target)
+    return target
 
 
 def number_options(args: argparse.Namespace) -> dict[str, Any]:

@@ -14,7 +14,14 @@ the kill came between the two renames it first puts the previous result back.
 
 A target must be new, empty, or a previous result (a folder whose ``run.json`` lists
 every file in it): a folder holding anything else (``--out .`` in a project folder) is
-refused rather than replaced. Problems with the target are :class:`OutputError`, one line
+refused rather than replaced. A command whose results folder has its own layout passes
+its own :class:`FolderRule` (``gearpipe study`` accepts only an earlier result of the same
+study, :func:`pipeline.study.store.study_folder`); the check, the message and the swap are
+the same. So is a target whose name or path the file system cannot hold together with
+what the writer adds: the staging folder's name (the target's plus 26 bytes) must fit
+NAME_MAX, and the longest temporary file inside it (a name of up to
+:data:`LONGEST_FILE_NAME` bytes plus its decoration) PATH_MAX; on Linux a result folder's
+name has at most 229 bytes. Problems with the target are :class:`OutputError`, one line
 naming the folder; the command line prints it without a traceback.
 """
 
@@ -29,8 +36,9 @@ import secrets
 import shutil
 import stat
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 from pipeline.io import fsync_path, pid_alive, process_umask
@@ -38,38 +46,94 @@ from pipeline.io import fsync_path, pid_alive, process_umask
 # errors of the disk rather than of the computation
 _DISK_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EFBIG}
 
+LONGEST_FILE_NAME = 64
+"""Longest name (bytes) of a file a command writes into its folder; the longest today is
+``planet_ring_report_transmission_error.png`` (41). The length check of a target counts
+on it, so the tests hold every command's outputs to it."""
+_PID_DIGITS = 7  # PID_MAX_LIMIT of Linux is 4194304; other systems stay below it
+_RANDOM = 8  # random characters of tempfile's names
+_STAGING_EXTRA = len("..staging--") + _PID_DIGITS + _RANDOM
+"""What ``.<target>.staging-<pid>-<random>`` adds to the target's name."""
+_LONGEST_TEMP = len("..tmp--") + LONGEST_FILE_NAME + _PID_DIGITS + _RANDOM + len(".parquet")
+"""Longest temporary file name :func:`pipeline.io.atomic_write` makes in a result folder:
+``.<name>.tmp-<pid>-<random><suffix>``."""
+
 
 class OutputError(Exception):
     """The results cannot be written where asked (full or read-only disk, a file in the
     way, a folder holding other files); the message is one line naming the folder."""
 
 
-def _foreign_entries(folder: Path) -> list[str]:
-    """Entries of ``folder`` that no ``run.json`` in it lists (sorted); none if the folder
-    is gone (another run is swapping its result in)."""
+def folder_entries(folder: Path) -> list[str]:
+    """The entries of ``folder`` (sorted); none if it is gone (another run is swapping its
+    result in)."""
     try:
-        entries = sorted(os.listdir(folder))
+        return sorted(os.listdir(folder))
     except FileNotFoundError:
         return []
-    if not entries:
-        return []
+
+
+def read_record(folder: Path) -> dict | None:
+    """The ``run.json`` of ``folder`` as a dictionary, or None (missing or not a record)."""
     try:
         record = json.loads((folder / "run.json").read_text(encoding="utf-8"))
-        listed = {str(o) for o in record.get("outputs", [])} | {"run.json"}
-    except (OSError, ValueError, AttributeError):
-        listed = set()
+    except (OSError, ValueError):
+        return None
+    return record if isinstance(record, dict) else None
+
+
+def record_outputs(record: dict) -> set[str]:
+    """The names a run record lists as its outputs, ``run.json`` included."""
+    outputs = record.get("outputs", [])
+    return {str(o) for o in outputs} | {"run.json"} if isinstance(outputs, list) else set()
+
+
+def unlisted(entries: Iterable[str], listed: set[str]) -> list[str]:
+    """The ``entries`` that are neither ``listed`` nor a temporary file of a listed one
+    (``.<name>.*``, :func:`pipeline.io.atomic_write`)."""
     return [e for e in entries if e not in listed
-            and not any(e.startswith(f".{name}.") for name in listed)]  # its temp files
+            and not any(e.startswith(f".{name}.") for name in listed)]
 
 
-def check_target(target: str | os.PathLike) -> Path:
+def _foreign_entries(folder: Path) -> list[str]:
+    """Entries of ``folder`` that no ``run.json`` in it lists (sorted)."""
+    entries = folder_entries(folder)
+    if not entries:
+        return []
+    record = read_record(folder)
+    return unlisted(entries, set() if record is None else record_outputs(record))
+
+
+@dataclass(frozen=True)
+class FolderRule:
+    """Which existing folder a run may write its result over.
+
+    Attributes
+    ----------
+    result : what such a folder holds, completing "holds files that are not ..."
+        (``"one gearpipe result"``).
+    foreign : the entries of an existing folder that are not part of such a result
+        (sorted; names relative to the folder; none for an empty folder).
+    """
+
+    result: str
+    foreign: Callable[[Path], list[str]]
+
+
+ANY_RESULT = FolderRule("one gearpipe result", _foreign_entries)
+
+
+def check_target(target: str | os.PathLike, rule: FolderRule = ANY_RESULT) -> Path:
     """The folder ``target`` as it will be written, or :class:`OutputError` if it cannot be.
 
-    Checked before any work: ``target`` is not a file, holds nothing but an earlier result,
-    and its nearest existing parent is a writable folder.
+    Checked before any work: every name and the path fit the file system with what the
+    writer adds (module docstring), ``target`` is not a file, holds nothing but an earlier
+    result (``rule``: by default any folder whose ``run.json`` lists every file in it), and
+    its nearest existing parent is a writable folder.
     """
     shown = Path(target)
     path = shown.resolve()
+    _check_lengths(shown, path)
     try:
         mode = path.stat().st_mode  # one look: another run may be swapping the folder
     except (FileNotFoundError, NotADirectoryError):  # new, or under a file (checked below)
@@ -78,10 +142,10 @@ def check_target(target: str | os.PathLike) -> Path:
         if not stat.S_ISDIR(mode):
             raise OutputError(f"{shown} is a file, not a folder; give --out a folder "
                               "(new, empty, or an earlier result)")
-        foreign = _foreign_entries(path)
+        foreign = rule.foreign(path)
         if foreign:
             more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
-            raise OutputError(f"{shown} holds files that are not one gearpipe result "
+            raise OutputError(f"{shown} holds files that are not {rule.result} "
                               f"({', '.join(foreign[:5])}{more}); choose a new or empty folder "
                               "or move them away")
     for parent in path.parents:
@@ -94,6 +158,59 @@ def check_target(target: str | os.PathLike) -> Path:
                                   f"written to {shown}; give --out another folder")
             break
     return path
+
+
+def _short(text: str) -> str:
+    """A long name cut in the middle, for one-line messages."""
+    return text if len(text) <= 70 else f"{text[:40]}...{text[-25:]}"
+
+
+def _limits(path: Path) -> tuple[int, int]:
+    """(NAME_MAX, PATH_MAX) in bytes of the file system that will hold ``path``: that of
+    its nearest existing parent (POSIX defaults 255 and 4096 where it does not say)."""
+    existing = Path(path.anchor)
+    for p in (path, *path.parents):
+        try:
+            os.stat(p)
+        except OSError:  # missing, or itself a name too long: look further up
+            continue
+        existing = p
+        break
+    limits = []
+    for name, default in (("PC_NAME_MAX", 255), ("PC_PATH_MAX", 4096)):
+        try:
+            limits.append(int(os.pathconf(existing, name)))
+        except (OSError, ValueError, AttributeError):
+            limits.append(default)
+    return limits[0], limits[1]
+
+
+def _check_lengths(shown: Path, path: Path) -> None:
+    """:class:`OutputError` unless every name and path the writer will make for the folder
+    ``path`` fits the file system: each folder name, the staging folder's name beside it
+    (the target's name plus :data:`_STAGING_EXTRA`) and the longest temporary file inside
+    that (:data:`_LONGEST_TEMP`) under PATH_MAX. Checked before any work, so a name that
+    cannot be written never costs a computation."""
+    name_max, path_max = _limits(path)
+    for part in path.parts[1:-1]:
+        if len(os.fsencode(part)) > name_max:
+            raise OutputError(f"the folder name {_short(part)} in {_short(str(shown))} is "
+                              f"{len(os.fsencode(part))} bytes long; the file system allows "
+                              f"at most {name_max}; give --out a shorter path")
+    name = len(os.fsencode(path.name))
+    if name + _STAGING_EXTRA > name_max:
+        raise OutputError(f"the results folder name {_short(path.name)} is {name} bytes long; "
+                          f"it can have at most {name_max - _STAGING_EXTRA} (the file system "
+                          f"allows {name_max} and the writer adds {_STAGING_EXTRA} for its "
+                          "staging folder); give --out a shorter name")
+    longest = len(os.fsencode(str(path))) + _STAGING_EXTRA + 1 + _LONGEST_TEMP
+    if longest > path_max - 1:
+        allowed = path_max - 1 - _STAGING_EXTRA - 1 - _LONGEST_TEMP
+        raise OutputError(f"the results folder {_short(str(path))} is "
+                          f"{len(os.fsencode(str(path)))} bytes long as an absolute path; it "
+                          f"can have at most {allowed} (the file system allows {path_max} for "
+                          "a path, and the files written into it need the rest); give --out a "
+                          "shorter path")
 
 
 def _stale(target: Path) -> list[tuple[str, Path]]:
@@ -186,13 +303,15 @@ def _is_output_error(exc: BaseException, staging: Path) -> bool:
 
 
 @contextmanager
-def staged_output(target: str | os.PathLike) -> Iterator[Path]:
+def staged_output(target: str | os.PathLike, rule: FolderRule = ANY_RESULT
+                  ) -> Iterator[Path]:
     """Yield a staging folder to write a result into; on success it becomes ``target``.
 
     Parameters
     ----------
     target : the result folder (created with its parents if missing; an earlier result
         there is replaced as a whole).
+    rule : which existing folder counts as an earlier result (:func:`check_target`).
 
     Yields
     ------
@@ -205,7 +324,7 @@ def staged_output(target: str | os.PathLike) -> Iterator[Path]:
         refused a write (full, read-only); nothing was changed.
     """
     shown = Path(target)
-    path = check_target(shown)
+    path = check_target(shown, rule)
     made = _made_parents(path)
     unchanged = "the folder holds the previous result" if path.exists() else \
         "nothing was written"
@@ -238,4 +357,6 @@ def _remove_empty(folders: list[Path]) -> None:
             return
 
 
-__all__ = ["OutputError", "check_target", "recover", "staged_output"]
+__all__ = ["ANY_RESULT", "LONGEST_FILE_NAME", "FolderRule", "OutputError", "check_target",
+           "folder_entries", "read_record", "record_outputs", "recover", "staged_output",
+           "unlisted"]

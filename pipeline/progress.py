@@ -1,5 +1,9 @@
-"""Progress reporting for long runs on stderr: :func:`progress` (iterations, wraps tqdm; silent
-when not a terminal or disabled) and :class:`Steps` (named steps, their wall times).
+"""Progress reporting for long runs on stderr: :func:`progress` (iterations, wraps tqdm) and
+:class:`Steps` (named steps, their wall times).
+
+Both say nothing about work that ends within :data:`REPORT_AFTER` seconds (but a step its
+caller announces at once): a run of short steps prints only its commands' own lines, and a
+bar or step line appears only where the user would otherwise wait in silence.
 """
 
 from __future__ import annotations
@@ -13,22 +17,37 @@ from typing import TypeVar
 
 T = TypeVar("T")
 
+REPORT_AFTER = 1.0
+"""Seconds a loop or step must run before it is reported on stderr."""
+
 
 def progress(
-    items: Iterable[T], desc: str, total: int | None = None, enabled: bool = True
+    items: Iterable[T], desc: str, total: int | None = None, enabled: bool = True, *,
+    after: float = REPORT_AFTER,
 ) -> Iterator[T]:
-    """Iterate over ``items`` showing a progress bar on stderr.
+    """Iterate over ``items``, with a progress bar on stderr once the loop has run ``after``
+    seconds.
 
-    The bar appears only when ``enabled`` and stderr is a terminal, or when the
-    run is long enough for tqdm to print (``mininterval``); it never writes to
-    stdout, so ``--json`` output stays clean.
+    A loop that ends sooner prints nothing (tqdm's ``delay``); a longer one shows its bar
+    from the first item that ends after ``after`` seconds, redrawn at most every ``after``
+    seconds, and clears it at the end. Nothing is printed when ``enabled`` is False, and
+    nothing is ever written to stdout (``--json`` output stays clean).
+
+    Parameters
+    ----------
+    items : what to iterate over.
+    desc : label of the bar.
+    total : number of items, when ``items`` has no ``len``.
+    enabled : show the bar at all.
+    after : seconds before the bar appears, > 0.
     """
     if not enabled:
         yield from items
         return
     from tqdm import tqdm
 
-    yield from tqdm(items, desc=desc, total=total, file=sys.stderr, mininterval=1.0, leave=False)
+    yield from tqdm(items, desc=desc, total=total, file=sys.stderr, delay=after,
+                    mininterval=after, leave=False)
 
 
 class Steps:
@@ -50,7 +69,7 @@ class Steps:
     every : seconds between two progress lines of one step.
     """
 
-    def __init__(self, label: str, enabled: bool = True, after: float = 1.0,
+    def __init__(self, label: str, enabled: bool = True, after: float = REPORT_AFTER,
                  every: float = 5.0) -> None:
         self.label = label
         self.enabled = enabled

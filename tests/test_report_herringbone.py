@@ -21,6 +21,7 @@ from pipeline.cli import main as cli
 from pipeline.config import load_gearbox
 from pipeline.contact.herringbone_distribution import herringbone_distribution
 from pipeline.fem.cache_dir import CACHE_ENV
+from pipeline.output_folder import LONGEST_FILE_NAME
 from pipeline.report.model import format_value
 
 CONFIG = Path(__file__).resolve().parents[1] / "workflows/configs/" \
@@ -52,6 +53,15 @@ def report(tmp_path_factory):
         assert cli(["report", str(cfg), "--out", str(root / "out"), "--cache-dir",
                     str(root / "c"), "--json"]) == 0
     return root / "out", cfg, root / "c"
+
+
+def test_file_names_fit_the_output_folder_check(report):
+    """The longest names of any command (mesh-prefixed reports and herringbone load maps)
+    stay within what the output folder's length check allows for."""
+    out, _, _ = report
+    names = [p.name for p in out.iterdir()]
+    assert "sun_planet_report_transmission_error.png" in names
+    assert max(len(n) for n in names) <= LONGEST_FILE_NAME
 
 
 def test_halves_with_their_torque_and_speeds(report):

@@ -17,6 +17,7 @@ import pytest
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
 from pipeline.fem.cache_dir import CacheWarning
+from pipeline.output_folder import LONGEST_FILE_NAME
 from pipeline.run import RunOptions, run_pipeline
 
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
@@ -135,6 +136,8 @@ def test_cli_writes_one_folder_with_one_summary(tmp_path, capsys):
                  "time_history.csv", "sweep.csv", "sweep.png", "tooth_profiles.png",
                  "run.json"):
         assert (out / name).is_file(), name
+    # the output folder's length check counts on names of at most LONGEST_FILE_NAME bytes
+    assert max(len(p.name) for p in out.iterdir()) <= LONGEST_FILE_NAME
     record = json.loads((out / "run.json").read_text())
     assert str(tmp_path / "c") in record["arguments"] and record["options"] == {"full": False}
     # the report's FE root-stress tables go to the run's cache folder, like every FE table
@@ -147,3 +150,14 @@ def test_run_refuses_a_single_gear(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1
     assert "gearpipe run: error:" in err[0] and "single gear" in err[0]
+
+
+def test_report_step_lines_name_the_report_command(tmp_path, capsys):
+    """``gearpipe report`` runs the same chain as ``gearpipe run``; its step lines on stderr
+    say ``[gearpipe report]``, the command the user typed."""
+    cfg = tmp_path / "small.toml"
+    cfg.write_text(SMALL.split("[dynamics]")[0], encoding="utf-8")
+    assert cli(["report", str(cfg), "--out", str(tmp_path / "out"), "--cache-dir",
+                str(tmp_path / "c")]) == 0
+    steps = [line for line in capsys.readouterr().err.splitlines() if line.startswith("[")]
+    assert steps and all(line.startswith("[gearpipe report] ") for line in steps), steps

@@ -1,5 +1,7 @@
 """Design studies (gearpipe study): study file checks, Dask vs serial, resume after kill -9,
-and the tip-relief optimum of the assembly-error paper's pair against the classic estimate."""
+the tip-relief optimum of the assembly-error paper's pair against the classic estimate, and
+the results folder (a user's files and other results refused and left byte-identical, an
+earlier result of the same study replaced as a unit)."""
 
 import os
 import signal
@@ -205,3 +207,215 @@ def test_load_distribution_kpis_are_the_reports(tmp_path):
     assert abs(worst.max_stress / worst.iso.sigma_f0 - 1.0) < 0.10
     # the point's FE tables are cached, its contact cycle is not (one file per point)
     assert list(tmp_path.glob("fe2dtable-*")) and not list(tmp_path.glob("contactcycle-*"))
+
+
+# --- the results folder ---------------------------------------------------------------
+
+# two analytical points of about half a second each: enough for a whole study result
+TINY = f"""
+name = "{{name}}"
+base = "{BASE}"
+[set]
+"contact.positions" = 10
+"contact.render" = false
+"contact.tip_relief_length_pinion_mm" = 6.2
+[[axes]]
+key = "contact.tip_relief_pinion_um"
+values = {{values}}
+[kpis]
+names = ["te_peak_to_peak_um", "mesh_stiffness_mean_N_per_um"]
+"""
+
+
+def tiny(tmp_path: Path, name: str = "tiny", values: str = "[0.0, 10.0]") -> Path:
+    p = tmp_path / f"{name}.toml"
+    p.write_text(TINY.format(name=name, values=values))
+    return p
+
+
+def study_cli(study: Path, out: Path, *more: str) -> int:
+    from pipeline.cli import main
+
+    return main(["study", str(study), "--out", str(out), "--workers", "0", "--no-best-run",
+                 "--json", *more])
+
+
+def tree(folder: Path) -> dict[str, bytes]:
+    """Every file under ``folder`` (hidden ones too) by relative path, with its bytes."""
+    return {str(p.relative_to(folder)): p.read_bytes() if p.is_file() else b"<dir>"
+            for p in sorted(folder.rglob("*"))}
+
+
+def no_points(monkeypatch) -> None:
+    """Fail the test if a point is computed."""
+    def refuse(*a, **k):
+        raise AssertionError("a point was computed")
+
+    monkeypatch.setattr("pipeline.study.execute.evaluate_point", refuse)
+
+
+def _user_files(tmp_path: Path) -> tuple[Path, str]:
+    out = tmp_path / "mine"
+    (out / "parts").mkdir(parents=True)
+    (out / "study.csv").write_text("point,my_kpi\n0,1.5\n")
+    (out / "summary.json").write_text('{"mine": true}')
+    (out / "run.json").write_text('{"outputs": ["study.csv"]}')
+    (out / "parts" / "x.parquet").write_bytes(b"PAR1 mine")
+    return out, "(parts, run.json, study.csv, summary.json)"
+
+
+def _stranger_in_parts(tmp_path: Path) -> tuple[Path, str]:
+    """An unfinished study of the same name, but parts/ holds a file no study writes."""
+    out = tmp_path / "mixed"
+    (out / "parts").mkdir(parents=True)
+    (out / "manifest.json").write_text('{"study": "tiny", "hash": "0", "points": 2}')
+    (out / "parts" / "x.parquet").write_bytes(b"PAR1 mine")
+    return out, "(parts/x.parquet)"
+
+
+def _geometry_result(tmp_path: Path) -> tuple[Path, str]:
+    from pipeline.cli import main
+
+    out = tmp_path / "geometry"
+    assert main(["geometry", str(BASE), "--out", str(out), "--json"]) == 0
+    return out, "run.json"
+
+
+def _other_study(tmp_path: Path) -> tuple[Path, str]:
+    out = tmp_path / "other"
+    assert study_cli(tiny(tmp_path, "other", "[0.0]"), out) == 0
+    return out, "manifest.json"
+
+
+@pytest.mark.parametrize("make", [_user_files, _stranger_in_parts, _geometry_result,
+                                  _other_study])
+def test_a_folder_that_is_not_this_study_s_result_is_refused_and_kept(
+        tmp_path, capsys, monkeypatch, make):
+    """Refused in one line before any point is computed (exit status 1, as every command's
+    folder), every file byte-identical, nothing left beside the folder."""
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    out, named = make(tmp_path)
+    before = tree(out)
+    beside = sorted(os.listdir(tmp_path))
+    no_points(monkeypatch)
+    capsys.readouterr()
+    assert study_cli(tiny(tmp_path), out) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert err[0].startswith(f"gearpipe study: error: {out} holds files that are not a "
+                             "result of the study 'tiny' ")
+    assert named in err[0]
+    assert tree(out) == before
+    assert sorted(os.listdir(tmp_path)) == sorted(beside + ["tiny.toml"])
+
+
+def test_a_rerun_replaces_the_earlier_result_of_the_same_study_as_a_unit(tmp_path, capsys,
+                                                                         monkeypatch):
+    """The same study (its name) edited from 2 to 3 points replaces its earlier result: the
+    folder then holds only files its run.json lists, the 3 points of the new
+    session and no part file of the old one. A rerun that fails at its second point leaves
+    the earlier result byte-identical."""
+    import json
+
+    from numpy.linalg import LinAlgError
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    assert study_cli(tiny(tmp_path), out) == 0
+    first = json.loads(capsys.readouterr().out)["session"]
+    assert study_cli(tiny(tmp_path, values="[0.0, 5.0, 10.0]"), out) == 0
+    second = json.loads(capsys.readouterr().out)["session"]
+    record = json.loads((out / "run.json").read_text())
+    assert set(os.listdir(out)) <= set(record["outputs"] + ["run.json"])
+    assert pq.read_table(out / "study.parquet").column("point").to_pylist() == [0, 1, 2]
+    parts = sorted(p.name for p in (out / "parts").iterdir())
+    assert parts == [f"part-{i:07d}-{second}.parquet" for i in range(3)]
+    assert first not in (out / "computed_points.log").read_text()
+    assert not [e for e in os.listdir(tmp_path) if e.startswith(".")]  # no staging left
+
+    import pipeline.study.execute as execute
+
+    calls, evaluate = [], execute.evaluate_point
+
+    def fail_second(*a, **k):
+        calls.append(1)
+        if len(calls) == 2:
+            raise LinAlgError("singular")
+        return evaluate(*a, **k)
+
+    before = tree(out)
+    monkeypatch.setattr(execute, "evaluate_point", fail_second)
+    assert study_cli(tiny(tmp_path), out) == 1
+    assert "LinAlgError: singular" in capsys.readouterr().err
+    assert tree(out) == before and len(calls) == 2
+    assert not [e for e in os.listdir(tmp_path) if e.startswith(".")]
+
+
+def test_an_unfinished_study_is_what_resume_continues(tmp_path, capsys, monkeypatch):
+    """A study stopped after its first point keeps it in the folder; a plain rerun is
+    refused (exit status 2, the earlier behaviour) and --resume computes the one missing
+    point, also for a manifest written before the study's name was recorded in it."""
+    import json
+
+    from numpy.linalg import LinAlgError
+
+    import pipeline.study.execute as execute
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    evaluate = execute.evaluate_point
+    calls = []
+
+    def stop_second(*a, **k):
+        calls.append(1)
+        if len(calls) == 2:
+            raise LinAlgError("stopped")
+        return evaluate(*a, **k)
+
+    out = tmp_path / "out"
+    monkeypatch.setattr(execute, "evaluate_point", stop_second)
+    assert study_cli(tiny(tmp_path), out) == 1
+    monkeypatch.setattr(execute, "evaluate_point", evaluate)
+    assert sorted(os.listdir(out)) == ["computed_points.log", "manifest.json", "parts"]
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest.pop("study") == "tiny"
+    (out / "manifest.json").write_text(json.dumps(manifest))  # as older versions wrote it
+    capsys.readouterr()
+    assert study_cli(tiny(tmp_path), out) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "unfinished study (1 of 2 points)" in err[0]
+    assert study_cli(tiny(tmp_path), out, "--resume") == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["computed_now"] == 1 and summary["points"] == 2
+    assert pq.read_table(out / "study.parquet").column("point").to_pylist() == [0, 1]
+    record = json.loads((out / "run.json").read_text())
+    assert set(os.listdir(out)) <= set(record["outputs"] + ["run.json"])
+
+
+def test_kill_minus_9_during_a_rerun_leaves_the_earlier_result(tmp_path):
+    """A rerun over a finished result computes in the hidden staging folder: kill -9 after
+    three of its part files leaves the earlier result byte-identical, and the next run
+    removes the dead run's staging folder and replaces the result."""
+    values = "[" + ", ".join(f"{0.5 * i:.1f}" for i in range(16)) + "]"
+    study = tiny(tmp_path, values=values)
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1", MPLBACKEND="Agg",
+               GEARPIPE_CACHE_DIR=str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pipeline.cli", "study", str(study), "--workers", "0",
+           "--no-best-run", "--json", "--out", str(out)]
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    before = tree(out)
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    t0 = time.time()
+    while len(list(tmp_path.glob(".out.staging-*/parts/part-*.parquet"))) < 3:
+        assert proc.poll() is None and time.time() - t0 < 120
+        time.sleep(0.02)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert tree(out) == before
+    assert len(list(tmp_path.glob(".out.staging-*"))) == 1
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert not list(tmp_path.glob(".out.*"))
+    assert pq.read_table(out / "study.parquet").num_rows == 16
+    assert (out / "run.json").read_bytes() != before["run.json"]

@@ -45,7 +45,7 @@ Comparison with Xu et al. (2020), sec. 4 (coarse run: 100 points, H = 10, fine g
   Fig. 10 trend, reproduced and tested (K_1 has equal sides, so unchanged by
   the groove relation).
 
-Writes results/dynamics_herringbone_sweep/: sweep_groove.png, sweep_slide.png,
+Writes results/dynamics_herringbone_sweep/workflow/: sweep_groove.png, sweep_slide.png,
 sweep_*.csv (per case and shown mesh: RMS, max, mean, alternating RMS force in N, dynamic
 factor), summary.csv (main peak frequency and peak RMS force per case on the
 sweep grid), groove_peaks.csv (per K_j: side factors, refined peak frequencies and
@@ -64,6 +64,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.dynamics.modal import conservative_mean_stiffness, modal_analysis
 from pipeline.dynamics.models.groove_mesh import XU2020_GROOVE_MESH, side_factors
 from pipeline.dynamics.models.wind_turbine_planetary import (
@@ -175,7 +177,7 @@ def groove_peak_study(coarse: dict, full: bool, H: int, executor) -> tuple[dict,
 
 
 def run(full: bool = False, out: Path | None = None, executor="local") -> dict:
-    out = Path(out or "results/dynamics_herringbone_sweep")
+    out = workflow_dir(__file__, out, check=False)  # a staging folder, or new
     freqs = np.linspace(10.0, 5000.0, 500 if full else 100)
     H = 20 if full else 10
     cases = {f"K{j + 1} slide 0": (kj, 0.0) for j, kj in enumerate(K_J)}
@@ -278,9 +280,9 @@ def main(argv: list[str] | None = None) -> dict:
     """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
-    ap.add_argument("--out", default=None)
+    ap.add_argument("--out", default=None, help="default: results/<script>/workflow")
     a = ap.parse_args(argv)
-    with staged_output(Path(a.out or "results/dynamics_herringbone_sweep")) as out:
+    with staged_output(workflow_dir(__file__, a.out)) as out:
         res = run(a.full, out)
     t = res["groove_peaks"]
     print("K_j [N m^2]  k L/R      peak1 L / R [Hz]   (equal sides)      peak2 L / R [Hz]")
@@ -307,4 +309,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

@@ -15,7 +15,7 @@ coarse run, H = 8): the confluence stage reproduces it (conf1R order-1 amplitude
 peak-to-peak 7.857 -> 7.872 -> 7.901 um) although its friction stiffness grows with
 S, so the paper's trend holds here for the confluence stage only.
 
-Writes results/dynamics_split_torque/: dte_split.png, dte_confluence.png (DTE over
+Writes results/dynamics_split_torque/workflow/: dte_split.png, dte_confluence.png (DTE over
 two split-stage mesh periods), contribution_split.png, contribution_confluence.png
 (share of each harmonic order, Jin et al. 2018, Figs. 10-17 b, c), summary.csv, run.json.
 
@@ -31,6 +31,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.dynamics.models.split_torque_helicopter import (
     ROUGHNESS_UM,
     split_torque_helicopter_model,
@@ -46,7 +48,7 @@ MESHES = {"split": "split1R", "confluence": "conf1R"}
 
 
 def run(full: bool = False, out: Path | None = None) -> dict:
-    out = Path(out or "results/dynamics_split_torque")
+    out = workflow_dir(__file__, out, check=False)  # a staging folder, or new
     H = 20 if full else 8
     positions = 360 if full else 180
     results = {}
@@ -112,9 +114,9 @@ def main(argv: list[str] | None = None) -> dict:
     """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
-    ap.add_argument("--out", default=None)
+    ap.add_argument("--out", default=None, help="default: results/<script>/workflow")
     a = ap.parse_args(argv)
-    with staged_output(Path(a.out or "results/dynamics_split_torque")) as out:
+    with staged_output(workflow_dir(__file__, a.out)) as out:
         cols = run(a.full, out)
     for i, s in enumerate(cols["roughness [um]"]):
         print(
@@ -129,4 +131,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

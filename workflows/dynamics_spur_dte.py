@@ -10,7 +10,7 @@ pipeline.geometry.assembly_errors) with Jin et al. (2018) friction stiffness and
 friction torque coefficients for the friction coefficient
 (pipeline.dynamics.mesh_input).
 
-Writes results/dynamics_spur_dte/: dte_friction.png, dte_conditions.png (DTE and
+Writes results/dynamics_spur_dte/workflow/: dte_friction.png, dte_conditions.png (DTE and
 mesh force over one mesh period), spectrum_friction.png, spectrum_conditions.png,
 summary.csv (DTE peak-to-peak, mean, RMS mesh force, first DTE harmonics per case),
 run.json.
@@ -26,6 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation
@@ -83,7 +85,7 @@ def model_for(condition: int, mu: float, positions: int = 360) -> tuple[SpurPair
 
 
 def run(full: bool = False, out: Path | None = None) -> dict:
-    out = Path(out or "results/dynamics_spur_dte")
+    out = workflow_dir(__file__, out, check=False)  # a staging folder, or new
     H = 60 if full else 25
     rows = {
         "condition [-]": [],
@@ -170,9 +172,9 @@ def main(argv: list[str] | None = None) -> dict:
     """Command-line entry: ``[--full] [--out DIR]``; returns the result table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
-    ap.add_argument("--out", default=None)
+    ap.add_argument("--out", default=None, help="default: results/<script>/workflow")
     a = ap.parse_args(argv)
-    with staged_output(Path(a.out or "results/dynamics_spur_dte")) as out:
+    with staged_output(workflow_dir(__file__, a.out)) as out:
         cols = run(a.full, out)
     for i in range(len(cols["condition [-]"])):
         print(
@@ -185,4 +187,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

@@ -14,7 +14,7 @@ excitations, side by side over a speed range:
 4. ``FE 3D LTCA`` - the same on 3D FE influence coefficients of both whole gear bodies
    (``--no-3d`` leaves it out).
 
-Writes results/excitation_comparison/: ``excitation.png`` (k(t) and e(t) of each),
+Writes results/excitation_comparison/workflow/: ``excitation.png`` (k(t) and e(t) of each),
 ``sweep.png`` (RMS dynamic mesh force and dynamic factor against mesh frequency),
 ``dte_spectrum.png`` (DTE spectrum at 2340 rpm), ``summary.csv`` and ``run.json``.
 
@@ -53,6 +53,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import gearbox_from_dict
 from pipeline.io import write_csv
 from pipeline.output_folder import staged_output
@@ -146,9 +148,10 @@ def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true", help="60 positions, 300 sweep points")
     ap.add_argument("--no-3d", action="store_true", help="leave out the FE 3D excitation")
-    ap.add_argument("--out", type=Path, default=Path("results/excitation_comparison"))
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     ap.add_argument("--cache-dir", type=Path, default=None)
     args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     options = RunOptions(full=args.full, cache_dir=args.cache_dir)
     runs = {}
     for label, (compliance, excitation) in CASES.items():
@@ -196,4 +199,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

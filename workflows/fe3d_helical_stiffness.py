@@ -25,7 +25,7 @@ tests/test_fem_whole3d.py says they must, and below the slice method (see the RE
 paragraph "3D FE contact compliance" for the numbers, times and memory, and
 :mod:`pipeline.contact.fe3d_source` for why they differ).
 
-Writes to results/fe3d_helical_stiffness/: stiffness.csv (per position), summary.json
+Writes to results/fe3d_helical_stiffness/workflow/: stiffness.csv (per position), summary.json
 (max/min/mean of every curve, % differences, DOFs, the FE timing breakdown, peak memory,
 residuals), stiffness.png and run.json (inputs and their hash). Progress of the FE
 builds goes to stderr.
@@ -44,6 +44,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
@@ -169,8 +171,9 @@ def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true",
                     help=f"{FULL} instead of {COARSE}")
-    ap.add_argument("--out", type=Path, default=Path("results/fe3d_helical_stiffness"))
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     with staged_output(args.out) as out:
         summary = run(out, **(FULL if args.full else COARSE))
     for name in (n for n in ("slice", "fe3d", "fe2d_strain", "fe2d_stress") if n in summary):
@@ -186,4 +189,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

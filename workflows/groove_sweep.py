@@ -2,7 +2,7 @@
 
 For every groove width and groove bottom diameter the 3D P2 model of the sun body
 (root-cylinder halves, distributed coupling unless the config says otherwise)
-gives k_t between O_L and O_R and K_j = k_t l_LR. Writes to results/groove_sweep/:
+gives k_t between O_L and O_R and K_j = k_t l_LR. Writes to results/groove_sweep/workflow/:
 ``groove_sweep.csv``, ``groove_sweep.png`` (k_t and K_j against the groove width,
 one curve per bottom diameter, with the paper's 4.0e7 - 5.2e7 N m^2 band),
 ``twist.png`` (the configured case under its sun torque) and ``run.json``.
@@ -23,6 +23,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from pipeline.cli import run_workflow  # noqa: E402
+from pipeline.commands_common import workflow_dir  # noqa: E402
 from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
 from pipeline.io import write_csv  # noqa: E402
@@ -76,9 +78,11 @@ def main(argv: list[str] | None = None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--full", action="store_true", help="finer mesh, denser grid")
     parser.add_argument("--config", type=Path, default=CONFIG)
-    parser.add_argument("--out", type=Path, default=ROOT / "results" / "groove_sweep")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="default: results/<script>/workflow")
     parser.add_argument("--no-picture", action="store_true", help="skip the pyvista picture")
     args = parser.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     if args.full:
         widths, diameters, h = [20, 30, 40, 50, 60, 80], [230, 240, 250, 260, 270], 25.0
     else:
@@ -107,4 +111,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run_workflow(__file__, main))

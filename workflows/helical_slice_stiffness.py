@@ -3,7 +3,7 @@ method.
 
 Traction pair of Yang et al. (2026), Table 2 (z 31/104, m_n 7.35 mm, beta 4 deg, a 495 mm,
 face width assumed 130 mm) at its rated load (20,233 N m on the wheel).
-Writes to results/helical_slice_stiffness/: mesh stiffness without/with friction
+Writes to results/helical_slice_stiffness/workflow/: mesh stiffness without/with friction
 (mu 0.05 and EHL), the single-tooth-pair stiffness along its engagement, the
 contact-line (ISO 6336) comparison, a summary table and run.json.
 
@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.io import write_csv, write_json
 from pipeline.output_folder import staged_output
@@ -109,8 +111,9 @@ def run(out: Path, positions: int, slices: int) -> dict:
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true", help="720 positions x 200 slices")
-    ap.add_argument("--out", type=Path, default=Path("results/helical_slice_stiffness"))
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     with staged_output(args.out) as out:
         table = run(out, *((720, 200) if args.full else (360, 100)))
     for name, row in table.items():
@@ -120,4 +123,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

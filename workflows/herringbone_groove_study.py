@@ -43,6 +43,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_maps import (
@@ -146,7 +148,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
         cache_dir: Path | None = None, executor=None, show_progress: bool = True) -> dict:
     """The study (module docstring); returns the comparison rows, cases, grooves, sweeps,
     peaks, the step timing (s) and the files written."""
-    target = Path(out or "results/herringbone_groove_study")
+    target = workflow_dir(__file__, out)  # refused now, not after the study
     log = StepLog(show=show_progress)
     cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
     figures = FigureCache(cache_dir / "figures") if cache else NO_CACHE
@@ -367,7 +369,7 @@ def main(argv: list[str] | None = None) -> dict:
     """Command-line entry (module docstring); prints the comparison and the timing."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true")
-    ap.add_argument("--out", default=None)
+    ap.add_argument("--out", default=None, help="default: results/<script>/workflow")
     ap.add_argument("--no-cache", action="store_true")
     ap.add_argument("--cache-dir", default=None, help="cache folder (default meshes/)")
     a = ap.parse_args(argv)
@@ -382,4 +384,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

@@ -21,7 +21,7 @@ half-plane under a surface load measured against a support at depth t_R does (th
 Flamant solution: 2/pi = 0.64 in plane stress; the fit gives 0.68). Sainsot's Q* (the
 weight of the load's radial component) is left out: fitted freely it went to its bound 0.
 
-Writes ``results/ring_body_fit/``: the samples (CSV), the coefficients and residuals
+Writes ``results/ring_body_fit/workflow/``: the samples (CSV), the coefficients and residuals
 (JSON), run.json. The coefficients in :data:`pipeline.stiffness.foundation.RING_TABLE`
 come from ``--full``.
 
@@ -41,6 +41,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from pipeline.cli import run_workflow  # noqa: E402
+from pipeline.commands_common import workflow_dir  # noqa: E402
 from pipeline.contact.fe2d_source import gear_table  # noqa: E402
 from pipeline.contact.fe_settings import FE2DSettings  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402
@@ -132,10 +134,11 @@ def read_samples(path: Path) -> dict:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", action="store_true", help="32 rings at refinement 1.0")
-    ap.add_argument("--out", type=Path, default=ROOT / "results" / "ring_body_fit")
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     ap.add_argument("--samples", type=Path, help="refit the FE samples of an earlier run "
                     "(samples.csv) with the current analytical tooth model")
     args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     if args.samples is not None:  # the FE columns of an earlier run, analytical ones anew
         data = with_analytical(read_samples(args.samples))
         result, inputs = fit(data), {"samples": str(args.samples)}
@@ -162,4 +165,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    sys.exit(run_workflow(__file__, main))

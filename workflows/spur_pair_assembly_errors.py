@@ -2,7 +2,7 @@
 conditions 1-3.
 
 Spur pair z 50/50, m 3 mm, 20 deg, b 20 mm, 340 N m at 2340 rpm (the assembly-error paper table).
-Writes to results/spur_pair_assembly_errors/: overlay plots (PNG), the curves (CSV), a
+Writes to results/spur_pair_assembly_errors/workflow/: overlay plots (PNG), the curves (CSV), a
 table of max/min/mean per case (CSV + JSON) and run.json.
 
     python workflows/spur_pair_assembly_errors.py [--full] [--out DIR]
@@ -17,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import write_csv, write_json
@@ -94,16 +96,17 @@ def run(out: Path, positions: int) -> dict:
 def main(argv: list[str] | None = None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--full", action="store_true", help="3600 positions per mesh cycle")
-    ap.add_argument("--out", type=Path, default=Path("results/spur_pair_assembly_errors"))
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     args = ap.parse_args(argv)
-    with staged_output(args.out) as out:
+    target = workflow_dir(__file__, args.out)
+    with staged_output(target) as out:
         table = run(out, 3600 if args.full else 360)
     for name, row in table.items():
         print(f"{name:32s} mean {row['mean_N_per_m']:.4e}  max {row['max_N_per_m']:.4e}  "
               f"min {row['min_N_per_m']:.4e} N/m  eps_a {row['transverse_contact_ratio']:.4f}")
-    print(f"written to {args.out}/")
+    print(f"written to {target}/")
     return table
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

@@ -53,7 +53,7 @@ is plane strain vs the analytical model's E), while Yang et al. (2026)'s, eq. 24
 10.6 % softer than the constant Hertz term.
 Refinement 0.3 / 10 radii / 10 slices / 4 positions gives -19.6 % (FE mean +1.7 %).
 
-Writes to results/validate_stiffness/: one overlay PNG per case, the curves
+Writes to results/validate_stiffness/workflow/: one overlay PNG per case, the curves
 (CSV), and a table of max/min/mean with differences in percent (CSV + JSON),
 plus run.json.
 
@@ -71,6 +71,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from pipeline.cli import run_workflow
+from pipeline.commands_common import workflow_dir
 from pipeline.config import Gearbox, load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load
@@ -209,9 +211,10 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--refinement", type=float, default=1.0, help="FE mesh refinement factor")
     ap.add_argument("--slices", type=int, default=20, help="slices of the helical pair")
     ap.add_argument("--radii", type=int, default=30, help="FE table points per flank")
-    ap.add_argument("--out", type=Path, default=HERE.parent / "results" / "validate_stiffness")
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
     ap.add_argument("--only", default="", help="run only the cases whose name contains this")
     args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
     # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe2d_source docs)
     fe = FE2DSettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
     with staged_output(args.out) as out:
@@ -229,4 +232,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(run_workflow(__file__, main))

@@ -46,7 +46,16 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.config import tables as T
-from pipeline.config.schema import Scope, build, read_table, restated, unknown
+from pipeline.config.schema import (
+    MAX_NAME_CHARS,
+    MAX_TEXT_CHARS,
+    Scope,
+    build,
+    check_text,
+    read_table,
+    restated,
+    unknown,
+)
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
@@ -288,6 +297,8 @@ def _check_tables(doc: Mapping[str, Any]) -> None:
             raise unknown(k, TOP_KEYS + TABLES, "top-level key")
         elif not isinstance(v, str):
             raise InputError(f"{k} = {v!r}: expected a string in quotes")
+        else:
+            check_text(k, v, MAX_TEXT_CHARS if k == "description" else MAX_NAME_CHARS)
 
 
 def _kind(doc: Mapping[str, Any]) -> str:

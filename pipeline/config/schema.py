@@ -35,6 +35,11 @@ from typing import Any
 from pipeline.config.units import DIMENSIONLESS, UNITS, Unit, unit_of_key
 from pipeline.validation import InputError
 
+MAX_NAME_CHARS = 80
+"""Longest free-text value (a name, a label) a file may give: it has to fit a figure title."""
+MAX_TEXT_CHARS = 2000
+"""Longest free-text value of a description."""
+
 KINDS = ("number", "integer", "boolean", "string", "numbers", "number_or_string")
 _KIND_TEXT = {
     "number": "a number",
@@ -59,6 +64,7 @@ class Key:
     length : exact list length (``kind`` "numbers"), or ``None`` for any length.
     required : the table must give it.
     help : one line for the docs.
+    max_chars : longest string allowed (``kind`` "string" or "number_or_string").
     """
 
     name: str
@@ -68,6 +74,7 @@ class Key:
     length: int | None = None
     required: bool = False
     help: str = ""
+    max_chars: int = MAX_NAME_CHARS
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -150,10 +157,21 @@ def _convert(key: Key, where: str, v: Any) -> Any:
         return u.to_si(float(v))
     if not isinstance(v, str):
         raise bad
+    check_text(_key_text(where, key.name), v, key.max_chars)
     if key.choices and v not in key.choices:
         raise InputError(f"{_key_text(where, key.name)} = {_show(v)} is not one of "
                          f"{', '.join(map(repr, key.choices))}")
     return v
+
+
+def check_text(key: str, value: str, max_chars: int) -> str:
+    """``value`` if it has at most ``max_chars`` characters, else a one-line
+    :class:`InputError` naming ``key`` (as written) and both lengths; refused at load, so
+    that no stage or figure sees a megabyte of label."""
+    if len(value) > max_chars:
+        raise InputError(f"{key} = {_show(value)} is {len(value)} characters long; at most "
+                         f"{max_chars} are allowed")
+    return value
 
 
 def unknown(name: str, known: Sequence[str], what: str) -> InputError:

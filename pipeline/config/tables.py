@@ -217,6 +217,7 @@ SIGNAL = {
     "harmonic": (Key("mean_N_per_m", required=True), Key("amplitudes_N_per_m", L, required=True),
                  Key("phases_rad", L), Key("samples", I)),
     "constant": (Key("value_N_per_m", required=True),),
-    "csv": (Key("path", S, required=True), Key("column", S)),
+    "csv": (Key("path", S, required=True, max_chars=4096),  # PATH_MAX of Linux
+            Key("column", S, max_chars=200)),
 }
 """Keys of a periodic stiffness table, by its ``kind``."""

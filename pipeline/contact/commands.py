@@ -69,8 +69,9 @@ def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
 
 
 def contact_title(name: str, cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions) -> str:
-    """Plot title: gearbox, load, compliance, local contact model, helix angle."""
-    return (f"{name}: P = {cyc.load:.0f} N, {opts.compliance} compliance, local contact "
+    """Plot title: gearbox (a line of its own: a name may be 80 characters long), load,
+    compliance, local contact model, helix angle."""
+    return (f"{name}\nP = {cyc.load:.0f} N, {opts.compliance} compliance, local contact "
             f"{opts.local_contact}, beta {math.degrees(pair.pinion.helix_angle):g} deg")
 
 

@@ -26,6 +26,7 @@ from functools import partial
 
 import numpy as np
 
+from pipeline.child_processes import die_with_parent
 from pipeline.dynamics.hb_sweep import plan_sweep, sweep_point
 from pipeline.dynamics.integrate import build_propagator, integrate, steady_state
 from pipeline.dynamics.reduction import reduce_rigid_body_modes
@@ -35,10 +36,12 @@ from pipeline.progress import progress
 from pipeline.validation import InputError, check_choice, check_int_range
 
 
-def _single_blas_thread() -> None:
-    """Worker initializer: one BLAS thread per process (the pool already uses every core)."""
+def _start_worker(parent_pid: int) -> None:
+    """Worker initializer: end with the parent (``pipeline.child_processes``), and one
+    BLAS thread per process (the pool already uses every core)."""
     from threadpoolctl import threadpool_limits
 
+    die_with_parent(parent_pid)
     threadpool_limits(limits=1)
 
 
@@ -55,7 +58,11 @@ def _one_blas_thread():
 
 
 def local_executor(workers: int | None = None) -> Executor:
-    """A process pool (forked workers, one BLAS thread each).
+    """A process pool (forked workers, one BLAS thread each, ending with this process).
+
+    The workers are forked by the thread that submits the first work; they end when it
+    ends (Linux's parent-death signal, ``pipeline.child_processes``), so that thread must
+    wait for the results, as :func:`map_chunks` does.
 
     Parameters
     ----------
@@ -64,7 +71,8 @@ def local_executor(workers: int | None = None) -> Executor:
     return ProcessPoolExecutor(
         max_workers=workers or os.cpu_count(),
         mp_context=multiprocessing.get_context("fork"),
-        initializer=_single_blas_thread,
+        initializer=_start_worker,
+        initargs=(os.getpid(),),
     )
 
 

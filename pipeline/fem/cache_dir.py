@@ -22,6 +22,8 @@ from pathlib import Path
 
 CACHE_ENV = "GEARPIPE_CACHE_DIR"
 """Environment variable that moves the cache folder."""
+_LONGEST_ENTRY = 72
+"""Longest path (bytes) of a temporary entry file relative to the cache folder."""
 
 
 class CacheWarning(UserWarning):
@@ -60,7 +62,11 @@ def writable_cache_dir(cache_dir: str | os.PathLike | None = None) -> Path | Non
     folder = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(prefix=".probe.", dir=folder)
+        # a probe as long as the longest temporary name an entry gets
+        # (figures/.fig-<24 hex>.png.tmp-<pid>-<8>.png: 66), so a folder whose path leaves
+        # no room for its entries is found here, once, rather than at every entry
+        fd, probe = tempfile.mkstemp(prefix=".probe." + "0" * (_LONGEST_ENTRY - 15),
+                                     dir=folder)
         os.close(fd)
         os.unlink(probe)
     except OSError as exc:

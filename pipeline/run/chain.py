@@ -56,6 +56,7 @@ class RunOptions:
     cache_cycles : keep loaded contact cycles in the cache (with ``cache``); a design study
         turns it off: one file per design point would fill the cache with cycles that are
         never read again.
+    label : the command the step lines name on stderr.
     """
 
     full: bool = False
@@ -63,6 +64,7 @@ class RunOptions:
     cache_dir: Path | None = None
     show_progress: bool = True
     cache_cycles: bool = True
+    label: str = "gearpipe run"
 
 
 @dataclass(frozen=True)
@@ -241,7 +243,7 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     from pipeline.run.dynamics import dynamics_stages
 
     options = options or RunOptions()
-    log = StepLog(show=options.show_progress)
+    log = StepLog(show=options.show_progress, label=options.label)
     meshes = mesh_stages(box, options, log)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:

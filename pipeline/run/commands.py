@@ -107,7 +107,7 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     target = output_dir(args, command)
     folder = cache_folder(args)
     options = RunOptions(full=args.full, cache=folder is not None, cache_dir=folder,
-                         show_progress=not args.json)
+                         show_progress=not args.json, label=f"gearpipe {command}")
     # the drawer imports matplotlib while the stages compute (pipeline.viz.figure_queue)
     with parallel_figures(figure_cache(options), prestart=True) as figures:
         result = run_pipeline(box, options)

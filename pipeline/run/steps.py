@@ -21,11 +21,13 @@ class StepLog:
     Attributes
     ----------
     show : print a line per finished step on stderr.
+    label : the command the lines name (``[gearpipe report] ...``).
     seconds : step name -> wall time, s.
     cached : step name -> True when its result was read from the cache.
     """
 
     show: bool = True
+    label: str = "gearpipe run"
     seconds: dict[str, float] = field(default_factory=dict)
     cached: dict[str, bool] = field(default_factory=dict)
 
@@ -37,7 +39,7 @@ class StepLog:
         """
         note: dict = {}
         if self.show and long:
-            print(f"[gearpipe run] {name} ...", file=sys.stderr, flush=True)
+            print(f"[{self.label}] {name} ...", file=sys.stderr, flush=True)
         t0 = time.perf_counter()
         yield note
         dt = time.perf_counter() - t0
@@ -46,7 +48,7 @@ class StepLog:
         if self.show:
             extra = " (from the cache)" if self.cached[name] else ""
             text = f", {note['text']}" if note.get("text") else ""
-            print(f"[gearpipe run] {name}: {dt:.2f} s{extra}{text}", file=sys.stderr,
+            print(f"[{self.label}] {name}: {dt:.2f} s{extra}{text}", file=sys.stderr,
                   flush=True)
 
     def summary(self) -> dict:

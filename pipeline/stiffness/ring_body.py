@@ -40,7 +40,7 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.stiffness.foundation import FoundationCoefficients
 from pipeline.validation import InputError
 
-# L, M, P0, P1 of ``workflows/ring_body_fit.py --full`` (samples in results/ring_body_fit/)
+# L, M, P0, P1 of ``workflows/ring_body_fit.py --full`` (samples: results/ring_body_fit/workflow/)
 RING_TABLE = (3.3022, 1.3101, 0.69949, 0.67717)
 T_OVER_S_RANGE = (0.74, 3.89)  # rim thickness over root tooth thickness in the fit
 THETA_F_RANGE = (0.0189, 0.0786)  # rad

@@ -6,6 +6,15 @@ their units in the names, ``error``), ``manifest.json`` and ``parts/`` (what res
 reads), ``sensitivity.png``, ``tradeoff.png``, ``best_point/gearbox.toml`` with the best
 point's ``gearpipe run`` results in ``best_point/run/`` (:func:`report_best_point`, the
 hook of the tooth load distribution report), ``summary.json`` and ``run.json``.
+
+The folder follows every command's rule (:mod:`pipeline.output_folder`): checked before any
+point is computed (new, empty, or an earlier result of the same study:
+:func:`pipeline.study.store.study_folder`; anything else is refused in one line and left
+as it was) and written as a unit. Where the points are computed depends on what the folder
+holds: an unfinished study (the folder itself, new or killed part way) gets its part files
+there, so that ``--resume`` continues it after a kill; the finished result is then
+assembled in the staging folder (part files hard-linked) and swapped in. A rerun over a
+finished result computes in the staging folder, so a kill leaves the earlier result whole.
 """
 
 from __future__ import annotations
@@ -17,9 +26,11 @@ from typing import Any
 
 from pipeline.commands_common import emit
 from pipeline.io import atomic_write_text, write_json
+from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record
 from pipeline.study.execute import StudyOptions, run_study
 from pipeline.study.spec import StudySpec, study_from_file
+from pipeline.study.store import is_complete, link_work_files, study_folder
 from pipeline.validation import InputError
 
 
@@ -82,17 +93,30 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
 
 
 def run(args: argparse.Namespace) -> int:
-    from pipeline.study.plots import plot_sensitivity, plot_tradeoff
-    from pipeline.viz import save
-
     spec = study_from_file(args.config)
     if args.workers is not None and args.workers < 0:
         raise InputError(f"--workers {args.workers}: expected 0 (serial) or more")
-    out = args.out or Path("results") / Path(args.config).stem / "study"
-    out.mkdir(parents=True, exist_ok=True)
+    target = args.out or Path("results") / Path(args.config).stem / "study"
     options = StudyOptions(scheduler=args.scheduler, workers=args.workers, resume=args.resume,
                            show_progress=not args.json)
-    table, facts = run_study(spec, out, options)
+    with staged_output(target, study_folder(spec)) as out:
+        work = out if is_complete(target) and not args.resume else target
+        table, facts = run_study(spec, work, options, tables=out)
+        files = [out / "study.parquet", out / "study.csv"]
+        if work != out:
+            files += link_work_files(work, out)
+        summary = _write_outputs(args, spec, table, facts, out, files)
+    emit(args, summary, target)
+    return 0
+
+
+def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
+                   facts: dict[str, Any], out: Path, files: list[Path]) -> dict[str, Any]:
+    """Figures, the best point, ``summary.json`` and ``run.json`` into ``out``; the
+    summary."""
+    from pipeline.study.plots import plot_sensitivity, plot_tradeoff
+    from pipeline.viz import save
+
     cols = table.to_pydict()
     kpis = [n for n in table.column_names[1 + len(spec.axes):] if n != "error"]
     trade = list(spec.tradeoff) or kpis[:2]
@@ -102,7 +126,6 @@ def run(args: argparse.Namespace) -> int:
                              f"{', '.join(kpis)}")
     best_kpi = spec.best_kpi or kpis[0]
     best = best_row(cols, best_kpi, spec.best_goal)
-    files = [out / "study.parquet", out / "study.csv"]
     files.append(save(plot_sensitivity(spec, cols, kpis[:4]), out / "sensitivity.png"))
     files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
                                     f"{spec.name}: {len(cols['point'])} points"),
@@ -118,5 +141,4 @@ def run(args: argparse.Namespace) -> int:
     write_run_record(out, {"study": spec.document, "base": spec.base.document,
                            "base_sha256": spec.base.sha256}, files,
                      f"gearpipe study {args.config}")
-    emit(args, summary, out)
-    return 0
+    return summary

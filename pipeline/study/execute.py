@@ -14,6 +14,8 @@ on (:func:`pipeline.study.evaluate.fe_geometry_key`) and runs
 
 Each finished batch is appended atomically to the results folder
 (:class:`pipeline.study.store.StudyStore`), so a killed study resumes where it stopped.
+A folder holding anything but an earlier result of the same study is refused before the
+first point (:func:`pipeline.study.store.study_folder`).
 """
 
 from __future__ import annotations
@@ -30,12 +32,13 @@ from typing import Any
 
 import pyarrow as pa
 
+from pipeline.output_folder import check_target
 from pipeline.progress import progress
 from pipeline.study.evaluate import build_fe_tables, evaluate_point, fe_geometry_key
 from pipeline.study.kpis import KPI, select_kpis
 from pipeline.study.points import DesignPoint, axis_values, design_points
 from pipeline.study.spec import StudySpec
-from pipeline.study.store import StudyStore, study_identity
+from pipeline.study.store import StudyStore, study_folder, study_identity
 from pipeline.validation import InputError
 
 
@@ -176,12 +179,19 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         yield client
 
 
-def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None
-              ) -> tuple[pa.Table, dict[str, Any]]:
+def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *,
+              tables: Path | None = None) -> tuple[pa.Table, dict[str, Any]]:
     """Evaluate every point of ``spec`` into ``out`` (module docstring).
 
-    Returns the table (ordered by point number) and run facts: points, computed now,
-    distinct FE geometries, workers, session id.
+    ``out`` gets the manifest, part files and point log (:mod:`pipeline.study.store`),
+    ``tables`` (default: ``out``) ``study.parquet`` and ``study.csv``. Returns the table
+    (ordered by point number) and run facts: points, computed now, distinct FE
+    geometries, workers, session id.
+
+    Raises
+    ------
+    InputError : a bad study file or point, an unfinished study without ``resume``.
+    OutputError : ``out`` holds files that are not a result of this study.
     """
     options = options or StudyOptions()
     dynamics = spec.speed_range_rpm is not None
@@ -191,8 +201,9 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None
     kpis = select_kpis(spec.kpis, dynamics)
     points = design_points(spec)
     docs, keys = check_points(spec, points)
+    check_target(out, study_folder(spec))
     store = StudyStore(out, table_schema(spec, points, kpis),
-                       study_identity(spec, [k.name for k in kpis]))
+                       study_identity(spec, [k.name for k in kpis]), spec.name)
     done = store.open(options.resume, len(points))
     todo = [p.index for p in points if p.index not in done]
     local = options.scheduler is None
@@ -239,7 +250,7 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None
                     next(ticks, None)
     for _ in ticks:
         pass
-    table, _ = store.write_table()
+    table, _ = store.write_table(tables)
     if table.num_rows != len(points):  # pragma: no cover - would be a bug
         print(f"study: {table.num_rows} of {len(points)} points in the table", file=sys.stderr)
     facts = {"points": len(points), "computed_now": len(todo), "resumed": options.resume,

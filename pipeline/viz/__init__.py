@@ -4,7 +4,8 @@ Matplotlib functions take ``ax=None`` (or ``fig=None`` when they draw several
 panels) and return the Axes (or Figure); without one they draw into a new
 :class:`matplotlib.figure.Figure`, which needs no pyplot and no backend. pyvista
 renders return an off-screen Plotter (pyvista is imported inside them: it costs
-seconds). Nothing here calls ``matplotlib.use``.
+seconds) that needs no display and makes VTK no warnings without one
+(:mod:`._offscreen`). Nothing here calls ``matplotlib.use``.
 
 - :mod:`.geometry` - line of action, contact lines, tooth profile.
 - :mod:`.stiffness` - mesh stiffness curves, friction coefficients.

@@ -6,7 +6,9 @@ defers (the cached ones are copied at once) and :meth:`FigureQueue.draw_all` sha
 them out round-robin between one process and ``workers - 1`` forked children. A forked
 child inherits the data to draw, so nothing is pickled; each child writes its files
 atomically and reports failures back through a pipe. ``fork`` is POSIX only: where it is
-missing, or with one worker, everything is drawn here in turn.
+missing, or with one worker, everything is drawn here in turn. Every forked process ends
+with the process that forked it, kill -9 included (``pipeline.child_processes``); the
+drawer and the drawing children are forked by the thread that later waits for them.
 
 A *drawer* started early (:meth:`FigureQueue.start`, ``parallel_figures(prestart=True)``)
 is a forked process that imports matplotlib (about 0.5 s) and warms its font cache while
@@ -29,6 +31,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+from pipeline.child_processes import die_with_parent
 
 if TYPE_CHECKING:
     from pipeline.viz.figure_cache import FigureCache
@@ -101,7 +105,8 @@ def _draw(jobs: list[Job]) -> list[str]:
     return failures
 
 
-def _draw_in_child(jobs: list[Job], writer) -> None:
+def _draw_in_child(parent_pid: int, jobs: list[Job], writer) -> None:
+    die_with_parent(parent_pid)
     failures = _draw(jobs)
     writer.send(failures)
     writer.close()
@@ -117,7 +122,8 @@ def _draw_parallel(jobs: list[Job], workers: int | None) -> list[str]:
     children = []
     for part in range(1, n):
         reader, writer = ctx.Pipe(duplex=False)
-        child = ctx.Process(target=_draw_in_child, args=(jobs[part::n], writer), daemon=True)
+        child = ctx.Process(target=_draw_in_child, args=(os.getpid(), jobs[part::n], writer),
+                            daemon=True)
         child.start()
         writer.close()
         children.append((child, reader, jobs[part::n]))
@@ -143,12 +149,15 @@ def _warm_up() -> None:
     FigureCanvasAgg(fig).draw()
 
 
-def _serve(conn, parents_end) -> None:
+def _serve(parent_pid: int, conn, parents_end) -> None:
     """The drawer: warm up, wait for one batch of jobs, draw it, report the failures.
 
     ``parents_end`` is the parent's end of the pipe, inherited through the fork: closed
-    first, so that the parent's death (or :meth:`_Drawer.close`) ends ``conn.recv()``.
+    first, so that :meth:`_Drawer.close` ends ``conn.recv()``. The parent's death ends the
+    drawer whatever it is doing (``die_with_parent``): the pipe alone would not, as every
+    process the parent forks later (a sweep's pool) inherits the parent's end.
     """
+    die_with_parent(parent_pid)
     parents_end.close()
     try:
         try:
@@ -182,8 +191,8 @@ class _Drawer:
         ctx = multiprocessing.get_context("fork")
         ours, theirs = ctx.Pipe()
         # not a daemon: a daemon may not fork the children it draws with; it ends when this
-        # end of the pipe closes (close(), or this process's death)
-        process = ctx.Process(target=_serve, args=(theirs, ours), daemon=False)
+        # end of the pipe closes (close()) or when this process dies (die_with_parent)
+        process = ctx.Process(target=_serve, args=(os.getpid(), theirs, ours), daemon=False)
         process.start()
         theirs.close()
         return cls(process, ours)

@@ -1,6 +1,7 @@
 """Picture of the twisted sun body coloured by the torsional shear stress (pyvista).
 
-pyvista costs seconds to import, so it is imported inside the function only.
+pyvista costs seconds to import, so it is imported inside the function only; the plotter
+comes from :func:`~pipeline.viz._offscreen.offscreen_plotter` (renders without a display).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.fem.groove.stress import torsional_shear_stress
+from pipeline.viz._offscreen import offscreen_plotter
 
 if TYPE_CHECKING:
     from pipeline.fem.groove.study import GrooveAnalysis
@@ -45,7 +47,7 @@ def render_twisted_body(
                                (mesh.p + magnification * disp.T).T)
     grid.cell_data["shear stress tau_theta_z [MPa]"] = tau
     surf = grid.extract_surface(algorithm="dataset_surface")
-    plotter = pv.Plotter(off_screen=True, window_size=list(window))
+    plotter = offscreen_plotter(window_size=list(window))
     lim = float(np.percentile(np.abs(tau), 99.5))
     # Mesh edges make the twist visible: axial element edges turn into helices.
     plotter.add_mesh(surf, scalars="shear stress tau_theta_z [MPa]", cmap="coolwarm",

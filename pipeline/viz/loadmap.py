@@ -3,7 +3,8 @@
 
 The data (:class:`~pipeline.contact.loadmap.FlankLoadMap`, the flank surface and
 the VTU file) live in :mod:`pipeline.contact.loadmap`. pyvista costs seconds to
-import, so it is imported inside :func:`render_load_map` only.
+import, so it is imported only when :func:`render_load_map` runs; its plotter comes from
+:func:`~pipeline.viz._offscreen.offscreen_plotter`, which renders without a display.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from pipeline.contact.loadmap import (
     tooth_body_grid,
 )
 from pipeline.geometry.pair import GearPair
+from pipeline.viz._offscreen import offscreen_plotter
 from pipeline.viz.canvas import new_figure
 
 if TYPE_CHECKING:
@@ -80,8 +82,6 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     e.g. one scale for maps to be compared. Save it with
     :func:`pipeline.viz.save` (which also closes it).
     """
-    import pyvista as pv
-
     members = mapped_members(pair)
     clim = clim or (0.0, float(load_map.unit_load.max()) * 1e-3)
     b = pair.face_width * 1e3
@@ -90,11 +90,10 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     view = 0.78  # share of the row width the tooth may take (the colour bar takes the rest)
     aspect = float(np.clip(1.1 * b / height / view, 1.6, 7.0))  # row width / height
     row_h = int(window_width / aspect)
-    title_h = 60 if title else 0
+    title_h = 30 * (title.count("\n") + 1) if title else 0  # px per line at font size 9
     weights = [row_h + title_h] + [row_h] * (len(members) - 1)
-    plotter = pv.Plotter(off_screen=True, shape=(len(members), 1), border=False,
-                         row_weights=weights,
-                         window_size=[window_width, sum(weights)])
+    plotter = offscreen_plotter(shape=(len(members), 1), border=False, row_weights=weights,
+                                window_size=[window_width, sum(weights)])
     try:
         for i, member in enumerate(members):
             plotter.subplot(i, 0)

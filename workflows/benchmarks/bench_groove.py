@@ -35,7 +35,10 @@ sys.path.insert(0, str(ROOT))
 CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
-def _case(args: tuple[str, float, str, str], queue) -> None:
+def _case(parent_pid: int, args: tuple[str, float, str, str], queue) -> None:
+    from pipeline.child_processes import die_with_parent
+
+    die_with_parent(parent_pid)  # a killed benchmark leaves no FE case running
     teeth_model, h, coupling, solver = args
     os.environ.setdefault("OMP_NUM_THREADS", "2")
     from pipeline.config import load_gearbox
@@ -61,7 +64,7 @@ def run_case(teeth_model: str, h: float, coupling: str = "distributed", solver: 
     """Run one case in a fresh process; returns its figures."""
     ctx = mp.get_context("spawn")
     q = ctx.Queue()
-    p = ctx.Process(target=_case, args=((teeth_model, h, coupling, solver), q))
+    p = ctx.Process(target=_case, args=(os.getpid(), (teeth_model, h, coupling, solver), q))
     p.start()
     out = q.get()
     p.join()

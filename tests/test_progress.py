@@ -1,0 +1,35 @@
+"""Progress on stderr only for work that lasts: :func:`pipeline.progress.progress` shows no
+bar for a loop that ends within its ``after`` seconds and a bar for one that runs longer."""
+
+from __future__ import annotations
+
+import time
+
+from pipeline.progress import REPORT_AFTER, progress
+
+
+def _slow(n: int, pause: float):
+    for i in range(n):
+        time.sleep(pause)
+        yield i
+
+
+def test_fast_loop_shows_no_bar(capsys):
+    # 10000 items take about 5 ms, far below the default 1 s
+    assert REPORT_AFTER == 1.0
+    assert sum(progress(range(10_000), "fast")) == 49_995_000
+    assert capsys.readouterr().err == ""
+
+
+def test_loop_longer_than_after_shows_its_bar(capsys):
+    # 8 x 0.05 s = 0.4 s, at least 4 times the 0.1 s after which the bar appears
+    assert list(progress(_slow(8, 0.05), "slow loop", total=8, after=0.1)) == list(range(8))
+    err = capsys.readouterr().err
+    assert "slow loop:" in err and "/8 [" in err, repr(err)
+    assert capsys.readouterr().out == ""
+
+
+def test_disabled_loop_shows_no_bar_however_long(capsys):
+    assert list(progress(_slow(4, 0.05), "off", total=4, enabled=False, after=0.01)) == [0, 1,
+                                                                                          2, 3]
+    assert capsys.readouterr().err == ""
