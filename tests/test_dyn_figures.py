@@ -114,12 +114,14 @@ def test_sweep_csv_has_every_column_with_units(tmp_path, herringbone_sweeps):
     with open(tmp_path / "sweep.csv", newline="") as fh:
         rows = list(csv.reader(fh))
     head = rows[0]
-    assert len(head) == 1 + 5 * len(sw.mesh_names) and all(len(r) == len(head) for r in rows)
+    assert len(head) == 1 + 6 * len(sw.mesh_names) and all(len(r) == len(head) for r in rows)
     data = np.array(rows[1:], dtype=float)
     k = sw.mesh_names.index("s-p1R")
     for name, ref in (("mean force s-p1R [N]", sw.mean_force[k]),
                       ("alternating rms force s-p1R [N]", sw.rms_alternating[k]),
-                      ("dynamic factor s-p1R [-]", sw.max_force[k] / sw.mean_force[k])):
+                      ("max elastic force s-p1R [N]", sw.max_elastic_force[k]),
+                      ("dynamic factor s-p1R [-]",
+                       sw.max_elastic_force[k] / sw.mean_force[k])):
         assert data[:, head.index(name)] == pytest.approx(ref, rel=1e-8)
     assert (tmp_path / "sweep.png").stat().st_size > 0
 

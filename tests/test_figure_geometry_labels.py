@@ -258,9 +258,10 @@ def test_dynamics_labels_name_the_mesh_once_with_units(mesh):
     assert not [d for t in texts for d in _doubled(t)]
     named = mesh != "mesh"
     th, spec, harm, sweep = (f.axes for f in figs)
-    assert th[0].get_title() == "DTE and dynamic mesh force" + (", mesh s-p1" if named else "")
+    assert th[0].get_title() == "DTE and elastic mesh force" + (", mesh s-p1" if named else "")
     assert spec[0].get_title() == "DTE spectrum" + (", mesh s-p1" if named else "")
-    assert th[0].get_ylabel() == "DTE [um]" and th[1].get_ylabel() == "dynamic mesh force [kN]"
+    assert th[0].get_ylabel() == "DTE [um]" and th[1].get_ylabel() == (
+        "elastic mesh force k (delta - e) [kN]")
     assert th[1].lines[0].get_ydata().max() == pytest.approx(8.0)  # 8 kN peak drawn in kN
     assert sweep[0].get_ylabel() == ("RMS mesh force, mesh s-p1 [kN]" if named
                                      else "RMS mesh force [kN]")

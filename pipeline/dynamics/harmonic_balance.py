@@ -224,6 +224,7 @@ def harmonic_balance(
     dte = V @ q.T
     rate = V @ qd.T
     force = np.zeros_like(dte)
+    elastic = np.zeros_like(dte)
     for i, ms in enumerate(red.meshes):
         t = red.terms[ms.term]
         k = t.signal(t.order * tau - t.phase)
@@ -232,7 +233,8 @@ def harmonic_balance(
             ce = fourier_coefficients(ms.transmission_error, t.order, t.phase, H)
             e = ms.transmission_error(t.order * tau - t.phase)
             ed = (E @ (1j * h * w * ce)).real
-        force[i] = k * (dte[i] - e) + ms.damping * (rate[i] - ed)
+        elastic[i] = k * (dte[i] - e)
+        force[i] = elastic[i] + ms.damping * (rate[i] - ed)
     resp = Response(
         time=tau * red.period,
         q=red.expand(q),
@@ -243,6 +245,7 @@ def harmonic_balance(
         mesh_names=tuple(ms.name for ms in red.meshes),
         period=red.period,
         method="harmonic-balance",
+        elastic_force=elastic,
     )
     dh = Q @ V.T  # (NH, n_mesh)
     amp = np.abs(dh[H:]).T.copy()

@@ -130,6 +130,13 @@ def _real_series(E: np.ndarray, C: np.ndarray) -> np.ndarray:
 def mesh_forces(plan: SweepPlan, frequency: float) -> np.ndarray:
     """Dynamic mesh forces over one steady period at ``frequency`` (Hz), shape
     (n_mesh, samples+1), N."""
+    elastic, damping = mesh_force_parts(plan, frequency)
+    return elastic + damping
+
+
+def mesh_force_parts(plan: SweepPlan, frequency: float) -> tuple[np.ndarray, np.ndarray]:
+    """Elastic k (delta - e) and damping c (delta' - e') parts of the mesh forces over one
+    steady period at ``frequency`` (Hz), each shape (n_mesh, samples+1), N."""
     s = plan.system.with_mesh_frequency(frequency)
     H, w = plan.H, 2 * np.pi / s.period
     h = np.arange(H + 1)
@@ -144,13 +151,18 @@ def mesh_forces(plan: SweepPlan, frequency: float) -> np.ndarray:
     D = Q @ plan.Vm.T  # (H+1, n_mesh)
     dte = _real_series(plan.E, D).T
     rate = _real_series(plan.E, (1j * h * w)[:, None] * D).T
-    return plan.k * (dte - plan.e) + plan.damping[:, None] * (rate - plan.e_rate / s.period)
+    return (plan.k * (dte - plan.e),
+            plan.damping[:, None] * (rate - plan.e_rate / s.period))
 
 
 def sweep_point(plan: SweepPlan, frequency: float) -> np.ndarray:
-    """RMS, alternating RMS, max and mean of every mesh force at ``frequency`` (Hz),
-    shape (4, n_mesh), N (the statistics of :func:`pipeline.dynamics.sweep.mesh_force_sweep`)."""
-    f = mesh_forces(plan, frequency)[:, :-1]  # one period without its repeated end point
+    """RMS, alternating RMS, max and mean of every mesh force and max of its elastic part
+    at ``frequency`` (Hz), shape (5, n_mesh), N (the statistics of
+    :func:`pipeline.dynamics.sweep.mesh_force_sweep`)."""
+    elastic, damping = mesh_force_parts(plan, frequency)
+    elastic = elastic[:, :-1]  # one period without its repeated end point
+    f = elastic + damping[:, :-1]
     mean = f.mean(axis=1)
     return np.stack([np.sqrt((f**2).mean(axis=1)),
-                     np.sqrt(((f - mean[:, None]) ** 2).mean(axis=1)), f.max(axis=1), mean])
+                     np.sqrt(((f - mean[:, None]) ** 2).mean(axis=1)), f.max(axis=1), mean,
+                     elastic.max(axis=1)])

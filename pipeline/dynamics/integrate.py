@@ -140,6 +140,7 @@ def _response(
     dte_rate = V @ qd.T
     seg = np.arange(tau.size) % m
     force = np.zeros_like(dte)
+    elastic = np.zeros_like(dte)
     for i, ms in enumerate(sysm.meshes):
         k = prop.coef[ms.term, seg]
         e = ed = 0.0
@@ -150,7 +151,8 @@ def _response(
                 segment_slopes(ms.transmission_error, tm.order, tm.phase, prop.edges)[seg]
                 / sysm.period
             )
-        force[i] = k * (dte[i] - e) + ms.damping * (dte_rate[i] - ed)
+        elastic[i] = k * (dte[i] - e)
+        force[i] = elastic[i] + ms.damping * (dte_rate[i] - ed)
     return Response(
         time=tau * sysm.period,
         q=sysm.expand(q),
@@ -163,6 +165,7 @@ def _response(
         steady_from=steady_from_period * m,
         method=method,
         end_state=last,
+        elastic_force=elastic,
     )
 
 

@@ -69,7 +69,7 @@ def write_response(result: ResponseResult, out: Path, name: str,
     f, a = resp.dte_spectrum(0)
     files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
     files.append(figures.save(out / "time_history.png", plot_time_history, [resp], [name],
-                              title=f"{name}: " + mesh_title("DTE and dynamic mesh force",
+                              title=f"{name}: " + mesh_title("DTE and elastic mesh force",
                                                              meshes) + at))
     files.append(figures.save(out / "dte_spectrum.png", plot_spectrum, [resp], [name],
                               title=mesh_title("DTE spectrum", meshes) + at if at else ""))

@@ -135,6 +135,8 @@ class SweepResult:
     mean_force : shape (n_mesh, F), mean mesh force, N.
     mesh_names : labels of the rows.
     method : sweep method.
+    max_elastic_force : shape (n_mesh, F), largest elastic mesh force k (delta - e), N, or
+        ``None`` (then ``max_force``).
     """
 
     frequencies: np.ndarray
@@ -144,11 +146,15 @@ class SweepResult:
     mean_force: np.ndarray
     mesh_names: tuple[str, ...]
     method: str
+    max_elastic_force: np.ndarray | None = None
 
     @property
     def dynamic_factor(self) -> np.ndarray:
-        """max F / mean F per mesh and frequency, shape (n_mesh, F)."""
-        return self.max_force / self.mean_force
+        """Largest elastic mesh force k (delta - e) over the mean mesh force, per mesh and
+        frequency, shape (n_mesh, F), - (definition and reason:
+        :meth:`pipeline.dynamics.results.Response.dynamic_factor`)."""
+        top = self.max_force if self.max_elastic_force is None else self.max_elastic_force
+        return top / self.mean_force
 
     def summary(self) -> dict:
         """Points, frequency range (Hz) and the main peaks (Hz) of every mesh."""
@@ -157,12 +163,14 @@ class SweepResult:
                 "peaks_Hz": {m: self.peaks(m) for m in self.mesh_names}}
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Mesh frequency (Hz), then per mesh: RMS, alternating RMS, mean, max force (N) and
-        dynamic factor (-)."""
+        """Mesh frequency (Hz), then per mesh: RMS, max, max elastic, mean and alternating
+        RMS force (N) and dynamic factor (max elastic / mean force, -)."""
         cols = {"mesh frequency [Hz]": self.frequencies}
         for i, m in enumerate(self.mesh_names):
             cols[f"rms force {m} [N]"] = self.rms_force[i]
             cols[f"max force {m} [N]"] = self.max_force[i]
+            if self.max_elastic_force is not None:
+                cols[f"max elastic force {m} [N]"] = self.max_elastic_force[i]
             cols[f"mean force {m} [N]"] = self.mean_force[i]
             cols[f"alternating rms force {m} [N]"] = self.rms_alternating[i]
             cols[f"dynamic factor {m} [-]"] = self.dynamic_factor[i]
@@ -185,6 +193,7 @@ def _stats(resp: Response) -> np.ndarray:
             np.sqrt(((f - mean[:, None]) ** 2).mean(axis=1)),
             f.max(axis=1),
             mean,
+            resp.elastic_mesh_force()[:, resp.steady_slice()].max(axis=1),
         ]
     )
 
@@ -263,9 +272,10 @@ def mesh_force_sweep(
                     r.dof_names,
                     r.mesh_names,
                     r.period,
+                    elastic_force=r.elastic_mesh_force()[:, -seg - 1 :],
                 )
                 stats.append(_stats(tail))
-    S = np.array(stats)  # (F, 4, n_mesh)
+    S = np.array(stats)  # (F, 5, n_mesh)
     return SweepResult(
         frequencies=f,
         rms_force=S[:, 0].T,
@@ -274,6 +284,7 @@ def mesh_force_sweep(
         mean_force=S[:, 3].T,
         mesh_names=tuple(m.name for m in red.meshes),
         method=method,
+        max_elastic_force=S[:, 4].T,
     )
 
 

@@ -108,10 +108,11 @@ def dynamics_meshes_section(summary: Mapping[str, Any], mesh: str,
         key = f"half_{half}_" if half else ""
         vals = [_mesh_values(summary, by_half[half][g[0]], driver, rpm_per_hz)
                 for g in groups]
-        spec = [("dynamic_factor", "dynamic factor at the operating speed (max / mean mesh "
-                 "force)", "-"),
+        spec = [("dynamic_factor", "dynamic factor at the operating speed (max elastic mesh "
+                 "force k (delta - e) / mean mesh force)", "-"),
                 ("max_force", "largest dynamic mesh force at the operating speed", "kN"),
-                ("sweep_max_dynamic_factor", f"largest dynamic factor over the sweep ({span})",
+                ("sweep_max_dynamic_factor", f"largest dynamic factor over the sweep ({span}; "
+                 "max elastic / mean mesh force)",
                  "-"),
                 ("sweep_max_at", "at mesh frequency", "Hz")]
         if driver is not None:

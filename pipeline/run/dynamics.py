@@ -4,8 +4,9 @@ The mesh excitation of each mesh comes from the static stages of the same run
 (:mod:`pipeline.run.chain`): ``[dynamics] excitation = "analytical"`` takes the
 potential-energy k(t) and friction terms, ``"contact"`` the loaded contact cycle
 (loaded k(t), static transmission error and friction of the chosen compliance
-source). The dynamic factor at the operating speed is the largest dynamic mesh force
-over the static mesh load of the contact stage.
+source). The dynamic factor (at the operating speed and over the sweep) is the largest
+elastic mesh force k (delta - e) over the mean mesh force
+(:meth:`pipeline.dynamics.results.Response.dynamic_factor`).
 """
 
 from __future__ import annotations
@@ -76,10 +77,13 @@ class DynamicsStages:
         resp = self.response.response
         per_mesh = self.response.summary()["meshes"]
         force = resp.mesh_force[:, resp.steady_slice()]
+        elastic = resp.elastic_mesh_force()[:, resp.steady_slice()]
         for i, name in enumerate(resp.mesh_names):
             mean = float(force[i].mean())
             per_mesh[name]["max_force_N"] = float(force[i].max())
-            per_mesh[name]["dynamic_factor"] = float(force[i].max() / mean) if mean else np.nan
+            per_mesh[name]["max_elastic_force_N"] = float(elastic[i].max())
+            per_mesh[name]["dynamic_factor"] = (float(elastic[i].max() / mean) if mean
+                                                else np.nan)
         sw = self.sweep
         k = np.argmax(sw.dynamic_factor, axis=1)
         fn = self.modes.frequencies

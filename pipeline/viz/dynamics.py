@@ -48,20 +48,28 @@ def plot_time_history(
     title: str = "",
     fig: Figure | None = None,
 ) -> Figure:
-    """DTE (um) and mesh force (kN) of one mesh over the steady part of each response."""
+    """DTE (um) and elastic mesh force k (delta - e) (kN) of one mesh over the steady part
+    of each response.
+
+    The elastic force is the one the dynamic factor is read from
+    (:meth:`pipeline.dynamics.results.Response.dynamic_factor`); the damping force
+    c (delta' - e') is left out because e' of a sampled static transmission error is a
+    pulse one contact sample wide at each tooth entry, drawn by a truncated Fourier series
+    as a ripple that belongs to the sampling, not to the gears (``time_history.csv`` keeps
+    the total force)."""
     fig, ax = _panels(fig, 2, 1, (8, 6))
     for r, lab in zip(responses, labels, strict=True):
         i = 0 if mesh is None else r.mesh(mesh)
         s = r.steady_from
         t = (r.time[s:] - r.time[s]) / r.period
         ax[0, 0].plot(t, r.dte[i, s:] * 1e6, label=lab)
-        ax[1, 0].plot(t, r.mesh_force[i, s:] / 1e3, label=lab)
+        ax[1, 0].plot(t, r.elastic_mesh_force()[i, s:] / 1e3, label=lab)
     ax[0, 0].set_ylabel("DTE [um]")
-    ax[1, 0].set_ylabel("dynamic mesh force [kN]")
+    ax[1, 0].set_ylabel("elastic mesh force k (delta - e) [kN]")
     ax[1, 0].set_xlabel("time [mesh periods]")
     ax[0, 0].legend(fontsize=8)
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
-    ax[0, 0].set_title(title or mesh_title("DTE and dynamic mesh force", names))
+    ax[0, 0].set_title(title or mesh_title("DTE and elastic mesh force", names))
     for a in ax[:, 0]:
         a.grid(alpha=0.3)
     return fig
