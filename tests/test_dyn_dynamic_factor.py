@@ -119,8 +119,8 @@ def test_dynamic_factor_converges_in_harmonics_and_contact_positions():
 
 def test_report_rows_state_the_definition():
     """The dynamic-factor rows of the report name the quantity: max elastic mesh force
-    k (delta - e) over the mean mesh force."""
-    meshes = {"s-p1": {"dynamic_factor": 1.2, "max_force_N": 1.2e3}}
+    k (delta - e) over the mean mesh force; the force row beside it is that maximum, in kN."""
+    meshes = {"s-p1": {"dynamic_factor": 1.2, "max_elastic_force_N": 5.8e3}}
     summary = {"operating_point": {"mesh_frequency_Hz": 100.0, "speeds_rpm": {}},
                "response_at_operating_speed": {"meshes": meshes},
                "sweep": {"f_min_Hz": 25.0, "f_max_Hz": 400.0,
@@ -132,3 +132,6 @@ def test_report_rows_state_the_definition():
                                             "force)")
     assert rows["sweep_max_dynamic_factor"].label.endswith("max elastic / mean mesh force)")
     assert rows["dynamic_factor"].values == (1.2,)
+    assert rows["max_elastic_force"].label == ("largest elastic mesh force k (delta - e) at "
+                                               "the operating speed")
+    assert rows["max_elastic_force"].values == (5.8,) and rows["max_elastic_force"].unit == "kN"

@@ -202,7 +202,8 @@ def test_wind_turbine_report_sections(wind_run):
     op = s["response_at_operating_speed"]["meshes"]
     assert rows["half_L_dynamic_factor"] == pytest.approx(
         (op["s-p1L"]["dynamic_factor"], op["s-p2L"]["dynamic_factor"]), rel=1e-15)
-    assert rows["half_R_max_force"][0] == pytest.approx(op["s-p1R"]["max_force_N"] / 1e3)
+    assert rows["half_R_max_elastic_force"][0] == pytest.approx(
+        op["s-p1R"]["max_elastic_force_N"] / 1e3)
     f_at = s["sweep"]["max_dynamic_factor_at_Hz"]["s-p1L"]
     assert rows["half_L_sweep_max_at_speed"][0] == pytest.approx(
         60 * f_at * (ZS + ZR) / (ZS * ZR), rel=1e-12)
@@ -211,9 +212,9 @@ def test_wind_turbine_report_sections(wind_run):
 
 
 def _summary(planets: dict[int, float]) -> dict:
-    meshes = {f"s-p{p}": {"dynamic_factor": v, "max_force_N": 1e3 * v} for p, v in
+    meshes = {f"s-p{p}": {"dynamic_factor": v, "max_elastic_force_N": 1e3 * v} for p, v in
               planets.items()}
-    meshes.update({f"r-p{p}": {"dynamic_factor": 9.0, "max_force_N": 9e3} for p in planets})
+    meshes.update({f"r-p{p}": {"dynamic_factor": 9.0, "max_elastic_force_N": 9e3} for p in planets})
     return {"operating_point": {"mesh_frequency_Hz": 100.0, "speeds_rpm": {}},
             "response_at_operating_speed": {"meshes": meshes},
             "sweep": {"f_min_Hz": 25.0, "f_max_Hz": 400.0,

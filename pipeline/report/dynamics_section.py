@@ -53,7 +53,8 @@ def _mesh_values(summary: Mapping[str, Any], name: str, driver: str | None,
     op = summary["response_at_operating_speed"]["meshes"][name]
     sw = summary["sweep"]
     f = sw["max_dynamic_factor_at_Hz"][name]
-    values = [op["dynamic_factor"], op["max_force_N"] * 1e-3, sw["max_dynamic_factor"][name],
+    values = [op["dynamic_factor"], op["max_elastic_force_N"] * 1e-3,
+              sw["max_dynamic_factor"][name],
               f]
     if driver is not None:
         values.append(f * rpm_per_hz)
@@ -110,7 +111,8 @@ def dynamics_meshes_section(summary: Mapping[str, Any], mesh: str,
                 for g in groups]
         spec = [("dynamic_factor", "dynamic factor at the operating speed (max elastic mesh "
                  "force k (delta - e) / mean mesh force)", "-"),
-                ("max_force", "largest dynamic mesh force at the operating speed", "kN"),
+                ("max_elastic_force", "largest elastic mesh force k (delta - e) at the "
+                 "operating speed", "kN"),
                 ("sweep_max_dynamic_factor", f"largest dynamic factor over the sweep ({span}; "
                  "max elastic / mean mesh force)",
                  "-"),
