@@ -214,7 +214,8 @@ def test_wind_turbine_report_sections(wind_run):
 def _summary(planets: dict[int, float]) -> dict:
     meshes = {f"s-p{p}": {"dynamic_factor": v, "max_elastic_force_N": 1e3 * v} for p, v in
               planets.items()}
-    meshes.update({f"r-p{p}": {"dynamic_factor": 9.0, "max_elastic_force_N": 9e3} for p in planets})
+    meshes.update({f"r-p{p}": {"dynamic_factor": 9.0, "max_elastic_force_N": 9e3}
+                   for p in planets})
     return {"operating_point": {"mesh_frequency_Hz": 100.0, "speeds_rpm": {}},
             "response_at_operating_speed": {"meshes": meshes},
             "sweep": {"f_min_Hz": 25.0, "f_max_Hz": 400.0,
