@@ -13,7 +13,7 @@ MOTIONS = ("in-plane", "rotation", "axial")
 """Groups of coordinates whose kinetic-energy shares a mode reports: in-plane translations
 (``x``, ``y``), rotations about the gear axes (``theta``) and axial translations (``z``)."""
 
-DTE_SPECTRUM_COLUMNS = ("mesh order [-]", "DTE amplitude [um]")
+DTE_SPECTRUM_COLUMNS = ("mesh order [-]", "DTE amplitude [m]")
 """Column names of ``dte_spectrum.csv``; the README's figure table lists the same names."""
 
 _MOTION_DOFS = {"in-plane": ("x", "y"), "rotation": ("theta",), "axial": ("z",)}
@@ -112,9 +112,9 @@ class Response:
 
     def dte_spectrum_columns(self, mesh: int = 0) -> dict[str, np.ndarray]:
         """:meth:`dte_spectrum` as CSV columns: frequency in multiples of 1/T (the mesh
-        order, as drawn in ``dte_spectrum.png``), -, and amplitude, um (order 0: the mean)."""
+        order, as drawn in ``dte_spectrum.png``), -, and amplitude, m (order 0: the mean)."""
         f, a = self.dte_spectrum(mesh)
-        return dict(zip(DTE_SPECTRUM_COLUMNS, (f * self.period, a * 1e6), strict=True))
+        return dict(zip(DTE_SPECTRUM_COLUMNS, (f * self.period, a), strict=True))
 
 
 @dataclass(frozen=True)
