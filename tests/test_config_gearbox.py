@@ -75,7 +75,7 @@ BAD_INPUTS = [
     ("old dynamics file", b'model = "spur_pair"\n[parameters]\nmass_pinion_kg = 2.5\n',
      ["old format", "[lumped_model]"]),
     ("non-UTF-8", _edit("# Units", "# Unit\xe9s").decode().encode("latin-1"),
-     ["not UTF-8", "line 3"]),
+     ["not UTF-8", f"line {BASE[:BASE.index('# Units')].count(chr(10)) + 1}"]),
     ("byte-order mark", b"\xef\xbb\xbf" + BASE.encode(), ["byte-order mark"]),
     ("binary garbage", bytes(range(256)) * 4, ["binary data"]),
     ("syntax error", b"[pinion\nteeth = 3", ["TOML syntax error", "line 1"]),

@@ -154,7 +154,7 @@ class HerringboneCycle:
             c = self.half(side)
             cols[f"transmission_error_{side} [m]"] = c.transmission_error
             cols[f"mesh_stiffness_{side} [N/m]"] = c.mesh_stiffness
-            cols[f"max_unit_load_{side} [N/mm]"] = c.max_unit_load * 1e-3
+            cols[f"max_unit_load_{side} [N/m]"] = c.max_unit_load
         cols.update({"groove_twist [rad]": self.groove_twist,
                      "groove_torque [N m]": self.groove_torque,
                      "groove_axial [m]": self.groove_axial,

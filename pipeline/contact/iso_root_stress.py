@@ -13,7 +13,12 @@ method B, from the basic rack and the virtual spur gear; no protuberance, ``s_pr
   (z_n cos^2(theta) - 2 G))`` (fillet radius there);
 * the load acts at the outer point of single pair contact of the virtual gear,
   ``d_en = 2 sqrt((sqrt(d_an^2 - d_bn^2)/2 - p_bn (eps_alpha_n - 1))^2 + d_bn^2/4)`` with
-  ``eps_alpha_n = eps_alpha / cos^2(beta_b)`` and ``p_bn = pi m_n cos(alpha_n)``;
+  ``eps_alpha_n = eps_alpha / cos^2(beta_b)`` and ``p_bn = pi m_n cos(alpha_n)``; for a
+  high-contact-ratio pair (``eps_alpha_n >= 2``) the same formula, as ISO keeps it, gives
+  the outer point of double pair contact (the inner point of triple pair contact, one
+  ``p_bn (eps_alpha_n - 1) >= p_bn`` from the tip), still with the whole ``F_t`` on one
+  tooth: the tooth there shares the load with one other pair, so sigma_F0 stays above a
+  loaded tooth contact's stress (:attr:`IsoRootStress.high_contact_ratio`);
   ``alpha_en = acos(d_bn / d_en)``, ``gamma_e = (pi/2 + 2 x tan(alpha_n)) / z_n +
   inv(alpha_n) - inv(alpha_en)``, ``alpha_Fen = alpha_en - gamma_e`` (the load angle);
 * bending arm ``h_Fe / m_n = ((cos(gamma_e) - sin(gamma_e) tan(alpha_Fen)) d_en / m_n
@@ -23,7 +28,9 @@ method B, from the basic rack and the virtual spur gear; no protuberance, ``s_pr
   ``q_s = s_Fn / (2 rho_F)`` (ISO: valid for 1 <= q_s < 8);
 * helix factor ``Y_beta = 1 - eps_beta beta / 120 deg`` (``eps_beta`` at most 1, ``beta`` at
   most 30 deg); rim factor ``Y_B = 1`` (solid rim) and deep tooth factor ``Y_DT = 1``
-  (``eps_alpha_n <= 2.05``) are taken as 1 and the result says so;
+  are taken as 1 and the result says so (ISO 6336-3:2019 clause 10: ``Y_DT = 1`` for
+  ``eps_alpha_n <= 2.05`` or an ISO tolerance class above 4, below 1 only for a finer class,
+  which the gearbox file does not give);
 * nominal root stress ``sigma_F0 = F_t / (b m_n) Y_F Y_S Y_beta Y_B Y_DT``, ``F_t`` the
   nominal tangential load at the reference circle.
 
@@ -61,6 +68,7 @@ class IsoRootStress:
     theta : angle of the 30 deg tangent construction (ISO's theta), rad.
     virtual_teeth : z_n (-).
     q_s : notch parameter s_Fn / (2 rho_F) (-); in_range : 1 <= q_s < 8.
+    virtual_contact_ratio : eps_alpha_n = eps_alpha / cos^2(beta_b) (-).
     """
 
     sigma_f0: float
@@ -80,6 +88,13 @@ class IsoRootStress:
     virtual_teeth: float
     q_s: float
     in_range: bool
+    virtual_contact_ratio: float
+
+    @property
+    def high_contact_ratio(self) -> bool:
+        """eps_alpha_n >= 2: ISO's load point is the outer point of double pair contact,
+        carrying the whole F_t (module docstring)."""
+        return self.virtual_contact_ratio >= 2.0
 
     def summary(self) -> dict[str, float | bool]:
         """Factors and stress (SI; keys carry units)."""
@@ -87,7 +102,8 @@ class IsoRootStress:
                 "Y_beta": self.y_beta, "Y_B": self.y_b, "Y_DT": self.y_dt,
                 "s_Fn_m": self.s_fn, "rho_F_m": self.rho_f, "h_Fe_m": self.h_fe,
                 "load_diameter_m": self.load_diameter, "q_s": self.q_s,
-                "q_s_in_range": self.in_range}
+                "q_s_in_range": self.in_range,
+                "eps_alpha_n": self.virtual_contact_ratio}
 
 
 def _theta(g: float, h: float, zn: float) -> float:
@@ -143,8 +159,8 @@ def iso_root_stress(gear: GearSpec, pair: GearPair, tangential_load: float, *,
     dn = mn * zn
     dbn = dn * math.cos(an)
     dan = dn + 2.0 * gear.tip_radius_ - 2.0 * gear.reference_radius
+    ean = pair.transverse_contact_ratio / math.cos(bb) ** 2
     if load_diameter is None:
-        ean = pair.transverse_contact_ratio / math.cos(bb) ** 2
         pbn = math.pi * mn * math.cos(an)
         roll = math.sqrt(dan**2 - dbn**2) / 2.0 - pbn * (ean - 1.0)
         den = 2.0 * math.sqrt(roll**2 + dbn**2 / 4.0)
@@ -166,4 +182,4 @@ def iso_root_stress(gear: GearSpec, pair: GearPair, tangential_load: float, *,
     b = pair.face_width
     sigma = tangential_load / (b * mn) * y_f * y_s * y_beta
     return IsoRootStress(sigma, float(tangential_load), b, y_f, y_s, y_beta, 1.0, 1.0, s_fn,
-                         rho_f, h_fe, den, afen, th, zn, qs, bool(1.0 <= qs < 8.0))
+                         rho_f, h_fe, den, afen, th, zn, qs, bool(1.0 <= qs < 8.0), ean)

@@ -278,7 +278,7 @@ class LoadedMeshCycle:
             "mesh_stiffness_tangent [N/m]": self.mesh_stiffness,
             "mesh_stiffness_secant [N/m]": self.mesh_stiffness_secant,
             "mesh_stiffness_pointwise [N/m]": self.mesh_stiffness_pointwise,
-            "max_unit_load [N/mm]": self.max_unit_load * 1e-3,
+            "max_unit_load [N/m]": self.max_unit_load,
             "residual [m]": self.residual,
         }
         for j, k in enumerate(self.pair_index):
@@ -294,7 +294,7 @@ class LoadedMeshCycle:
             "tooth_pair [-]": self.point_pair,
             "slice_width [m]": self.point_width,
             "load [N]": self.point_load,
-            "unit_load [N/mm]": self.point_unit_load * 1e-3,
+            "unit_load [N/m]": self.point_unit_load,
             "initial_separation [m]": self.point_separation,
             "contact_deformation [m]": self.point_contact_deformation,
         }

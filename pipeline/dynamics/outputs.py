@@ -66,8 +66,7 @@ def write_response(result: ResponseResult, out: Path, name: str,
     meshes = resp.mesh_names[:1]
     at = f" {operating_title(operating)}".rstrip()
     files = [write_csv(out / "time_history.csv", result.columns())]
-    f, a = resp.dte_spectrum(0)
-    files.append(write_csv(out / "dte_spectrum.csv", {"frequency [Hz]": f, "amplitude [m]": a}))
+    files.append(write_csv(out / "dte_spectrum.csv", resp.dte_spectrum_columns(0)))
     files.append(figures.save(out / "time_history.png", plot_time_history, [resp], [name],
                               title=f"{name}: " + mesh_title("DTE and elastic mesh force",
                                                              meshes) + at))

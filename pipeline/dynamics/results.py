@@ -13,6 +13,9 @@ MOTIONS = ("in-plane", "rotation", "axial")
 """Groups of coordinates whose kinetic-energy shares a mode reports: in-plane translations
 (``x``, ``y``), rotations about the gear axes (``theta``) and axial translations (``z``)."""
 
+DTE_SPECTRUM_COLUMNS = ("mesh order [-]", "DTE amplitude [m]")
+"""Column names of ``dte_spectrum.csv``; the README's figure table lists the same names."""
+
 _MOTION_DOFS = {"in-plane": ("x", "y"), "rotation": ("theta",), "axial": ("z",)}
 
 
@@ -126,14 +129,21 @@ class Response:
             cols[f"elastic force {m} [N]"] = self.elastic_mesh_force()[i]
         return cols
     def dte_spectrum(self, mesh: int = 0) -> tuple[np.ndarray, np.ndarray]:
-        """Single-sided amplitude spectrum of the steady DTE of mesh row ``mesh``:
-        (frequency, shape (K,), Hz; amplitude, shape (K,), m)."""
-        s = self.steady_from
-        d = self.dte[mesh, s:-1] if self.dte.shape[1] - s > 1 else self.dte[mesh, s:]
+        """Single-sided spectrum of the steady DTE of mesh row ``mesh``: (frequency,
+        shape (K,), Hz; amplitude, shape (K,), m). Row 0 (0 Hz) is the signed time mean
+        of the DTE over the steady samples, rows k >= 1 the amplitude of order k."""
+        d = self.dte[mesh, self.steady_slice()]
         dt = self.time[1] - self.time[0]
         a = np.abs(np.fft.rfft(d - d.mean())) / d.size
         a[1:] *= 2.0
+        a[0] = d.mean()
         return np.fft.rfftfreq(d.size, dt), a
+
+    def dte_spectrum_columns(self, mesh: int = 0) -> dict[str, np.ndarray]:
+        """:meth:`dte_spectrum` as CSV columns: frequency in multiples of 1/T (the mesh
+        order, as drawn in ``dte_spectrum.png``), -, and amplitude, m (order 0: the mean)."""
+        f, a = self.dte_spectrum(mesh)
+        return dict(zip(DTE_SPECTRUM_COLUMNS, (f * self.period, a), strict=True))
 
 
 @dataclass(frozen=True)

@@ -170,11 +170,19 @@ def geometry_section(geometry: GeometryResult, actual: GearPair, figures: Sequen
 def pair_section(actual: GearPair, nominal: GearPair) -> Section:
     """Centre distance, pressure angle, contact ratios and the path of contact."""
     a = actual
+    nominal_label = ("nominal centre distance (pair.centre_distance_mm)"
+                     if nominal.centre_distance is not None else
+                     "nominal centre distance = zero-backlash distance from the profile "
+                     "shifts (ISO 21771)")
+    sign = "-" if a.gear.internal else "+"
     return Section("pair", "Pair (as installed)", (
         quantity("centre_distance", "operating centre distance a_w", "mm",
            a.operating_centre_distance * MM),
-        quantity("centre_distance_nominal", "nominal centre distance", "mm",
+        quantity("centre_distance_nominal", nominal_label, "mm",
            nominal.operating_centre_distance * MM),
+        quantity("centre_distance_reference", "reference centre distance a = m_t (z2 "
+                 f"{sign} z1) / 2 (unshifted gears)", "mm",
+                 nominal.reference_centre_distance * MM),
         quantity("operating_pressure_angle", "transverse operating pressure angle alpha_wt", "deg",
            math.degrees(a.operating_pressure_angle)),
         quantity("circular_backlash", "transverse circular backlash j_wt on the operating "

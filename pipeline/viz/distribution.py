@@ -112,7 +112,8 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
 
 def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
                        n_s: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Largest p_H over the cycle on an (s, z) grid of the plane of action (Pa)."""
+    """Largest p_H over the cycle on an (s, z) grid of the plane of action (Pa); z runs from
+    0 to the face width b (:func:`to_face_ends`)."""
     s_grid = np.linspace(pair.s_start, pair.s_end, n_s)
     zq = np.round(cycle.point_z, 12)
     z = np.unique(zq)
@@ -129,7 +130,23 @@ def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: Gea
         if hit.size >= 2:
             # the nearest sample holds up to the ends of the path (no sample falls there)
             filled[:, j] = np.interp(s_grid, s_grid[hit], col[hit])
-    return s_grid, z, filled
+    z_ends, ends = to_face_ends(z, filled, pair.face_width)
+    return s_grid, z_ends, ends
+
+
+def to_face_ends(z: np.ndarray, values: np.ndarray, face_width: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Slice-centre values (columns of ``values`` at face positions ``z``, m) extended to the
+    face ends z = 0 and b (m): each slice carries a uniform load over its width, so the end
+    slice's value holds up to its face end, the slice model's own shape there."""
+    if z.size == 0:
+        return z, values
+    if z[0] > 0.0:
+        z, values = np.concatenate(([0.0], z)), np.concatenate((values[:, :1], values), axis=1)
+    if z[-1] < face_width:
+        z = np.concatenate((z, [face_width]))
+        values = np.concatenate((values, values[:, -1:]), axis=1)
+    return z, values
 
 
 def _with_margin(lo: float, hi: float, share: float = 0.05) -> tuple[float, float]:
@@ -151,7 +168,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
                           title: str, profile_points: int = 80) -> Figure:
     """Hertz pressure envelope over the cycle on the pinion and the gear flank (MPa), drawn
     over the diameter of each flank (mm, growing to the right; the x label says on which
-    side the root is) and the face width (mm); the maximum is marked, inside a margin of
+    side the root is) and the whole face width 0..b (mm, :func:`to_face_ends`); the maximum is marked, inside a margin of
     5 % of each axis so that a maximum at the end of the path or the face is not cut."""
     s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
     r1, r2 = pair.contact_radii(s)
@@ -159,9 +176,6 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
     axes = fig.subplots(1, 2, sharey=True)
     vmax = max(env.max() * 1e-6, 1e-9)
     zz = z * 1e3
-    if zz.size == 1:  # one slice: spread it over the face
-        zz = np.array([0.0, pair.face_width * 1e3])
-        env = np.repeat(env, 2, axis=1)
     h = dist.hertz_max
     for ax, r, rmax, name, internal in (
             (axes[0], r1, h.pinion_radius, "pinion", False),
