@@ -168,8 +168,9 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
                           title: str, profile_points: int = 80) -> Figure:
     """Hertz pressure envelope over the cycle on the pinion and the gear flank (MPa), drawn
     over the diameter of each flank (mm, growing to the right; the x label says on which
-    side the root is) and the whole face width 0..b (mm, :func:`to_face_ends`); the maximum is marked, inside a margin of
-    5 % of each axis so that a maximum at the end of the path or the face is not cut."""
+    side the root is) and the whole face width 0..b (mm, :func:`to_face_ends`); the maximum
+    is marked, inside a margin of 5 % of each axis so that a maximum at the end of the path
+    or the face is not cut."""
     s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
     r1, r2 = pair.contact_radii(s)
     fig = new_figure((10.0, 3.8), "constrained")
