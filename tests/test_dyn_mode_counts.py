@@ -111,3 +111,21 @@ def test_counts_and_frequencies_agree_in_log_csv_summary_and_report(tmp_path, ca
     assert rep["elastic_modes_above_cut"]["value"] == dyn["elastic_modes_above_cut"]
     assert [d["kind"] for d in dyn["modes_listed"]] == \
         ["translational", "translational", "translational", "translational", "rotational"]
+
+
+def test_pair_layout_puts_both_base_circles_on_the_line_of_action():
+    """Default pair (z 50/50, m 3 mm, 20 deg): the base circles touch the line of action
+    (the x axis direction) at T1 and T2, T1 T2 = a_w sin(alpha_w) = 150 sin 20 deg mm, and
+    the centres are a_w = 150 mm apart."""
+    from pipeline.dynamics.layout import model_layout
+
+    a, alpha = 0.150, math.radians(20.0)
+    rb = 0.075 * math.cos(alpha)
+    m = SpurPairModel(PeriodicSignal(np.full(8, K_MESH)), t1t2=a * math.sin(alpha))
+    lay = model_layout(m)
+    p, g = lay.place("pinion"), lay.place("gear")
+    (x1, y1), (x2, y2) = lay.line_of_action
+    assert y1 == y2 == p.centre[1] - rb and x1 == p.centre[0]
+    assert abs(g.centre[1] + rb - y2) < 1e-15 and x2 == g.centre[0]
+    assert abs(math.dist(p.centre, g.centre) - a) < 1e-12
+    assert g.spin == -1 and p.spin == 1
