@@ -13,18 +13,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.dynamics.modal import modal_analysis
+from pipeline.dynamics.modal import classify_by_energy, modal_analysis
 from pipeline.dynamics.options import ResponseOptions, SweepOptions
 from pipeline.dynamics.results import HarmonicResponse, ModalResult, Response
 from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
 
 
 def analyse_modes(model) -> ModalResult:
-    """Natural frequencies and mode shapes (classified when the model knows its mode kinds)."""
+    """Natural frequencies, mode shapes and mode kinds: the model's own classification
+    (``model.classify``, Lin and Parker's types of a planetary set), else the energy-share
+    rule of :func:`~pipeline.dynamics.modal.classify_by_energy` (a pair, other models)."""
     system = model.assembly().assemble()
     res = modal_analysis(system, gyroscopic=system.carrier_speed != 0.0)
     classify: Callable | None = getattr(model, "classify", None)
-    return classify(res) if classify is not None else res
+    return classify(res) if classify is not None else classify_by_energy(res)
 
 
 @dataclass(frozen=True)

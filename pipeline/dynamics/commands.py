@@ -92,7 +92,7 @@ def run_modes(args) -> int:
         record(staging, args, box, files)
     summary = {**res.summary(), "out": str(out)}
     shares = res.energy_shares()
-    lines = [f"{len(res.dof_names)} DOF, results in {out}; each mode's kinetic energy in "
+    lines = [f"{res.counts()}, results in {out}; each mode's kinetic energy in "
              "in-plane translation, rotation and axial translation (%)",
              "  #   f [Hz]      kind           mult  in-plane [%]  rotation [%]  axial [%]"]
     lines += [

@@ -1,7 +1,9 @@
 """Where the bodies of a dynamic model sit in the transverse plane, for drawing mode shapes.
 
-A gear pair is two base circles touching on the line of action (the model's line of
-action is the x axis, so the gear sits below the pinion); a planetary set is the sun,
+A gear pair is two base circles touching the line of action at T1 and T2 (the model's
+line of action is the x axis: the pinion's centre at the origin, T1 below it, the gear
+below the line and T1 T2 further along +x, the direction the pinion's contact point
+moves; the gear turns the other way, ``spin`` -1); a planetary set is the sun,
 the planets on the carrier circle at their angles, the ring and the carrier (drawn as
 the circle through the planet centres). Both halves of a herringbone member sit at the
 same place (``side`` "L" or "R"). Bodies of other models (the split-torque
@@ -29,6 +31,8 @@ class BodyPlace:
     frame_angle : rad, direction of the body's own x axis (planets: radial).
     role : "sun", "planet", "ring", "carrier", "pinion", "gear" or "body".
     side : "L" or "R" for a half of a herringbone member, else "".
+    spin : +1 when the body's positive ``theta`` turns it counterclockwise in the
+        drawing, -1 clockwise (a pair's gear).
     """
 
     name: str
@@ -37,6 +41,7 @@ class BodyPlace:
     frame_angle: float = 0.0
     role: str = "body"
     side: str = ""
+    spin: int = 1
 
 
 @dataclass(frozen=True)
@@ -47,10 +52,12 @@ class ModelLayout:
     ----------
     places : one per body, in the model's body order.
     schematic : True when the positions are a grid of unit circles, not the gears' layout.
+    line_of_action : ((x, y), (x, y)) of T1 and T2 in m for a pair, else ``None``.
     """
 
     places: tuple[BodyPlace, ...]
     schematic: bool = False
+    line_of_action: tuple[tuple[float, float], tuple[float, float]] | None = None
 
     def place(self, name: str) -> BodyPlace:
         """The place of body ``name``."""
@@ -89,8 +96,10 @@ def _planetary(model, bodies: tuple[Body, ...]) -> ModelLayout:
 
 def _pair(model) -> ModelLayout:
     rp, rg = model.base_radius_pinion, model.base_radius_gear
+    t1t2 = getattr(model, "t1t2", None) or 0.0
     return ModelLayout((BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"),
-                        BodyPlace("gear", (0.0, -(rp + rg)), rg, 0.0, "gear")))
+                        BodyPlace("gear", (t1t2, -(rp + rg)), rg, 0.0, "gear", spin=-1)),
+                       line_of_action=((0.0, -rp), (t1t2, -rp)) if t1t2 else None)
 
 
 def _grid(bodies: tuple[Body, ...]) -> ModelLayout:

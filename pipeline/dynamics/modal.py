@@ -21,6 +21,19 @@ mass or inertia), in this order:
   tested against round-off (``tol``), since these types are exact properties of
   cyclically symmetric sets.
 
+Models without central members (a gear pair, the split-torque transmission) take
+the majority rule alone (:func:`classify_by_energy`): *rigid* at 0 Hz, *axial* as
+above, otherwise *rotational* when the rotation share is at least the in-plane
+translation share, else *translational*. For a gear pair the rotational modes are
+the mesh modes (the torsional pair's single elastic mode, the "mesh mode" at
+``sqrt(k (r_1^2 / I_1 + r_2^2 / I_2)) / 2 pi``, is purely rotational); the
+translational ones hold most of their energy in the gears' translation on their
+bearings, and those without any rotation (both gears moving alike along the line of
+action, or either one across it) do not deform the mesh at all. Measured on the default spur
+pair (z 50/50, bearings 1e8 N/m): one rigid mode, the coupled mesh-bearing modes at
+776 Hz (rotation 41 %: translational) and 3950 Hz (rotation 59 %: rotational), and a
+triple bearing mode at 998 Hz with no rotation.
+
 Why 1/2: the kind then names the motion that holds most of the mode's energy, the
 shares printed beside it in ``modes.csv`` and the mode-shape panels, so a label never
 contradicts its shares. For a herringbone set whose halves mirror each other (equal
@@ -133,6 +146,31 @@ def modal_analysis(
 
 AXIAL_SHARE = 0.5
 """A mode whose axial kinetic-energy share is at least this is "axial" (module docstring)."""
+
+
+def classify_by_energy(result: ModalResult) -> ModalResult:
+    """Label modes "rigid", "axial", "rotational" or "translational" by their energy shares.
+
+    The rule for models without central members (module docstring): "rigid" at 0 Hz,
+    "axial" when the axial share is at least :data:`AXIAL_SHARE`, else "rotational" when
+    the rotation share is at least the in-plane translation share, else "translational".
+
+    Parameters
+    ----------
+    result : modal result of :func:`modal_analysis` (its ``weights`` give the shares).
+    """
+    shares = result.energy_shares()
+    kinds = []
+    for k in range(result.frequencies.size):
+        if result.frequencies[k] == 0.0:
+            kinds.append("rigid")
+        elif shares["axial"][k] >= AXIAL_SHARE:
+            kinds.append("axial")
+        elif shares["rotation"][k] >= shares["in-plane"][k]:
+            kinds.append("rotational")
+        else:
+            kinds.append("translational")
+    return replace(result, kinds=tuple(kinds))
 
 
 def classify_modes(

@@ -214,11 +214,28 @@ class ModalResult:
         dof = np.array([n.rsplit(".", 1)[-1] for n in self.dof_names])
         return {g: e[np.isin(dof, _MOTION_DOFS[g])].sum(axis=0) / total for g in MOTIONS}
 
+    @property
+    def rigid_body_modes(self) -> int:
+        """Number of rigid-body modes (0 Hz)."""
+        return int(np.count_nonzero(np.asarray(self.frequencies) == 0.0))
+
+    def counts(self) -> str:
+        """"56 coordinates, 29 independent DOF (1 rigid-body mode)": the named coordinates
+        against the modes left once the ties between them (equal halves, a fixed member)
+        are applied; one mode per independent DOF."""
+        n, m, r = len(self.dof_names), self.frequencies.size, self.rigid_body_modes
+        return (f"{n} coordinates, {m} independent DOF ({r} rigid-body "
+                f"mode{'' if r == 1 else 's'})")
+
     def summary(self) -> dict:
-        """Frequencies (Hz), mode kinds, multiplicities, kinetic-energy shares (-) of
-        in-plane translation, rotation and axial translation, and the DOF count."""
+        """Frequencies (Hz) of every mode (rigid-body modes at 0, kind "rigid"), mode kinds,
+        multiplicities, kinetic-energy shares (-) of in-plane translation, rotation and axial
+        translation; the number of named coordinates, of independent DOF (= modes) and of
+        rigid-body modes."""
         out = {"frequencies_Hz": self.frequencies, "kinds": list(self.kinds),
-               "multiplicity": self.multiplicity, "dofs": len(self.dof_names)}
+               "multiplicity": self.multiplicity, "coordinates": len(self.dof_names),
+               "independent_dofs": int(self.frequencies.size),
+               "rigid_body_modes": self.rigid_body_modes}
         if self.weights is not None:
             out["energy_shares"] = self.energy_shares()
         return out

@@ -170,6 +170,9 @@ def dynamics_section(summary: Mapping[str, Any]) -> Section:
         for member, n in speeds.items():
             rows.append(quantity(f"sweep_{end}_{member}", f"sweep: {member} speed at the "
                                  f"{end} mesh frequency", "rpm", n * sw[key] / f_m))
+    rows.append(quantity("model_size", "dynamic model", "",
+                         f"{summary['coordinates']} coordinates, {summary['independent_dofs']} "
+                         "independent DOF (one mode each)"))
     cut = summary["natural_frequency_cut_Hz"]
     rows.append(quantity("natural_frequency_cut", "natural frequencies listed up to "
                          "max(10 f_m, highest mesh frequency of the sweep)", "Hz", cut))

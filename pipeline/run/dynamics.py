@@ -72,7 +72,9 @@ class DynamicsStages:
     def summary(self) -> dict[str, Any]:
         """Operating mesh frequency (Hz) and speeds (rpm); the elastic natural frequencies
         (Hz) up to ``max(10 f_m, top of the sweep)``
-        (:func:`~pipeline.dynamics.operating.modes_that_matter`); response per mesh (N, m)
+        (:func:`~pipeline.dynamics.operating.modes_that_matter`), the counts of named
+        coordinates, independent DOF (one mode each), rigid-body modes and elastic modes
+        above the cut (``modes.csv`` lists every mode); response per mesh (N, m)
         and dynamic factors (-) at the operating speed and over the sweep."""
         resp = self.response.response
         per_mesh = self.response.summary()["meshes"]
@@ -92,7 +94,8 @@ class DynamicsStages:
         elastic = elastic_modes(fn)
         return {
             "excitation": self.excitation,
-            "dofs": len(self.modes.dof_names),
+            "coordinates": len(self.modes.dof_names),
+            "independent_dofs": int(fn.size),
             "operating_point": self.operating.summary(),
             "natural_frequencies_Hz": [float(fn[i]) for i in listed],
             "modes_listed": [{"mode": int(i), "frequency_Hz": float(fn[i]),
@@ -203,7 +206,7 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> Dynami
         operating = operating_frequency(box, model)
     with log.step("modes") as note:
         modes = analyse_modes(model)
-        note["text"] = f"{len(modes.dof_names)} DOF"
+        note["text"] = modes.counts()
     with log.step("response at the operating speed"):
         response = analyse_response(model, opts.response, refine=2 if options.full else 1)
     with log.step("speed sweep", long=True) as note:

@@ -133,6 +133,12 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
                 label = p.name[:-1] if p.side else p.name
                 ax.annotate(label, p.centre, xytext=(0, -3), textcoords="offset points",
                             ha="center", va="top", fontsize=7, color="0.35")
+    if layout.line_of_action is not None:
+        (x1, y1), (x2, y2) = layout.line_of_action
+        ax.plot([x1, x2], [y1, y2], color="0.6", lw=1.0, ls="-.")
+        for xy, name in (((x1, y1), "T1"), ((x2, y2), "T2")):
+            ax.annotate(name, xy, xytext=(0, 3), textcoords="offset points", ha="center",
+                        va="bottom", fontsize=7, color="0.35")
     for p in layout.places:
         u, t, z = motion[p.name]
         colour = _TRANSLATION[p.side]
@@ -149,7 +155,7 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
                                          mutation_scale=14, color=colour, lw=2.2,
                                          shrinkA=0, shrinkB=0))
         if abs(scale * t) > 1e-3 * scale * big:
-            _arc(ax, p.centre, rr, a0, scale * t / rr, _ROTATION[p.side])
+            _arc(ax, p.centre, rr, a0, p.spin * scale * t / rr, _ROTATION[p.side])
         if abs(z) > 1e-3 * big:
             _axial_mark(ax, beside, z, scale, _AXIAL[p.side])
     ax.set_aspect("equal")
@@ -202,6 +208,9 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     marks = "arrows, arcs and circles" if axial else "arrows and arcs"
     handles += [Line2D([], [], color="0.6", lw=1.0,
                        label=f"bodies at rest; {marks} on one length scale")]
+    if layout.line_of_action is not None:
+        handles += [Line2D([], [], color="0.6", lw=1.0, ls="-.",
+                           label="line of action T1 T2 (x)")]
     fig.legend(handles=handles, loc="outside lower center",
                ncol=min(len(handles), 2 if axial else 3),
                fontsize=8)

@@ -50,6 +50,9 @@ class SpurPairModel:
     friction_stiffness : K_f(tau) in N/m (Jin et al. 2018, eq. 16), or ``None``.
     friction_torque_pinion, friction_torque_gear : K_Tf(tau) in N m/m, or ``None``.
     torsional_only : keep only the two rotations (2-inertia model).
+    t1t2 : length of the line of action between the base circles' tangent points T1 T2
+        of an external pair, m; places the gear in mode-shape drawings only (``None``:
+        not known, the base circles are drawn touching).
     """
 
     mesh_stiffness: PeriodicSignal
@@ -70,6 +73,7 @@ class SpurPairModel:
     friction_torque_pinion: PeriodicSignal | None = None
     friction_torque_gear: PeriodicSignal | None = None
     torsional_only: bool = False
+    t1t2: float | None = None
 
     def __post_init__(self) -> None:
         check_int_range("pinion_teeth", self.pinion_teeth, 5, 10_000)
@@ -184,4 +188,5 @@ def spur_pair_model(
         friction_torque_pinion=excitation.friction_torque_pinion if friction else None,
         friction_torque_gear=excitation.friction_torque_gear if friction else None,
         torsional_only=options.dofs == "torsional",
+        t1t2=None if pair.gear.internal else pair.t1t2,
     )
