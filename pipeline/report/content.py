@@ -203,7 +203,10 @@ def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any
         quantity("tip_relief_gear", "tip relief C_a of the gear", "um", m.tip_relief_gear * UM),
         quantity("tip_relief_length_gear", "tip relief length of the gear (roll)", "mm",
            m.relief_length_gear * MM),
-        quantity("relief_shape", "relief shape", "", m.relief_shape),
+        # the shape of an absent relief is no property of the gears
+        quantity("relief_shape", "relief shape", "",
+                 m.relief_shape if m.tip_relief_pinion > 0.0 or m.tip_relief_gear > 0.0
+                 else "none (no tip relief)"),
         quantity("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
         quantity("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
            m.slope_deviation * UM),
