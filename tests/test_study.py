@@ -453,3 +453,18 @@ def test_sensitivity_and_tradeoff_axes_carry_the_kpi_labels(tmp_path):
     trade = plot_tradeoff(table, kpis[0], kpis[1], 0, "relief")
     ax = trade.axes[0]
     assert (ax.get_xlabel(), ax.get_ylabel()) == (kpi_label(kpis[0]), kpi_label(kpis[1]))
+
+
+def test_best_point_folder_is_a_run_folder_with_its_report(tmp_path):
+    """The best point gets what ``gearpipe run`` writes, report.html included, under the
+    best point's name (not the base file's)."""
+    from pipeline.study.commands import report_best_point
+
+    spec = study_from_file(write_study(tmp_path, 2))
+    values = {spec.axes[0].label: 12.0}
+    files = report_best_point(spec, values, tmp_path / "best_point")
+    run = tmp_path / "best_point" / "run"
+    assert files == [tmp_path / "best_point" / "gearbox.toml", run]
+    html = (run / "report.html").read_text()
+    assert "best point of study relief" in html
+    assert "contact.tip_relief_pinion_um = 12.0" in (files[0]).read_text()
