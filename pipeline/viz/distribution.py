@@ -18,6 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
 from pipeline.viz.canvas import new_figure
+from pipeline.viz.contact import pairs_in_order_of_entry
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -71,9 +72,9 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
     a2.set_xlabel("mesh order [-]")
     a2.set_ylabel("TE amplitude [um]")
     a2.grid(alpha=0.3, axis="y")
-    for j, k in enumerate(dist.pair_index):
-        if dist.load_share[:, j].any():
-            a3.plot(x, dist.load_share[:, j], label=f"tooth pair {k}")
+    for n, j in enumerate(pairs_in_order_of_entry(dist.load_share), start=1):
+        a3.plot(x, dist.load_share[:, j], label=f"tooth pair {n}")
+    a3.set_title("pairs numbered as they take load", fontsize=8)
     a3.set_xlabel("mesh cycle [-]")
     a3.set_ylabel("load share [-]")
     a3.set_ylim(0.0, 1.05)
