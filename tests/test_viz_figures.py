@@ -95,3 +95,14 @@ def test_contact_cycle_legend_names_pairs_and_methods_for_a_reader():
         "tooth pair 1", "tooth pair 2", "tooth pair 3"]
     # pair 1 is the internal index 0 (column 1), pair 2 index -1, pair 3 index 1
     assert [line.get_ydata().max() for line in share.lines] == [2.0, 1.0, 3.0]
+
+
+def test_line_of_action_and_contact_line_titles_name_the_case(helical_traction_pair):
+    from pipeline.viz.geometry import plot_contact_lines, plot_line_of_action
+
+    ax = plot_contact_lines(helical_traction_pair, name="traction_helical_pair")
+    assert ax.get_title() == "traction_helical_pair: contact lines on the plane of action"
+    fig = plot_line_of_action(helical_traction_pair, name="traction_helical_pair")
+    assert fig.get_suptitle().startswith("traction_helical_pair: external pair: eps_alpha = ")
+    fig = plot_line_of_action(helical_traction_pair, title="with assembly errors", name="sun")
+    assert fig.get_suptitle() == "sun: with assembly errors"
