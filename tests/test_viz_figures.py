@@ -102,6 +102,8 @@ def test_line_of_action_and_contact_line_titles_name_the_case(helical_traction_p
 
     ax = plot_contact_lines(helical_traction_pair, name="traction_helical_pair")
     assert ax.get_title() == "traction_helical_pair: contact lines on the plane of action"
+    # z is the number of teeth; the face position has its own symbol in every label
+    assert ax.get_ylabel() == "face position b_z [mm]"
     fig = plot_line_of_action(helical_traction_pair, name="traction_helical_pair")
     assert fig.get_suptitle().startswith("traction_helical_pair: external pair: eps_alpha = ")
     fig = plot_line_of_action(helical_traction_pair, title="with assembly errors", name="sun")

@@ -101,7 +101,7 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     ax.plot(z, mean * N_PER_MM, "C0", lw=2.0, ls="--",
             label=f"mean over the cycle (K_Hbeta = {dist.k_hbeta:.3f})")
     ax.axhline(dist.mean_line_load * N_PER_MM, color="k", ls=":", lw=1.0, label="P / b")
-    ax.set_xlabel("face position z [mm]")
+    ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("line load w [N/mm]")
     ax.set_xlim(0.0, dist.face_width * 1e3)
     ax.set_ylim(0.0, max(dist.envelope.max() * N_PER_MM * 1.15, 1e-9))
@@ -176,7 +176,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
         ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9)
         ax.set_xlim(*_with_margin(d.min(), d.max()))
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
-    axes[0].set_ylabel("face position z [mm]")
+    axes[0].set_ylabel("face position b_z [mm]")
     fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
     fig.suptitle(title, fontsize=9)
     return fig

@@ -196,7 +196,7 @@ def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = N
     ax.axvline(pair.s_pitch * 1e3, color="k", ls="--", lw=1, label="pitch point")
     ax.set_aspect("equal")
     ax.set_xlabel("roll coordinate s [mm]")
-    ax.set_ylabel("face width position z [mm]")
+    ax.set_ylabel("face position b_z [mm]")
     what = "contact lines on the plane of action"
     ax.set_title(f"{name}: {what}" if name else what[0].upper() + what[1:])
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
