@@ -280,3 +280,23 @@ def test_one_slice_with_lead_crowning_is_stated_as_such():
                for n in crowned)
     assert not any("without lead crowning" in n for n in crowned)
     assert any("without lead crowning" in n for n in plain)
+
+
+@pytest.mark.parametrize(("relief_um", "shape"), [
+    (0.0, "none (no tip relief)"),   # the default shape of an absent relief is not reported
+    (12.0, "parabolic"),
+])
+def test_relief_shape_row_says_none_without_relief(relief_um, shape):
+    from types import SimpleNamespace
+
+    from pipeline.contact.options import ContactOptions
+    from pipeline.contact.separations import FlankModifications
+    from pipeline.report.content import modifications_section
+
+    mods = FlankModifications(tip_relief_gear=relief_um * 1e-6,
+                              relief_length_gear=4e-3 if relief_um else 0.0,
+                              relief_shape="parabolic")
+    assembly = SimpleNamespace(pinion=(0.0, 0.0), gear=(0.0, 0.0))
+    section = modifications_section(ContactOptions(modifications=mods), assembly, None)
+    row = next(q for q in section.quantities if q.key == "relief_shape")
+    assert row.values == (shape,)

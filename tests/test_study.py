@@ -419,3 +419,52 @@ def test_kill_minus_9_during_a_rerun_leaves_the_earlier_result(tmp_path):
     assert not list(tmp_path.glob(".out.*"))
     assert pq.read_table(out / "study.parquet").num_rows == 16
     assert (out / "run.json").read_bytes() != before["run.json"]
+
+
+def test_sensitivity_and_tradeoff_axes_carry_the_kpi_labels(tmp_path):
+    """Every panel of the sensitivity plot, the right-hand column included, reads its KPI by
+    name and unit from the one table of KPI labels; the trade-off plot likewise."""
+    from pipeline.study.kpis import kpi_label
+    from pipeline.study.plots import plot_sensitivity, plot_tradeoff
+    from pipeline.study.points import design_points
+
+    text = STUDY.format(points=3).replace(
+        '"contact.tip_relief_length_gear_mm" = 6.2\n', "") + (
+        '[[axes]]\nkeys = ["contact.tip_relief_length_gear_mm"]\nrange = [5.0, 7.0]\n'
+        'points = 3\n')
+    p = tmp_path / "two_axes.toml"
+    p.write_text(text)
+    spec = study_from_file(p)
+    points = design_points(spec)
+    kpis = ["te_peak_to_peak_um", "mesh_stiffness_mean_N_per_um"]
+    table: dict[str, list] = {"point": [q.index for q in points]}
+    for a in spec.axes:
+        table[a.label] = [q.values[a.keys[0]] for q in points]
+    for k in kpis:
+        table[k] = [float(i) for i in range(len(points))]
+    fig = plot_sensitivity(spec, table, kpis)
+    axs = np.array(fig.axes).reshape(len(kpis), len(spec.axes))
+    assert axs.shape == (2, 2)
+    for i, k in enumerate(kpis):
+        assert [ax.get_ylabel() for ax in axs[i]] == [kpi_label(k)] * 2
+    assert kpi_label("te_peak_to_peak_um") == "TE peak to peak (um)"
+    assert kpi_label("mesh_stiffness_mean_N_per_um") == "mean mesh stiffness (N/um)"
+    assert kpi_label("k_hbeta") == "face load factor K_H\u03b2"
+    trade = plot_tradeoff(table, kpis[0], kpis[1], 0, "relief")
+    ax = trade.axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == (kpi_label(kpis[0]), kpi_label(kpis[1]))
+
+
+def test_best_point_folder_is_a_run_folder_with_its_report(tmp_path):
+    """The best point gets what ``gearpipe run`` writes, report.html included, under the
+    best point's name (not the base file's)."""
+    from pipeline.study.commands import report_best_point
+
+    spec = study_from_file(write_study(tmp_path, 2))
+    values = {spec.axes[0].label: 12.0}
+    files = report_best_point(spec, values, tmp_path / "best_point")
+    run = tmp_path / "best_point" / "run"
+    assert files == [tmp_path / "best_point" / "gearbox.toml", run]
+    html = (run / "report.html").read_text()
+    assert "best point of study relief" in html
+    assert "contact.tip_relief_pinion_um = 12.0" in (files[0]).read_text()

@@ -70,3 +70,41 @@ def test_contact_lines_equal_axes_and_legend_beside_them(helical_traction_pair):
     assert legend.x0 > frame.x1  # entirely to the right of the axes
     lo, hi = ax.get_xlim()
     assert lo < helical_traction_pair.s_start * 1e3 and hi > helical_traction_pair.s_end * 1e3
+
+
+def test_contact_cycle_legend_names_pairs_and_methods_for_a_reader():
+    """Tooth pairs counted from 1 in the order they take load (not the internal indices
+    -1, 0, 1), an unloaded pair left out, no Python module in the legend."""
+    from pipeline.viz.contact import plot_contact_cycle
+
+    n = 4
+    loads = np.array([[0.0, 1.0, 0.0, 0.0],   # index -1 loaded from position 1
+                      [1.0, 1.0, 0.0, 0.0],   # index 0 loaded from position 0
+                      [0.0, 0.0, 0.0, 1.0],   # index 1 loaded from position 3
+                      [0.0, 0.0, 0.0, 0.0]]).T  # index 2 never loaded
+    cyc = SimpleNamespace(pinion_angle=np.linspace(0, 0.1, n), mesh_stiffness=np.full(n, 3e8),
+                          mesh_stiffness_secant=np.full(n, 2.9e8),
+                          transmission_error=np.full(n, 1e-6), pair_index=(-1, 0, 1, 2),
+                          pair_loads=loads, load_share=loads * np.array([1.0, 2.0, 3.0, 4.0]))
+    fig = plot_contact_cycle(cyc, np.full(n, 3.1e8), "t")
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert labels == ["LTCA tangent dP/dx", "LTCA secant P/x",
+                      "analytical (potential energy, slices)"]
+    share = fig.axes[2]
+    assert [t.get_text() for t in share.get_legend().get_texts()] == [
+        "tooth pair 1", "tooth pair 2", "tooth pair 3"]
+    # pair 1 is the internal index 0 (column 1), pair 2 index -1, pair 3 index 1
+    assert [line.get_ydata().max() for line in share.lines] == [2.0, 1.0, 3.0]
+
+
+def test_line_of_action_and_contact_line_titles_name_the_case(helical_traction_pair):
+    from pipeline.viz.geometry import plot_contact_lines, plot_line_of_action
+
+    ax = plot_contact_lines(helical_traction_pair, name="traction_helical_pair")
+    assert ax.get_title() == "traction_helical_pair: contact lines on the plane of action"
+    # z is the number of teeth; the face position has its own symbol in every label
+    assert ax.get_ylabel() == "face position b_z [mm]"
+    fig = plot_line_of_action(helical_traction_pair, name="traction_helical_pair")
+    assert fig.get_suptitle().startswith("traction_helical_pair: external pair: eps_alpha = ")
+    fig = plot_line_of_action(helical_traction_pair, title="with assembly errors", name="sun")
+    assert fig.get_suptitle() == "sun: with assembly errors"

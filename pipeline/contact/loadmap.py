@@ -12,7 +12,7 @@ pinion (involute at radius ``r1 = sqrt(s^2 + r_b1^2)``) or of an external gear (
 same contact point at ``r2 = sqrt((T1T2 - s)^2 + r_b2^2)``), swept along the helix by
 rotating the transverse section through ``z tan(beta) / r_ref``. The flank drawn is the
 one on the -x side of a tooth centred on +y, so that seen from outside the tooth with
-the tip up the face position z runs from left to right, as in the 2D map (which flank
+the tip up the face position b_z runs from left to right, as in the 2D map (which flank
 carries the load in service depends on the sense of rotation, which the contact
 analysis does not need);
 :func:`write_load_map_vtu` saves it for ParaView; :mod:`pipeline.viz.loadmap`

@@ -95,7 +95,7 @@ def herringbone_section(halves: HerringboneDistribution, roots: Mapping[str, Roo
              lambda x: x.line_load_max.value * N_PER_MM),
         each("max_line_load_over_equal_split", "largest line load over the equal split's",
              "-", lambda x: halves.over_equal_split(x.side)),
-        dist("max_line_load_face_position", "its face position z in the half", "mm",
+        dist("max_line_load_face_position", "its face position b_z in the half", "mm",
              lambda x: x.line_load_max.z * MM),
         dist("K_Hbeta", "face load factor K_Hbeta", "-", lambda x: x.k_hbeta),
         dist("K_Halpha", "transverse load factor K_Halpha", "-", lambda x: x.k_halpha),

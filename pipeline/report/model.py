@@ -14,23 +14,51 @@ from typing import Any
 Value = float | int | str | bool | None
 
 
-def format_value(value: Value) -> str:
-    """How a value is printed in the HTML: 4 significant digits, plain notation where it fits.
+THOUSANDS_SEPARATOR = "\u202f"
+"""Digit-group separator of the report: a narrow no-break space (SI Brochure, 9th ed. 2019,
+5.4.4: groups of three digits separated by a thin space, never by a point or comma)."""
 
-    Integers and text as they are; ``None`` and NaN as an en dash.
+
+def _grouped(digits: str) -> str:
+    """``"18500"`` -> ``"18 500"`` (narrow no-break spaces); numbers below 10 000 unchanged."""
+    sign, digits = ("-", digits[1:]) if digits.startswith("-") else ("", digits)
+    if len(digits) <= 4:
+        return sign + digits
+    head = len(digits) % 3 or 3
+    groups = [digits[:head]] + [digits[i:i + 3] for i in range(head, len(digits), 3)]
+    return sign + THOUSANDS_SEPARATOR.join(groups)
+
+
+def format_value(value: Value) -> str:
+    """How a value is printed in the HTML: for reading, not for copying.
+
+    Rule (floats): 4 significant digits in plain notation for 1e-3 <= |x| < 1e9, the
+    integer part grouped by three with :data:`THOUSANDS_SEPARATOR` from 10 000 on
+    (``18500.0`` -> ``"18 500"``, ``0.00123`` -> ``"0.00123"``, ``3.14159`` -> ``"3.142"``);
+    outside that range scientific with 4 significant digits (``1.5e-9`` -> ``"1.500e-09"``).
+    Integers exactly, grouped the same way; ``bool`` as yes/no; ``None`` and NaN as an en
+    dash; text as it is. The JSON keeps the full value.
     """
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "\u2013"
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, int):
-        return str(value)
+        return _grouped(str(value))
     if isinstance(value, float):
         if value == 0.0:
             return "0"
-        if 1e-3 <= abs(value) < 1e6:
-            return f"{value:.4g}"
-        return f"{value:.3e}"
+        if math.isinf(value):
+            return "\u221e" if value > 0 else "-\u221e"
+        if not 1e-3 <= abs(value) < 1e9:
+            return f"{value:.3e}"
+        exponent = math.floor(math.log10(abs(float(f"{value:.4g}"))))
+        # round to 4 significant digits first, so 99995 prints as 100 000, not 99 995
+        text = f"{round(value, 3 - exponent):.{max(0, 3 - exponent)}f}"
+        if "." in text:
+            text = text.rstrip("0").rstrip(".")
+        whole, dot, frac = text.partition(".")
+        return _grouped(whole) + dot + frac
     return str(value)
 
 

@@ -30,7 +30,7 @@ def root_stress_section(root: RootStress, figures: Sequence[Figure]) -> Section:
              lambda x: x.max_arc * MM),
         both("fe_max_load_diameter", "when: diameter of the tooth's own contact", "mm",
              lambda x: 2 * x.max_load_radius * MM),
-        both("fe_max_face_position", "when: face position z of the slice", "mm",
+        both("fe_max_face_position", "when: face position b_z of the slice", "mm",
              lambda x: x.max_face_position * MM),
         both("iso_sigma_F0", "ISO 6336-3 method B: nominal root stress sigma_F0", "MPa",
              iso(lambda i: i.sigma_f0 * MPA)),

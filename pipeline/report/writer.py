@@ -40,7 +40,8 @@ from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 STAGE_FIGURES = (
     ("tooth_profiles.png", "Tooth profiles (involute and trochoidal fillet)", "geometry"),
     ("load_map.png", "Tooth-surface load map", "load_maps"),
-    ("load_map_2d.png", "Unit load over the plane of action", "load_maps"),
+    ("load_map_2d.png", "Unit load p [N/mm] over face position b_z and pinion contact "
+     "radius (envelope over the mesh cycle)", "load_maps"),
     ("sweep.png", "RMS dynamic mesh force over mesh frequency (the first planet's sun "
      "meshes of a planetary set), with the operating mesh frequency, its harmonics and the "
      "natural frequencies marked", "dynamics"),

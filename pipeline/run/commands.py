@@ -64,7 +64,7 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
     title = (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
              f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
-    files = write_geometry(st.geometry, out, prefix, figures)
+    files = write_geometry(st.geometry, out, prefix, figures, name)
     files += write_stiffness(st.stiffness, out, title, prefix, figures)
     model, opts = st.stiffness.model, box.contact
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,

@@ -63,8 +63,9 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
                       ) -> list[Path]:
     """The best point as a gearbox file and, with ``run``, its ``gearpipe run`` folder.
 
-    This is where the tooth load distribution report of the best point plugs in: it gets
-    the same gearbox file and run folder.
+    The run folder holds what ``gearpipe run`` writes, the load distribution report
+    (``report.html``) included; the gearbox file's ``name`` says it is the best point, so
+    the figures and the report carry that name, not the base file's.
     """
     import tomli_w
 
@@ -73,6 +74,8 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
     from pipeline.run.commands import figure_cache, write_run
 
     doc = spec.point_document(values)
+    # figure titles and the report name the best point, not the base file
+    doc["name"] = f"{doc.get('name', spec.base_path.stem)}, best point of study {spec.name}"
     header = (f"# Best point of the study {spec.name} ({spec.path.name}): the base file "
               f"{spec.base_path.name} with\n" + "".join(f"#   {k} = {v!r}\n"
                                                        for k, v in values.items()))
@@ -85,6 +88,12 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
         folder = out / "run"
         folder.mkdir(parents=True, exist_ok=True)
         written = write_run(result, folder, False, figure_cache(options))
+        if result.meshes:  # the report embeds the figures written above: after them
+            from pipeline.report import write_reports
+
+            written += write_reports(result, folder, figure_cache(options),
+                                     command=f"gearpipe run {path}", show_progress=False,
+                                     cache=options.cache, cache_dir=options.cache_dir)
         written.append(write_json(folder / "summary.json", result.summary()))
         write_run_record(folder, {"gearbox": box.to_dict(), "options": options}, written,
                          f"gearpipe run {path}")

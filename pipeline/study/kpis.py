@@ -88,13 +88,15 @@ class PointResult:
 
 @dataclass(frozen=True)
 class KPI:
-    """One KPI: column ``name`` (unit suffix), ``unit`` text, what it ``needs``, ``func``."""
+    """One KPI: column ``name`` (unit suffix), ``unit`` text, what it ``needs``, ``func``,
+    ``help`` (one sentence) and ``label`` (axis text of the figures, without the unit)."""
 
     name: str
     unit: str
     needs: str
     func: Callable[[PointResult], float]
     help: str = ""
+    label: str = ""
 
 
 def _ripple(r: PointResult) -> float:
@@ -111,37 +113,58 @@ def _peak_factor(r: PointResult) -> tuple[float, float]:
 KPIS: tuple[KPI, ...] = (
     KPI("te_peak_to_peak_um", "um", "contact",
         lambda r: float(np.ptp(r.contact.transmission_error)) * 1e6,
-        "peak-to-peak loaded static transmission error along the line of action"),
+        "peak-to-peak loaded static transmission error along the line of action",
+        "TE peak to peak"),
     KPI("te_order1_um", "um", "contact", lambda r: r.distribution.te_orders[0] * 1e6,
-        "amplitude of the 1st mesh order of the loaded TE"),
+        "amplitude of the 1st mesh order of the loaded TE",
+        "TE mesh order 1"),
     KPI("te_order2_um", "um", "contact", lambda r: r.distribution.te_orders[1] * 1e6,
-        "amplitude of the 2nd mesh order of the loaded TE"),
+        "amplitude of the 2nd mesh order of the loaded TE",
+        "TE mesh order 2"),
     KPI("te_order3_um", "um", "contact", lambda r: r.distribution.te_orders[2] * 1e6,
-        "amplitude of the 3rd mesh order of the loaded TE"),
+        "amplitude of the 3rd mesh order of the loaded TE",
+        "TE mesh order 3"),
     KPI("k_hbeta", "-", "contact", lambda r: r.distribution.k_hbeta,
-        "face load factor K_Hbeta: largest over mean line load across the face (ISO 6336-1)"),
+        "face load factor K_Hbeta: largest over mean line load across the face (ISO 6336-1)",
+        "face load factor K_Hβ"),
     KPI("contact_pressure_max_MPa", "MPa", "contact",
         lambda r: r.distribution.hertz_max.value * 1e-6,
-        "largest Hertz contact pressure p_H over both flanks and the cycle"),
+        "largest Hertz contact pressure p_H over both flanks and the cycle",
+        "max. contact pressure p_H"),
     KPI("root_stress_max_MPa", "MPa", "root_stress",
         lambda r: max(r.root_stress.pinion.max_stress, r.root_stress.gear.max_stress) * 1e-6,
-        "largest FE 2D fillet principal stress of either gear over the cycle"),
+        "largest FE 2D fillet principal stress of either gear over the cycle",
+        "max. root stress, FE"),
     KPI("mesh_stiffness_mean_N_per_um", "N/um", "contact",
         lambda r: float(r.contact.mesh_stiffness.mean()) * 1e-6,
-        "mean loaded (tangent) mesh stiffness over the cycle"),
+        "mean loaded (tangent) mesh stiffness over the cycle",
+        "mean mesh stiffness"),
     KPI("mesh_stiffness_ripple_percent", "%", "contact", _ripple,
-        "(max - min) / mean of the loaded mesh stiffness"),
+        "(max - min) / mean of the loaded mesh stiffness",
+        "mesh stiffness ripple"),
     KPI("max_unit_load_N_per_mm", "N/mm", "contact",
         lambda r: float(r.contact.max_unit_load.max()) * 1e-3,
-        "largest load per unit length of contact line over the cycle"),
+        "largest load per unit length of contact line over the cycle",
+        "max. unit load"),
     KPI("dynamic_factor_peak", "-", "dynamics", lambda r: _peak_factor(r)[0],
-        "largest max/mean dynamic mesh force over the study's speed range"),
+        "largest max/mean dynamic mesh force over the study's speed range",
+        "peak dynamic factor"),
     KPI("dynamic_factor_peak_speed_rpm", "rpm", "dynamics", lambda r: _peak_factor(r)[1],
-        "driver speed of that largest dynamic factor"),
+        "driver speed of that largest dynamic factor",
+        "speed of peak dynamic factor"),
 )
 """Every KPI a study can ask for, in table order."""
 
 KPI_BY_NAME = {k.name: k for k in KPIS}
+
+
+def kpi_label(name: str) -> str:
+    """Axis label of a KPI column: its reader's name and unit, ``"TE peak to peak (um)"``;
+    a column that is not a KPI keeps its name."""
+    kpi = KPI_BY_NAME.get(name)
+    if kpi is None:
+        return name
+    return kpi.label if kpi.unit == "-" else f"{kpi.label} ({kpi.unit})"
 
 
 def select_kpis(names: tuple[str, ...], dynamics: bool) -> tuple[KPI, ...]:

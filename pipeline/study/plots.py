@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from pipeline.study.kpis import kpi_label
 from pipeline.study.spec import StudySpec
 from pipeline.viz.canvas import new_figure
 
@@ -62,8 +63,8 @@ def plot_sensitivity(spec: StudySpec, table: dict[str, list], kpis: list[str]) -
                 ax.set_xticks(range(len(xs)), [str(v) for v in xs])
             if i == len(kpis) - 1:
                 ax.set_xlabel(a.label.rsplit(".", 1)[-1] + _more(a.keys))
-            if j == 0:
-                ax.set_ylabel(k)
+            # every panel: the columns have their own y scales
+            ax.set_ylabel(kpi_label(k), fontsize=8)
             ax.grid(alpha=0.3)
     title = "one-at-a-time sensitivity" if ref is not None else "sensitivity (all points)"
     if ref is not None:
@@ -92,8 +93,8 @@ def plot_tradeoff(table: dict[str, list], kx: str, ky: str, best: int | None,
     ax.plot(x[front], y[front], "-", color="C1", label="Pareto front (both minimised)")
     if best is not None:
         ax.plot(x[best], y[best], "*", ms=14, color="C3", label=f"best point ({best})")
-    ax.set_xlabel(kx)
-    ax.set_ylabel(ky)
+    ax.set_xlabel(kpi_label(kx))
+    ax.set_ylabel(kpi_label(ky))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)

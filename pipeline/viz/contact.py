@@ -25,16 +25,25 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     k = stiffness_in_plot_unit
     ax[0].plot(deg, k(cyc.mesh_stiffness), label="LTCA tangent dP/dx")
     ax[0].plot(deg, k(cyc.mesh_stiffness_secant), "--", label="LTCA secant P/x")
-    ax[0].plot(deg, k(k_slice), ":", label="slice method (pipeline.stiffness)")
+    ax[0].plot(deg, k(k_slice), ":", label="analytical (potential energy, slices)")
     ax[0].set_ylabel(stiffness_label())
     ax[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax[1].plot(deg, cyc.transmission_error * 1e6)
     ax[1].set_ylabel("loaded static TE [um]")
-    for j, k in enumerate(cyc.pair_index):
-        if cyc.pair_loads[:, j].any():
-            ax[2].plot(deg, cyc.load_share[:, j], label=f"tooth pair {k}")
+    for n, j in enumerate(pairs_in_order_of_entry(cyc.pair_loads), start=1):
+        ax[2].plot(deg, cyc.load_share[:, j], label=f"tooth pair {n}")
     ax[2].set_ylabel("load share [-]")
+    ax[2].set_title("tooth pairs numbered in the order they take load in the cycle",
+                    fontsize=8)
     ax[2].set_xlabel("pinion angle [deg]")
     ax[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title
     return fig
+
+
+def pairs_in_order_of_entry(pair_loads: np.ndarray) -> list[int]:
+    """Columns of the loaded tooth pairs, ordered by their first loaded mesh position
+    (the reader's "pair 1, 2, ..." instead of the internal indices -1, 0, 1)."""
+    loaded = pair_loads != 0
+    cols = [j for j in range(loaded.shape[1]) if loaded[:, j].any()]
+    return sorted(cols, key=lambda j: int(np.argmax(loaded[:, j])))

@@ -18,6 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
 from pipeline.viz.canvas import new_figure
+from pipeline.viz.contact import pairs_in_order_of_entry
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -71,9 +72,9 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
     a2.set_xlabel("mesh order [-]")
     a2.set_ylabel("TE amplitude [um]")
     a2.grid(alpha=0.3, axis="y")
-    for j, k in enumerate(dist.pair_index):
-        if dist.load_share[:, j].any():
-            a3.plot(x, dist.load_share[:, j], label=f"tooth pair {k}")
+    for n, j in enumerate(pairs_in_order_of_entry(dist.load_share), start=1):
+        a3.plot(x, dist.load_share[:, j], label=f"tooth pair {n}")
+    a3.set_title("pairs numbered as they take load", fontsize=8)
     a3.set_xlabel("mesh cycle [-]")
     a3.set_ylabel("load share [-]")
     a3.set_ylim(0.0, 1.05)
@@ -100,7 +101,7 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     ax.plot(z, mean * N_PER_MM, "C0", lw=2.0, ls="--",
             label=f"mean over the cycle (K_Hbeta = {dist.k_hbeta:.3f})")
     ax.axhline(dist.mean_line_load * N_PER_MM, color="k", ls=":", lw=1.0, label="P / b")
-    ax.set_xlabel("face position z [mm]")
+    ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("line load w [N/mm]")
     ax.set_xlim(0.0, dist.face_width * 1e3)
     ax.set_ylim(0.0, max(dist.envelope.max() * N_PER_MM * 1.15, 1e-9))
@@ -190,7 +191,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
         ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9)
         ax.set_xlim(*_with_margin(d.min(), d.max()))
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
-    axes[0].set_ylabel("face position z [mm]")
+    axes[0].set_ylabel("face position b_z [mm]")
     fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
     fig.suptitle(title, fontsize=9)
     return fig

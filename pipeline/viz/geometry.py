@@ -24,7 +24,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
-def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = None) -> Figure:
+def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = None,
+                        name: str = "") -> Figure:
     """The pair in its transverse plane and its path of contact on the line of action.
 
     Three panels, lengths in mm: the whole pair at equal scale (centres O1, O2, base, pitch
@@ -51,10 +52,11 @@ def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = No
     top.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
     _draw_roll_strip(strip.subplots(), lay)
     kind = "internal" if pair.gear.internal else "external"
-    fig.suptitle(title or f"{kind} pair: eps_alpha = {pair.transverse_contact_ratio:.3f}, "
-                 f"eps_beta = {pair.overlap_ratio:.3f}, "
-                 f"alpha_wt = {math.degrees(pair.operating_pressure_angle):.3f} deg, "
-                 f"a_w = {pair.operating_centre_distance * 1e3:.3f} mm")
+    title = title or (f"{kind} pair: eps_alpha = {pair.transverse_contact_ratio:.3f}, "
+                      f"eps_beta = {pair.overlap_ratio:.3f}, "
+                      f"alpha_wt = {math.degrees(pair.operating_pressure_angle):.3f} deg, "
+                      f"a_w = {pair.operating_centre_distance * 1e3:.3f} mm")
+    fig.suptitle(f"{name}: {title}" if name else title)  # name: the case or mesh
     return fig
 
 
@@ -170,11 +172,13 @@ def _draw_roll_strip(ax: Axes, lay: TransverseLayout) -> None:
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=4, fontsize=8)
 
 
-def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None) -> Axes:
+def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None,
+                       name: str = "") -> Axes:
     """Contact lines on the plane of action at a few positions over one mesh cycle.
 
     Axes in mm at equal scale (the plane of action as it is); the legend sits outside
-    the plane, to the right, so it never covers a line.
+    the plane, to the right, so it never covers a line. ``name`` (the case or mesh)
+    starts the title.
     """
     if ax is None:
         length, b = pair.path_length, pair.face_width
@@ -192,8 +196,9 @@ def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = N
     ax.axvline(pair.s_pitch * 1e3, color="k", ls="--", lw=1, label="pitch point")
     ax.set_aspect("equal")
     ax.set_xlabel("roll coordinate s [mm]")
-    ax.set_ylabel("face width position z [mm]")
-    ax.set_title("Contact lines on the plane of action")
+    ax.set_ylabel("face position b_z [mm]")
+    what = "contact lines on the plane of action"
+    ax.set_title(f"{name}: {what}" if name else what[0].upper() + what[1:])
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
 

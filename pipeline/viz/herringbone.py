@@ -103,7 +103,7 @@ def plot_half_line_loads(halves: HerringboneDistribution, title: str = "") -> Fi
     handles += [Line2D([], [], color="k", lw=2.0, label="envelope over the cycle"),
                 Line2D([], [], color="k", lw=1.3, ls="--", label="mean over the cycle")]
     top = max(float(halves.half(s).distribution.envelope.max()) for s, _ in sides) * 1e-3
-    ax.set_xlabel("face position z in each half [mm] (mirror images: equal z, equal "
+    ax.set_xlabel("face position b_z in each half [mm] (mirror images: equal b_z, equal "
                   "distance from the groove)", fontsize=8)
     ax.set_ylabel("line load w [N/mm]")
     ax.set_xlim(0.0, halves.left.distribution.face_width * 1e3)

@@ -1,5 +1,6 @@
 """Tooth-surface load map pictures: the 3D pinion and gear teeth coloured by the unit load
-(pyvista) and the 2D map over the plane of action (matplotlib), both from 0 N/mm.
+(pyvista) and the 2D map over face position and pinion contact radius (matplotlib), both
+from 0 N/mm.
 
 The data (:class:`~pipeline.contact.loadmap.FlankLoadMap`, the flank surface and
 the VTU file) live in :mod:`pipeline.contact.loadmap`. pyvista costs seconds to
@@ -58,7 +59,7 @@ def _rulers(plotter, pair: GearPair, gear, z: np.ndarray, radius: np.ndarray,
                              shape=None, font_size=14, always_visible=True,
                              justification_horizontal="center")
     plotter.add_point_labels(np.array([[x_shift, y_low - 0.55 * gear.module * 1e3, b / 2]]),
-                             ["face position z [mm]"], show_points=False, shape=None,
+                             ["face position b_z [mm]"], show_points=False, shape=None,
                              font_size=14, always_visible=True,
                              justification_horizontal="center")
     r = np.array([radius.min(), radius.max()]) * 1e3
@@ -74,7 +75,7 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth and, for an
     external gear, the gear tooth below it (one row each), colour bar in N/mm from 0.
 
-    Each flank is seen from outside the tooth, tip up, face position z from left to
+    Each flank is seen from outside the tooth, tip up, face position b_z from left to
     right as in :func:`plot_load_map_2d`, at true scale (parallel projection fitted to
     its row). The radii of the loaded band (start and end of contact) are marked at its
     left end. The colour scale runs from 0 to the largest unit load of the cycle (both
@@ -150,7 +151,7 @@ def load_map_title(title: str, modifications: str) -> str:
 
 def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = None) -> Axes:
     """Map of the unit load (N/mm, colour scale from 0) over the pinion flank: face position
-    z (mm) to the right, pinion contact radius (mm) up, as :func:`render_load_map` shows the
+    b_z (mm) to the right, pinion contact radius (mm) up, as :func:`render_load_map` shows the
     flank; returns the Axes."""
     if ax is None:
         ax = new_figure((7.5, 4.8), "constrained").subplots()
@@ -158,7 +159,7 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3, p,
                          shading="gouraud", cmap="viridis", vmin=0.0, vmax=float(p.max()))
     ax.figure.colorbar(mesh, ax=ax, label="unit load p [N/mm]")
-    ax.set_xlabel("face position z [mm]")
+    ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("pinion contact radius [mm]")
     ax.set_title(title or "unit load over the pinion flank, envelope over the mesh cycle",
                  fontsize=9)
