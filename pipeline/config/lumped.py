@@ -51,7 +51,7 @@ FIELD_UNITS: tuple[tuple[str, str], ...] = (
 _SKIP = {"mesh_stiffness", "k_sun_mesh", "k_ring_mesh", "transmission_error", "extra",
          "friction_stiffness", "friction_torque_pinion", "friction_torque_gear",
          "groove_translational", "half_coupling", "groove_rotations", "e_sun_mesh",
-         "e_ring_mesh"}
+         "e_ring_mesh", "t1t2"}  # t1t2: the pair's drawing, derived from gear geometry
 
 
 def _model_class(name: str):
