@@ -588,8 +588,8 @@ def test_the_point_count_is_the_number_of_points_built(tmp_path):
     """point_count multiplies the axis lengths without building the points: equal to
     len(design_points) for a grid with a deduplicated integer range (1..4 over 7 points:
     4 values) x 3 values = 12, and a Latin hypercube of 5 samples; at MAX_POINTS a study
-    runs, one more is refused with 0.06 s and 4.5 kB a point: 100001 points -> 1.67 h,
-    0.45 GB."""
+    runs; above it a study is refused, with 0.06 s and 4.5 kB a point: 50001 x 2 = 100002
+    points -> 6000 s = 1.67 h, 450 MB."""
     from pipeline.study.points import design_points
     from pipeline.study.size import MAX_POINTS, check_size, point_count
 
@@ -606,15 +606,14 @@ def test_the_point_count_is_the_number_of_points_built(tmp_path):
     edge = ('[[axes]]\nkey = "operation.torque_Nm"\nrange = [100.0, 400.0]\n'
             'points = {n}\n')
     p = tmp_path / "edge.toml"
-    p.write_text(STUDY.format(points=2).replace("\n[[axes]]", "\n[[axes]]", 1)
-                 .split("[[axes]]")[0] + edge.format(n=MAX_POINTS))
+    p.write_text(STUDY.format(points=2).split("[[axes]]")[0] + edge.format(n=MAX_POINTS))
     assert check_size(study_from_file(p)) == MAX_POINTS
     p.write_text(p.read_text() + '[[axes]]\nkey = "operation.speed_rpm"\n'
                  'values = [1000.0, 2000.0]\n')
     p.write_text(p.read_text().replace(f"points = {MAX_POINTS}", "points = 50001"))
     with pytest.raises(InputError, match=r"has 100002 points \(grid 50001 x 2\); at most "
                                          r"100000 are run: at 0.06 s a point .* at least "
-                                         r"1.67 h on one worker and 0.45 GB of memory"):
+                                         r"1.67 h on one worker and 450 MB of memory"):
         check_size(study_from_file(p))
 
 
