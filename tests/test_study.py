@@ -546,7 +546,8 @@ def test_an_unreachable_scheduler_fails_at_once_and_a_plain_rerun_works(tmp_path
 
 def test_a_silent_scheduler_is_waited_for_at_most_the_connect_timeout(tmp_path, monkeypatch):
     """A port that accepts the connection but never answers (a listening socket nobody
-    reads): the study gives up after the connect timeout (set to 0.5 s here)."""
+    reads; dask.distributed's own handshake would wait on past its timeout): the study
+    gives up after the connect timeout (set to 0.5 s here) and writes nothing."""
     import socket
 
     import pipeline.study.execute as execute

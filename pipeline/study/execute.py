@@ -208,14 +208,18 @@ def _batches(todo: list[int], keys: list[Any], size: int) -> list[tuple[Any, lis
 def _connect(address: str) -> Any:
     """A client of the scheduler at ``address``, or :class:`InputError` within
     :data:`CONNECT_TIMEOUT_S` (a refused connection at once: a plain socket is tried
-    first, since dask.distributed retries a refused one until its timeout)."""
+    first, since dask.distributed retries a refused one until its timeout; over tcp the
+    socket also waits for the scheduler's greeting, since a port that accepts and never
+    answers makes dask.distributed's handshake wait past its timeout)."""
     import socket
 
     from dask.distributed import Client
 
-    _, host, port = check_scheduler(address)
+    scheme, host, port = check_scheduler(address)
     try:
-        socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S).close()
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S) as probe:
+            if scheme == "tcp" and not probe.recv(1):  # a scheduler greets first (handshake)
+                raise ConnectionError("connection closed")
         return Client(address, timeout=f"{CONNECT_TIMEOUT_S}s")
     except Exception as exc:  # noqa: BLE001 - whatever the failure, that is no scheduler
         why = exc.strerror if isinstance(exc, OSError) and exc.strerror else \
