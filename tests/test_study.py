@@ -468,3 +468,219 @@ def test_best_point_folder_is_a_run_folder_with_its_report(tmp_path):
     html = (run / "report.html").read_text()
     assert "best point of study relief" in html
     assert "contact.tip_relief_pinion_um = 12.0" in (files[0]).read_text()
+
+
+# --- checks before the first point ----------------------------------------------------
+
+GRID_1E10 = ('[[axes]]\nkey = "operation.torque_Nm"\nrange = [100.0, 400.0]\npoints = 100000\n'
+             '[[axes]]\nkey = "operation.speed_rpm"\nrange = [500.0, 3000.0]\n'
+             'points = 100000\n')
+
+
+def study_with(tmp_path: Path, extra: str) -> Path:
+    p = tiny(tmp_path)
+    p.write_text(p.read_text() + extra)
+    return p
+
+
+@pytest.mark.parametrize("options, extra, status, message", [
+    (["--scheduler", "not a url"], "", 2,
+     "--scheduler not a url: expected a Dask scheduler address tcp://host:port"),
+    (["--scheduler", "http://127.0.0.1:8787"], "", 2,
+     "http:// is the dashboard's address, the scheduler's is tcp://host:8786"),
+    (["--scheduler", "inproc://x"], "", 2, "(schemes tcp, tls, ws, wss)"),
+    (["--scheduler", "tcp://127.0.0.1:0"], "", 2, "a port in 1..65535"),
+    (["--scheduler", "tcp://127.0.0.1:1"], "", 2,
+     "--scheduler tcp://127.0.0.1:1: no Dask scheduler answered (Connection refused; waited "
+     "at most 5 s)"),
+    (["--scheduler", "tcp://127.0.0.1:1", "--workers", "2"], "", 2,
+     "--workers 2 with --scheduler"),
+    (["--workers", "-1"], "", 2, "--workers -1: expected 0 (serial) or more"),
+    (["--resume"], "", 2, "holds no study to resume"),
+    ([], '[best]\nkpi = "te_pp_um"\n', 2,
+     "best.kpi = 'te_pp_um' is not a KPI of this study; its KPIs: te_peak_to_peak_um, "
+     "mesh_stiffness_mean_N_per_um"),
+    ([], '[best]\nkpi = "k_hbeta"\n', 2, "best.kpi = 'k_hbeta' is not a KPI of this study"),
+    ([], '[plots]\ntradeoff = ["te_peak_to_peak_um", "k_hbeta"]\n', 2,
+     "plots.tradeoff = 'k_hbeta' is not a KPI of this study"),
+    ([], '[plots]\ntradeoff = ["te_peak_to_peak_um", "te_peak_to_peak_um"]\n', 2,
+     "expected two different KPIs"),
+    ([], '[sampling]\nseed = 3\n', 2, "sampling.seed applies to method = \"latin_hypercube\""),
+    ([], GRID_1E10, 2, "the study has 20000000000 points (grid 2 x 100000 x 100000); at most "
+                       "100000 are run"),
+])
+def test_a_bad_option_or_study_value_is_one_line_before_anything(
+        tmp_path, capsys, monkeypatch, options, extra, status, message):
+    """Each is one line, the documented exit status, no point computed, and nothing
+    written: the --out folder (two levels new) is not made, nothing appears beside it."""
+    from pipeline.cli import main
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    study = study_with(tmp_path, extra)
+    before = sorted(os.listdir(tmp_path))
+    no_points(monkeypatch)
+    capsys.readouterr()
+    serial = [] if "--scheduler" in options else ["--workers", "0"]
+    t0 = time.perf_counter()
+    assert main(["study", str(study), "--out", str(tmp_path / "new" / "out"), "--no-best-run",
+                 "--json", *serial, *options]) == status
+    assert time.perf_counter() - t0 < 4.0  # the size is counted, never built
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gearpipe study: error: "), err
+    assert message in err[0]
+    assert sorted(os.listdir(tmp_path)) == before
+
+
+@pytest.mark.parametrize("target, message", [
+    ("afile", "is a file, not a folder"),
+    ("/", "/ holds files that are not a result of the study 'tiny'"),
+])
+def test_out_naming_a_file_or_the_root_is_one_line(tmp_path, capsys, monkeypatch, target,
+                                                   message):
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    (tmp_path / "afile").write_text("mine")
+    out = Path(target) if target == "/" else tmp_path / target
+    study = tiny(tmp_path)
+    before = tree(tmp_path)
+    no_points(monkeypatch)
+    capsys.readouterr()
+    assert study_cli(study, out) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err
+    assert tree(tmp_path) == before
+
+
+def test_a_read_only_out_folder_is_one_line(tmp_path, capsys, monkeypatch):
+    """An existing empty folder the study cannot write into (read-only: chmod, or, for
+    root, whom chmod does not stop, the permission check answering no) is refused with
+    exit status 1 before any point."""
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    out = tmp_path / "ro"
+    out.mkdir()
+    out.chmod(0o555)
+    if os.access(out, os.W_OK):
+        access = os.access
+        monkeypatch.setattr(os, "access", lambda p, mode, **k: Path(p) != out
+                            and access(p, mode, **k))
+    no_points(monkeypatch)
+    capsys.readouterr()
+    try:
+        assert study_cli(tiny(tmp_path), out) == 1
+    finally:
+        out.chmod(0o755)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"gearpipe study: error: {out} is not writable, so the study cannot be "
+                   "written there; give --out another folder"]
+    assert os.listdir(out) == []
+
+
+def test_an_unreachable_scheduler_fails_at_once_and_a_plain_rerun_works(tmp_path, capsys,
+                                                                         monkeypatch):
+    """A closed local port is refused at once (it waited 20 s before), leaves no
+    manifest or parts, so the same command without --scheduler then runs the study."""
+    from pipeline.cli import main
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    study = tiny(tmp_path)
+    t0 = time.perf_counter()
+    assert main(["study", str(study), "--out", str(out), "--no-best-run", "--json",
+                 "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    assert time.perf_counter() - t0 < 3.0
+    assert "Connection refused" in capsys.readouterr().err
+    assert not out.exists() and sorted(os.listdir(tmp_path)) == ["tiny.toml"]
+    assert study_cli(study, out) == 0
+    assert pq.read_table(out / "study.parquet").num_rows == 2
+
+
+def test_a_silent_scheduler_is_waited_for_at_most_the_connect_timeout(tmp_path, monkeypatch):
+    """A port that accepts the connection but never answers (a listening socket nobody
+    reads; dask.distributed's own handshake would wait on past its timeout): the study
+    gives up after the connect timeout (set to 0.5 s here) and writes nothing."""
+    import socket
+
+    import pipeline.study.execute as execute
+
+    monkeypatch.setattr(execute, "CONNECT_TIMEOUT_S", 0.5)
+    silent = socket.socket()
+    silent.bind(("127.0.0.1", 0))
+    silent.listen()
+    address = f"tcp://127.0.0.1:{silent.getsockname()[1]}"
+    spec = study_from_file(tiny(tmp_path))
+    no_points(monkeypatch)
+    t0 = time.perf_counter()
+    try:
+        with pytest.raises(InputError, match=r"no Dask scheduler answered \(.*waited at most "
+                                             r"0.5 s\)"):
+            run_study(spec, tmp_path / "out", quiet(scheduler=address))
+    finally:
+        silent.close()
+    assert 0.5 <= time.perf_counter() - t0 < 3.0
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_running_scheduler_is_used(tmp_path, monkeypatch):
+    """The connection check lets a real scheduler through: a cluster started at a tcp://
+    address gives the serial table."""
+    from dask.distributed import LocalCluster
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    spec = study_from_file(tiny(tmp_path))
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                      dashboard_address=None, protocol="tcp://") as cluster:
+        a, facts = run_study(spec, tmp_path / "dask", quiet(scheduler=cluster.scheduler_address))
+    b, _ = run_study(spec, tmp_path / "serial", quiet(workers=0))
+    assert facts["scheduler"].startswith("tcp://127.0.0.1:") and facts["workers"] == 1
+    assert a.equals(b)
+
+
+def test_the_point_count_is_the_number_of_points_built(tmp_path):
+    """point_count multiplies the axis lengths without building the points: equal to
+    len(design_points) for a grid with a deduplicated integer range (1..4 over 7 points:
+    4 values) x 3 values = 12, and a Latin hypercube of 5 samples; at MAX_POINTS a study
+    runs; above it a study is refused, with 0.06 s and 4.5 kB a point: 50001 x 2 = 100002
+    points -> 6000 s = 1.67 h, 450 MB."""
+    from pipeline.study.points import design_points
+    from pipeline.study.size import MAX_POINTS, check_size, point_count
+
+    grid = study_with(tmp_path, '[[axes]]\nkey = "pinion.teeth"\nrange = [47, 50]\n'
+                                'points = 7\n[[axes]]\nkey = "operation.torque_Nm"\n'
+                                'values = [100.0, 200.0, 300.0]\n')
+    spec = study_from_file(grid)
+    assert point_count(spec) == len(design_points(spec)) == 2 * 4 * 3
+    lhs = tmp_path / "lhs.toml"
+    lhs.write_text(STUDY.format(points=2).replace("\npoints = 2\n", "\n", 1)
+                   + '[sampling]\nmethod = "latin_hypercube"\nsamples = 5\n')
+    spec = study_from_file(lhs)
+    assert point_count(spec) == len(design_points(spec)) == 5
+    edge = ('[[axes]]\nkey = "operation.torque_Nm"\nrange = [100.0, 400.0]\n'
+            'points = {n}\n')
+    p = tmp_path / "edge.toml"
+    p.write_text(STUDY.format(points=2).split("[[axes]]")[0] + edge.format(n=MAX_POINTS))
+    assert check_size(study_from_file(p)) == MAX_POINTS
+    p.write_text(p.read_text() + '[[axes]]\nkey = "operation.speed_rpm"\n'
+                 'values = [1000.0, 2000.0]\n')
+    p.write_text(p.read_text().replace(f"points = {MAX_POINTS}", "points = 50001"))
+    with pytest.raises(InputError, match=r"has 100002 points \(grid 50001 x 2\); at most "
+                                         r"100000 are run: at 0.06 s a point .* at least "
+                                         r"1.67 h on one worker and 450 MB of memory"):
+        check_size(study_from_file(p))
+
+
+def test_a_study_of_one_kpi_has_no_tradeoff_plot(tmp_path, capsys, monkeypatch):
+    """One KPI: the study runs, the summary says why there is no trade-off plot, and the
+    folder holds no tradeoff.png (nor does run.json list one)."""
+    import json
+
+    monkeypatch.setenv("GEARPIPE_CACHE_DIR", str(tmp_path / "cache"))
+    study = tiny(tmp_path)
+    study.write_text(study.read_text().replace(', "mesh_stiffness_mean_N_per_um"', ""))
+    out = tmp_path / "out"
+    capsys.readouterr()
+    assert study_cli(study, out) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["tradeoff"] == ("none: the study has one KPI (te_peak_to_peak_um), a "
+                                   "trade-off needs two")
+    assert summary["best"]["kpi"] == "te_peak_to_peak_um" and summary["best"]["point"] == 1
+    assert (out / "sensitivity.png").is_file() and not (out / "tradeoff.png").exists()
+    assert "tradeoff.png" not in json.loads((out / "run.json").read_text())["outputs"]

@@ -3,7 +3,8 @@
 Writes to ``results/<study file stem>/study/`` (or ``--out``): ``study.parquet`` and
 ``study.csv`` (one row per point: ``point``, the axes in the file's units, the KPIs with
 their units in the names, ``error``), ``manifest.json`` and ``parts/`` (what resuming
-reads), ``sensitivity.png``, ``tradeoff.png``, ``best_point/gearbox.toml`` with the best
+reads), ``sensitivity.png``, ``tradeoff.png`` (with two KPIs or more; the summary's
+``tradeoff`` says which, or why none), ``best_point/gearbox.toml`` with the best
 point's ``gearpipe run`` results in ``best_point/run/`` (:func:`report_best_point`, the
 hook of the tooth load distribution report), ``summary.json`` and ``run.json``.
 
@@ -28,10 +29,9 @@ from pipeline.commands_common import emit
 from pipeline.io import atomic_write_text, write_json
 from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record
-from pipeline.study.execute import StudyOptions, run_study
+from pipeline.study.execute import CONNECT_TIMEOUT_S, StudyOptions, check_study, run_study
 from pipeline.study.spec import StudySpec, study_from_file
 from pipeline.study.store import is_complete, link_work_files, study_folder
-from pipeline.validation import InputError
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -40,8 +40,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="output folder (default: results/<study file stem>/study)")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
     parser.add_argument("--scheduler", default=None,
-                        help="address of an existing Dask scheduler (tcp://host:8786); "
-                             "default: a LocalCluster on this machine")
+                        help="address of an existing Dask scheduler (tcp://host:8786), "
+                             f"waited for {CONNECT_TIMEOUT_S:g} s at most; default: a "
+                             "LocalCluster on this "
+                             "machine")
     parser.add_argument("--workers", type=int, default=None,
                         help="LocalCluster worker processes (default: one per core); 0 runs "
                              "the points serially in this process")
@@ -103,11 +105,10 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
 
 def run(args: argparse.Namespace) -> int:
     spec = study_from_file(args.config)
-    if args.workers is not None and args.workers < 0:
-        raise InputError(f"--workers {args.workers}: expected 0 (serial) or more")
-    target = args.out or Path("results") / Path(args.config).stem / "study"
     options = StudyOptions(scheduler=args.scheduler, workers=args.workers, resume=args.resume,
                            show_progress=not args.json)
+    check_study(spec)  # the study file and options before the folder, all before any point
+    target = args.out or Path("results") / Path(args.config).stem / "study"
     with staged_output(target, study_folder(spec)) as out:
         work = out if is_complete(target) and not args.resume else target
         table, facts = run_study(spec, work, options, tables=out)
@@ -128,19 +129,20 @@ def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
 
     cols = table.to_pydict()
     kpis = [n for n in table.column_names[1 + len(spec.axes):] if n != "error"]
-    trade = list(spec.tradeoff) or kpis[:2]
-    for k in trade + ([spec.best_kpi] if spec.best_kpi else []):
-        if k not in kpis:
-            raise InputError(f"{spec.path}: {k!r} is not a KPI of this study; its KPIs: "
-                             f"{', '.join(kpis)}")
+    trade = list(spec.tradeoff) or kpis[:2]  # checked before the points: check_study
     best_kpi = spec.best_kpi or kpis[0]
     best = best_row(cols, best_kpi, spec.best_goal)
     files.append(save(plot_sensitivity(spec, cols, kpis[:4]), out / "sensitivity.png"))
-    files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
-                                    f"{spec.name}: {len(cols['point'])} points"),
-                      out / "tradeoff.png"))
+    if len(trade) == 2:
+        files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
+                                        f"{spec.name}: {len(cols['point'])} points"),
+                          out / "tradeoff.png"))
+        drawn = f"tradeoff.png: {trade[1]} against {trade[0]}"
+    else:
+        drawn = f"none: the study has one KPI ({kpis[0]}), a trade-off needs two"
     summary: dict[str, Any] = {"study": spec.name, **facts,
-                               "failed_points": sum(1 for e in cols["error"] if e)}
+                               "failed_points": sum(1 for e in cols["error"] if e),
+                               "tradeoff": drawn}
     if best is not None:
         values = {a.label: cols[a.label][best] for a in spec.axes}
         summary["best"] = {"point": cols["point"][best], "kpi": best_kpi,

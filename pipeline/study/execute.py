@@ -1,12 +1,16 @@
 """Running a study: every point checked first, FE tables once per geometry, batches on Dask.
 
-:func:`run_study` builds every point's gearbox before any work (an input error is one
-line and nothing is written), groups the points by the geometry their FE tables depend
+:func:`run_study` checks the study file (:func:`check_study`: KPIs, ``[best]``,
+``[plots]``, the size) and builds every point's gearbox before any work (an input error
+is one line and nothing is written), groups the points by the geometry their FE tables depend
 on (:func:`pipeline.study.evaluate.fe_geometry_key`) and runs
 
 * on **dask.distributed** (default): a ``LocalCluster`` with one single-threaded worker
   process per core and BLAS pinned to one thread (``workers``), or the existing cluster
-  at ``scheduler`` (``tcp://host:8786``) with no other change. The FE tables of each
+  at ``scheduler`` (``tcp://host:8786``) with no other change: its address is checked for
+  form with the options (:func:`check_scheduler`) and connected to before anything is
+  written, waiting at most :data:`CONNECT_TIMEOUT_S` (5 s), so an unreachable scheduler
+  is one line and leaves no folder behind. The FE tables of each
   geometry are one task; the batches of its points take that task's future as an
   argument, so Dask ships the tables to each worker once (memory to memory, never as
   files a remote worker could not see) and no point recomputes them;
@@ -25,18 +29,19 @@ import os
 import sys
 import uuid
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import pyarrow as pa
 
-from pipeline.output_folder import check_target
+from pipeline.output_folder import OutputError, check_target
 from pipeline.progress import progress
 from pipeline.study.evaluate import build_fe_tables, evaluate_point, fe_geometry_key
 from pipeline.study.kpis import KPI, select_kpis
 from pipeline.study.points import DesignPoint, axis_values, design_points
+from pipeline.study.size import check_size
 from pipeline.study.spec import StudySpec
 from pipeline.study.store import StudyStore, study_folder, study_identity
 from pipeline.validation import InputError
@@ -64,6 +69,48 @@ class StudyOptions:
     cache_dir: str | None = None
     point_log: bool = True
     show_progress: bool = True
+
+    def __post_init__(self) -> None:
+        if self.workers is not None and (isinstance(self.workers, bool)
+                                         or not isinstance(self.workers, int)
+                                         or self.workers < 0):
+            raise InputError(f"--workers {self.workers}: expected 0 (serial) or more")
+        if self.scheduler is not None:
+            check_scheduler(self.scheduler)
+            if self.workers is not None:
+                raise InputError(f"--workers {self.workers} with --scheduler: the workers are "
+                                 "the cluster's; give one of the two")
+
+
+CONNECT_TIMEOUT_S = 5.0
+"""How long a study waits for the Dask scheduler at ``--scheduler`` to answer, s."""
+
+
+def check_scheduler(address: str) -> tuple[str, str, int]:
+    """``(scheme, host, port)`` of a Dask scheduler address as dask.distributed reads it:
+    ``tcp://host:port`` (a bare ``host:port`` is tcp), or the ``tls``, ``ws``, ``wss``
+    schemes over TCP as well (not ``inproc``, which reaches only this process, nor ``ucx``,
+    which needs a package gearpipe does not install); :class:`InputError` otherwise.
+    Only the form is checked here (:func:`dask_client` connects)."""
+    from distributed.comm.addressing import parse_host_port
+    from distributed.comm.registry import backends
+
+    schemes = [s for s in ("tcp", "tls", "ws", "wss") if s in backends]
+    scheme, sep, loc = address.rpartition("://")
+    scheme = scheme if sep else "tcp"
+    expected = (f"--scheduler {address}: expected a Dask scheduler address tcp://host:port "
+                f"(schemes {', '.join(schemes)})")
+    if scheme not in schemes:
+        hint = (": http:// is the dashboard's address, the scheduler's is "
+                "tcp://host:8786 by default") if scheme in ("http", "https") else ""
+        raise InputError(expected + hint)
+    try:
+        host, port = parse_host_port(loc)
+    except ValueError:
+        raise InputError(expected) from None
+    if not host or not 1 <= port <= 65535:
+        raise InputError(f"{expected}: host and a port in 1..65535")
+    return scheme, host, port
 
 
 @dataclass(frozen=True)
@@ -158,6 +205,30 @@ def _batches(todo: list[int], keys: list[Any], size: int) -> list[tuple[Any, lis
     return [(g, ids[j:j + size]) for g, ids in groups.items() for j in range(0, len(ids), size)]
 
 
+def _connect(address: str) -> Any:
+    """A client of the scheduler at ``address``, or :class:`InputError` within
+    :data:`CONNECT_TIMEOUT_S` (a refused connection at once: a plain socket is tried
+    first, since dask.distributed retries a refused one until its timeout; over tcp the
+    socket also waits for the scheduler's greeting, since a port that accepts and never
+    answers makes dask.distributed's handshake wait past its timeout)."""
+    import socket
+
+    from dask.distributed import Client
+
+    scheme, host, port = check_scheduler(address)
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S) as probe:
+            if scheme == "tcp" and not probe.recv(1):  # a scheduler greets first (handshake)
+                raise ConnectionError("connection closed")
+        return Client(address, timeout=f"{CONNECT_TIMEOUT_S}s")
+    except Exception as exc:  # noqa: BLE001 - whatever the failure, that is no scheduler
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else \
+            f"{type(exc).__name__}: {str(exc).strip()[:120]}"
+        raise InputError(f"--scheduler {address}: no Dask scheduler answered ({why}; "
+                         f"waited at most {CONNECT_TIMEOUT_S:g} s); start it, or leave "
+                         "--scheduler out to run on this machine") from None
+
+
 @contextmanager
 def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     """A client of the cluster at ``scheduler``, or of a new LocalCluster (one process per
@@ -165,11 +236,7 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
-        try:
-            client = Client(scheduler, timeout="20s")
-        except OSError as exc:
-            raise InputError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
-        with client:
+        with _connect(scheduler) as client:
             yield client
         return
     one = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -177,6 +244,32 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
                       processes=True, dashboard_address=None, silence_logs=logging.ERROR,
                       env=one) as cluster, Client(cluster) as client:
         yield client
+
+
+def check_study(spec: StudySpec) -> tuple[KPI, ...]:
+    """The study's KPIs; first everything the study file asks that no point is needed to
+    check: the KPI names, the ``[best]`` KPI and the ``[plots]`` trade-off among them, a
+    speed range with a ``[dynamics]`` table, the size (:func:`pipeline.study.size.check_size`).
+
+    Raises :class:`InputError` (one line) for the first that is wrong.
+    """
+    dynamics = spec.speed_range_rpm is not None
+    if dynamics and "dynamics" not in spec.base.document:
+        raise InputError(f"{spec.path}: kpis.speed_range_rpm needs a [dynamics] table in the "
+                         f"base file {spec.base_path.name}")
+    kpis = select_kpis(spec.kpis, dynamics)
+    names = [k.name for k in kpis]
+    asked = [("best.kpi", spec.best_kpi)] if spec.best_kpi else []
+    asked += [("plots.tradeoff", k) for k in spec.tradeoff]
+    for where, name in asked:
+        if name not in names:
+            raise InputError(f"{spec.path}: {where} = {name!r} is not a KPI of this study; "
+                             f"its KPIs: {', '.join(names)}")
+    if len(set(spec.tradeoff)) == 1:
+        raise InputError(f"{spec.path}: plots.tradeoff = {list(spec.tradeoff)!r}: expected two "
+                         "different KPIs")
+    check_size(spec)
+    return kpis
 
 
 def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *,
@@ -188,55 +281,63 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
     (ordered by point number) and run facts: points, computed now, distinct FE
     geometries, workers, session id.
 
+    Nothing is written before the study file (:func:`check_study`), every point's gearbox
+    (:func:`check_points`) and ``out`` are checked and the scheduler at
+    ``options.scheduler`` has answered.
+
     Raises
     ------
-    InputError : a bad study file or point, an unfinished study without ``resume``.
-    OutputError : ``out`` holds files that are not a result of this study.
+    InputError : a bad study file or point, an unfinished study without ``resume``, no
+        scheduler at ``options.scheduler``.
+    OutputError : ``out`` holds files that are not a result of this study, or cannot be
+        written.
     """
     options = options or StudyOptions()
-    dynamics = spec.speed_range_rpm is not None
-    if dynamics and "dynamics" not in spec.base.document:
-        raise InputError(f"{spec.path}: kpis.speed_range_rpm needs a [dynamics] table in the "
-                         f"base file {spec.base_path.name}")
-    kpis = select_kpis(spec.kpis, dynamics)
+    kpis = check_study(spec)
     points = design_points(spec)
     docs, keys = check_points(spec, points)
     check_target(out, study_folder(spec))
-    store = StudyStore(out, table_schema(spec, points, kpis),
-                       study_identity(spec, [k.name for k in kpis]), spec.name)
-    done = store.open(options.resume, len(points))
-    todo = [p.index for p in points if p.index not in done]
-    local = options.scheduler is None
-    session = uuid.uuid4().hex[:8]
-    job = _Job(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
-               options.cache_dir,
-               str(Path(out).resolve() / "computed_points.log") if options.point_log and local
-               else None, session)
-    nw = (os.cpu_count() or 1) if options.workers is None else options.workers
-    size = spec.batch_points or max(1, min(32, len(todo) // (8 * max(nw, 1)) or 1))
-    batches = _batches(todo, keys, size)
+    if Path(out).is_dir() and not os.access(out, os.W_OK | os.X_OK):
+        raise OutputError(f"{out} is not writable, so the study cannot be written there; "
+                          "give --out another folder")
+    with ExitStack() as stack:
+        client = (stack.enter_context(dask_client(options.scheduler, None))
+                  if options.scheduler else None)
+        store = StudyStore(out, table_schema(spec, points, kpis),
+                           study_identity(spec, [k.name for k in kpis]), spec.name)
+        done = store.open(options.resume, len(points))
+        todo = [p.index for p in points if p.index not in done]
+        session = uuid.uuid4().hex[:8]
+        job = _Job(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
+                   options.cache_dir,
+                   str(Path(out).resolve() / "computed_points.log")
+                   if options.point_log and client is None else None, session)
+        nw = (os.cpu_count() or 1) if options.workers is None else options.workers
+        size = spec.batch_points or max(1, min(32, len(todo) // (8 * max(nw, 1)) or 1))
+        batches = _batches(todo, keys, size)
 
-    def finish(rows: list[dict]) -> None:
-        for r in rows:
-            r.update(points[r["point"]].values)
-        store.append(rows, session)
+        def finish(rows: list[dict]) -> None:
+            for r in rows:
+                r.update(points[r["point"]].values)
+            store.append(rows, session)
 
-    bar = progress(range(len(todo)), f"study {spec.name}", total=len(todo),
-                   enabled=options.show_progress and bool(todo))
-    ticks = iter(bar)
-    if options.workers == 0:
-        fe_cache: dict[Any, Any] = {}
-        for g, ids in batches:
-            if g is not None and g not in fe_cache:
-                fe_cache[g] = _fe_batch(docs[ids[0]], job)
-            rows = evaluate_batch([(i, docs[i]) for i in ids], fe_cache.get(g), job)
-            finish(rows)
-            for _ in rows:
-                next(ticks, None)
-    elif batches:
-        from dask.distributed import as_completed
+        bar = progress(range(len(todo)), f"study {spec.name}", total=len(todo),
+                       enabled=options.show_progress and bool(todo))
+        ticks = iter(bar)
+        if options.workers == 0:
+            fe_cache: dict[Any, Any] = {}
+            for g, ids in batches:
+                if g is not None and g not in fe_cache:
+                    fe_cache[g] = _fe_batch(docs[ids[0]], job)
+                rows = evaluate_batch([(i, docs[i]) for i in ids], fe_cache.get(g), job)
+                finish(rows)
+                for _ in rows:
+                    next(ticks, None)
+        elif batches:
+            from dask.distributed import as_completed
 
-        with dask_client(options.scheduler, options.workers) as client:
+            if client is None:
+                client = stack.enter_context(dask_client(None, options.workers))
             nw = len(client.scheduler_info().get("workers", {})) or nw
             fe_futures = {g: client.submit(_fe_batch, docs[ids[0]], job, key=f"fe-tables-{g}")
                           for g, ids in batches if g is not None}
@@ -248,8 +349,8 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
                 finish(rows)
                 for _ in rows:
                     next(ticks, None)
-    for _ in ticks:
-        pass
+        for _ in ticks:
+            pass
     table, _ = store.write_table(tables)
     if table.num_rows != len(points):  # pragma: no cover - would be a bug
         print(f"study: {table.num_rows} of {len(points)} points in the table", file=sys.stderr)

@@ -239,10 +239,18 @@ def study_from_file(path: str | Path) -> StudySpec:
     if method not in SAMPLING_METHODS:
         raise unknown(str(method), SAMPLING_METHODS, "sampling.method")
     samples, seed = sampling.get("samples", 0), sampling.get("seed", 0)
-    for name, v, lo in (("samples", samples, 1 if method != "grid" else 0), ("seed", seed, 0)):
-        if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= 10**6:
-            raise InputError(f"sampling.{name} = {v!r}: expected an integer in [{lo}, 1000000]")
+    # the number of samples is bounded with the study's size (pipeline.study.size)
+    for name, v, lo, hi in (("samples", samples, 1 if method != "grid" else 0, None),
+                            ("seed", seed, 0, 10**6)):
+        if (isinstance(v, bool) or not isinstance(v, int) or v < lo
+                or (hi is not None and v > hi)):
+            rng = f"in [{lo}, {hi}]" if hi is not None else f">= {lo}"
+            raise InputError(f"sampling.{name} = {v!r}: expected an integer {rng}")
     if method == "grid":
+        ignored = [k for k in ("samples", "seed") if k in sampling]
+        if ignored:
+            raise InputError(f"sampling.{ignored[0]} applies to method = "
+                             "\"latin_hypercube\", not to a grid (its points are the axes')")
         for i, a in enumerate(axes):
             if a.range is not None and a.points < 2:
                 raise InputError(f"axes[{i}] ({a.label}): a grid over a range needs "
