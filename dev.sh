@@ -15,8 +15,15 @@ ensure_env() {
     if [ ! -f "$stamp" ]; then
         echo "[dev.sh] creating environment in .venv (first run only)" >&2
         python3 -m venv "$venv"
-        "$venv/bin/python" -m pip install -q --upgrade pip
-        "$venv/bin/python" -m pip install -q -e ".[test]"
+        # pip and setuptools' build backend print notices (editable-install warning box) on
+        # stderr: keep them in a log and show it only when the install fails.
+        log="$venv/install.log"
+        if ! { "$venv/bin/python" -m pip install -q --upgrade pip \
+               && "$venv/bin/python" -m pip install -q -e ".[test]"; } >"$log" 2>&1; then
+            cat "$log" >&2
+            echo "[dev.sh] installation failed; log kept in $log" >&2
+            exit 1
+        fi
         rm -f "$venv"/.installed-*
         touch "$stamp"
     fi

@@ -28,6 +28,7 @@ from pipeline.config.signals import referenced_files
 from pipeline.fem.cache_dir import CACHE_ENV, writable_cache_dir
 from pipeline.io import to_jsonable
 from pipeline.output_folder import check_target
+from pipeline.validation import InputError
 from pipeline.provenance import write_run_record
 
 # arguments that choose where and how results are shown or cached, not what they are
@@ -110,9 +111,48 @@ def record(out: Path, args: argparse.Namespace, box: Gearbox, files: list, *,
         started=getattr(args, "_started", None))
 
 
+COMMAND_KINDS: dict[str, tuple[str, ...]] = {
+    "run": ("pair", "planetary", "lumped"),
+    "report": ("pair", "planetary"),
+    "geometry": ("pair",),
+    "stiffness": ("pair",),
+    "fe": ("pair",),
+    "contact": ("pair",),
+    "groove": ("gear", "planetary"),
+    "modes": ("pair", "planetary", "lumped"),
+    "response": ("pair", "planetary", "lumped"),
+    "sweep": ("pair", "planetary", "lumped"),
+}
+"""The kinds of gearbox file (:attr:`pipeline.config.Gearbox.kind`) each command takes."""
+
+_KIND_NAMES = {"pair": "a gear pair", "planetary": "a planetary set", "gear": "a single gear",
+               "lumped": "a lumped dynamic model"}
+
+
+def _either(words: list[str], last: str) -> str:
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + f" {last} " + words[-1]
+
+
+def kind_mismatch(command: str, kind: str) -> str | None:
+    """Why ``gearpipe command`` does not take a file of ``kind`` and which commands do, or
+    ``None`` when it takes it (:data:`COMMAND_KINDS`)."""
+    takes = COMMAND_KINDS.get(command)
+    if takes is None or kind in takes:
+        return None
+    others = [f"gearpipe {c}" for c, kinds in COMMAND_KINDS.items() if kind in kinds]
+    return (f"gearpipe {command} takes {_either([_KIND_NAMES[k] for k in takes], 'or')}; "
+            f"this file describes {_KIND_NAMES[kind]}, which "
+            f"{_either(others, 'and')} take{'s' if len(others) == 1 else ''}")
+
+
 def load(args: argparse.Namespace) -> Gearbox:
-    """The gearbox file named on the command line."""
-    return load_gearbox(args.config)
+    """The gearbox file named on the command line; an input error when the command does not
+    take its kind (:func:`kind_mismatch`)."""
+    box = load_gearbox(args.config)
+    why = kind_mismatch(getattr(args, "command", ""), box.kind)
+    if why is not None:
+        raise InputError(f"{box.name}: {why}")
+    return box
 
 
 def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path) -> None:

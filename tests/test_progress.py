@@ -21,7 +21,10 @@ def test_fast_loop_shows_no_bar(capsys):
     assert capsys.readouterr().err == ""
 
 
-def test_loop_longer_than_after_shows_its_bar(capsys):
+def test_loop_longer_than_after_shows_its_bar(capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)  # the bar is for a terminal
     # 8 x 0.05 s = 0.4 s, at least 4 times the 0.1 s after which the bar appears
     assert list(progress(_slow(8, 0.05), "slow loop", total=8, after=0.1)) == list(range(8))
     err = capsys.readouterr().err
@@ -33,3 +36,18 @@ def test_disabled_loop_shows_no_bar_however_long(capsys):
     assert list(progress(_slow(4, 0.05), "off", total=4, enabled=False, after=0.01)) == [0, 1,
                                                                                           2, 3]
     assert capsys.readouterr().err == ""
+
+
+def test_captured_stderr_has_whole_lines_only():
+    """stderr to a pipe: no carriage returns, every line ends with a newline."""
+    import subprocess
+    import sys
+
+    code = ("import time\nfrom pipeline.progress import progress\n"
+            "for _ in progress(range(4), 'slow', after=0.1): time.sleep(0.05)\n"
+            "print('next message', file=__import__('sys').stderr)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=False)
+    err = p.stderr.decode()
+    assert p.returncode == 0 and "\r" not in err and err.endswith("\n")
+    assert err.splitlines() == [err.splitlines()[0], "next message"]
+    assert err.startswith("slow: 4 done in ")
