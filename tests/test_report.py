@@ -206,7 +206,9 @@ def test_report_refuses_a_file_without_meshes(tmp_path, capsys):
     rc = cli(["report", str(CONFIGS / "lin_parker_planetary.toml"), "--out", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1
-    assert err[0].startswith("gearpipe report: error:") and "gears in mesh" in err[0]
+    assert err[0].startswith("gearpipe report: error:")
+    assert "gearpipe report takes a gear pair or a planetary set" in err[0]
+    assert "lumped dynamic model, which gearpipe run" in err[0]
     assert not out.exists() or not any(out.iterdir())
 
 
