@@ -28,8 +28,8 @@ from pipeline.config.signals import referenced_files
 from pipeline.fem.cache_dir import CACHE_ENV, writable_cache_dir
 from pipeline.io import to_jsonable
 from pipeline.output_folder import check_target
-from pipeline.validation import InputError
 from pipeline.provenance import write_run_record
+from pipeline.validation import InputError
 
 # arguments that choose where and how results are shown or cached, not what they are
 _NOT_NUMBERS = frozenset({"config", "out", "json", "command", "cache_dir", "no_cache"})

@@ -73,13 +73,19 @@ def folder_entries(folder: Path) -> list[str]:
         return []
 
 
-def read_record(folder: Path) -> dict | None:
-    """The ``run.json`` of ``folder`` as a dictionary, or None (missing or not a record)."""
+def read_json_object(path: Path) -> dict | None:
+    """The JSON object in ``path`` as a dictionary, or None (missing, unreadable, not JSON or
+    not an object): a record or manifest that is not there or not ours."""
     try:
-        record = json.loads((folder / "run.json").read_text(encoding="utf-8"))
+        value = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
-    return record if isinstance(record, dict) else None
+    return value if isinstance(value, dict) else None
+
+
+def read_record(folder: Path) -> dict | None:
+    """The ``run.json`` of ``folder`` as a dictionary, or None (missing or not a record)."""
+    return read_json_object(folder / "run.json")
 
 
 def record_outputs(record: dict) -> set[str]:

@@ -48,6 +48,7 @@ from pipeline.io import atomic_write, content_hash, fsync_path, write_json
 from pipeline.output_folder import (
     FolderRule,
     folder_entries,
+    read_json_object,
     read_record,
     record_outputs,
     unlisted,
@@ -76,11 +77,7 @@ def _is_part(name: str) -> bool:
 
 
 def _manifest(folder: Path) -> dict | None:
-    try:
-        manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return manifest if isinstance(manifest, dict) else None
+    return read_json_object(folder / "manifest.json")
 
 
 def _same_study(manifest: dict, spec: StudySpec) -> bool:
