@@ -31,8 +31,9 @@ def progress(
     A loop that ends sooner prints nothing (tqdm's ``delay``); a longer one shows its bar
     from the first item that ends after ``after`` seconds, redrawn at most every ``after``
     seconds, and clears it at the end. When stderr is not a terminal (captured output) there
-    is no bar, only one whole line at the end of a loop that took ``after`` seconds. Nothing is printed when ``enabled`` is False, and
-    nothing is ever written to stdout (``--json`` output stays clean).
+    is no bar, only one whole line at the end of a loop that took ``after`` seconds. Nothing
+    is printed when ``enabled`` is False, and nothing is ever written to stdout (``--json``
+    output stays clean).
 
     Parameters
     ----------
@@ -47,7 +48,8 @@ def progress(
         return
     if not sys.stderr.isatty():  # captured: no redrawn bar, one whole line at the end
         t0, n = time.perf_counter(), 0
-        for n, item in enumerate(items, 1):
+        for item in items:
+            n += 1
             yield item
         dt = time.perf_counter() - t0
         if dt >= after:

@@ -27,6 +27,7 @@ def test_every_taken_kind_passes():
 def test_cli_run_on_single_gear(tmp_path):
     p = subprocess.run([sys.executable, "-m", "pipeline.cli", "run",
                         str(ROOT / "workflows/configs/wind_turbine_sun_groove.toml"),
-                        "--out", str(tmp_path / "o")], capture_output=True, text=True, cwd=tmp_path)
+                        "--out", str(tmp_path / "o")], capture_output=True, text=True,
+                       cwd=tmp_path)
     assert p.returncode == 2
     assert "which gearpipe groove takes" in p.stderr
