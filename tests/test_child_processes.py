@@ -248,17 +248,16 @@ def test_drawing_children_end_with_a_killed_drawer(tmp_path):
 
 # --- gearpipe run and gearpipe study -----------------------------------------------------------
 
-def test_run_killed_in_its_sweep_leaves_no_process(tmp_path):
-    """kill -9 of ``gearpipe run`` while its pool computes the sweep: the drawer (forked at
-    the start) and the pool workers end with it."""
+def _kill_run_when(tmp_path, seen, what: str) -> None:
+    """Start ``gearpipe run``, wait until ``seen(parent)`` holds, stop the run where it is,
+    kill -9 it and require every process it started gone within ``GONE_WITHIN``."""
     proc, marker = _run(tmp_path)
     try:
         parent = psutil.Process(proc.pid)
-        # the drawer and at least one pool worker (the pool has one per core)
-        pool = lambda: len(_forked_children(parent)) >= 2  # noqa: E731
-        assert _wait(lambda: pool() or proc.poll() is not None, 120) and pool(), "no pool seen"
-        parent.suspend()  # the pool stays as it is until the kill
-        assert pool()
+        assert _wait(lambda: seen(parent) or proc.poll() is not None, 120) and seen(parent), (
+            f"no {what} seen")
+        parent.suspend()  # it forks nothing more until the kill; its children go on
+        assert seen(parent)
         parent.kill()
         proc.wait(timeout=10)
         assert _wait(lambda: not _marked(marker), GONE_WITHIN), _marked(marker)
@@ -266,26 +265,21 @@ def test_run_killed_in_its_sweep_leaves_no_process(tmp_path):
         proc.kill()
         proc.wait(timeout=10)
         _kill_all(_marked(marker))
+
+
+def test_run_killed_in_its_sweep_leaves_no_process(tmp_path):
+    """kill -9 of ``gearpipe run`` while its pool computes the sweep: the drawer (forked at
+    the start) and the pool workers end with it."""
+    # the drawer and at least one pool worker (the pool has one per core)
+    _kill_run_when(tmp_path, lambda parent: len(_forked_children(parent)) >= 2, "pool")
 
 
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="one core: the drawer forks no child")
 def test_run_killed_while_its_drawer_draws_leaves_no_process(tmp_path):
     """kill -9 of ``gearpipe run`` while the drawer and its forked children draw."""
-    proc, marker = _run(tmp_path)
-    try:
-        parent = psutil.Process(proc.pid)
-        drawing = lambda: any(_forked_children(c) for c in _forked_children(parent))  # noqa: E731
-        assert _wait(lambda: drawing() or proc.poll() is not None, 120) and drawing(), (
-            "no drawing child seen")
-        parent.suspend()  # it forks nothing more; the drawing goes on
-        assert drawing()
-        parent.kill()
-        proc.wait(timeout=10)
-        assert _wait(lambda: not _marked(marker), GONE_WITHIN), _marked(marker)
-    finally:
-        proc.kill()
-        proc.wait(timeout=10)
-        _kill_all(_marked(marker))
+    _kill_run_when(tmp_path, lambda parent: any(_forked_children(c)
+                                                for c in _forked_children(parent)),
+                   "drawing child")
 
 
 @pytest.mark.slow  # 9-11 s: the run goes on to its end
