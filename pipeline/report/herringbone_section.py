@@ -15,11 +15,11 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 from pipeline.contact.herringbone_distribution import HalfDistribution, HerringboneDistribution
+from pipeline.contact.herringbone_results import HerringboneCycle
 from pipeline.contact.root_stress import RootStress
 from pipeline.geometry.planetary_speeds import PlanetarySpeeds
 from pipeline.report.content import MM, MPA, N_PER_MM, N_PER_UM, RPM, quantity
 from pipeline.report.model import Figure, Section
-from pipeline.run.herringbone import HerringboneStage
 
 COLUMNS = ("left", "right", "equal split")
 _HALF_MEAN = "mean over the cycle"
@@ -39,7 +39,7 @@ def _fe(root: RootStress | None, gear: str) -> float | None:
 
 
 def herringbone_section(halves: HerringboneDistribution, roots: Mapping[str, RootStress],
-                        speeds: PlanetarySpeeds, stage: HerringboneStage, *,
+                        speeds: PlanetarySpeeds, cycle: HerringboneCycle, groove_kj: float, *,
                         sun_torque: float, figures: Sequence[Figure] = ()) -> Section:
     """Both halves of a herringbone sun-planet mesh (module docstring).
 
@@ -49,7 +49,8 @@ def herringbone_section(halves: HerringboneDistribution, roots: Mapping[str, Roo
     roots : root stress under each half's loads ("left", "right") and at the equal split
         ("equal split"); a missing entry shows as a dash.
     speeds : the set's speeds (rad/s).
-    stage : the run's herringbone stage (the groove's K_j; how the sun is loaded and held).
+    cycle : the contact of both halves through the groove (how the sun is loaded and held).
+    groove_kj : the groove's equivalent torsional stiffness K_j, N m^2.
     sun_torque : T_s, the sun's torque (all planets, both halves), N m.
     figures : shown under the table.
     """
@@ -116,13 +117,13 @@ def herringbone_section(halves: HerringboneDistribution, roots: Mapping[str, Roo
                  halves.governing == "left", halves.governing == "right", None),
     ]
     g, o = halves.governing, halves.other
-    c = stage.cycle
+    c = cycle
     holding = (f"held axially at {c.axial_slide * MM:g} mm on "
                f"{c.axial_support_stiffness:.3g} N/m" if c.sun_axial == "held"
                else "free axially")
     notes = [
         f"Both helical halves solved together through the sun's relief groove (3D FE, "
-        f"K_j = {stage.groove.equivalent_Kj:.4g} N m^2; the sun's torque leaves at "
+        f"K_j = {groove_kj:.4g} N m^2; the sun's torque leaves at "
         f"{'both halves' if c.torque_entry == 'both' else 'the ' + c.torque_entry + ' half'}"
         f"; the sun "
         f"{holding}), at the sun torque T_s = {sun_torque:.6g} N m "

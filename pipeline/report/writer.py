@@ -99,8 +99,9 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
         if (out / file).is_file():
             figs.append(Figure(file, f"Unit load over the {side} sun flank (contact through "
                                      "the groove)"))
-    return herringbone_section(halves, half_roots, planetary.speeds, stage,
-                               sun_torque=planetary.sun_torque, figures=figs)
+    return herringbone_section(halves, half_roots, planetary.speeds, stage.cycle,
+                               stage.groove.equivalent_Kj, sun_torque=planetary.sun_torque,
+                               figures=figs)
 
 
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
