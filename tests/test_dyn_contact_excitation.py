@@ -37,7 +37,7 @@ from pipeline.dynamics.contact_excitation import (
     point_friction_coefficients,
 )
 from pipeline.dynamics.harmonic_balance import harmonic_balance
-from pipeline.dynamics.mesh_input import excitation_from_stiffness
+from pipeline.dynamics.mesh_input import EXCITATION_SAMPLES, tooth_pair_jumps, excitation_from_stiffness
 from pipeline.dynamics.models.spur_pair import spur_pair_model
 from pipeline.dynamics.options import PairDynamicsOptions
 from pipeline.dynamics.quasi_static import quasi_static_response
@@ -97,36 +97,44 @@ def test_linear_contact_equals_the_stiffness_stage(name):
 def test_static_limit_reproduces_contact_te_and_load(case, dofs):
     """Zero speed: delta = x_s and F = P at every contact position (rel. 1e-10: a 2- or
     6-unknown solve with stiffnesses 1e8-1e9 N/m). The angular TE r_bp theta_p - r_bg
-    theta_g exceeds delta by the bearings' deflection 2 P / k_b (lateral-torsional)."""
+    theta_g exceeds delta by the bearings' deflection 2 P / k_b (lateral-torsional). The
+    spur excitation is resampled at EXCITATION_SAMPLES phases (its jumps resolved), which
+    hold the contact positions; between them the force is P as well."""
     name, box, pair, cycle, friction, _ = case
     ex = excitation_from_contact(cycle, pair, box.operation, friction)
     r = quasi_static_response(_model(box, pair, ex, dofs).assembly().assemble())
-    assert r.time.size == POSITIONS
+    assert r.time.size == (EXCITATION_SAMPLES if name == "spur" else POSITIONS)
+    at_positions = slice(None, None, r.time.size // POSITIONS)
     x, P = cycle.transmission_error, cycle.load
-    np.testing.assert_allclose(r.dte[0], x, rtol=1e-10)
+    np.testing.assert_allclose(r.dte[0][at_positions], x, rtol=1e-10)
     np.testing.assert_allclose(r.mesh_force[0], P, rtol=1e-10)
     if dofs == "lateral_torsional":
         angular = (pair.pinion.base_radius * r.coordinate("pinion.theta")
                    - pair.gear.base_radius * r.coordinate("gear.theta"))
         kb = box.dynamics.bearing_stiffness if box.dynamics else 1e8
-        np.testing.assert_allclose(angular - x, 2 * P / kb, rtol=1e-8)
+        np.testing.assert_allclose(angular[at_positions] - x, 2 * P / kb, rtol=1e-8)
 
 
 def test_harmonic_balance_at_vanishing_speed_converges_to_the_contact_values(case):
     """Mesh frequency 1e-3 of the first natural frequency: DTE and mesh force at the contact
-    positions tend to x_s and P as H grows, at first order (fitted slope of the largest
-    error against H below -0.75; measured -0.96 spur, -0.9 helical). At H = 160 the largest
-    DTE error is 3.2 % (spur) / 1.5 % (helical) of the TE's peak-to-peak, at the positions
-    next to a tooth pair entering or leaving; the median error is below 0.05 %. The
-    inertia at this speed adds < 3 % of the 160th harmonic (its frequency is 0.16 f_1)."""
+    positions tend to x_s and P as H grows, at first order or faster (fitted slope of the
+    largest error against H below -0.75; measured -1.35 spur, -0.9 helical). At H = 160
+    the largest DTE error is 1.9 % (spur) / 1.5 % (helical) of the TE's peak-to-peak and
+    the largest force error 1.52 % / 0.11 %, at the positions next to a tooth pair
+    entering or leaving (the truncated series of a jump, whose overshoot beside a resolved
+    jump does not shrink with H); the median errors are below 0.05 %. A position on a jump
+    (the spur pair's entry) is left out: there the series tends to the mean of the two
+    sides. The inertia at this speed adds < 3 % of the 160th harmonic (its frequency is
+    0.16 f_1)."""
     name, box, pair, cycle, friction, _ = case
     ex = excitation_from_contact(cycle, pair, box.operation, friction)
     f = analyse_modes(_model(box, pair, ex)).frequencies
     f_mesh = 1e-3 * f[f > 1e-6].min()
     slow = dataclasses.replace(box.operation, speed=2 * math.pi * f_mesh / pair.pinion.teeth)
     system = _model(box, pair, ex, operation=slow).assembly().assemble()
-    x, P = cycle.transmission_error, cycle.load
     tau = np.arange(POSITIONS) / POSITIONS
+    off = ~np.isin(tau, [j.phase for j in tooth_pair_jumps(pair)])
+    x, P, tau = cycle.transmission_error[off], cycle.load, tau[off]
     errors = []
     for H in (40, 80, 160):
         r = harmonic_balance(system, H).response
@@ -137,7 +145,7 @@ def test_harmonic_balance_at_vanishing_speed_converges_to_the_contact_values(cas
     assert slope < -0.75
     dte_err, force_err = errors[-1]
     assert dte_err.max() < 0.04 and np.median(dte_err) < 5e-4
-    assert force_err.max() < 0.015 and np.median(force_err) < 5e-4
+    assert force_err.max() < 0.02 and np.median(force_err) < 5e-4
 
 
 def test_friction_coefficients_of_single_contact_positions_by_hand():
@@ -155,11 +163,12 @@ def test_friction_coefficients_of_single_contact_positions_by_hand():
     sel = loaded & np.isin(cycle.point_position, single)
     pos, s = cycle.point_position[sel], cycle.point_s[sel]
     lam = np.where(s < pair.s_pitch, 1.0, -1.0)
-    k = ex.stiffness.values[pos]
-    np.testing.assert_allclose(ex.friction_stiffness.values[pos], lam * 0.05 * k, rtol=1e-12)
-    np.testing.assert_allclose(ex.friction_torque_pinion.values[pos], lam * 0.05 * k * s,
+    at = pos * (EXCITATION_SAMPLES // POSITIONS)  # the excitation's samples at the positions
+    k = ex.stiffness.values[at]
+    np.testing.assert_allclose(ex.friction_stiffness.values[at], lam * 0.05 * k, rtol=1e-12)
+    np.testing.assert_allclose(ex.friction_torque_pinion.values[at], lam * 0.05 * k * s,
                                rtol=1e-12)
-    np.testing.assert_allclose(ex.friction_torque_gear.values[pos],
+    np.testing.assert_allclose(ex.friction_torque_gear.values[at],
                                -lam * 0.05 * k * (pair.t1t2 - s), rtol=1e-12)
     box, pair, cycle, ehl, _ = _case("spur", kind="ehl")
     mu = point_friction_coefficients(cycle, pair, box.operation, ehl)

@@ -87,7 +87,7 @@ import math
 import numpy as np
 
 from pipeline.contact.results import LoadedMeshCycle
-from pipeline.dynamics.mesh_input import MeshExcitation, friction_signals
+from pipeline.dynamics.mesh_input import MeshExcitation, friction_signals, with_resolved_jumps
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.signals import PeriodicSignal
@@ -172,7 +172,10 @@ def excitation_from_contact(
     Returns
     -------
     MeshExcitation with ``source = "contact"``, ``load = cycle.load`` (N), k (N/m),
-    e = x_s - P / k (m), K_f (N/m), KT_f1, KT_f2 (N m/m) sampled at the cycle's positions.
+    e = x_s - P / k (m), K_f (N/m), KT_f1, KT_f2 (N m/m) sampled at the cycle's positions;
+    for a spur pair at ``max(positions, EXCITATION_SAMPLES)`` phases with the jumps where
+    tooth pairs enter and leave at their exact phases
+    (:func:`~pipeline.dynamics.mesh_input.with_resolved_jumps`).
     """
     check_choice("stiffness", stiffness, STIFFNESS_DEFINITIONS)
     _check_cycle(cycle, pair)
@@ -198,7 +201,7 @@ def excitation_from_contact(
     kf, kt1, kt2 = friction_signals(per_position(force) * k / load,
                                     per_position(force * rho1) * k / load,
                                     per_position(force * np.abs(rho2)) * k / load, period)
-    return MeshExcitation(
+    return with_resolved_jumps(MeshExcitation(
         stiffness=PeriodicSignal(k, period),
         friction_stiffness=kf,
         friction_torque_pinion=kt1,
@@ -208,4 +211,4 @@ def excitation_from_contact(
         transmission_error=PeriodicSignal(cycle.transmission_error - load / k, period),
         load=load,
         source="contact",
-    )
+    ), pair)

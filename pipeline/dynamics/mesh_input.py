@@ -30,12 +30,12 @@ from __future__ import annotations
 
 import importlib.util
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from pipeline.geometry.pair import GearPair
-from pipeline.signals import PeriodicSignal
+from pipeline.signals import JUMP_TOLERANCE, Jump, PeriodicSignal, resample_with_jumps
 from pipeline.stiffness.mesh import (
     FrictionModel,
     MeshStiffness,
@@ -104,6 +104,48 @@ class MeshExcitation:
         )
 
 
+EXCITATION_SAMPLES = 360
+"""Samples per mesh period of an excitation whose tooth-pair jumps are resolved
+(:func:`with_resolved_jumps`); more when the source has more."""
+
+_SIGNALS = ("stiffness", "friction_stiffness", "friction_torque_pinion", "friction_torque_gear",
+            "transmission_error")
+
+
+def tooth_pair_jumps(pair: GearPair) -> tuple[Jump, ...]:
+    """Phases of one mesh cycle (:meth:`GearPair.mesh_cycle`) where a spur pair's mesh
+    signals jump: a tooth pair enters at 0 (the sample there holds it: the path of contact
+    is closed) and the leaving pair drops out at ``eps_alpha - floor(eps_alpha)`` (the
+    sample there still holds it). None for helical gears, whose contact lines enter and
+    leave gradually, nor when eps_alpha is a whole number (entry and exit coincide)."""
+    if pair.pinion.base_helix_angle != 0.0:
+        return ()
+    eps = (pair.s_end - pair.s_start) / pair.base_pitch
+    leave = eps - math.floor(eps)
+    if min(leave, 1.0 - leave) < JUMP_TOLERANCE:
+        return ()
+    return (Jump(0.0, "after"), Jump(leave, "before"))
+
+
+def with_resolved_jumps(excitation: MeshExcitation, pair: GearPair) -> MeshExcitation:
+    """The excitation at ``max(n, EXCITATION_SAMPLES)`` phases with the jumps where a
+    spur pair's tooth pairs enter and leave contact at their exact phases
+    (:func:`tooth_pair_jumps`, :func:`pipeline.signals.resample_with_jumps`).
+
+    Sampled over a mesh cycle, k(t) and e(t) ramp across the sample interval holding an
+    entry or exit; the damping force ``c (delta' - e')`` and the response then depend on
+    the sampling (the demo pair's dynamic factor moved 0.68 % from 60 to 360 contact
+    positions; resolved, 0.004 %). Unchanged for helical pairs.
+    """
+    jumps = tooth_pair_jumps(pair)
+    if not jumps:
+        return excitation
+    n = max(excitation.stiffness.values.size, EXCITATION_SAMPLES)
+    fields = {name: resample_with_jumps(getattr(excitation, name), jumps, n)
+              for name in _SIGNALS if getattr(excitation, name) is not None}
+    return replace(excitation, **fields)
+
+
 def exact_profile_available() -> bool:
     """True when :mod:`pipeline.geometry.profile` (exact tooth profile) can be imported."""
     return importlib.util.find_spec("pipeline.geometry.profile") is not None
@@ -157,11 +199,13 @@ def friction_signals(
 
 
 def excitation_from_stiffness(ms: MeshStiffness, tooth_model: str = "exact") -> MeshExcitation:
-    """Convert a :class:`MeshStiffness` (stiffness-stage signs) to a :class:`MeshExcitation`."""
+    """Convert a :class:`MeshStiffness` (stiffness-stage signs) to a :class:`MeshExcitation`;
+    sampled over one mesh cycle of a spur pair, its jumps are resolved
+    (:func:`with_resolved_jumps`)."""
     T = ms.mesh_period
     kf, kt1, kt2 = friction_signals(ms.friction_stiffness, ms.friction_torque_pinion,
                                     ms.friction_torque_gear, T)
-    return MeshExcitation(
+    excitation = MeshExcitation(
         stiffness=PeriodicSignal(ms.total, T),
         friction_stiffness=kf,
         friction_torque_pinion=kt1,
@@ -170,6 +214,10 @@ def excitation_from_stiffness(ms: MeshStiffness, tooth_model: str = "exact") -> 
         tooth_model=tooth_model,
         source="analytical",
     )
+    cycle = ms.pair.mesh_cycle(ms.s0.size)
+    if np.allclose(ms.s0, cycle, rtol=0.0, atol=1e-9 * ms.pair.base_pitch):
+        return with_resolved_jumps(excitation, ms.pair)
+    return excitation
 
 
 def excitation_from_signal(
