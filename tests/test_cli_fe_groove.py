@@ -71,6 +71,22 @@ def test_groove_command(tmp_path, coarse_groove_config, capsys):
     assert stored["torsional_stiffness"] == res["torsional_stiffness"]
 
 
+def test_twist_picture_names_the_halves_groove_and_shaft():
+    """The labels of ``twist.png`` for the wind-turbine sun (halves 185 mm, groove 40 mm,
+    right shaft 340 mm, root radius 140.3 mm): in z order, at the middle of each segment,
+    origin at the middle of the groove (Xu et al. 2020, Fig. 2), the right side at +z."""
+    from pipeline.config import load_gearbox
+    from pipeline.viz.groove import segment_labels
+
+    spec = load_gearbox(GROOVE).groove
+    labels = segment_labels(spec)
+    assert [text for _, text in labels] == ["left half, O_L: +T", "groove",
+                                            "right half, O_R: -T", "right shaft (no load)"]
+    z = np.array([p[2] for p, _ in labels])
+    np.testing.assert_allclose(z, [-0.1125, 0.0, 0.1125, 0.2050 + 0.17], atol=1e-12)
+    assert all(p[0] > spec.gear.root_radius for p, _ in labels)
+
+
 def test_groove_command_reports_bad_input(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text(GROOVE.read_text().replace("bottom_diameter_mm = 270.0",

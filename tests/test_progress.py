@@ -39,15 +39,45 @@ def test_disabled_loop_shows_no_bar_however_long(capsys):
 
 
 def test_captured_stderr_has_whole_lines_only():
-    """stderr to a pipe: no carriage returns, every line ends with a newline."""
+    """stderr to a pipe: no carriage returns, every line ends with a newline; a slow loop
+    gives one line at its end, before the next message."""
     import subprocess
     import sys
 
-    code = ("import time\nfrom pipeline.progress import progress\n"
-            "for _ in progress(range(4), 'slow', after=0.1): time.sleep(0.05)\n"
-            "print('next message', file=__import__('sys').stderr)\n")
+    code = ("import sys, time\n"
+            "from pipeline.progress import progress\n"
+            "for _ in progress(range(4), 'slow', after=0.1):\n"
+            "    time.sleep(0.05)\n"
+            "print('next message', file=sys.stderr)\n")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=False)
     err = p.stderr.decode()
     assert p.returncode == 0 and "\r" not in err and err.endswith("\n")
-    assert err.splitlines() == [err.splitlines()[0], "next message"]
-    assert err.startswith("slow: 4 done in ")
+    first, second = err.splitlines()
+    assert first.startswith("slow: 4 done in ") and second == "next message"
+
+
+def test_figure_drawing_reports_the_figures_written(tmp_path, capsys):
+    """Four drawings of 0.3 s each, drawn in turn (1.2 s, over the 1 s REPORT_AFTER): the
+    queue reports the four files as they appear, in one line when stderr is captured;
+    a queue without show_progress says nothing."""
+    from pipeline.viz.figure_queue import FigureQueue
+
+    def job(path):
+        def draw():
+            time.sleep(0.3)
+            path.write_bytes(b"png")
+            return path
+        return draw
+
+    for show, folder in ((True, tmp_path / "a"), (False, tmp_path / "b")):
+        folder.mkdir()
+        queue = FigureQueue()
+        for i in range(4):
+            queue.add(folder / f"f{i}.png", job(folder / f"f{i}.png"))
+        queue.draw_all(workers=1, show_progress=show)
+        assert sorted(p.name for p in folder.iterdir()) == [f"f{i}.png" for i in range(4)]
+        err = capsys.readouterr().err
+        if show:
+            assert err.startswith("figures drawn: 4 done in ") and err.count("\n") == 1
+        else:
+            assert err == ""

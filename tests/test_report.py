@@ -23,6 +23,7 @@ from test_run import SMALL
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
 from pipeline.contact.distribution import load_distribution
+from pipeline.contact.results import pairs_in_order_of_entry
 from pipeline.io import content_hash
 from pipeline.report.model import format_value
 
@@ -185,6 +186,17 @@ def test_report_numbers_match_the_distribution(report):
     assert q["max_hertz_pressure"]["value"] == dist.hertz_max.value * 1e-6
     assert s["transmission_error"]["quantities"]["peak_to_peak"]["value"] == \
         dist.te_peak_to_peak * 1e6
+    # tooth pairs as the reader counts them (1, 2, ... in the order they take load), the
+    # internal indices k (-1, 0, 1 ...) never shown: the spur pair's k = 0 enters at the
+    # start of the cycle and is pair 1, k = 1 (leaving) pair 2
+    order = [int(dist.pair_index[j]) for j in pairs_in_order_of_entry(dist.load_share)]
+    assert order == [0, 1]
+    assert [dist.pair_number(k) for k in (0, 1)] == [1, 2]
+    assert q["tooth_pair"]["value"] == dist.pair_number(dist.hertz_max.tooth_pair)
+    with open(out / "report_cycle.csv", newline="") as fh:
+        header = next(csv.reader(fh))
+    assert [h for h in header if "load_share" in h] == [
+        "load_share_tooth_pair_1 [-]", "load_share_tooth_pair_2 [-]"]
 
 
 def test_run_writes_the_report_last(tmp_path):

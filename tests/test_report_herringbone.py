@@ -169,3 +169,17 @@ def test_render_false_leaves_out_the_halves_pyvista_maps(report):
     assert {"sun_planet_herringbone.csv", "sun_planet_herringbone_load_map_left.vtu",
             "sun_planet_herringbone_load_map_right.vtu"} <= names
     assert not [n for n in names if n.endswith(".png") and "load_map" in n and "2d" not in n]
+
+
+@pytest.mark.parametrize("entry, words", [("right", "sun torque taken at the right end"),
+                                          ("both", "sun torque taken half at each end")])
+def test_load_map_title_names_the_half_both_flanks_and_the_torque_side(entry, words):
+    """A half's load map draws the sun *and* planet flanks of that helical half; its title
+    says so, how the sun torque leaves ([herringbone] torque_entry), and the band's
+    extremes in N/mm (from N/m)."""
+    from pipeline.run.herringbone import herringbone_map_title
+
+    title = herringbone_map_title("left", 5.98e7, entry, 266.2e3, 623.4e3)
+    assert title == (f"left helical half: sun and planet flanks (K_j = 5.98e+07 N m^2, "
+                     f"{words})\nunit load max 623 / min 266 N/mm; one colour scale for "
+                     "both halves")

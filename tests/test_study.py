@@ -423,7 +423,9 @@ def test_kill_minus_9_during_a_rerun_leaves_the_earlier_result(tmp_path):
 
 def test_sensitivity_and_tradeoff_axes_carry_the_kpi_labels(tmp_path):
     """Every panel of the sensitivity plot, the right-hand column included, reads its KPI by
-    name and unit from the one table of KPI labels; the trade-off plot likewise."""
+    name and unit from the one table of KPI labels; the trade-off plot likewise. The x
+    axes name the study's keys in words with the unit of their suffix."""
+    from pipeline.config.units import key_label
     from pipeline.study.kpis import kpi_label
     from pipeline.study.plots import plot_sensitivity, plot_tradeoff
     from pipeline.study.points import design_points
@@ -450,6 +452,12 @@ def test_sensitivity_and_tradeoff_axes_carry_the_kpi_labels(tmp_path):
     assert kpi_label("te_peak_to_peak_um") == "TE peak to peak (um)"
     assert kpi_label("mesh_stiffness_mean_N_per_um") == "mean mesh stiffness (N/um)"
     assert kpi_label("k_hbeta") == "face load factor K_H\u03b2"
+    assert [ax.get_xlabel() for ax in axs[-1]] == [
+        "contact: tip relief pinion (um) (+1 tied)", "contact: tip relief length gear (mm)"]
+    assert key_label("contact.tip_relief_length_gear_mm") == (
+        "contact: tip relief length gear (mm)")
+    assert key_label("pinion.teeth") == "pinion: teeth"
+    assert key_label("operation.torque_Nm") == "operation: torque (N m)"
     trade = plot_tradeoff(table, kpis[0], kpis[1], 0, "relief")
     ax = trade.axes[0]
     assert (ax.get_xlabel(), ax.get_ylabel()) == (kpi_label(kpis[0]), kpi_label(kpis[1]))

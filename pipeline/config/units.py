@@ -94,3 +94,19 @@ def format_value(value: float, u: Unit) -> str:
     """``value`` (in unit ``u``) with up to 6 significant digits and the unit label."""
     text = f"{value:.6g}"
     return f"{text} {u.label}" if u.label else text
+
+
+def key_label(key: str) -> str:
+    """A dotted file key as an axis label: words and unit.
+
+    >>> key_label("contact.tip_relief_pinion_um")
+    'contact: tip relief pinion (um)'
+    >>> key_label("pinion.teeth")
+    'pinion: teeth'
+    """
+    table, _, name = key.rpartition(".")
+    u = unit_of_key(name)
+    words = name[: len(name) - len(u.suffix) - 1] if u.suffix else name
+    text = words.replace("_", " ")
+    text = f"{table}: {text}" if table else text
+    return f"{text} ({u.label})" if u.label else text

@@ -53,7 +53,7 @@ import numpy as np
 
 from pipeline.contact.analysis import line_of_action_load
 from pipeline.contact.hertz import contact_modulus, effective_radius, hertz_max_pressure
-from pipeline.contact.results import LoadedMeshCycle
+from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError
@@ -191,9 +191,16 @@ class LoadDistribution:
             "K_Hbeta_at_position [-]": self.k_hbeta_position,
             "K_Halpha_at_position [-]": self.k_halpha_position,
         }
-        for j, k in enumerate(self.pair_index):
-            cols[f"load_share_pair_{k} [-]"] = self.load_share[:, j]
+        for n, j in enumerate(pairs_in_order_of_entry(self.load_share), start=1):
+            cols[f"load_share_tooth_pair_{n} [-]"] = self.load_share[:, j]
         return cols
+
+    def pair_number(self, k: int) -> int:
+        """The reader's number (1, 2, ...: in the order the pairs take load over the cycle,
+        as the load-share figures count them) of the tooth pair with index ``k``
+        (:meth:`GearPair.pair_indices`)."""
+        return pairs_in_order_of_entry(self.load_share).index(
+            int(np.flatnonzero(self.pair_index == k)[0])) + 1
 
     def face_columns(self) -> dict[str, np.ndarray]:
         """Per-face-position columns (shape (n_z,) each): mean and envelope line load."""

@@ -1,4 +1,5 @@
-"""Load maps of the two sun flanks of a herringbone mesh (Xu et al. 2020, Fig. 8).
+"""Load maps of the two helical halves of a herringbone mesh (Xu et al. 2020, Fig. 8): the unit
+load on the sun and planet flanks of each half (equal at a contact point).
 
 Each half's contact (:class:`~pipeline.contact.herringbone_results.HerringboneCycle`)
 is a helical-half cycle, so :func:`pipeline.contact.loadmap.flank_load_map` grids it as

@@ -298,3 +298,11 @@ class LoadedMeshCycle:
             "initial_separation [m]": self.point_separation,
             "contact_deformation [m]": self.point_contact_deformation,
         }
+
+
+def pairs_in_order_of_entry(pair_loads: np.ndarray) -> list[int]:
+    """Columns of the loaded tooth pairs, ordered by their first loaded mesh position
+    (the reader's "pair 1, 2, ..." instead of the internal indices -1, 0, 1)."""
+    loaded = pair_loads != 0
+    cols = [j for j in range(loaded.shape[1]) if loaded[:, j].any()]
+    return sorted(cols, key=lambda j: int(np.argmax(loaded[:, j])))

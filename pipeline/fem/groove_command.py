@@ -97,7 +97,8 @@ def run(args: argparse.Namespace) -> int:
     spec = box.groove
     target = output_dir(args, "groove")
     folder = cache_folder(args)
-    analysis = analyse_groove(spec, cache_dir=folder, use_cache=folder is not None)
+    analysis = analyse_groove(spec, cache_dir=folder, use_cache=folder is not None,
+                              progress=not args.json)
     res = analysis.result
     shift = res.phase_shift(spec.sun_torque)
     rows = [res]
@@ -108,8 +109,8 @@ def run(args: argparse.Namespace) -> int:
             dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
                                 else "distributed"),
         ):
-            rows.append(analyse_groove(variant, cache_dir=folder,
-                                       use_cache=folder is not None).result)
+            rows.append(analyse_groove(variant, cache_dir=folder, use_cache=folder is not None,
+                                       progress=not args.json).result)
     with staged_output(target) as out:
         files = _write(analysis, rows, spec, out)
         record(out, args, box, files)

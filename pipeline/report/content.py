@@ -218,7 +218,8 @@ def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any
         quantity("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
         quantity("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
            m.slope_deviation * UM),
-        quantity("pitch_errors", "pitch errors of tooth pairs 0, 1, ...", "um", pitch),
+        quantity("pitch_errors", "pitch errors of tooth pairs k = 0, 1, ... (k = 0 enters "
+                 "contact at the start of the cycle)", "um", pitch),
         quantity("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
            ", ".join(f"{e * UM:g}" for e in assembly.pinion)),
         quantity("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
@@ -324,7 +325,8 @@ def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) 
         quantity("roll_coordinate", "where: roll coordinate s from T1", "mm", h.s * MM),
         quantity("pinion_angle", "when: pinion angle in the cycle", "deg",
            math.degrees(h.pinion_angle)),
-        quantity("tooth_pair", "tooth pair", "-", h.tooth_pair),
+        quantity("tooth_pair", "which tooth pair (numbered as they take load in the cycle)",
+                 "-", dist.pair_number(h.tooth_pair)),
     ), figures=tuple(figures), notes=(
         "Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load along "
         "the contact line, normal-section radii of curvature, plane-strain moduli of both "

@@ -81,7 +81,7 @@ def _planetary_mesh(box: Any, name: str, st: Any) -> content.PlanetaryMesh | Non
 def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
                          half_roots: dict[str, Any], out: Path, prefix: str, fig) -> Any:
     """The herringbone section with its figures: the halves' line loads and the existing
-    load maps of both sun flanks."""
+    load maps of both helical halves."""
     from pipeline.report.herringbone_section import herringbone_section
     from pipeline.viz.herringbone import plot_half_line_loads
 
@@ -97,8 +97,8 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
     for side in ("left", "right"):
         file = f"{prefix}herringbone_load_map_{side}.png"
         if (out / file).is_file():
-            figs.append(Figure(file, f"Unit load over the {side} sun flank (contact through "
-                                     "the groove)"))
+            figs.append(Figure(file, f"Unit load over the sun and planet flanks of the {side} "
+                                     "helical half (contact through the groove)"))
     return herringbone_section(halves, half_roots, planetary.speeds, stage.cycle,
                                stage.groove.equivalent_Kj, sun_torque=planetary.sun_torque,
                                figures=figs)
@@ -218,31 +218,45 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
                   cache: bool = True, cache_dir: Path | None = None) -> list[Path]:
     """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
     the files. A run without gear meshes (a lumped model) has none. ``cache``, ``cache_dir``:
-    the on-disk cache of the FE root-stress tables (the run's own)."""
-    from pipeline.contact.root_stress import analyse_root_stress
+    the on-disk cache of the FE root-stress tables (the run's own). With ``show_progress``
+    a mesh whose report takes over a second gets a line on stderr."""
+    from pipeline.progress import Steps
 
     files: list[Path] = []
-    box = result.gearbox
+    steps = Steps("load distribution reports", enabled=show_progress)
     for name, st in result.meshes.items():
         if st.contact is None:
             continue
-        t0 = time.perf_counter()
-        prefix = "" if name == "mesh" else f"{name}_"
-        pair = st.stiffness.actual
-        label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
-        title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
-                 f"{pair.pinion.module * 1e3:g} mm, beta "
-                 f"{math.degrees(pair.pinion.helix_angle):g} deg")
-        def root_stress(cycle, on_pair, operation):
-            return analyse_root_stress(cycle, on_pair, operation, box.fe_source, cache=cache,
-                                       cache_dir=cache_dir, show_progress=show_progress)
-
-        root = root_stress(st.contact, pair, st.case.operation)
-        halves, half_roots = _herringbone_halves(st, root, root_stress)
-        report, dist = mesh_report(result, name, out, figures, title=title, command=command,
-                                   root_stress=root, halves=halves, half_roots=half_roots)
-        subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
-                    f"{len(st.contact)} mesh positions; written in "
-                    f"{time.perf_counter() - t0:.1f} s")
-        files += write_mesh_report(report, dist, out, prefix, subtitle, root)
+        with steps.step(f"report of {name.replace('_', '-')}"):
+            files += _write_one_report(result, name, st, out, figures, command, show_progress,
+                                       cache, cache_dir)
     return files
+
+
+def _write_one_report(result: Any, name: str, st: Any, out: Path, figures: FigureCache,
+                      command: str, show_progress: bool, cache: bool,
+                      cache_dir: Path | None) -> list[Path]:
+    """The report of one mesh (:func:`write_reports`); its files."""
+    from pipeline.contact.root_stress import analyse_root_stress
+
+    box = result.gearbox
+    t0 = time.perf_counter()
+    prefix = "" if name == "mesh" else f"{name}_"
+    pair = st.stiffness.actual
+    label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
+    title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
+             f"{pair.pinion.module * 1e3:g} mm, beta "
+             f"{math.degrees(pair.pinion.helix_angle):g} deg")
+
+    def root_stress(cycle, on_pair, operation):
+        return analyse_root_stress(cycle, on_pair, operation, box.fe_source, cache=cache,
+                                   cache_dir=cache_dir, show_progress=show_progress)
+
+    root = root_stress(st.contact, pair, st.case.operation)
+    halves, half_roots = _herringbone_halves(st, root, root_stress)
+    report, dist = mesh_report(result, name, out, figures, title=title, command=command,
+                               root_stress=root, halves=halves, half_roots=half_roots)
+    subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
+                f"{len(st.contact)} mesh positions; written in "
+                f"{time.perf_counter() - t0:.1f} s")
+    return write_mesh_report(report, dist, out, prefix, subtitle, root)

@@ -114,7 +114,7 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
         with staged_output(target) as out:
             with result.log.step("writing tables and figures", long=True):
                 files = write_run(result, out, args.full, figures)
-                figures.queue.draw_all()
+                figures.queue.draw_all(show_progress=options.show_progress)
             if result.meshes:  # the report embeds the figures drawn above: after them
                 from pipeline.report import write_reports
 

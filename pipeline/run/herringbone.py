@@ -90,9 +90,10 @@ def _load_groove(path: Path) -> GrooveStiffness:
     return GrooveStiffness.from_dict(json.loads(str(load_arrays(path)["json"])))
 
 
-def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path | None = None
-                  ) -> tuple[GrooveStiffness, bool]:
-    """The groove FE result of ``spec`` from the cache, or computed and stored.
+def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path | None = None,
+                  progress: bool = False) -> tuple[GrooveStiffness, bool]:
+    """The groove FE result of ``spec`` from the cache, or computed and stored (its phases
+    on stderr with ``progress``).
 
     Returns (result, True if read from the cache); ``result.timings`` are those of the
     run that computed it.
@@ -103,7 +104,7 @@ def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path
     inputs = {"spec": spec, "geometry_version": GEOMETRY_VERSION, "format": GROOVE_FORMAT}
     res, _, hit = cached_file("groovestiffness", inputs,
                               lambda: groove_stiffness(spec, cache_dir=cache_dir,
-                                                       use_cache=cache),
+                                                       use_cache=cache, progress=progress),
                               _load_groove, _save_groove, cache_dir, cache)
     return res, hit
 
@@ -158,7 +159,8 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         return None
     with log.step("groove FE", long=True) as note:
         groove, g_hit = cached_groove(box.groove, cache=options.cache,
-                                      cache_dir=options.cache_dir)
+                                      cache_dir=options.cache_dir,
+                                      progress=options.show_progress)
         note["cached"] = g_hit
         note["text"] = f"K_j = {groove.equivalent_Kj:.4g} N m^2"
     op = mesh_operations(ps, box.operation, 1)[0]
@@ -175,6 +177,22 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         note["text"] = (f"load left/right {s['left']['load_share_mean']:.3f} / "
                         f"{s['right']['load_share_mean']:.3f}")
     return HerringboneStage(groove, cycle, pair, op, g_hit, c_hit)
+
+
+TORQUE_ENTRY_WORDS = {"right": "sun torque taken at the right end",
+                      "left": "sun torque taken at the left end",
+                      "both": "sun torque taken half at each end"}
+"""How a load-map title says ``[herringbone] torque_entry``."""
+
+
+def herringbone_map_title(side: str, kj: float, torque_entry: str, lo: float,
+                          hi: float) -> str:
+    """Title of one half's load map: the half (its sun and planet flanks), the groove's
+    K_j (N m^2), where the sun torque leaves, and the loaded band's extremes (N/m in,
+    N/mm shown)."""
+    return (f"{side} helical half: sun and planet flanks (K_j = {kj:.3g} N m^2, "
+            f"{TORQUE_ENTRY_WORDS[torque_entry]})\nunit load max {hi * 1e-3:.0f} / "
+            f"min {lo * 1e-3:.0f} N/mm; one colour scale for both halves")
 
 
 def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
@@ -200,8 +218,8 @@ def write_herringbone(stage: HerringboneStage, out: Path, prefix: str, figures,
     top = max(m.unit_load.max() for m in maps.values()) * 1e-3
     for side, m in maps.items():
         lo, hi = loaded_range(m)
-        title = (f"{side} sun flank, K_j = {stage.groove.equivalent_Kj:.3g} N m^2, torque "
-                 f"{stage.cycle.torque_entry}: max {hi * 1e-3:.0f} / min {lo * 1e-3:.0f} N/mm")
+        title = herringbone_map_title(side, stage.groove.equivalent_Kj,
+                                      stage.cycle.torque_entry, lo, hi)
         files.append(figures.save(out / f"{prefix}herringbone_load_map_{side}.png",
                                   render_load_map, half_pair(stage.pair, side), m, title,
                                   clim=(0.0, top)))

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from pipeline.config.units import key_label
 from pipeline.study.kpis import kpi_label
 from pipeline.study.spec import StudySpec
 from pipeline.viz.canvas import new_figure
@@ -62,7 +63,7 @@ def plot_sensitivity(spec: StudySpec, table: dict[str, list], kpis: list[str]) -
                 ax.plot(range(len(xs)), ys, "o")
                 ax.set_xticks(range(len(xs)), [str(v) for v in xs])
             if i == len(kpis) - 1:
-                ax.set_xlabel(a.label.rsplit(".", 1)[-1] + _more(a.keys))
+                ax.set_xlabel(key_label(a.label) + _more(a.keys), fontsize=8)
             # every panel: the columns have their own y scales
             ax.set_ylabel(kpi_label(k), fontsize=8)
             ax.grid(alpha=0.3)

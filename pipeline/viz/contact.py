@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.contact.results import LoadedMeshCycle
+from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.viz.canvas import new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
@@ -39,11 +39,3 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     ax[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title
     return fig
-
-
-def pairs_in_order_of_entry(pair_loads: np.ndarray) -> list[int]:
-    """Columns of the loaded tooth pairs, ordered by their first loaded mesh position
-    (the reader's "pair 1, 2, ..." instead of the internal indices -1, 0, 1)."""
-    loaded = pair_loads != 0
-    cols = [j for j in range(loaded.shape[1]) if loaded[:, j].any()]
-    return sorted(cols, key=lambda j: int(np.argmax(loaded[:, j])))

@@ -15,10 +15,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.contact.distribution import LoadDistribution
-from pipeline.contact.results import LoadedMeshCycle
+from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
 from pipeline.viz.canvas import new_figure
-from pipeline.viz.contact import pairs_in_order_of_entry
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

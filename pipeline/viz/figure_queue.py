@@ -71,8 +71,12 @@ class FigureQueue:
         if drawer is not None:
             drawer.close(kill=True)
 
-    def draw_all(self, workers: int | None = None) -> None:
+    def draw_all(self, workers: int | None = None, show_progress: bool = False) -> None:
         """Draw every queued figure, in up to ``workers`` processes (default: CPU count).
+
+        ``show_progress``: the figures written so far, on stderr once the drawing has taken a
+        second (:func:`pipeline.progress.progress`; counted by their files appearing, as
+        the drawing processes write them atomically).
 
         Raises
         ------
@@ -83,11 +87,49 @@ class FigureQueue:
             self.stop()
             return
         drawer, self.drawer = self.drawer, None
-        failures = drawer.draw(jobs, workers) if drawer is not None else None
-        if failures is None:
-            failures = _draw_parallel(jobs, workers)
+        with _counting_files([path for path, _ in jobs], show_progress):
+            failures = drawer.draw(jobs, workers) if drawer is not None else None
+            if failures is None:
+                failures = _draw_parallel(jobs, workers)
         if failures:
             raise RuntimeError("figures not written: " + "; ".join(failures))
+
+
+def _files_written(paths: list[Path], finished: threading.Event,
+                   poll: float = 0.2) -> Iterator[Path]:
+    """Yield each of ``paths`` not there at the start once it exists, until all are or
+    ``finished`` is set (then those written by then)."""
+    waiting = [p for p in paths if not p.exists()]
+    while waiting:
+        stop = finished.wait(poll)
+        for p in [p for p in waiting if p.exists()]:
+            waiting.remove(p)
+            yield p
+        if stop:
+            return
+
+
+@contextmanager
+def _counting_files(paths: list[Path], enabled: bool) -> Iterator[None]:
+    """Report the files of ``paths`` appearing while the block runs (a watcher thread)."""
+    if not enabled:
+        yield
+        return
+    from pipeline.progress import progress
+
+    finished = threading.Event()
+
+    def watch() -> None:
+        for _ in progress(_files_written(paths, finished), "figures drawn", total=len(paths)):
+            pass
+
+    watcher = threading.Thread(target=watch, daemon=True)
+    watcher.start()
+    try:
+        yield
+    finally:
+        finished.set()
+        watcher.join()
 
 
 def _can_fork() -> bool:

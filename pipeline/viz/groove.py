@@ -14,7 +14,27 @@ from pipeline.fem.groove.stress import torsional_shear_stress
 from pipeline.viz._offscreen import offscreen_plotter
 
 if TYPE_CHECKING:
+    from pipeline.fem.groove.spec import GrooveSpec
     from pipeline.fem.groove.study import GrooveAnalysis
+
+_SEGMENT_LABELS = {
+    "shaft_left": "left shaft (no load)",
+    "left_gear": "left half, O_L: +T",
+    "groove": "groove",
+    "right_gear": "right half, O_R: -T",
+    "shaft_right": "right shaft (no load)",
+}
+"""What the twist picture calls each segment of the body (:meth:`GrooveSpec.body`)."""
+
+
+def segment_labels(spec: GrooveSpec) -> list[tuple[np.ndarray, str]]:
+    """Label point (m, above the body on +x, at the segment's middle in z) and text of
+    every segment of the body: the halves with the torques at their centres O_L, O_R,
+    the groove and the shaft extensions."""
+    body = spec.body()
+    top = 1.3 * max(seg.outer_radius for seg in body.segments)
+    return [(np.array([top, 0.0, 0.5 * (seg.z0 + seg.z1)]), _SEGMENT_LABELS[seg.name])
+            for seg in body.segments]
 
 
 def render_twisted_body(
@@ -55,14 +75,17 @@ def render_twisted_body(
                      scalar_bar_args={"title": "shear stress tau_theta_z [MPa]",
                                       "vertical": False, "position_x": 0.3,
                                       "position_y": 0.04, "width": 0.4})
-    plotter.add_text(f"{analysis.spec.gear.name}: relative torque {torque / 1e3:.4g} kN m, "
-                     f"displacement x{magnification:.3g}\n"
+    points, texts = zip(*segment_labels(analysis.spec), strict=True)
+    plotter.add_point_labels(np.array(points), list(texts), font_size=14, point_size=1,
+                             shape_opacity=0.7, always_visible=True)
+    plotter.add_text(f"{analysis.spec.gear.name}: relative torque T = {torque / 1e3:.4g} kN m "
+                     f"between the half centres O_L and O_R, displacement x{magnification:.3g}\n"
                      f"k_t = {analysis.result.torsional_stiffness:.4g} N m/rad, "
                      f"K_j = {analysis.result.equivalent_Kj:.4g} N m^2 "
                      f"({analysis.spec.teeth_model}, {analysis.spec.coupling})", font_size=10)
-    # Gear axis horizontal, seen slightly from above the side.
+    # Gear axis horizontal, +z (the right half) to the right, seen slightly from above.
     zc = 0.5 * (mesh.p[2].min() + mesh.p[2].max())
-    plotter.camera_position = [(1.0, -1.6, zc + 0.5), (0.0, 0.0, zc), (1.0, 0.0, 0.0)]
+    plotter.camera_position = [(1.0, 1.6, zc + 0.5), (0.0, 0.0, zc), (1.0, 0.0, 0.0)]
     plotter.reset_camera()
     plotter.camera.zoom(1.3)
     return plotter

@@ -92,7 +92,8 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     aspect = float(np.clip(1.1 * b / height / view, 1.6, 7.0))  # row width / height
     row_h = int(window_width / aspect)
     title_h = 30 * (title.count("\n") + 1) if title else 0  # px per line at font size 9
-    weights = [row_h + title_h] + [row_h] * (len(members) - 1)
+    caption_h = 30  # each row's caption band above its tooth
+    weights = [row_h + title_h + caption_h] + [row_h + caption_h] * (len(members) - 1)
     plotter = offscreen_plotter(shape=(len(members), 1), border=False, row_weights=weights,
                                 window_size=[window_width, sum(weights)])
     try:
@@ -120,17 +121,18 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
                     body.bounds[0] - 1.0)
             name = "" if gear.name == member else f" ({gear.name})"
             note = "; the internal gear's flank is not drawn" if pair.gear.internal else ""
-            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}",
-                             position="lower_left", font_size=10)
-            row_aspect = window_width / (weights[i] if i else row_h)
             _fit_camera(plotter, (*body.bounds[:2], body.bounds[2] - 1.3 * gear.module * 1e3,
-                                  *body.bounds[3:]), row_aspect * view)
-            if i == 0 and title_h:  # keep the title band above the tooth free
-                cam = plotter.camera
-                grow = cam.parallel_scale * (weights[0] / row_h - 1.0)
-                cam.parallel_scale += grow
-                cam.focal_point = tuple(np.add(cam.focal_point, [0.0, grow, 0.0]))
-                cam.position = tuple(np.add(cam.position, [0.0, grow, 0.0]))
+                                  *body.bounds[3:]), window_width / row_h * view)
+            # keep the bands above the tooth free: the title (first row) and the caption
+            cam = plotter.camera
+            grow = cam.parallel_scale * (weights[i] / row_h - 1.0)
+            cam.parallel_scale += grow
+            cam.focal_point = tuple(np.add(cam.focal_point, [0.0, grow, 0.0]))
+            cam.position = tuple(np.add(cam.position, [0.0, grow, 0.0]))
+            top = weights[i] - (title_h if i == 0 else 0)
+            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}",
+                             position=(8, top - caption_h + 4), font_size=10)
+            if i == 0 and title_h:
                 plotter.add_text(title, position="upper_edge", font_size=9)
         plotter.subplot(0, 0)
         plotter.add_scalar_bar(title="unit load p [N/mm]\n", vertical=True, n_labels=6,

@@ -22,6 +22,7 @@ from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import ElasticModel, build_model
 from pipeline.fem.size3d import check_size_3d
+from pipeline.progress import Steps
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 
 
@@ -63,21 +64,27 @@ class GrooveAnalysis:
 
 def analyse_groove(
     spec: GrooveSpec, cache_dir: str | Path | None = None, use_cache: bool = True,
-    solver: str = "auto",
+    solver: str = "auto", progress: bool = False,
 ) -> GrooveAnalysis:
-    """Run the FE model of ``spec`` (see module doc)."""
+    """Run the FE model of ``spec`` (see module doc). ``progress``: its phases (meshing,
+    assembly, factorisation and solves) on stderr when one takes over a second
+    (:class:`pipeline.progress.Steps`)."""
     t_start = time.perf_counter()
+    steps = Steps(f"groove FE of {spec.gear.name}", enabled=progress)
     body = spec.body()
     settings = spec.mesh_settings()
     check_size_3d(f"the groove body of {spec.gear.name}", estimated_size(body, settings),
                   f"raise groove.mesh_size_mm (now {spec.mesh_size * 1e3:g} mm)")
-    data, _, hit = cached_tet_mesh(
-        "groove", {"body": asdict(body), "mesh": asdict(settings),
-                   "geometry_version": GEOMETRY_VERSION},
-        lambda: mesh_coaxial_body(body, settings), cache_dir=cache_dir, enabled=use_cache)
-    sk = to_skfem(data)
+    with steps.step("meshing the body (Gmsh)"):
+        data, _, hit = cached_tet_mesh(
+            "groove", {"body": asdict(body), "mesh": asdict(settings),
+                       "geometry_version": GEOMETRY_VERSION},
+            lambda: mesh_coaxial_body(body, settings), cache_dir=cache_dir,
+            enabled=use_cache)
+        sk = to_skfem(data)
     t_mesh = time.perf_counter() - t_start
-    model = build_model(sk.mesh, spec.gear.material, order=2, kind="3d")
+    with steps.step("assembling the stiffness (P2 tetrahedra)"):
+        model = build_model(sk.mesh, spec.gear.material, order=2, kind="3d")
     zl, zr = spec.node_z
     left_loads = None
     if spec.coupling == "tooth_forces":
@@ -85,10 +92,11 @@ def analyse_groove(
         sign, z_ref = (seg.teeth.sign, seg.teeth.z_reference) if seg.teeth else (-1, seg.z1)
         left_loads = planet_mesh_loads(model, sk.triangles["left_gear:outer"], spec.gear, sign,
                                        z_ref, spec.planets, toothed=seg.teeth is not None)
-    cpl = couple_two_surfaces(model, sk.triangles["left_gear:outer"],
-                              sk.triangles["right_gear:outer"],
-                              np.array([0.0, 0.0, zl]), np.array([0.0, 0.0, zr]),
-                              spec.coupling, solver, left_loads)
+    with steps.step(f"factorising and solving the coupling cases ({model.n_dof} DOF)"):
+        cpl = couple_two_surfaces(model, sk.triangles["left_gear:outer"],
+                                  sk.triangles["right_gear:outer"],
+                                  np.array([0.0, 0.0, zl]), np.array([0.0, 0.0, zr]),
+                                  spec.coupling, solver, left_loads)
     kt = cpl.torsional_stiffness
     total = time.perf_counter() - t_start
     result = GrooveStiffness(
