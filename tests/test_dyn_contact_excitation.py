@@ -37,7 +37,11 @@ from pipeline.dynamics.contact_excitation import (
     point_friction_coefficients,
 )
 from pipeline.dynamics.harmonic_balance import harmonic_balance
-from pipeline.dynamics.mesh_input import EXCITATION_SAMPLES, tooth_pair_jumps, excitation_from_stiffness
+from pipeline.dynamics.mesh_input import (
+    EXCITATION_SAMPLES,
+    excitation_from_stiffness,
+    tooth_pair_jumps,
+)
 from pipeline.dynamics.models.spur_pair import spur_pair_model
 from pipeline.dynamics.options import PairDynamicsOptions
 from pipeline.dynamics.quasi_static import quasi_static_response

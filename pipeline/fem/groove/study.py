@@ -22,8 +22,8 @@ from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import ElasticModel, build_model
 from pipeline.fem.size3d import check_size_3d
-from pipeline.progress import Steps
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
+from pipeline.progress import Steps
 
 
 @dataclass(frozen=True, eq=False)
