@@ -4,6 +4,7 @@ natural frequencies, sweep.csv has every computed column, left/right herringbone
 from __future__ import annotations
 
 import csv
+import math
 from pathlib import Path
 
 import numpy as np
@@ -203,6 +204,34 @@ def test_layouts_put_the_gears_where_they_are():
     p, g = pair.place("pinion"), pair.place("gear")
     assert np.hypot(p.centre[0] - g.centre[0], p.centre[1] - g.centre[1]) == pytest.approx(
         p.radius + g.radius)  # base circles touch on the line of action (the x axis)
+
+
+def test_an_internal_pair_draws_the_ring_around_the_pinion():
+    """The planet-ring pair of the examples (planet z 37 inside ring z 83): the ring's centre
+    lies above the line of action at the operating centre distance a_w from the pinion's,
+    both base circles tangent to the line y = -r_b1 (T1 at x = 0, T2 at x = -T1T2 with
+    T1T2 = a_w sin alpha_w, ISO 21771), and the ring turns the pinion's way."""
+    from pipeline.config import load_gearbox
+    from pipeline.dynamics.layout import model_layout
+    from pipeline.dynamics.models.spur_pair import spur_pair_model
+    from pipeline.dynamics.options import PairDynamicsOptions
+
+    box = load_gearbox(Path(__file__).resolve().parents[1] / "workflows/configs"
+                       / "planet_ring_pair.toml")
+    pair = box.pair
+    options = PairDynamicsOptions(mesh_stiffness=rectangular_mesh_stiffness(2e8, 3e8, 1.6, 60))
+    model = spur_pair_model(pair, (box.bodies["pinion"], box.bodies["gear"]), box.operation,
+                            options)
+    rp, t = pair.pinion.base_radius, pair.t1t2
+    lay = model_layout(model)
+    p, g = lay.place("pinion"), lay.place("gear")
+    assert pair.gear.internal and g.spin == p.spin == 1
+    assert np.hypot(g.centre[0], g.centre[1]) == pytest.approx(pair.operating_centre_distance,
+                                                               rel=1e-12)
+    assert g.centre[1] - g.radius == pytest.approx(-rp, abs=1e-15)  # tangent to y = -r_b1
+    assert lay.line_of_action == ((0.0, -rp), (-t, -rp))
+    assert t == pytest.approx(pair.operating_centre_distance
+                              * math.sin(pair.operating_pressure_angle), rel=1e-14)
 
 
 def test_other_models_get_a_schematic_grid():

@@ -3,7 +3,8 @@
 A gear pair is two base circles touching the line of action at T1 and T2 (the model's
 line of action is the x axis: the pinion's centre at the origin, T1 below it, the gear
 below the line and T1 T2 further along +x, the direction the pinion's contact point
-moves; the gear turns the other way, ``spin`` -1); a planetary set is the sun,
+moves; the gear turns the other way, ``spin`` -1; an internal gear's centre lies above
+the line, T2 a length T1 T2 behind T1, and it turns the pinion's way); a planetary set is the sun,
 the planets on the carrier circle at their angles, the ring and the carrier (drawn as
 the circle through the planet centres). Both halves of a herringbone member sit at the
 same place (``side`` "L" or "R"). Bodies of other models (the split-torque
@@ -97,9 +98,15 @@ def _planetary(model, bodies: tuple[Body, ...]) -> ModelLayout:
 def _pair(model) -> ModelLayout:
     rp, rg = model.base_radius_pinion, model.base_radius_gear
     t1t2 = getattr(model, "t1t2", None) or 0.0
-    return ModelLayout((BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"),
-                        BodyPlace("gear", (t1t2, -(rp + rg)), rg, 0.0, "gear", spin=-1)),
-                       line_of_action=((0.0, -rp), (t1t2, -rp)) if t1t2 else None)
+    if getattr(model, "gear_internal", False):
+        # the ring's tangent point T2 lies behind T1 (the pitch point is on +x of both)
+        gear = BodyPlace("gear", (-t1t2, rg - rp), rg, 0.0, "gear", spin=1)
+        line = ((0.0, -rp), (-t1t2, -rp))
+    else:
+        gear = BodyPlace("gear", (t1t2, -(rp + rg)), rg, 0.0, "gear", spin=-1)
+        line = ((0.0, -rp), (t1t2, -rp))
+    return ModelLayout((BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"), gear),
+                       line_of_action=line if t1t2 else None)
 
 
 def _grid(bodies: tuple[Body, ...]) -> ModelLayout:

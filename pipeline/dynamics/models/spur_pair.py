@@ -50,9 +50,14 @@ class SpurPairModel:
     friction_stiffness : K_f(tau) in N/m (Jin et al. 2018, eq. 16), or ``None``.
     friction_torque_pinion, friction_torque_gear : K_Tf(tau) in N m/m, or ``None``.
     torsional_only : keep only the two rotations (2-inertia model).
-    t1t2 : length of the line of action between the base circles' tangent points T1 T2
-        of an external pair, m; places the gear in mode-shape drawings only (``None``:
-        not known, the base circles are drawn touching).
+    t1t2 : length of the line of action between the base circles' tangent points T1 T2,
+        m; places the gear in mode-shape drawings only (``None``: not known, the base
+        circles of an external pair are drawn touching).
+    gear_internal : the gear is an internal gear (a ring): in mode-shape drawings its base
+        circle encloses the pinion's, its centre on the pinion's side of the line of action,
+        and it turns the pinion's way. The equations are those of the external pair: each
+        rotation is measured in its gear's own sense of rotation, in which both base
+        tangent points move the same way along the line of action.
     """
 
     mesh_stiffness: PeriodicSignal
@@ -74,6 +79,7 @@ class SpurPairModel:
     friction_torque_gear: PeriodicSignal | None = None
     torsional_only: bool = False
     t1t2: float | None = None
+    gear_internal: bool = False
 
     def __post_init__(self) -> None:
         check_int_range("pinion_teeth", self.pinion_teeth, 5, 10_000)
@@ -188,5 +194,6 @@ def spur_pair_model(
         friction_torque_pinion=excitation.friction_torque_pinion if friction else None,
         friction_torque_gear=excitation.friction_torque_gear if friction else None,
         torsional_only=options.dofs == "torsional",
-        t1t2=None if pair.gear.internal else pair.t1t2,
+        t1t2=pair.t1t2,
+        gear_internal=pair.gear.internal,
     )
