@@ -23,6 +23,17 @@ NAME_MAX, and the longest temporary file inside it (a name of up to
 :data:`LONGEST_FILE_NAME` bytes plus its decoration) PATH_MAX; on Linux a result folder's
 name has at most 229 bytes. Problems with the target are :class:`OutputError`, one line
 naming the folder; the command line prints it without a traceback.
+
+Checks: ``tests/test_kill_during_write.py`` (slow) kills a run with SIGKILL inside a cache
+write, after 3 or 15 result files and inside the swap; the rerun is complete and
+bit-identical, figures drawn afresh included. Runs writing into one folder at the same time
+each swap in a whole result and the last one stays (three processes, 15 rounds each, both
+swaps: ``tests/test_output_folder.py``). The next run for a folder also deletes the
+temporary files whose process is gone (in the cache too). Files and folders get the
+permissions of the umask (0644 / 0755 with the usual 022).
+
+Cost, measured side by side on 2 cores shared with other jobs (load average 4-5): 25 small
+CSV files staged and flushed 124-265 ms against 108-135 ms written plainly.
 """
 
 from __future__ import annotations

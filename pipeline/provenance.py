@@ -10,6 +10,12 @@ and the BLAS, the start time, the run time and the output files. Its ``hash`` (S
 options, the input and referenced files' contents, the code and the versions) and
 nothing that does not (times, folders, the platform string, which libraries the run
 happened to load), so two runs with the same hash computed the same thing.
+
+The numerical libraries recorded are NumPy, SciPy, scikit-fem, Gmsh and
+cholespy/scikit-sparse, with the sparse Cholesky used and the BLAS; a referenced file is
+for example a ``kind = "csv"`` stiffness table. Every command and workflow writes one.
+Cost, measured on 2 cores shared with other jobs (load average 4-5): 85-98 ms per record
+(source hash, ``git``, versions).
 """
 
 from __future__ import annotations

@@ -150,9 +150,10 @@ def test_validate_stiffness_helical(tmp_path):
 
 @pytest.mark.slow
 def test_excitation_comparison_workflow(tmp_path):
-    """Coarse run without the 3D case (about 30 s). What the README states: the loaded
-    contact's static TE raises the DTE above k(t) alone; the FE whole gears are softer in
-    double contact, so their mean stiffness, TE and DTE fall below the analytical LTCA's."""
+    """Coarse run without the 3D case (about 30 s). What the workflow's docstring states:
+    the loaded contact's static TE raises the DTE above k(t) alone; the FE whole gears are
+    softer in double contact, so their mean stiffness, TE and DTE fall below the analytical
+    LTCA's."""
     out = tmp_path / "out"  # a result folder holds nothing else, the cache beside it
     s = load_workflow("excitation_comparison").main(
         ["--no-3d", "--out", str(out), "--cache-dir", str(tmp_path / "cache")])
@@ -170,7 +171,7 @@ def test_excitation_fe3d_between_plane_limits(tmp_path):
     """The 3D whole-gear excitation of the 20 mm wide spur pair (free end faces) lies
     between the 2D plane-stress and plane-strain limits in mean loaded mesh stiffness
     (measured 271.1 < 276.9 < 281.9 N/um), and its DTE at 2340 rpm is within 5 % of the
-    2D plane-strain one (measured 2 %) - what the README states. About 60 s cold."""
+    2D plane-strain one (measured 2 %) - what the workflow's docstring states. About 60 s cold."""
     import numpy as np
 
     from pipeline.run import RunOptions, run_pipeline

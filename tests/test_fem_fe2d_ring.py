@@ -23,7 +23,7 @@ default). Measured (N/um, mean / min / max):
   (eq. 24 vs the constant Hertz term). So FE vs analytical is -22.9 % (mean), -24.1 %
   (max), -6.6 % (min).
 These are the same mechanisms as for the external pair of the assembly-error paper
-(README, "FE tooth stiffness").
+(:mod:`pipeline.contact.fe2d_source`).
 """
 
 from __future__ import annotations

@@ -2,10 +2,10 @@
 groove FE).
 
 The study's coarse run must give the groove geometries of the paper's K_j range and the
-directions the README states (torque leaving at the right half: the left half loses load
-and peak unit load as K_j falls, the right gains; the left's mesh with the groove in series
-softens by about 11 %); ``gearpipe run`` must drive the sun meshes of the herringbone model
-from the contact through the groove.
+directions workflows/herringbone_groove_study.py states (torque leaving at the right half:
+the left half loses load and peak unit load as K_j falls, the right gains; the left's mesh
+with the groove in series softens by about 11 %); ``gearpipe run`` must drive the sun
+meshes of the herringbone model from the contact through the groove.
 """
 
 from __future__ import annotations

@@ -7,6 +7,17 @@ gives k_t between O_L and O_R and K_j = k_t l_LR. Writes to results/groove_sweep
 one curve per bottom diameter, with the paper's 4.0e7 - 5.2e7 N m^2 band),
 ``twist.png`` (the configured case under its sun torque) and ``run.json``.
 
+Xu et al. (2020)'s sun, compared (``configs/wind_turbine_sun_groove.toml``). The paper
+gives z 21, m_n 15 mm, 25 deg, 8 deg helix, a 185 mm half width and a 40 mm groove, and K_j
+= 5.2e7 N m^2 from G I_j - the G J of a solid round section of 286 mm, i.e. about the root
+cylinder (280.6 mm). Assumed here (not in the paper): solid body (no bore), groove bottom
+270 mm, a 240 mm x 340 mm shaft on the output side (from l_RT), E 206 GPa / nu 0.3. The FE
+gives K_j = 5.98e7 N m^2 (+15 %); real teeth instead of the root cylinder add 0.6 %; a
+rigid coupling 83 %. The FE value is higher than the root cylinder's G J because the mesh
+torque enters along each half (effective length b/3 of each half instead of b/2 in a beam
+between the half centres), lower than that ideal because of the groove section and its
+shoulders. A groove bottom of 250 mm gives 5.1e7, inside the paper's 4.0-5.2e7 range.
+
     python workflows/groove_sweep.py            # coarse: 3 x 3 cases, h = 40 mm
     python workflows/groove_sweep.py --full     # 6 x 4 cases, h = 25 mm
 """

@@ -26,8 +26,53 @@ Assumptions (not in the paper): solid sun, groove bottom as the K_j variable, 24
 output shaft, E 206 GPa, nu 0.3 (as in the config); analytical slice compliance of the
 helical halves (``[contact]``); planets rigid, in phase and axially located in the contact
 (the dynamic model phases them, eq. 10); the masses and supports of the config.
-Measured numbers and the reasons for every difference: README, Method notes
-("Herringbone sun-planet contact through the groove").
+
+Measured. ``gearpipe run`` on the wind-turbine file (148 kN m, analytical slices with the
+Weber local approach, sun on its 1e9 N/m axial bearing): a half's own mesh stiffness is 2.0
+GN/m on average (compliance 5.0e-10 m/N), the project's groove (K_j = 5.98e7 N m^2) adds N
+r_b^2 / k_t = 3.1e-10 m/N in series with the left half, which then carries 40.1 % of the
+load (38.1 % with a rigid axial support), max unit load 623 / 865 N/mm left / right. A free
+sun keeps equal halves and slides 0.16 mm.
+
+This study (coarse: 30 positions) fits groove bottoms 253.4 / 247.2 / 241.0 / 234.8 / 228.5
+mm for K_1..K_5 (FE: 5.26 / 4.96 / 4.65 / 4.33 / 4.03e7 N m^2; two fitting runs at 270 and
+210 mm). From K_1 to K_5, computed [Xu et al. 2020]: left share 39.0 -> 36.6 %; max unit
+load left 610 -> 578 N/mm, -5.2 % [880 -> 940, +6.8 %], right 878 -> 910, +3.6 % [850 ->
+780, -8.3 %]; min unit load left 258 -> 240, right 431 -> 449 [260 -> 280, 270 -> 240]; own
+max mesh stiffness left -0.16 %, right +0.09 % [+9.79 %, -11.23 %]; with the groove and
+axial support in series left -11.75 %, right +0.08 %. With the torque entering at the left
+every change swaps sides: the paper's direction for the left half, and -11.75 % for the
+right half with its groove next to the paper's -11.23 %.
+
+Why they differ: (1) eqs. 20d / 21d of the paper apply T_D/2 to each half, so its groove
+carries no static torque when the halves share equally and cannot shift load by twisting
+(``torque_entry = "both"`` gives equal halves here, tested); the paper's left/right
+stiffness change is stated, not derived. With the torque leaving at one end, the far half
+sits behind a spring of 70-95 % of its own mesh compliance and loses load as K_j falls. (2)
+A half's own mesh stiffness barely depends on its load (the local approach is only weakly
+nonlinear, the contact lines do not move), so the ~11 % change appears only for the half's
+mesh with the groove in series - what a model with the groove inside k_0Ls (eq. 14) calls
+the mesh stiffness. (3) A +1 mm slide moves the flanks by tan(beta_b) z = 0.127 mm along
+the line of action, three times the mesh deflection: the left half lifts off entirely
+(right max 1488 N/mm) [790 / 940 N/mm]; the paper's -10.2 % of the left maximum is reached
+at a 0.084 mm slide, so its slide acts an order weaker than the helix geometry gives.
+
+Fig. 9 with the computed excitation (120 speeds, H = 10, peaks refined on a 4 Hz grid): the
+main peak is at 1084 Hz (s-p1L) / 1093 Hz (s-p1R) with the masses derived from the gears
+and the config's supports [~1440 Hz]; from K_1 to K_5 it moves -0.9 / +1.0 Hz and its RMS
+force falls on the left (146.3 -> 142.1 kN) and rises on the right (188.7 -> 194.0 kN) with
+each half's static load [both fall "very obviously"]; the groove's twist mode (3000-3250
+Hz, a step in the sweeps) falls with K_j.
+
+Speed (``workflows/benchmarks/bench_herringbone_study.py``, fresh processes, 2 cores shared
+with other jobs at a load average of 6): cold 150 s (7 groove FE runs 8-18 s each, 81 s in
+all; 10 herringbone contact cases and the slide search 4.9 s; 6 load maps 13 s; Fig. 9
+sweeps 39 s; imports 6 s), 0.88 GB peak; warm 8.3 s (0.055 of cold: the groove FE results,
+contacts, sweeps and figures come from the cache by content hash). ``--full`` (60
+positions, 400 speeds, H = 20, peaks on a 1 Hz grid; 205 s with the groove FE cached) gives
+the same contact figures to four digits and the Fig. 9 peaks within 0.4 Hz and 0.3 %.
+``gearpipe run`` on the wind-turbine file adds the groove FE (7-18 s cold, then cached) and
+the herringbone contact (0.3 s) to its static stages.
 
     python workflows/herringbone_groove_study.py [--full] [--out DIR] [--no-cache]
                                                  [--cache-dir DIR]

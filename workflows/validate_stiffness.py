@@ -1,4 +1,4 @@
-"""Analytical vs FE-enriched mesh stiffness over a mesh cycle (issue: FE validation).
+"""Analytical vs FE-enriched mesh stiffness over a mesh cycle.
 
 For the spur pair of the assembly-error paper (friction 0 / 0.05 / 0.1; assembly conditions 1-3)
 and Yang et al. (2026)-like helical pair, three mesh stiffness curves are computed:
@@ -55,7 +55,8 @@ Refinement 0.3 / 10 radii / 10 slices / 4 positions gives -19.6 % (FE mean +1.7 
 
 Writes to results/validate_stiffness/workflow/: one overlay PNG per case, the curves
 (CSV), and a table of max/min/mean with differences in percent (CSV + JSON),
-plus run.json.
+plus run.json. Full run 85 s and 7.1 GB peak on 2 cores (the 104-tooth whole gear has 679k
+unknowns; 509 s with SuperLU before cholespy).
 
     python workflows/validate_stiffness.py [--positions N] [--refinement R] [--radii N]
         [--slices N] [--only NAME] [--out DIR]

@@ -3,6 +3,58 @@
 Each key's unit is the suffix of its name (:mod:`pipeline.config.units`); the
 ranges are those of the input dataclass it fills (restated in the file's unit
 when a value is refused).
+
+Allowed ranges, in the file's units (each is a range a real run on a 2-core, 24 GB machine
+meets in minutes at most; a refused value names the key, the value and the range):
+
+* ``[gear]`` ``teeth``: 5 .. 100000 (internal 10 ..)
+* ``[gear]`` ``module_mm``: 0.01 .. 1000
+* ``[gear]`` ``pressure_angle_deg`` / ``helix_angle_deg``: (0, 35] / [0, 45)
+* ``[gear]`` ``face_width_mm``: 0.5 .. 250 normal modules (thinner bodies degenerate, wider
+  are no gears)
+* ``[gear]`` ``profile_shift`` / ``addendum_coef`` / ``dedendum_coef``: [-1.5, 1.5] / [0.3,
+  2] / [addendum_coef, 2.5]
+* ``[gear]`` ``bore_radius_mm``: 0 (solid) .. 0.98 r_f; internal ``rim_outer_radius_mm``
+  (1.0001, 10] r_f
+* ``[gear]`` ``groove_width_mm``: 0 .. 10000 (herringbone only)
+* ``[material]`` ``youngs_modulus_GPa`` / ``poisson_ratio`` / ``density_kg_m3``: 0.001 ..
+  10000 / (-1, 0.5) / 1 .. 1e5
+* ``[operation]`` ``torque_Nm`` / ``speed_rpm``: (0, 1e8] / (0, 954930]
+* ``[stiffness]`` ``friction`` / ``positions`` / ``slices``: [0, 0.5] or "ehl" / 8 ..
+  100000 / 1 .. 2000
+* ``[stiffness]`` ``foundation_correction`` / ``roughness_um`` / ``viscosity_mPas``: [0.5,
+  2] / [0, 100] / [0.01, 10000] (the last two with ``friction = "ehl"`` only)
+* ``[contact]`` ``positions`` / ``slices``: 2 .. 10000 / 1 .. 1000 (the solve grows as
+  slices^2.3: 2.5 s per position at 1000)
+* ``[contact]`` ``slice_coupling`` / ``load_map_profile_points``: [0, 0.25) / 2 .. 2000
+* ``[contact]`` ``tip_relief_length_*_mm``: [0, path of contact] (the shortest mesh's)
+* ``[contact]`` ``tip_relief_*_um``, ``crowning_um``, ``slope_deviation_um``,
+  ``pitch_errors_um``: magnitude <= 1000; ``pitch_errors_um`` (tooth pairs k = 0, 1, ... of
+  the mesh cycle) at most the smaller gear's teeth entries, a warning names those of pairs
+  k >= epsilon_alpha (they never mesh)
+* ``[fe]`` ``teeth`` / ``points``: 1 .. 99 (contact sources 3 .., a 3D sector at least the
+  tooth pairs in contact) / 2 .. 1000 (2D source 4 .., 3D source 2 .. 200); points x teeth
+  (``gearpipe fe``) or points x loaded teeth (x ``face_points`` in 3D) <= 8000 flank points
+* ``[fe]`` ``refinement``: 0.1 .. 20 (3D source 0.2 .. 4); and the estimated model size
+  (:mod:`pipeline.fem.size3d`)
+* ``[groove]`` ``mesh_size_mm``: 1e-4 .. 2 root radii, and the estimated model size
+  (:mod:`pipeline.fem.size3d`)
+* ``[groove]`` ``planets`` / ``torque_Nm``: 1 .. 64 (``coupling = "tooth_forces"`` only; a
+  planetary set's own) / [-1e9, 1e9]
+* ``[dynamics]`` ``bearing_stiffness_N_per_m`` / ``bearing_damping_Ns_per_m`` /
+  ``damping_ratio``: [0, 1e14] / [0, 1e9] / [0, 1]
+* ``[dynamics.response]`` ``n_harmonics`` / ``segments`` / ``periods``: 1 .. 500 / 8 .. 1e6
+  / 1 .. 100000 (each only with the ``method`` that reads it)
+* ``[dynamics.sweep]`` ``f_min_Hz`` < ``f_max_Hz`` (either may be omitted: default f_m / 4
+  to max(4 f_m, 1.25 f_n*); a range without f_m is warned about) / ``points`` /
+  ``n_harmonics``: (0, 1e6] / 2 .. 100000 / 1 .. 500
+* ``[planetary]`` ``planet_angles_deg``: one per planet, each in [-360, 360]
+* ``[dynamics.mesh_stiffness]`` stiffness levels, ``mean``, ``amplitudes`` / ``start`` /
+  ``phases_rad``: magnitude <= 1e14 N/m / [0, 1) / [-2 pi, 2 pi]
+* ``[lumped_model]`` ``mesh_frequency_Hz`` / masses, inertias / radii / stiffnesses: 0.001
+  .. 1e6 / (0, 1e7] / (0, 10000] mm / [0, 1e15]
+* ``[lumped_model]`` ``phase_*`` / ``planet_angles_deg`` / torque, speed: [-1, 1] mesh
+  periods / [-360, 360] / magnitude <= 1e8 N m, 954930 rpm
 """
 
 from __future__ import annotations

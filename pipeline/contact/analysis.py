@@ -1,8 +1,9 @@
 """The contact stage's entry points: a compliance source and a loaded mesh cycle.
 
 From Python a user goes pair -> :func:`analytical_compliance` (or an FE source,
-:mod:`pipeline.contact.fe_source`) -> :func:`analyse_contact` -> :class:`LoadedMeshCycle`,
-without a command module. The command ``gearpipe contact`` composes the same calls.
+:mod:`pipeline.contact.fe2d_source`, :mod:`pipeline.contact.fe3d_source`) ->
+:func:`analyse_contact` -> :class:`LoadedMeshCycle`, without a command module. The command
+``gearpipe contact`` composes the same calls.
 """
 
 from __future__ import annotations

@@ -15,7 +15,8 @@ points from ``face_margin c`` to ``b - face_margin c``, about ``c`` apart.
 ``S`` is symmetrised (it is symmetric to solver accuracy) and projected onto the
 positive semidefinite matrices (negative eigenvalues, discretisation error of
 ~0.2-2 % of the largest, set to zero: the contact solver needs a semidefinite
-``G``; the change is recorded in the table's ``info``). Tables are cached on
+``G``; the change is recorded in the table's ``info``: 1.2-1.4 % in the Frobenius norm
+on the pair of Yang et al. 2026). Tables are cached on
 disk by a content hash of the gear, mesh settings, grid and boundary conditions
 (``meshes/fe3dtable-<hash>.npz``, written atomically), like the meshes themselves.
 

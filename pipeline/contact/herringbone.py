@@ -43,6 +43,21 @@ tangent mesh stiffness (teeth and local contact of that half only: the dynamic m
 have the groove and supports as their own springs), unit loads over both flanks, the
 planet's approach and the whole mesh stiffness, the groove twist and torque and the sun's
 axial position (:class:`~pipeline.contact.herringbone_results.HerringboneCycle`).
+
+Checks (``tests/test_contact_herringbone.py``,
+``tests/test_dyn_herringbone_excitation.py``): a rigid groove gives two helical contacts at
+P/2 (loads to 1e-9, approaches to 1e-12 m); with the linear local contact the split is
+springs in series, ``P_L (c_L + (1-f) c_g) = P_R (c_R + f c_g)``, to 1e-9 for the torque at
+the right, the left and both; every position balances the sun torque to 1e-12, the groove
+twist is the groove torque over k_t to 1e-12, a free sun has P_L = P_R and slides to make
+up the twist; the herringbone planetary model excited left/right from it
+(:mod:`pipeline.dynamics.herringbone_excitation`, ``e_h = x_h - P_h / k_h`` per position)
+carries the contact's half loads at zero speed to 1e-6 (axially rigid groove; with the FE's
+axial stretch 8e-4, because the model puts half the sun's axial bearing on each half). The
+twist's mesh phase (Xu et al. 2020, eq. 11; 2e-3 of a mesh period for the wind-turbine set)
+is not applied on top: the contact has both halves at the planet's position and the twist
+in their approach. Measured on the wind-turbine set, beside Xu et al. (2020):
+``workflows/herringbone_groove_study.py``.
 """
 
 from __future__ import annotations

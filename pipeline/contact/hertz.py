@@ -35,6 +35,10 @@ with infinite tangent compliance at ``F -> 0``. The tangent stays positive up
 to :meth:`HertzLineContact.max_valid_load`, where the contact half-width
 reaches the order of ``h_k``; beyond it the formula is outside its validity.
 
+The constant Hertz term of the stiffness stage does not depend on curvature; this local
+contact does, and for an internal pair (concave gear flank) takes the effective radius
+``rho1 |rho2| / (|rho2| - rho1)``.
+
 Shapes: the geometric inputs of :class:`HertzLineContact` are arrays of shape
 ``(n,)`` (one mesh position, ``n`` contact points) or ``(m, n)`` (``m`` mesh
 positions); loads passed to its methods broadcast against them.

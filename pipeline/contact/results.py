@@ -20,6 +20,15 @@ approach along it):
 At zero load the three are the limits ``P -> 0+``: ``1^T G_AA^{-1} 1`` over the
 first-touching points for a linear problem, and 0 with the Hertz approach
 (whose compliance is infinite at zero load).
+
+Loaded contact ratio. The contact summary's ``loaded_contact_ratio`` is the mean number of
+tooth pairs carrying load over the cycle (the roll length over which a pair is loaded, over
+the base pitch); at a light load it equals the geometric transverse contact ratio to the
+sampling of the positions (1.755 for the seed 001 pair; 1.767 loaded at 340 N m). When it
+is 1 within the sampling, one pair carries the whole load at a time and the load jumps
+between pairs: a warning line gives the value and the TE (1 mm tip relief over 5 mm of roll
+on both gears of the seed 001 pair: 1.017, TE 321 um peak to peak). A cycle read from the
+cache warns again.
 """
 
 from __future__ import annotations

@@ -19,6 +19,16 @@ tooth at the outer point of single pair contact; the difference ``(FE - ISO) / I
 reported. Checks (``tests/test_root_stress.py``): the ISO geometry (30 deg tangent chord,
 fillet radius, bending arm) against the exact generated profile, and a single tooth under a
 tip load, converged under refinement, against ISO with the load at the same diameter.
+
+The FE model is the whole gear in 2D (graded P2, flank and fillet elements m_n / 24), its
+stress tables per unit flank load cached by content hash; ISO 6336-3 method B takes Y_F,
+Y_S, Y_beta from the basic rack and the virtual spur gear, with Y_B = Y_DT = 1. Measured:
+ISO's 30 deg tangent chord, fillet radius and bending arm equal those of the exact
+generated profile to 4e-9, 2e-5 and 1.4e-7; one tooth of a whole z 30 gear under a tip load
+gives 1161.9 / 1163.7 / 1163.9 / 1162.7 / 1162.1 / 1162.2 Pa per N/m at refinement 0.5 / 1
+/ 2 / 4 / 8 / 12 (within 0.15 % from refinement 1 on), 5.7 % below ISO with the load at the
+same diameter. Ring gears have FE root stress, no ISO value (method B is implemented for
+external gears). Measured values on the example gearboxes: :mod:`pipeline.report`.
 """
 
 from __future__ import annotations

@@ -34,8 +34,23 @@ Package map (data flows top to bottom):
 - :mod:`.results` - :class:`Response`, :class:`HarmonicResponse`, :class:`ModalResult`.
 - :mod:`.reduction`, :mod:`.signals` - rigid-body-mode removal and exact segment means
   / Fourier coefficients shared by the solvers.
-- :mod:`.config`, :mod:`.commands` - TOML studies and ``gearpipe modes|response|sweep``
-  (not imported here). Figures are in :mod:`pipeline.viz.dynamics`.
+- :mod:`.options`, :mod:`.analysis` - the stage's inputs and its entry points
+  (:func:`~.analysis.analyse_modes`, :func:`~.analysis.analyse_response`, ...);
+  :mod:`.hb_sweep` - harmonic balance over many frequencies, planned once;
+  :mod:`.layout` - where the bodies sit, for the mode-shape figures.
+- The commands ``gearpipe modes|response|sweep`` are in :mod:`pipeline.cli`; figures
+  are in :mod:`pipeline.viz.dynamics`.
+
+Bodies and couplings assemble into M, C, K(t), G, K_Omega and F(t), dense or sparse
+(``system.matrices(tau, sparse=True)``). The herringbone planetary model has 8(N+3) DOF
+and takes a ``GrooveStiffness``. The harmonic balance is within 1 % of time integration,
+130-500x faster at equal accuracy. The Lin-Parker Table 2 frequencies in the tests are
+also checked against hand-written reduced models (one planet with fixed central members
+for the planet modes, the rotational reduction for 3, 4 and 5 planets) within 0.1 Hz.
+The studies ``workflows/dynamics_spur_dte.py``, ``dynamics_split_torque.py`` and
+``dynamics_herringbone_sweep.py`` state in their docstrings what they reproduce from
+their papers and what they do not. Not in the planetary models: the friction terms, a
+stagger of the herringbone halves.
 """
 
 from pipeline.dynamics.assembly import Assembly

@@ -78,6 +78,17 @@ its rim. The one overlap the models keep is the relief-groove coupling of a
 herringbone sun (:mod:`pipeline.fem.groove`): it is the twist between the rigid fits of
 the two halves' outer surfaces, which includes some torsion of each half's own body that
 the FE mesh stiffness of that half also contains (small when the groove is slender).
+
+Checks: at zero speed the model has the contact analysis' load P and its static TE x_s as
+DTE to 1e-10 on the spur pair of the assembly-error paper and the helical pair of Yang et
+al. (2026); the harmonic balance at 1e-3 of the first natural frequency converges to it at
+first order in 1/H (3 % of the TE's peak-to-peak at H = 160 next to a tooth pair entering
+or leaving, < 0.05 % elsewhere). With the linear local contact and perfect flanks the
+excitation equals the analytical one exactly. Measured on the pair of the assembly-error
+paper at 2340 rpm: DTE 25.0 um peak-to-peak with the analytical k(t), 35.0 um with the
+loaded contact (Weber local approach, 360 positions), 20.9 um with the whole-gear FE 2D
+contact (60 positions); ``workflows/excitation_comparison.py`` compares the excitations
+over a speed range.
 """
 
 from __future__ import annotations

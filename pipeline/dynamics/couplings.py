@@ -153,7 +153,7 @@ class GearMesh:
     ----------
     name : label used for outputs (mesh force, DTE).
     measure : line-of-action projection ``{(body, dof): c}``; ``delta = sum c q`` (m).
-        Build it with :func:`pipeline.dynamics.geometry_helpers.cylindrical_mesh_measure`.
+        Build it with :func:`pipeline.dynamics.mesh_geometry.cylindrical_mesh_measure`.
     stiffness : mesh stiffness over one mesh period, N/m (a float means constant).
     damping_ratio : zeta (-) of ``c = 2 zeta sqrt(k_mean m_e)``.
     equivalent_mass : m_e in kg; ``None`` takes ``1 / (v^T M^-1 v)`` over the

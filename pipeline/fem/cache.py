@@ -14,6 +14,14 @@ that cannot be read back exactly (zero bytes, truncated, not an archive, a missi
 field, a digest that does not match because the payload was changed) is reported once
 as a :class:`CacheWarning`, deleted and rebuilt. A folder that cannot be written costs
 only the saving: the result is returned uncached, with one warning.
+
+The same entries hold FE tables, loaded contact cycles and figures (keys: what determines
+them, never a gear's or material's name); ``--no-cache`` neither reads nor writes the
+cache. The check costs one hash of the data: 0.46 s for a 72 MB table against 0.59 s to
+read it unchecked (one run, 2 cores at load average 6.6; meshes and 2D tables are a few
+MB). Checks (``tests/test_cache.py``): zero-byte, truncated, half, foreign, changed (a mesh
+with its points scaled by 1.0001, which was once used silently), checksum-less, read-only
+and blocked entries and folders.
 """
 
 from __future__ import annotations

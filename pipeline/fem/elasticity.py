@@ -9,8 +9,8 @@ Two assemblies of the same bilinear form
   (one ``matmul`` over the quadrature points per chunk of elements) and scattered
   with one COO -> CSR per chunk. Same DOF numbering as scikit-fem's
   ``ElementVector`` basis; agrees with :func:`assemble_generic` to round-off
-  (tests). For 3D P2 it is an order of magnitude faster (DESIGN.md: 56 s vs 2 s
-  at 200k DOF), which is what makes 3D models usable on two cores.
+  (tests). For 3D P2 it is an order of magnitude faster (measured on 2 cores:
+  56 s vs 2 s at 200k DOF), which is what makes 3D models usable on two cores.
 
 Both work in 2D (plane strain / plane stress via the Lame constants of
 :func:`lame_constants`) and 3D, on affine or curved (isoparametric P2) meshes.

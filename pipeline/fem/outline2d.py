@@ -5,6 +5,10 @@ same outline (:mod:`pipeline.fem.sector3d`). Pieces run counter-clockwise, one g
 flank (``right{k}`` / ``left{k}``: from the middle of the tooth space over the fillet and
 involute to the middle of the tip land), split at sharp corners so that splines through
 them do not overshoot.
+
+Gears whose cutter tip round fills the tooth space (h_f* = 1.55 on the helical pair of Yang
+et al. 2026) have a zero-length root circle; the outline merges the repeated points
+(:data:`MERGE_TOL`).
 """
 
 from __future__ import annotations

@@ -1,8 +1,8 @@
 """Two-level p-multigrid preconditioned conjugate gradients for P2 elasticity.
 
 Without a sparse Cholesky (scikit-sparse or cholespy, :mod:`pipeline.fem.solvers`) the
-only direct solver is SuperLU, which fills badly on 3D quadratic elasticity (DESIGN.md:
-36 s at 42k DOF, > 600 s at 195k). This solver needs nothing beyond scipy and keeps
+only direct solver is SuperLU, which fills badly on 3D quadratic elasticity (measured on
+2 cores: 36 s at 42k DOF, > 600 s at 195k). This solver needs nothing beyond scipy and keeps
 memory near the matrix size (with cholespy installed, as it is by default, "auto" picks
 the Cholesky: 13.6x faster for 1200 right-hand sides at 24k DOF, bench_fe):
 

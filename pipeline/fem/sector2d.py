@@ -16,9 +16,10 @@ unknowns where the loads are (the assembly-error paper's gear: 20k unknowns inst
 221k, mesh stiffness within 0.4 %: :mod:`pipeline.contact.fe2d_source`). The outline of
 unloaded teeth is thinned to every ``THIN``-th profile point.
 
-Size guard: :func:`check_size` estimates the unknowns of the FE model before meshing
-(:func:`estimated_size`, within about 30 %) and refuses meshes above ``MAX_DOF`` (about
-14 GiB of FE memory) with the estimate, instead of running out of memory.
+Size guard: :func:`~pipeline.fem.sector2d_size.check_size` estimates the unknowns of the FE
+model before meshing (:func:`~pipeline.fem.sector2d_size.estimated_size`, within about
+30 %) and refuses meshes above ``MAX_DOF`` (about 14 GiB of FE memory) with the estimate,
+instead of running out of memory.
 
 Tooth ``k`` (``k = 0 .. teeth-1``) is centred on the polar angle
 ``pi/2 + (k - (teeth-1)/2) 2 pi/z``: tooth 0 is the most clockwise. Its *right*

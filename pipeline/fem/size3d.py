@@ -15,6 +15,13 @@ Cells. A region of volume ``V`` meshed at edge ``h`` holds ``V / (c h^3)`` tetra
 about :data:`NODES_PER_TET` nodes per tetrahedron (vertices and mid-edge nodes), three
 unknowns each. The constants were measured
 on real meshes (tests/test_fem_size3d.py states the ratio estimate / actual).
+
+Limits: 800 thousand unknowns refused (about 16 GiB with CHOLMOD), 250 thousand warned
+about; 2D sectors (:mod:`pipeline.fem.sector2d_size`) are refused above 4 million. The
+estimate names the memory and the key to change: ``groove.mesh_size_mm = 0.5`` (which ran
+for ever) is 8.2 billion unknowns. Estimated over actual unknowns, measured on real meshes:
+0.80-1.20 for groove bodies (40k-293k unknowns), 0.82-1.15 for 3- and 5-tooth sectors and
+whole z 50 gears (18k-352k); ``tests/test_fem_size3d.py`` holds it to 0.7-1.3.
 """
 
 from __future__ import annotations
@@ -32,7 +39,7 @@ NODES_PER_TET = 1.6
 where the surface holds a larger share)."""
 BYTES_PER_DOF = 21_000
 """Peak memory per unknown of a 3D P2 model factorised by CHOLMOD (10.3 GB at 494k
-unknowns, DESIGN solver notes); the iterative groove solver needs less."""
+unknowns, measured); the iterative groove solver needs less."""
 WARN_DOF = 250_000
 """Above this many unknowns a run takes minutes and gigabytes: say so."""
 MAX_DOF = 800_000

@@ -1,6 +1,6 @@
 """Sparse symmetric positive definite solves: factorise once, solve many right-hand sides.
 
-Methods (DESIGN.md measured them side by side on this kind of machine):
+Methods (measured side by side on a 2-core machine when they were chosen):
 
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; the default whenever it is installed. 3D P2 elasticity with
@@ -21,7 +21,7 @@ Methods (DESIGN.md measured them side by side on this kind of machine):
 
 Every result says which method ran, so reports can state it.
 
-MUMPS is not offered: DESIGN.md measured it through the ``python-mumps`` wheel, but
+MUMPS is not offered: it was measured through the ``python-mumps`` wheel, but
 the only binary wheel for CPython 3.11 (python-mumps 0.0.2, manylinux2010) is
 compiled against NumPy 1.x and fails on import under NumPy 2 ("numpy.core.multiarray
 failed to import"); later releases (0.0.3, 0.0.4) are source-only and need a system

@@ -16,6 +16,12 @@ a documented modelling choice, not an envelope. A ring's tooth space is narrower
 its root than the rack's, so the fillet radius is at most the one whose arcs from both
 flanks meet on the root circle (:attr:`~pipeline.geometry.gear.GearSpec.ring_fillet_limit`).
 
+The rack is the ISO 53 basic rack with the tip round rho_a0*, stretched by 1/cos(beta) in
+the transverse section. A test rolls the cutter past the profile and checks that it never
+cuts in and touches every fillet point (``tests/test_profile.py``). The ring fillet limit
+gives 25 deg rings of 40-120 teeth 0.24-0.29 m_n instead of the rack's 0.318, which
+overlapped.
+
 Frame: origin at the gear centre, tooth centre line along +y, transverse plane,
 lengths in m, angles in rad.
 """

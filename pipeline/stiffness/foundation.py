@@ -29,7 +29,9 @@ is, and both ends of the fit the same way: ``h_f`` is held at the nearest end of
 [1.4, 7] (a rim thinner than ``h_f = 1.4`` also bends like a ring, which the fit does
 not contain, so the polynomial's softening towards ``h_f = 1`` is not trusted either).
 The mesh stiffness is then continuous and monotonic in the bore, and a bore -> 0 tends
-to the solid gear (tests/test_stiffness_body_term.py). :func:`foundation_coefficients`
+to the solid gear (tests/test_stiffness_body_term.py): the seed 001 pair's mean mesh
+stiffness is 2.07e8 N/m for a solid gear and any bore up to r_f / 7 = 10.2 mm, rising
+continuously and monotonically to 3.76e8 at the 21 mm bore. :func:`foundation_coefficients`
 reports a geometry outside the fit (``in_fit_range``) and
 :func:`body_term_warnings` says what was done, in one line.
 """

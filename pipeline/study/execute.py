@@ -20,6 +20,29 @@ Each finished batch is appended atomically to the results folder
 (:class:`pipeline.study.store.StudyStore`), so a killed study resumes where it stopped.
 A folder holding anything but an earlier result of the same study is refused before the
 first point (:func:`pipeline.study.store.study_folder`).
+
+Every point is the static chain of ``gearpipe run`` (geometry, analytical stiffness, the
+``[contact]`` compliance source, loaded contact) and, with ``[kpis] speed_range_rpm``, a
+harmonic-balance sweep of the dynamic model (:mod:`pipeline.dynamics.hb_sweep`, in chunks
+on the same executors); the KPIs are read from that result. ``--resume`` reads the finished
+point numbers and refuses (one line) when the manifest's base-file SHA-256, ``[set]``,
+axes, sampling or KPIs differ.
+
+Checks (``tests/test_study.py``): 2 LocalCluster workers and serial give equal tables; kill
+-9 after three parts + ``--resume`` gives the table of an uninterrupted run and recomputes
+none of the saved points (computed-point log per session); the tip-relief study of the
+example (``workflows/configs/tip_relief_study.toml``: FE 2D, long linear relief 6.2 mm on
+both gears) has its TE p-p minimum at 12.0 um (5.24 -> 0.70-0.81 um), the classic estimate
+being the combined tooth deflection at the load, F / (b c_gamma_alpha) = 4824 N / (20 mm x
+22.0 N/(mm um)) = 10.96 um (+10 %; tolerance 20 %). With the analytical slices the minimum
+lies near 24 um: their double-contact stiffness has no body coupling
+(:mod:`pipeline.contact.fe2d_source`).
+
+Measured (``workflows/benchmarks/bench_study.py``, one run on the 2 cores with no other job
+of ours, load average 1.4 at the start): 1000 FE 2D loaded-contact points (20 positions,
+one FE geometry) 45.4 s on 2 Dask workers (45 ms per point) against 60 ms per point
+serially (parallel efficiency 0.66; target < 60 s). Under other jobs' load (4.5-8) the same
+run took 175 s: the figures need the two cores.
 """
 
 from __future__ import annotations

@@ -38,6 +38,15 @@ sun through its groove comes from the contact of both halves
 published Fig. 5 percentages of Xu et al. (2020) are only a comparison
 (:mod:`pipeline.dynamics.models.groove_mesh`). Not modelled: a stagger of the herringbone
 halves.
+
+``gearpipe modes|response|sweep`` on a planetary file build these models. Supports, groove
+and damping are ``[dynamics]`` keys (``sun_bearing_stiffness_N_per_m``,
+``ring_torsional_stiffness_Nm_per_rad``, ``groove_torsional_stiffness_Nm_per_rad``, ...:
+``wind_turbine_herringbone_planetary.toml`` lists them); with a ``[groove]`` table and
+``excitation = "contact"`` the groove is its FE and a typed groove stiffness is refused.
+Checks: a z 40/20/80 set at 24.6 deg with Lin and Parker's parameters has their Table 2;
+``wind_turbine_herringbone_planetary.toml`` with the hand-built model's parameters has its
+frequencies to round-off.
 """
 
 from __future__ import annotations

@@ -29,7 +29,7 @@ of the lines of action enter the lumped model.
 The three stages mesh at incommensurate frequencies. :meth:`SplitTorqueModel.stage_system`
 returns the system in which only one stage's coefficients vary (period: that stage's
 mesh period), the others held at their means; the Fourier series method of Jin et al. (2018)
-superposes the stage responses (:func:`pipeline.dynamics.harmonic_balance.superpose_stages`).
+superposes the stage responses (:func:`pipeline.dynamics.multirate.superpose_stages`).
 """
 
 from __future__ import annotations

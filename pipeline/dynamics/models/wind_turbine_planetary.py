@@ -103,7 +103,7 @@ def wind_turbine_herringbone_model(
     samples : samples per mesh period of the stiffness.
     stagger : left/right tooth stagger of the herringbone in mesh periods (Xu et al. 2020 give
         none); added to the twist phase lambda_LR of the right sun meshes.
-    groove : FE groove stiffness (issue 4, :class:`GrooveStiffness`): its 12 x 12 coupling
+    groove : FE groove stiffness (:class:`GrooveStiffness`): its 12 x 12 coupling
         matrix joins the sun halves and its ``phase_shift`` gives lambda_LR; ``None`` uses
         the beam value ``groove_Kj / L_TORSION`` with stiff translations.
     modal_damping_ratio : constant modal damping (-) of Xu et al. (2020) (sec. 2.3).

@@ -186,7 +186,7 @@ def solve_free(model: ElasticModel, free: np.ndarray, F: np.ndarray, solver: str
     check_choice("groove.solver", solver, SOLVERS)
     if solver == "auto":
         # few right-hand sides: pmg-CG beats cholespy here (bench_groove: 3.4 s vs 12.2 s
-        # at 40.6k DOF); scikit-sparse's CHOLMOD when installed (DESIGN.md)
+        # at 40.6k DOF); scikit-sparse's CHOLMOD when installed (pipeline.fem.solvers)
         solver = "cholmod" if cholmod_available() else "pmg-cg"
     A = model.stiffness[free][:, free]
     rhs = np.ascontiguousarray(F[free])
