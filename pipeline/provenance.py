@@ -36,7 +36,7 @@ from pipeline.io import content_hash, to_jsonable, write_json
 
 _UNHASHED = ("platform", "sparse_cholesky", "blas")  # machine, or what the run imported
 _TRACKED = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib",
-            "cholespy", "scikit-sparse", "pyamg", "threadpoolctl")
+            "cholespy", "scikit-sparse", "threadpoolctl")
 _PACKAGE = Path(__file__).resolve().parent
 
 

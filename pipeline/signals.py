@@ -49,11 +49,6 @@ class FourierSeries:
         terms = self.amplitude * np.cos(2 * np.pi * self.orders * t + self.phase)
         return self.mean + terms.sum(axis=-1)
 
-    def complex_coefficients(self) -> np.ndarray:
-        """c_l for l = -N..N with signal = sum c_l exp(i 2 pi l tau), shape (2N+1,)."""
-        pos = 0.5 * self.amplitude * np.exp(1j * self.phase)
-        return np.concatenate([np.conj(pos[::-1]), [self.mean], pos])
-
 
 @dataclass(frozen=True)
 class PeriodicSignal:

@@ -263,3 +263,41 @@ def test_the_test_session_caches_outside_the_checkout(tmp_path_factory):
     folder = default_cache_dir().resolve()
     assert folder.is_relative_to(tmp_path_factory.getbasetemp().resolve())
     assert folder != source_checkout_cache()
+
+
+def test_an_entry_moved_onto_another_name_is_rebuilt(tmp_path):
+    """Two entries of different inputs; the second's file copied over the first's (a swap on
+    disk): reading the first warns that the file holds another entry, rebuilds it and
+    returns the first's own result, never the other's."""
+    other = TetMeshData(2 * POINTS, MESH.cells, MESH.surfaces, {})
+    path_a, calls = _entry(tmp_path)
+    _, path_b, _ = cache.cached_tet_mesh("t", {"a": 2}, lambda: other, cache_dir=tmp_path)
+    path_a.write_bytes(path_b.read_bytes())
+    with pytest.warns(CacheWarning, match="holds another entry") as record:
+        data, _, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
+                                             cache_dir=tmp_path)
+    assert len(record) == 1 and not hit and len(calls) == 2
+    np.testing.assert_array_equal(data.points, POINTS)
+
+
+def test_the_key_follows_the_producing_code(tmp_path, monkeypatch):
+    """A changed line in the code an entry names gives another key (no version to bump); the
+    same code, the same key; code it does not name changes nothing."""
+    pkg = tmp_path / "producer_pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "solve.py").write_text("FACTOR = 1.0\n")
+    (tmp_path / "unrelated_mod.py").write_text("X = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    cache.code_digest.cache_clear()
+    key = cache.entry_key("t", {"a": 1}, ("producer_pkg",))
+    assert cache.entry_key("t", {"a": 1}, ("producer_pkg",)) == key
+    (tmp_path / "unrelated_mod.py").write_text("X = 2\n")
+    cache.code_digest.cache_clear()
+    assert cache.entry_key("t", {"a": 1}, ("producer_pkg",)) == key
+    (pkg / "solve.py").write_text("FACTOR = 1.0 + 1e-12\n")
+    cache.code_digest.cache_clear()
+    assert cache.entry_key("t", {"a": 1}, ("producer_pkg",)) != key
+    cache.code_digest.cache_clear()
+    with pytest.raises(ValueError, match="no module or package named 'no_such_pkg'"):
+        cache.entry_key("t", {}, ("no_such_pkg",))

@@ -29,7 +29,7 @@ from pathlib import Path
 
 import psutil
 import pytest
-from test_run import SMALL
+from gearsets import SMALL
 
 ROOT = Path(__file__).resolve().parents[1]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg",

@@ -2,26 +2,17 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
-import sys
 from pathlib import Path
 
 import pytest
+from helpers import load_workflow
 
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
 SPUR_CONFIG = ROOT / "workflows" / "configs" / "spur_pair_assembly_errors.toml"
-
-
-def load_workflow(name: str):
-    spec = importlib.util.spec_from_file_location(name, ROOT / "workflows" / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def test_geometry_command(tmp_path):

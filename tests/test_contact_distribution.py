@@ -14,46 +14,20 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
 from gearsets import spur
+from helpers import UniformSlices
 
 from pipeline.contact import analyse_contact, analytical_compliance
 from pipeline.contact.distribution import load_distribution, mesh_order_amplitudes
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications
-from pipeline.contact.source import ContactPoints
 from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError, PhysicsWarning
-
-
-@dataclass(frozen=True)
-class UniformSlices:
-    """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
-    width per tooth pair (N/m^2): uniform mesh stiffness across the face."""
-
-    pair: GearPair
-    slices: int
-    c0: float
-
-    def points(self, position: float) -> ContactPoints:
-        b = self.pair.face_width
-        dz = b / self.slices
-        z = (np.arange(self.slices) + 0.5) * dz
-        k = self.pair.pair_indices()
-        s = position + k * self.pair.base_pitch
-        kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
-        return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),
-                             z=np.tile(z, kk.size), pair=np.repeat(kk, z.size),
-                             width=np.full(kk.size * z.size, dz))
-
-    def matrix(self, position: float) -> np.ndarray:
-        pts = self.points(position)
-        return np.diag(1.0 / (self.c0 * pts.width))
 
 
 @pytest.fixture(scope="module")

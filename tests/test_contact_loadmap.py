@@ -24,6 +24,7 @@ from pipeline.contact.source import SliceCompliance
 from pipeline.stiffness.mesh import PairModel
 from pipeline.stiffness.tooth import classical_tooth_model, hertz_compliance
 from pipeline.validation import InputError
+from workflows.default_case import DEMO_PAIR
 
 
 @pytest.fixture(scope="module")
@@ -99,23 +100,7 @@ def test_contact_options_table():
         contact_options_from_table({"local_contact": "hertz"})
 
 
-CONFIG = """
-name = "spur_contact"
-[pinion]
-teeth = 50
-module_mm = 3.0
-pressure_angle_deg = 20.0
-face_width_mm = 20.0
-bore_radius_mm = 21.0
-[gear]
-teeth = 50
-module_mm = 3.0
-pressure_angle_deg = 20.0
-face_width_mm = 20.0
-bore_radius_mm = 21.0
-[operation]
-torque_Nm = 340.0
-speed_rpm = 2340.0
+CONFIG = 'name = "spur_contact"\n' + DEMO_PAIR + """\
 [stiffness]
 friction = 0.05
 [contact]

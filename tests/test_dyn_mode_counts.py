@@ -31,7 +31,7 @@ from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.signals import PeriodicSignal
 
 sys.path.insert(0, str(Path(__file__).parent))
-from test_run import SMALL  # noqa: E402
+from gearsets import SMALL  # noqa: E402
 
 K_MESH = 3.9e8  # N/m
 

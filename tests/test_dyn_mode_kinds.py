@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_dyn_planetary import LIN_PARKER_1999
+from gearsets import LIN_PARKER_1999
 
 from pipeline.dynamics.analysis import analyse_modes
 from pipeline.dynamics.assembly import Assembly

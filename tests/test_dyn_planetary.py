@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 import pytest
+from gearsets import LIN_PARKER_1999
 
 from pipeline.dynamics.modal import modal_analysis
 from pipeline.dynamics.models.herringbone_planetary import (
@@ -25,21 +26,6 @@ from pipeline.dynamics.models.herringbone_planetary import (
     condense_groove_matrix,
 )
 from pipeline.dynamics.models.planetary import PlanetaryModel
-
-ROT = [0.0, 1475.7, 1930.3, 2658.3, 7462.8, 11775.3]
-LIN_PARKER_1999 = {
-    3: dict(rot=ROT, trans=[743.2, 1102.4, 1896.0, 2276.4, 6986.3, 9647.9], planet=[]),
-    4: dict(
-        rot=[0.0, 1536.6, 1970.6, 2625.7, 7773.6, 13071.1],
-        trans=[727.0, 1091.0, 1892.8, 2342.5, 7189.9, 10437.6],
-        planet=[1808.2, 5963.8, 6981.7],
-    ),
-    5: dict(
-        rot=[0.0, 1567.4, 2006.1, 2614.8, 8065.4, 14253.1],
-        trans=[710.0, 1072.0, 1888.1, 2425.3, 7382.4, 11172.3],
-        planet=[1808.2, 5963.8, 6981.7],
-    ),
-}
 
 
 @pytest.mark.parametrize("n_planets", [3, 4, 5])

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 import pytest
-from test_dyn_planetary import LIN_PARKER_1999
+from gearsets import LIN_PARKER_1999
 
 from pipeline.config import gearbox_from_text, load_gearbox
 from pipeline.contact import analyse_contact, analytical_compliance

@@ -7,14 +7,12 @@ import pytest
 import scipy.sparse as sp
 from skfem import MeshTet
 
-from pipeline.fem.linear_static import build_model, rigid_body_modes, solve_static
+from pipeline.fem.linear_static import build_model, solve_static
 from pipeline.fem.solvers import (
     DirectSolver,
     cholespy_available,
     cholmod_available,
     factorize_spd,
-    pyamg_available,
-    solve_spd,
     sparse_cholesky,
 )
 from pipeline.geometry.gear import Material
@@ -70,28 +68,10 @@ def test_cholespy_is_installed_and_solves_many_rhs():
     assert f.method == "cholespy" and X.shape == B.shape
 
 
-@pytest.mark.skipif(not pyamg_available(), reason="pyamg not installed")
-def test_amg_cg_matches_direct(bar):
-    model, clamp, F = bar
-    free = np.setdiff1d(np.arange(model.n_dof), clamp)
-    A = model.stiffness[free][:, free]
-    B = rigid_body_modes(model.basis.doflocs[:, ::3]).reshape(model.n_dof, 6)[free]
-    direct = solve_spd(A, F[free, 1], method="splu").x
-    it = solve_spd(A, F[free, 1], method="amg-cg", near_nullspace=B, rtol=1e-12)
-    assert it.method == "amg-cg" and it.iterations > 0
-    np.testing.assert_allclose(it.x, direct, atol=1e-7 * np.abs(direct).max())
-
-
 def test_bad_inputs(bar):
-    """Unknown methods, wrong shapes and missing amg-cg inputs raise InputError."""
+    """Unknown methods and wrong shapes raise InputError."""
     model, clamp, F = bar
     with pytest.raises(InputError, match="solver.method"):
         factorize_spd(model.stiffness, "mumps")
     with pytest.raises(InputError, match="rows"):
         solve_static(model, F[:-1], clamp)
-    with pytest.raises(InputError, match="near_nullspace"):
-        solve_spd(model.stiffness, F[:, 0], method="amg-cg")
-    if not pyamg_available():  # a clear message instead of an ImportError
-        B = rigid_body_modes(model.basis.doflocs[:, ::3]).reshape(model.n_dof, 6)
-        with pytest.raises(InputError, match="needs pyamg"):
-            solve_spd(model.stiffness, F[:, 0], method="amg-cg", near_nullspace=B)

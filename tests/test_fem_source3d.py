@@ -52,6 +52,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def helical(cache):
+    """The coarse 3D tables of the helical pair (10 s cold on 2 cores): its tests are slow."""
     return FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache)
 
 
@@ -83,6 +84,7 @@ def test_unsupported_pairs_and_small_sectors_are_rejected():
 
 
 # ---- mapping and interpolation -------------------------------------------------------------
+@pytest.mark.slow
 def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
     """Points of one tooth pair (a straight contact line on the plane of action) mapped to
     each sector: transverse positions collinear (1e-9 m) and one transverse normal
@@ -116,6 +118,7 @@ def _model_settings(gear, table):
     return _sector_settings(gear, table.info["model_teeth"], COARSE, table.teeth)
 
 
+@pytest.mark.slow
 def test_interpolation_reproduces_table_at_nodes(helical):
     """Weights at grid nodes select the node (W S W^T = S exactly); half-way between two
     face nodes they average them."""
@@ -135,6 +138,7 @@ def test_interpolation_reproduces_table_at_nodes(helical):
 
 
 # ---- protocol ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_protocol_symmetry_and_definiteness(helical):
     """Every position: G symmetric, positive diagonal, smallest eigenvalue > -2 % of the
     largest (the structural tables are positive definite only up to discretisation,
@@ -150,6 +154,7 @@ def test_protocol_symmetry_and_definiteness(helical):
         assert ev.min() > -0.02 * ev.max()
 
 
+@pytest.mark.slow
 def test_sections_are_coupled_and_coupling_decays(helical):
     """Row of the slice nearest mid-face (pair 0): positive coupling to every other slice
     of the same tooth pair, falling with the distance across the face on both sides
@@ -175,6 +180,7 @@ def test_sections_are_coupled_and_coupling_decays(helical):
     assert np.count_nonzero(analytical - np.diag(np.diag(analytical))) == 0
 
 
+@pytest.mark.slow
 def test_friction_correction_wraps_the_3d_source(helical):
     """FrictionCorrected accepts the 3D source (same slice points as SliceCompliance) and
     changes only the diagonal, by the slice model's friction effect."""
@@ -223,6 +229,7 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
 
 # ---- LTCA ------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_ltca_with_3d_source(helical):
     """LTCA over a mesh cycle (8 positions, P = 4 kN, weber local contact) on the coarse
     whole gears: converged (residual within tolerance), every position carries P, and the

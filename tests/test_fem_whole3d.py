@@ -129,6 +129,7 @@ def strain_2d():
     return _whole_2d(SPUR, "plane_strain", SPUR.face_width / 6)
 
 
+@pytest.mark.slow
 def test_whole_gear_with_sliding_ends_is_plane_strain(strain_2d, cache):
     """Coarse whole spur gear (refinement 0.6, 20k DOF), sliding end faces, line load on
     tooth 15 vs the 2D plane-strain whole gear (refinement 2, 0.26M DOF): 3D / 2D measured

@@ -22,9 +22,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 from gearsets import spur
+from helpers import UniformSlices, load_workflow
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from test_cli_workflows import load_workflow
-from test_contact_distribution import UniformSlices
 
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.ltca import loaded_mesh_cycle

@@ -27,7 +27,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from test_run import SMALL
+from gearsets import SMALL
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 from gearsets import spur
+from helpers import UniformSlices
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import QuadMesh
-from test_contact_distribution import UniformSlices
 
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.ltca import loaded_mesh_cycle

@@ -13,12 +13,12 @@ import base64
 import csv
 import json
 import re
-from html.parser import HTMLParser
 from pathlib import Path
 
 import numpy as np
 import pytest
-from test_run import SMALL
+from gearsets import SMALL
+from helpers import Cells, json_value, small_report
 
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
@@ -30,62 +30,16 @@ from pipeline.report.model import format_value
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
 
 
-class _Cells(HTMLParser):
-    """Table cells with their data-key, image sources, links."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.cells: list[tuple[str | None, str]] = []
-        self.images: list[str] = []
-        self.links: list[str] = []
-        self._in_td: str | None | bool = False
-        self._text = ""
-
-    def handle_starttag(self, tag, attrs):
-        a = dict(attrs)
-        if tag == "td":
-            self._in_td, self._text = a.get("data-key"), ""
-        elif tag == "img":
-            self.images.append(a["src"])
-        elif tag in ("a", "link", "script"):
-            self.links.append(a.get("href") or a.get("src") or "")
-
-    def handle_endtag(self, tag):
-        if tag == "td" and self._in_td is not False:
-            self.cells.append((self._in_td, self._text))
-            self._in_td = False
-
-    def handle_data(self, data):
-        if self._in_td is not False:
-            self._text += data
-
-
-def small_report(root: Path) -> Path:
-    """``gearpipe report`` on the small case into ``root/out`` (cache in ``root/c``)."""
-    cfg = root / "small.toml"
-    cfg.write_text(SMALL, encoding="utf-8")
-    out = root / "out"
-    assert cli(["report", str(cfg), "--out", str(out), "--cache-dir", str(root / "c"),
-                "--json"]) == 0
-    return out
-
-
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     return small_report(tmp_path_factory.mktemp("report")), gearbox_from_text(SMALL, "small")
-
-
-def _json_value(data: dict, key: str):
-    section, name, *column = key.split(".")
-    row = data["sections"][section]["quantities"][name]
-    return row["values"][column[0]] if column else row["value"]
 
 
 def test_every_figure_is_embedded(report):
     out, _ = report
     html = (out / "report.html").read_text(encoding="utf-8")
     data = json.loads((out / "report.json").read_text())
-    p = _Cells()
+    p = Cells()
     p.feed(html)
     figures = [f["file"] for s in data["sections"].values() for f in s["figures"]]
     assert len(p.images) == len(figures) >= 8
@@ -102,13 +56,13 @@ def test_every_figure_is_embedded(report):
 def test_every_number_shown_equals_the_json(report):
     out, _ = report
     data = json.loads((out / "report.json").read_text())
-    p = _Cells()
+    p = Cells()
     p.feed((out / "report.html").read_text(encoding="utf-8"))
     shown = [(k, t) for k, t in p.cells if k is not None]
     n_json = sum(len(s["columns"]) * len(s["quantities"]) for s in data["sections"].values())
     assert len(shown) == n_json > 100
     for key, text in shown:
-        assert text == format_value(_json_value(data, key)), key
+        assert text == format_value(json_value(data, key)), key
     # every other cell is a label or a unit, never a number
     for key, text in p.cells:
         if key is None:
@@ -125,7 +79,7 @@ def test_csv_holds_the_same_numbers(report):
     for r in rows:
         cols = data["sections"][r["section"]]["columns"]
         key = f"{r['section']}.{r['key']}" + (f".{r['column']}" if len(cols) > 1 else "")
-        v = _json_value(data, key)
+        v = json_value(data, key)
         if isinstance(v, float):
             assert float(r["value"]) == v
         else:

@@ -15,7 +15,7 @@ import json
 from pathlib import Path
 
 import pytest
-from test_report import _Cells, _json_value
+from helpers import Cells, json_value
 
 from pipeline.cli import main as cli
 from pipeline.config import load_gearbox
@@ -131,12 +131,12 @@ def test_csv_rows_per_half(report):
 def test_html_shows_the_json_and_the_figure(report):
     out, _, _ = report
     data = json.loads((out / "sun_planet_report.json").read_text())
-    cells = _Cells()
+    cells = Cells()
     cells.feed((out / "sun_planet_report.html").read_text(encoding="utf-8"))
     shown = [(k, t) for k, t in cells.cells if k and k.startswith("herringbone.")]
     assert len(shown) == 3 * len(data["sections"]["herringbone"]["quantities"])
     for key, text in shown:
-        assert text == format_value(_json_value(data, key)), key
+        assert text == format_value(json_value(data, key)), key
     files = [f["file"] for f in data["sections"]["herringbone"]["figures"]]
     assert files[0] == "sun_planet_report_herringbone_line_load.png"
     assert all((out / f).is_file() for f in files)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from gearsets import SMALL
 
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
@@ -22,38 +23,6 @@ from pipeline.run import RunOptions, run_pipeline
 
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
 
-# The assembly-error paper's pair, coarse: 24 contact positions, 60 stiffness positions.
-SMALL = """\
-name = "small"
-[pinion]
-teeth = 50
-module_mm = 3.0
-pressure_angle_deg = 20.0
-face_width_mm = 20.0
-bore_radius_mm = 21.0
-[gear]
-teeth = 50
-module_mm = 3.0
-pressure_angle_deg = 20.0
-face_width_mm = 20.0
-bore_radius_mm = 21.0
-[operation]
-torque_Nm = 340.0
-speed_rpm = 2340.0
-[stiffness]
-friction = 0.05
-positions = 60
-[contact]
-positions = 24
-[dynamics]
-damping_ratio = 0.07
-[dynamics.response]
-n_harmonics = 20
-[dynamics.sweep]
-f_min_Hz = 500.0
-f_max_Hz = 5000.0
-points_coarse = 12
-"""
 
 
 def _run(text: str, cache_dir: Path):

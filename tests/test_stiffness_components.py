@@ -171,11 +171,21 @@ def test_iso_typical_value_and_load_correction():
     assert light.c_single / iso_stiffness(pair).c_single == pytest.approx(0.5**0.25, rel=1e-12)
 
 
-def test_contact_line_method_mean_equals_iso(helical_traction_pair):
-    """k_m(t) = k_ym L(t) with the mean pinned to c_gamma_alpha b; shape follows L(t)."""
-    cl = contact_line_stiffness(helical_traction_pair, 720)
-    assert cl.total.mean() == pytest.approx(cl.iso.mesh_stiffness, rel=1e-12)
+def test_contact_line_method_follows_the_contact_length(helical_traction_pair):
+    """k_m(t) = k_ym L(t): the stiffness follows the total contact line length, whose mean
+    over a mesh cycle is eps_alpha b / cos(beta_b) (ISO 21771, the contact lines of a
+    helical pair sweep the plane of action; 3.8e-7 off at 720 positions, 3.4e-9 at 7200:
+    the sampling of the line ends), so that k_ym = c_gamma_alpha cos(beta_b) / eps_alpha
+    with ISO 6336-1's c_gamma_alpha b as the mean."""
+    pair = helical_traction_pair
+    cl = contact_line_stiffness(pair, 720)
     np.testing.assert_allclose(cl.total / cl.contact_length, cl.k_per_length, rtol=1e-12)
+    cos_b = math.cos(pair.pinion.base_helix_angle)
+    mean_length = pair.transverse_contact_ratio * pair.face_width / cos_b
+    assert cl.contact_length.mean() == pytest.approx(mean_length, rel=1e-6)
+    assert cl.k_per_length == pytest.approx(
+        cl.iso.mesh_stiffness / pair.face_width * cos_b / pair.transverse_contact_ratio,
+        rel=1e-6)
 
 
 def test_fourier_series_exact_for_trigonometric_signal():

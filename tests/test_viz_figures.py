@@ -9,8 +9,8 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from helpers import load_workflow
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from test_cli_workflows import load_workflow
 
 from pipeline.viz.stiffness import plot_friction_coefficients, plot_stiffness_curves
 from pipeline.viz.units import STIFFNESS_UNIT, stiffness_in_plot_unit, stiffness_label

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
+from pipeline.fem.cache import MESH_CODE, cached_file, unlabelled
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
 from pipeline.fem.options import check_table_points
@@ -34,8 +34,8 @@ from pipeline.geometry.gear import GearSpec
 if TYPE_CHECKING:
     from pipeline.contact.fe_settings import FE2DSettings
 
-# Bump when the same inputs would give a different table.
-TABLE_FORMAT = 1
+TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe2d_table")
+"""The code the 2D tables depend on (part of their cache key)."""
 _TIMING_KEYS = ("mesh", "assembly", "loads", "factor", "solve", "nearfield", "total")
 
 
@@ -63,18 +63,16 @@ def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> F
                         np.tile(r, teeth.size))
 
 
-def _save(path: Path, G: InfluenceMatrix) -> Path:
-    return save_arrays(path, {
-        "fe": G.fe, "local": G.local, "patch_half_width": G.patch_half_width,
-        "kind": G.kind, "n_dof": G.n_dof, "n_free": G.n_free, "method": G.method,
-        "timings": np.array([G.timings.get(k, 0.0) for k in _TIMING_KEYS])})
+def _table_arrays(G: InfluenceMatrix) -> dict[str, object]:
+    return {"fe": G.fe, "local": G.local, "patch_half_width": G.patch_half_width,
+            "kind": G.kind, "n_dof": G.n_dof, "n_free": G.n_free, "method": G.method,
+            "timings": np.array([G.timings.get(k, 0.0) for k in _TIMING_KEYS])}
 
 
-def _load(path: Path, points: FlankPoints) -> InfluenceMatrix:
-    z = load_arrays(path)
+def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> InfluenceMatrix:
     n = len(points)
     if z["fe"].shape != (n, n) or z["local"].shape != (n, n):
-        raise ValueError(f"{path}: table of shape {z['fe'].shape}, expected {(n, n)}")
+        raise ValueError(f"table of shape {z['fe'].shape}, expected {(n, n)}")
     return InfluenceMatrix(points, z["fe"], z["local"], float(z["patch_half_width"]),
                            str(z["kind"]), int(z["n_dof"]), int(z["n_free"]),
                            str(z["method"]), 0,
@@ -99,8 +97,7 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
                        "lower fe.points")
     pts = table_points(gear, settings, teeth)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
-              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
-              "format": TABLE_FORMAT}
+              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts}
 
     def build() -> InfluenceMatrix:
         t = time.perf_counter()
@@ -111,7 +108,8 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
         G.timings["total"] += t_mesh
         return G
 
-    G, _, hit = cached_file("fe2dtable", inputs, build, lambda p: _load(p, pts), _save,
+    G, _, hit = cached_file("fe2dtable", inputs, build, _table_arrays,
+                            lambda z: _table_from_arrays(z, pts), code=TABLE_CODE,
                             cache_dir=cache_dir, enabled=cache)
     info = {"cached": hit, "seconds": time.perf_counter() - t0, "dof": G.n_dof,
             "free_dof": G.n_free, "solver": G.method, "sector": asdict(ss)}

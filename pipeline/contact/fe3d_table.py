@@ -41,20 +41,21 @@ import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe_settings import FE3DSettings
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
+from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
 from pipeline.fem.options import check_table_points
 from pipeline.fem.sector2d import inner_radius
-from pipeline.fem.sector3d import GEOMETRY_VERSION, SectorSettings3D, sector_mesh_3d
+from pipeline.fem.sector3d import SectorSettings3D, sector_mesh_3d
 from pipeline.fem.solvers import solver_named
 from pipeline.geometry.gear import GearSpec
 from pipeline.progress import Steps
 from pipeline.validation import InputError
 
 # Bump when the same inputs would give a different table.
-TABLE_FORMAT = 3  # 3: whole-gear bodies, timings stored
+TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe3d_table")
+"""The code the 3D tables depend on (part of their cache key)."""
 _STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
            "timing_values", "symmetry_error")  # arrays in the cache file
 @dataclass(frozen=True, eq=False)
@@ -169,7 +170,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
                        f"{loaded.size}", "lower fe.points or fe.face_points")
     rb = gear.base_radius
     arc = (r * r - rb * rb) / (2 * rb)
-    key = {"format": TABLE_FORMAT, "geometry": GEOMETRY_VERSION, "gear": unlabelled(gear),
+    key = {"gear": unlabelled(gear),
            "sector": asdict(s3), "inner_radius": inner_radius(gear, s3),
            "teeth": loaded, "radii": r, "z": z, "c": c, "cuts": settings.cuts,
            "ends": settings.ends}
@@ -192,10 +193,11 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
                 "timing_values": np.array(list(timings.values())),
                 "symmetry_error": res.symmetry_error()}
 
-    def save(path: Path, v: dict) -> Path:
-        return save_arrays(path, {k: v[k] for k in _STORED})
+    def stored(v: dict) -> dict:
+        return {k: v[k] for k in _STORED}
 
-    v, _, hit = cached_file("fe3dtable", key, build, load_arrays, save, cache_dir, cache)
+    v, _, hit = cached_file("fe3dtable", key, build, stored, same_arrays, code=TABLE_CODE,
+                            cache_dir=cache_dir, enabled=cache)
     timings = {str(n): float(t) for n, t in zip(v["timing_names"], v["timing_values"],
                                                strict=True)}
     info = {"body": body, "model_teeth": int(model_teeth), "dof": int(v["dof"]),

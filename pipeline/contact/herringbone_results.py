@@ -12,14 +12,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from pipeline.contact.cycle_io import load_cycle, save_cycle
+from pipeline.contact.cycle_io import cycle_arrays, cycle_from_arrays
 from pipeline.contact.results import LoadedMeshCycle
-from pipeline.fem.cache import load_arrays, save_arrays
 
 SIDES = ("left", "right")
 LEFT_FRACTION = {"right": 0.0, "left": 1.0, "both": 0.5}  # torque entering at O_L
@@ -168,19 +166,20 @@ _SCALARS = {"load": float, "n_planets": int, "base_radius": float, "base_helix_a
             "axial_support_stiffness": float}
 
 
-def save_herringbone(path: str | Path, cycle: HerringboneCycle) -> Path:
-    """Write ``cycle`` to ``path`` (.npz, plus one .npz per half beside it) atomically."""
-    path = Path(path)
+def herringbone_arrays(cycle: HerringboneCycle) -> dict[str, np.ndarray]:
+    """The cycle as named arrays, each half's fields prefixed ``"left:"`` / ``"right:"``
+    (:func:`herringbone_from_arrays` reads them back)."""
+    arrays = {n: np.asarray(getattr(cycle, n)) for n in _OWN}
     for side in SIDES:
-        save_cycle(path.with_suffix(f".{side}.npz"), cycle.half(side))
-    return save_arrays(path, {n: np.asarray(getattr(cycle, n)) for n in _OWN})
+        arrays.update({f"{side}:{k}": v for k, v in cycle_arrays(cycle.half(side)).items()})
+    return arrays
 
 
-def load_herringbone(path: str | Path) -> HerringboneCycle:
-    """Read a cycle written by :func:`save_herringbone` (KeyError/OSError when incomplete)."""
-    path = Path(path)
-    z = load_arrays(path)
+def herringbone_from_arrays(z: dict[str, np.ndarray]) -> HerringboneCycle:
+    """The cycle of :func:`herringbone_arrays` (KeyError when a field is missing)."""
     kw: dict[str, Any] = {n: _SCALARS[n](z[n]) if n in _SCALARS else z[n] for n in _OWN}
     for side in SIDES:
-        kw[side] = load_cycle(path.with_suffix(f".{side}.npz"))
+        prefix = f"{side}:"
+        kw[side] = cycle_from_arrays({k[len(prefix):]: v for k, v in z.items()
+                                      if k.startswith(prefix)})
     return HerringboneCycle(**kw)

@@ -224,12 +224,6 @@ class HertzLineContact:
         F = np.asarray(loads, dtype=float)
         return hertz_half_width(F / self.slice_width, self.effective_radius, self.contact_modulus)
 
-    def max_pressure(self, loads: ArrayLike) -> np.ndarray:
-        """Hertz maximum pressure p0 (Pa) at slice loads F (N); broadcast with ``self.shape``."""
-        F = np.asarray(loads, dtype=float)
-        return hertz_max_pressure(F / self.slice_width, self.effective_radius,
-                                  self.contact_modulus)
-
     def approach(self, loads: ArrayLike) -> np.ndarray:
         """Local contact approach u_c (m) at slice loads F (N), Yang et al. (2026), eq. (24);
         u_c(0) = 0."""

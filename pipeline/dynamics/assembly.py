@@ -82,12 +82,6 @@ class Assembly:
                 raise InputError(f"{what}: no coordinate {body}.{dof} in the assembly") from None
         return v
 
-    def _body(self, name: str) -> Body:
-        for b in self.bodies:
-            if b.name == name:
-                return b
-        raise InputError(f"no body named {name!r}")
-
     def assemble(self) -> LinearPeriodicSystem:
         """Build M, C, K, G, K_Omega, the periodic terms and the forces (see module doc)."""
         n = len(self._index)

@@ -104,8 +104,3 @@ def add_measures(*measures: Mapping[Coordinate, float]) -> dict[Coordinate, floa
         for k, v in m.items():
             out[k] = out.get(k, 0.0) + float(v)
     return out
-
-
-def scale_measure(measure: Mapping[Coordinate, float], factor: float) -> dict[Coordinate, float]:
-    """``factor * measure``."""
-    return {k: factor * v for k, v in measure.items()}

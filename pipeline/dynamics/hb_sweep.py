@@ -136,13 +136,6 @@ def _real_series(E: np.ndarray, C: np.ndarray) -> np.ndarray:
             E.shape[0], *C.shape[1:])
 
 
-def mesh_forces(plan: SweepPlan, frequency: float) -> np.ndarray:
-    """Dynamic mesh forces over one steady period at ``frequency`` (Hz), shape
-    (n_mesh, samples+1), N."""
-    elastic, damping = mesh_force_parts(plan, frequency)
-    return elastic + damping
-
-
 def mesh_force_parts(plan: SweepPlan, frequency: float) -> tuple[np.ndarray, np.ndarray]:
     """Elastic k (delta - e) and damping c (delta' - e') parts of the mesh forces over one
     steady period at ``frequency`` (Hz), each shape (n_mesh, samples+1), N."""

@@ -1,37 +1,50 @@
-"""On-disk cache of generated meshes (and other FE results), keyed by a content hash of their
-inputs, each entry checked against a SHA-256 of its contents when it is read.
+"""On-disk cache of generated meshes, FE tables and contact results: keyed by their inputs
+and by the code that produces them, each entry checked against its key and a SHA-256 of its
+contents when it is read.
 
-A mesh depends only on the geometry and the mesh settings, so both go into the key
-(:func:`pipeline.io.content_hash`) and nothing else: labels (a gear's or its material's
-``name``, :func:`unlabelled`) change no number, so an identical pinion and gear share
-one entry. Any changed input gives a new file name and the stale file is simply never
-read again. The folder is :func:`pipeline.fem.cache_dir.default_cache_dir` unless moved.
+Key
+---
+An entry's key (:func:`entry_key`) is a content hash (:func:`pipeline.io.content_hash`) of
+its kind, its inputs and the source of the code that produces it: every ``.py`` file of
+the packages or modules its producer names (``code``, e.g. ``MESH_CODE`` for meshes;
+:func:`code_digest`). A changed input or a changed line of that code gives a new key, so a
+stale result is never read and no version number needs bumping by hand. Labels (a gear's
+or its material's ``name``, :func:`unlabelled`) change no number and stay out of inputs,
+so an identical pinion and gear share one entry. The folder is
+:func:`pipeline.fem.cache_dir.default_cache_dir` unless moved.
 
-Entries are ``.npz`` archives written atomically (:func:`pipeline.io.atomic_write`: a
-temporary file moved into place) with one more array, ``__sha256__``, the digest of
-every other array's name, dtype, shape and bytes (:func:`arrays_digest`). An entry
-that cannot be read back exactly (zero bytes, truncated, not an archive, a missing
-field, a digest that does not match because the payload was changed) is reported once
-as a :class:`CacheWarning`, deleted and rebuilt. A folder that cannot be written costs
-only the saving: the result is returned uncached, with one warning.
+Entries
+-------
+``<kind>-<key>.npz`` archives written atomically (:func:`pipeline.io.atomic_write`: a
+temporary file moved into place) holding the producer's arrays (``to_arrays``), the key
+(``__key__``) and the SHA-256 of every other array's name, dtype, shape and bytes
+(``__sha256__``, :func:`arrays_digest`). An entry that cannot be read back exactly (zero
+bytes, truncated, not an archive, a missing field, a digest that does not match because
+the payload was changed) or that holds another key (an entry copied or moved onto this
+name) is reported once as a :class:`CacheWarning`, deleted and rebuilt. A folder that
+cannot be written costs only the saving: the result is returned uncached, with one
+warning.
 
-The same entries hold FE tables, loaded contact cycles and figures (keys: what determines
-them, never a gear's or material's name); ``--no-cache`` neither reads nor writes the
-cache. The check costs one hash of the data: 0.46 s for a 72 MB table against 0.59 s to
-read it unchecked (one run, 2 cores at load average 6.6; meshes and 2D tables are a few
-MB). Checks (``tests/test_cache.py``): zero-byte, truncated, half, foreign, changed (a mesh
-with its points scaled by 1.0001, which was once used silently), checksum-less, read-only
-and blocked entries and folders.
+The same layer holds meshes, FE tables and loaded contact cycles (keys: what determines them, never
+a gear's or material's name); ``--no-cache`` neither reads nor writes the cache (figures
+have their own cache, :mod:`pipeline.viz.figure_cache`). The check costs one hash of the
+data: 0.46 s for a 72 MB table against 0.59 s to read it unchecked (one run, 2 cores at
+load average 6.6; meshes and 2D tables are a few MB). Checks (``tests/test_cache.py``):
+zero-byte, truncated, half, foreign, changed (a mesh with its points scaled by 1.0001,
+which was once used silently), checksum-less, moved onto another entry's name, read-only
+and blocked entries and folders, and a key that follows the producing code.
 """
 
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import os
 import warnings
 import zipfile
 from collections.abc import Callable, Mapping
 from dataclasses import asdict
+from functools import cache
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -43,20 +56,43 @@ from pipeline.io import atomic_write, content_hash
 
 T = TypeVar("T")
 
-# Bump when the stored layout or the meshing code changes what a key produces.
-# 3: entries carry a SHA-256 of their arrays; gear and material names left out of keys.
-CACHE_FORMAT = 3
 DIGEST = "__sha256__"
 """Name of the array holding the SHA-256 of an entry's other arrays."""
+KEY = "__key__"
+"""Name of the array holding an entry's key (:func:`entry_key`)."""
+
+MESH_CODE = ("pipeline.geometry", "pipeline.fem")
+"""The code a mesh or an FE result of :mod:`pipeline.fem` depends on."""
 
 
 class CorruptEntry(ValueError):
     """A cache file that cannot be read back exactly (the message says why)."""
 
 
-def mesh_key(kind: str, inputs: Mapping[str, Any]) -> str:
-    """File stem ``<kind>-<hash>`` for a mesh built from ``inputs`` (any JSON-able data)."""
-    return f"{kind}-{content_hash({'kind': kind, 'format': CACHE_FORMAT, 'inputs': inputs})}"
+@cache
+def code_digest(code: tuple[str, ...]) -> str:
+    """SHA-256 (hex, 16 characters) of the source of the named packages or modules: each
+    name, then every ``.py`` file's path within it and its bytes, in path order. Computed
+    once per process (the source does not change under a running process)."""
+    h = hashlib.sha256()
+    for name in sorted(set(code)):
+        spec = importlib.util.find_spec(name)
+        if spec is None or spec.origin is None:
+            raise ValueError(f"cache key: no module or package named {name!r}")
+        origin = Path(spec.origin)
+        files = (sorted(origin.parent.rglob("*.py")) if spec.submodule_search_locations
+                 else [origin])
+        h.update(f"{name}\0".encode())
+        for f in files:
+            h.update(f"{f.relative_to(origin.parent).as_posix()}\0".encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def entry_key(kind: str, inputs: Mapping[str, Any], code: tuple[str, ...]) -> str:
+    """Key of an entry of ``kind`` built from ``inputs`` (any JSON-able data) by ``code``
+    (:func:`code_digest`)."""
+    return content_hash({"kind": kind, "inputs": inputs, "code": code_digest(tuple(code))})
 
 
 def unlabelled(gear: Any) -> dict[str, Any]:
@@ -109,37 +145,41 @@ def load_arrays(path: str | Path) -> dict[str, np.ndarray]:
     return arrays
 
 
-def save_tet_mesh(path: str | Path, data: TetMeshData) -> Path:
-    """Write ``data`` to ``path`` (.npz) atomically."""
+def tet_mesh_arrays(data: TetMeshData) -> dict[str, np.ndarray]:
+    """A mesh as named arrays (:func:`tet_mesh_from_arrays` reads them back)."""
     arrays = {"points": data.points, "cells": data.cells}
     arrays.update({f"surface:{k}": v for k, v in data.surfaces.items()})
     arrays.update({f"volume:{k}": v for k, v in data.volumes.items()})
-    return save_arrays(path, arrays)
+    return arrays
 
 
-def load_tet_mesh(path: str | Path) -> TetMeshData:
-    """Read a mesh written by :func:`save_tet_mesh`."""
-    z = load_arrays(path)
+def tet_mesh_from_arrays(z: Mapping[str, np.ndarray]) -> TetMeshData:
+    """The mesh of :func:`tet_mesh_arrays`."""
     surfaces = {k.split(":", 1)[1]: v for k, v in z.items() if k.startswith("surface:")}
     volumes = {k.split(":", 1)[1]: v for k, v in z.items() if k.startswith("volume:")}
     return TetMeshData(z["points"], z["cells"], surfaces, volumes)
 
 
+def same_arrays(arrays: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The identity conversion, for results that are named arrays already."""
+    return dict(arrays)
+
+
 def cached_file(
     kind: str, inputs: Mapping[str, Any], build: Callable[[], T],
-    load: Callable[[Path], T], save: Callable[[Path, T], object],
-    cache_dir: str | Path | None = None, enabled: bool = True,
+    to_arrays: Callable[[T], Mapping[str, Any]], from_arrays: Callable[[dict], T], *,
+    code: tuple[str, ...], cache_dir: str | Path | None = None, enabled: bool = True,
 ) -> tuple[T, Path | None, bool]:
-    """Return the cached result for ``inputs`` or build, store and return it.
+    """Return the cached result for ``inputs`` and ``code`` or build, store and return it.
 
     Parameters
     ----------
     kind : short name of the result family (part of the file name).
     inputs : everything the result depends on (geometry in m, settings).
     build : called on a cache miss; returns the result.
-    load, save : read / atomically write the result at a path (.npz); ``load`` raises
-        (:class:`CorruptEntry`, ``OSError``, ``KeyError``, ``ValueError``) on a file it
-        cannot read back exactly.
+    to_arrays, from_arrays : the result as named arrays and back; ``from_arrays`` raises
+        (``KeyError``, ``ValueError``) on arrays it cannot use.
+    code : the packages or modules whose source produces the result (part of the key).
     cache_dir : folder of the cache (default :func:`default_cache_dir`).
     enabled : False builds without reading or writing the cache.
 
@@ -150,15 +190,16 @@ def cached_file(
     """
     if not enabled:
         return build(), None, False
-    path = Path(cache_dir or default_cache_dir()) / f"{mesh_key(kind, inputs)}.npz"
+    key = entry_key(kind, inputs, code)
+    path = Path(cache_dir or default_cache_dir()) / f"{kind}-{key}.npz"
     if path.is_file():
         try:
-            return load(path), path, True
+            return from_arrays(_checked_arrays(path, key)), path, True
         except (CorruptEntry, OSError, KeyError, ValueError) as exc:
             _discard(path, exc)
     data = build()
     try:
-        save(path, data)
+        save_arrays(path, {**to_arrays(data), KEY: np.array(key)})
     except OSError as exc:
         reason = exc.strerror or type(exc).__name__
         warnings.warn(f"cache folder {path.parent} cannot be written ({reason}); results are "
@@ -166,6 +207,17 @@ def cached_file(
                       CacheWarning, stacklevel=2)
         return data, None, False
     return data, path, False
+
+
+def _checked_arrays(path: Path, key: str) -> dict[str, np.ndarray]:
+    """The arrays of the entry at ``path`` without its key, which must be ``key``."""
+    arrays = load_arrays(path)
+    stored = arrays.pop(KEY, None)
+    if stored is None:
+        raise CorruptEntry("it carries no key")
+    if str(stored) != key:
+        raise CorruptEntry(f"it holds another entry (key {stored}, expected {key})")
+    return arrays
 
 
 def _discard(path: Path, exc: BaseException) -> None:
@@ -183,5 +235,7 @@ def cached_tet_mesh(
     kind: str, inputs: Mapping[str, Any], build: Callable[[], TetMeshData],
     cache_dir: str | Path | None = None, enabled: bool = True,
 ) -> tuple[TetMeshData, Path | None, bool]:
-    """:func:`cached_file` for meshes: (mesh, cache path or None, True if read from it)."""
-    return cached_file(kind, inputs, build, load_tet_mesh, save_tet_mesh, cache_dir, enabled)
+    """:func:`cached_file` for meshes (code :data:`MESH_CODE`): (mesh, cache path or None,
+    True if read from it)."""
+    return cached_file(kind, inputs, build, tet_mesh_arrays, tet_mesh_from_arrays,
+                       code=MESH_CODE, cache_dir=cache_dir, enabled=enabled)

@@ -29,14 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays, unlabelled
+from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
 from pipeline.fem.flank import table_radii
 from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
 from pipeline.validation import check_choice, check_int_range, check_range
 
-TABLE_FORMAT = 1
 KINDS = ("plane_strain", "plane_stress")
 
 
@@ -188,7 +187,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
     ss = SectorSettings2D.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
     r = table_radii(gear, settings.radii)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
-              "radii": r.tolist(), "format": TABLE_FORMAT}
+              "radii": r.tolist()}
 
     def build() -> dict[str, np.ndarray]:
         # the solver side is imported on a cache miss only (a second of imports)
@@ -219,8 +218,8 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
                 "n_dof": np.array(model.n_dof),
                 "timings": np.array([t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4])}
 
-    data, _, _ = cached_file("filletstress", inputs, build, load_arrays, save_arrays,
-                             cache_dir=cache_dir, enabled=cache)
+    data, _, _ = cached_file("filletstress", inputs, build, same_arrays, same_arrays,
+                             code=MESH_CODE, cache_dir=cache_dir, enabled=cache)
     rb = gear.base_radius
     names = ("mesh", "assembly", "loads", "solve", "recovery")
     return FilletStressTable(gear, settings, offsets, r, (r * r - rb * rb) / (2 * rb),

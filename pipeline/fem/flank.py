@@ -75,17 +75,6 @@ class FlankPoints:
         return (self.tooth[:, None] == self.tooth[None, :]) & (self.side[:, None] == self.side)
 
 
-def roll_length(gear: GearSpec, radius: ArrayLike) -> np.ndarray:
-    """Roll length (curvature radius of the involute) ``sqrt(r^2 - r_b^2)`` at ``radius``, m."""
-    r = np.asarray(radius, dtype=float)
-    return np.sqrt(np.maximum(r * r - gear.base_radius**2, 0.0))
-
-
-def radius_of_roll(gear: GearSpec, roll: ArrayLike) -> np.ndarray:
-    """Radius (m) of the involute point with roll length ``roll`` (m)."""
-    return np.hypot(np.asarray(roll, dtype=float), gear.base_radius)
-
-
 def flank_points(gear: GearSpec, teeth: int, tooth: ArrayLike, radius: ArrayLike,
                  side: str = "right") -> FlankPoints:
     """Geometry of involute points of a ``teeth``-tooth sector (tooth angles as in sector2d).

@@ -56,7 +56,6 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
 # Part of the cache key: bump when the same inputs would now give a different mesh.
-GEOMETRY_VERSION = 2  # 2: curved cells untangled (Mesh.HighOrderOptimize)
 # Whole-gear element sizes in normal modules (over sqrt(refinement)), and the grading
 # distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
 WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
@@ -349,8 +348,7 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     if settings.half == 1 and not gear.herringbone:
         raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
     r_in = inner_radius(gear, settings)
-    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in,
-              "version": GEOMETRY_VERSION}
+    inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}
     check_sector_teeth(gear, settings)
     body = "whole gear" if settings.teeth == gear.teeth else f"{settings.teeth}-tooth sector"
     check_size_3d(f"the {body} of {gear.name}",

@@ -14,10 +14,6 @@ Methods (measured side by side on a 2-core machine when they were chosen):
 * ``"splu"`` - scipy's SuperLU. Always available; fine for 2D and small 3D
   models, unusable for large 3D ones (> 600 s at 200k DOF), so it is only the
   fallback.
-* ``"amg-cg"`` - conjugate gradients preconditioned by pyamg smoothed
-  aggregation with the rigid-body modes as near-null space. Only for *one*
-  right-hand side on a large 3D model (less memory than a factor); with many
-  right-hand sides factorise instead. Offered by :func:`solve_spd`.
 
 Every result says which method ran, so reports can state it.
 
@@ -85,11 +81,6 @@ def _cholespy_factor(A: sp.spmatrix):
         return x
 
     return solve
-
-
-def pyamg_available() -> bool:
-    """True when pyamg can be imported."""
-    return find_spec("pyamg") is not None
 
 
 @dataclass(frozen=True, eq=False)
@@ -194,65 +185,3 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
                        options={"SymmetricMode": True})
         solve = lu.solve
     return SPDFactor(method=method, n=n, factor_seconds=time.perf_counter() - t0, _solve=solve)
-
-
-@dataclass(frozen=True, eq=False)
-class SolveResult:
-    """Solution of A x = b.
-
-    Attributes
-    ----------
-    x : (n,) or (n, k) solution.
-    method : "cholmod", "cholespy", "splu" or "amg-cg".
-    seconds : total wall time (set-up + solve), s.
-    iterations : CG iterations (0 for direct methods).
-    """
-
-    x: np.ndarray
-    method: str
-    seconds: float
-    iterations: int = 0
-
-
-def solve_spd(
-    A: sp.spmatrix, b: np.ndarray, method: str = "auto", near_nullspace: np.ndarray | None = None,
-    rtol: float = 1e-10,
-) -> SolveResult:
-    """Solve one SPD system (possibly with several right-hand sides).
-
-    Parameters
-    ----------
-    A : (n, n) sparse SPD matrix.
-    b : (n,) or (n, k) right-hand side(s).
-    method : "auto", "cholmod", "cholespy", "splu" or "amg-cg". "auto" factorises (the right
-        choice for several right-hand sides and for 2D); choose "amg-cg" for one
-        right-hand side on a large 3D model.
-    near_nullspace : (n, m) rigid-body modes for "amg-cg" (required there).
-    rtol : relative residual tolerance for "amg-cg".
-    """
-    check_choice("solver.method", method, FACTOR_METHODS + ("amg-cg",))
-    t0 = time.perf_counter()
-    if method != "amg-cg":
-        f = factorize_spd(A, method)
-        return SolveResult(f.solve(b), f.method, time.perf_counter() - t0)
-    # Argument errors first, so they are reported whether or not pyamg is installed.
-    if near_nullspace is None:
-        raise InputError("solver.method = 'amg-cg' needs the rigid-body near_nullspace")
-    if not pyamg_available():
-        raise InputError("solver.method = 'amg-cg' needs pyamg (not installed)")
-    import pyamg
-
-    ml = pyamg.smoothed_aggregation_solver(sp.csr_matrix(A), B=near_nullspace, max_coarse=2000)
-    M = ml.aspreconditioner(cycle="V")
-    b2 = np.asarray(b, dtype=float).reshape(A.shape[0], -1)
-    xs, its = [], 0
-    for k in range(b2.shape[1]):
-        count = [0]
-        x, info = spla.cg(A, b2[:, k], rtol=rtol, M=M, maxiter=2000,
-                          callback=lambda _x, c=count: c.__setitem__(0, c[0] + 1))
-        if info != 0:
-            raise RuntimeError(f"amg-cg did not converge to rtol={rtol} in 2000 iterations")
-        xs.append(x)
-        its += count[0]
-    x = np.column_stack(xs).reshape(np.shape(b))
-    return SolveResult(x, "amg-cg", time.perf_counter() - t0, its)

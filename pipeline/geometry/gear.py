@@ -289,11 +289,6 @@ class GearSpec:
         return math.pi * self.module * math.cos(self.pressure_angle)
 
     @cached_property
-    def angular_pitch(self) -> float:
-        """2 pi / z in rad."""
-        return 2.0 * math.pi / self.teeth
-
-    @cached_property
     def reference_tooth_thickness(self) -> float:
         """Transverse arc tooth thickness on the reference circle s_t in m."""
         return self.transverse_module * (

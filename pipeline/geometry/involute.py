@@ -32,8 +32,3 @@ def inv_inverse(value: ArrayLike, tol: float = 1e-15) -> np.ndarray:
         if np.all(np.abs(f) <= tol * np.maximum(1.0, v)):
             break
     return a
-
-
-def involute_polar_angle(r: ArrayLike, r_base: float) -> np.ndarray:
-    """Polar angle ``inv(arccos(r_base / r))`` of the involute point at radius ``r`` (rad)."""
-    return inv(np.arccos(np.clip(r_base / np.asarray(r, dtype=float), -1.0, 1.0)))

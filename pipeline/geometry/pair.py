@@ -10,7 +10,7 @@ When the pinion drives, contact starts at ``s_start`` (the gear's tip circle)
 and moves towards ``s_end`` (the pinion's tip circle) at ``r_b1`` metres per
 radian of pinion rotation, passing the pitch point ``s_pitch = r_b1 tan(alpha_wt)``.
 Approach is ``s < s_pitch``, recess ``s > s_pitch`` (for either driver the
-approach is the part before the pitch point in time; see :meth:`GearPair.in_approach`).
+approach is the part before the pitch point in time: with the gear driving, ``s > s_pitch``).
 
 For helical gears the plane of action is the rectangle ``[s_start, s_end] x [0, b]``
 and the contact lines on it are inclined at the base helix angle: a tooth pair
@@ -261,15 +261,6 @@ class GearPair:
             np.arctan2(np.abs(rho1), self.pinion.base_radius),
             np.arctan2(np.abs(rho2), self.gear.base_radius),
         )
-
-    def in_approach(self, s: ArrayLike, driver: str = "pinion") -> np.ndarray:
-        """True where the contact at ``s`` is in the approach (before the pitch point in time).
-
-        With the pinion driving, contact runs from ``s_start`` to ``s_end``, so
-        approach is ``s < s_pitch``; with the gear driving it runs the other way.
-        """
-        s = np.asarray(s, dtype=float)
-        return s < self.s_pitch if driver == "pinion" else s > self.s_pitch
 
     def sliding_velocity(self, s: ArrayLike, pinion_speed: float) -> np.ndarray:
         """Sliding velocity ``u1 - u2`` of the pinion flank over the gear flank, m/s.

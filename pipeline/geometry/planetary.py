@@ -167,16 +167,6 @@ class PlanetarySet:
             return self.centre_distance
         return 0.5 * sum(self.zero_backlash_distances)
 
-    def planet_centres(self) -> np.ndarray:
-        """Planet centres in the carrier frame, shape (N, 2), m."""
-        r = self.carrier_radius
-        return np.column_stack([r * np.cos(self.angles), r * np.sin(self.angles)])
-
-    @property
-    def ratio_carrier_fixed_ring(self) -> float:
-        """Speed ratio sun/carrier with the ring fixed: 1 + z_r / z_s."""
-        return 1.0 + self.ring.teeth / self.sun.teeth
-
     def mesh_period(self, sun_speed: float, carrier_speed: float = 0.0) -> float:
         """T_m = 2 pi / ((omega_s - omega_c) z_s) in s (Xu et al. 2020, eq. 7); speeds in rad/s."""
         rel = abs(sun_speed - carrier_speed)

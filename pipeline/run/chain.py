@@ -53,7 +53,12 @@ from typing import Any
 from pipeline.config import Gearbox
 from pipeline.contact.analysis import analyse_contact, warn_physics
 from pipeline.contact.compliance import compliance_source
-from pipeline.contact.cycle_io import cycle_cache_inputs, load_cycle, save_cycle
+from pipeline.contact.cycle_io import (
+    CYCLE_CODE,
+    cycle_arrays,
+    cycle_cache_inputs,
+    cycle_from_arrays,
+)
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.fem.cache import cached_file
 from pipeline.geometry.analysis import GeometryResult, analyse_geometry
@@ -214,8 +219,9 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
         return analyse_contact(source, case.operation, box.contact,
                                show_progress=options.show_progress)
 
-    cycle, _, hit = cached_file("contactcycle", inputs, build, load_cycle, save_cycle,
-                                options.cache_dir, options.cache and options.cache_cycles)
+    cycle, _, hit = cached_file("contactcycle", inputs, build, cycle_arrays, cycle_from_arrays,
+                                code=CYCLE_CODE, cache_dir=options.cache_dir,
+                                enabled=options.cache and options.cache_cycles)
     if hit:
         warn_physics(cycle)  # a cycle solved now has warned already
     return cycle, hit

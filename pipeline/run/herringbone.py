@@ -27,7 +27,7 @@ import numpy as np
 
 from pipeline.contact.analysis import line_of_action_load
 from pipeline.contact.compliance import compliance_source
-from pipeline.contact.cycle_io import cycle_cache_inputs
+from pipeline.contact.cycle_io import CYCLE_CODE, cycle_cache_inputs
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone import (
     SUN_LOAD_SIDE,
@@ -36,11 +36,11 @@ from pipeline.contact.herringbone import (
 )
 from pipeline.contact.herringbone_results import (
     HerringboneCycle,
-    load_herringbone,
-    save_herringbone,
+    herringbone_arrays,
+    herringbone_from_arrays,
 )
 from pipeline.contact.options import ContactOptions
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import MESH_CODE, cached_file
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.geometry.pair import GearPair
@@ -48,8 +48,6 @@ from pipeline.io import to_jsonable
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
 
-HERRINGBONE_FORMAT = 1  # bump when the herringbone solve or its stored layout changes
-GROOVE_FORMAT = 1
 TORQUE_SIDE = SUN_LOAD_SIDE
 """``[herringbone] torque_entry`` -> the herringbone model's ``sun_load_side``."""
 
@@ -82,12 +80,12 @@ class HerringboneStage:
                 **self.cycle.summary()}
 
 
-def _save_groove(path: Path, g: GrooveStiffness) -> Path:
-    return save_arrays(path, {"json": np.array(json.dumps(to_jsonable(g.to_dict())))})
+def _groove_arrays(g: GrooveStiffness) -> dict[str, np.ndarray]:
+    return {"json": np.array(json.dumps(to_jsonable(g.to_dict())))}
 
 
-def _load_groove(path: Path) -> GrooveStiffness:
-    return GrooveStiffness.from_dict(json.loads(str(load_arrays(path)["json"])))
+def _groove_from_arrays(z: dict[str, np.ndarray]) -> GrooveStiffness:
+    return GrooveStiffness.from_dict(json.loads(str(z["json"])))
 
 
 def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path | None = None,
@@ -98,14 +96,13 @@ def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path
     Returns (result, True if read from the cache); ``result.timings`` are those of the
     run that computed it.
     """
-    from pipeline.fem.groove.mesh import GEOMETRY_VERSION
     from pipeline.fem.groove.study import groove_stiffness
 
-    inputs = {"spec": spec, "geometry_version": GEOMETRY_VERSION, "format": GROOVE_FORMAT}
-    res, _, hit = cached_file("groovestiffness", inputs,
+    res, _, hit = cached_file("groovestiffness", {"spec": spec},
                               lambda: groove_stiffness(spec, cache_dir=cache_dir,
                                                        use_cache=cache, progress=progress),
-                              _load_groove, _save_groove, cache_dir, cache)
+                              _groove_arrays, _groove_from_arrays, code=MESH_CODE,
+                              cache_dir=cache_dir, enabled=cache)
     return res, hit
 
 
@@ -129,7 +126,7 @@ def cached_herringbone_cycle(
     Returns (cycle, True if read from the cache).
     """
     inputs = {**cycle_cache_inputs(pair, operation, contact, stiffness, fe),
-              "herringbone_format": HERRINGBONE_FORMAT, "groove": groove.compliance.tolist(),
+              "groove": groove.compliance.tolist(),
               "n_planets": n_planets, "herringbone": herringbone}
 
     def build() -> HerringboneCycle:
@@ -144,8 +141,9 @@ def cached_herringbone_cycle(
                                       local=contact.local_contact, positions=contact.positions,
                                       show_progress=show_progress)
 
-    cycle, _, hit = cached_file("herringbone", inputs, build, load_herringbone,
-                                save_herringbone, cache_dir, cache)
+    cycle, _, hit = cached_file("herringbone", inputs, build, herringbone_arrays,
+                                herringbone_from_arrays, code=CYCLE_CODE, cache_dir=cache_dir,
+                                enabled=cache)
     return cycle, hit
 
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from pipeline.dynamics.mesh_input import MeshExcitation, analytical_excitation
+from pipeline.dynamics.mesh_input import analytical_excitation
 from pipeline.dynamics.models.split_torque import SplitTorqueModel, StageMesh
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
@@ -173,9 +173,3 @@ def split_torque_helicopter_model(
         modal_damping_ratio=0.02,
         friction=friction,
     )
-
-
-def has_excitation(ex: MeshExcitation) -> bool:
-    """True when the stage stiffness varies over the mesh period."""
-    v = ex.stiffness.values
-    return bool(v.max() > v.min())

@@ -24,9 +24,6 @@ from pipeline.fem.groove.body import CoaxialBody, Segment
 from pipeline.fem.groove.outline import tooth_outline
 from pipeline.validation import check_int_range, check_positive, check_range
 
-# Part of the mesh cache key: bump when the geometry built from the same inputs changes.
-GEOMETRY_VERSION = 2  # 2: exact generated tooth profile (pipeline.geometry.profile)
-
 
 @dataclass(frozen=True)
 class MeshSettings:

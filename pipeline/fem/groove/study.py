@@ -15,7 +15,7 @@ import numpy as np
 
 from pipeline.fem.cache import cached_tet_mesh
 from pipeline.fem.groove.coupling import TwoNodeCoupling, couple_two_surfaces
-from pipeline.fem.groove.mesh import GEOMETRY_VERSION, mesh_coaxial_body
+from pipeline.fem.groove.mesh import mesh_coaxial_body
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.fem.groove.size import estimated_size
 from pipeline.fem.groove.spec import GrooveSpec
@@ -77,8 +77,7 @@ def analyse_groove(
                   f"raise groove.mesh_size_mm (now {spec.mesh_size * 1e3:g} mm)")
     with steps.step("meshing the body (Gmsh)"):
         data, _, hit = cached_tet_mesh(
-            "groove", {"body": asdict(body), "mesh": asdict(settings),
-                       "geometry_version": GEOMETRY_VERSION},
+            "groove", {"body": asdict(body), "mesh": asdict(settings)},
             lambda: mesh_coaxial_body(body, settings), cache_dir=cache_dir,
             enabled=use_cache)
         sk = to_skfem(data)
