@@ -55,7 +55,6 @@ from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError, check_int_range, check_range
 
-# Part of the cache key: bump when the same inputs would now give a different mesh.
 # Whole-gear element sizes in normal modules (over sqrt(refinement)), and the grading
 # distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
 WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
