@@ -251,10 +251,38 @@ def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
     figures.save(tmp_path / "b.png", draw, np.arange(3.0))
     assert len(drawn) == 1 and (tmp_path / "b.png").read_bytes() == first.read_bytes()
     damage(cached)
-    with pytest.warns(CacheWarning, match="not a whole PNG"):
+    with pytest.warns(CacheWarning, match="not a whole PNG of this figure"):
         out = figures.save(tmp_path / "c.png", draw, np.arange(3.0))
     assert len(drawn) == 2 and out.read_bytes()[-8:] == b"IEND\xaeB`\x82"
     assert cached.read_bytes() == out.read_bytes()  # the cache holds the whole figure again
+
+
+def test_a_cached_figure_moved_onto_another_name_is_redrawn(tmp_path):
+    """Two figures of different data; the second's cached PNG copied over the first's (a
+    swap on disk): the first is redrawn with one warning, never replaced by the other
+    (each cached PNG carries its key in a tEXt chunk)."""
+    import matplotlib.pyplot as plt
+
+    from pipeline.viz.figure_cache import FigureCache, stored_key
+
+    drawn: list = []
+
+    def draw(y):
+        drawn.append(1)
+        fig, ax = plt.subplots()
+        ax.plot(y)
+        return fig
+
+    figures = FigureCache(tmp_path / "figures", dpi=40)
+    a = figures.save(tmp_path / "a.png", draw, np.arange(3.0)).read_bytes()
+    b = figures.save(tmp_path / "b.png", draw, np.arange(4.0)).read_bytes()
+    cache_a, cache_b = (tmp_path / "figures" / f"fig-{stored_key(tmp_path / n)}.png"
+                        for n in ("a.png", "b.png"))
+    assert a != b and cache_a.read_bytes() == a and cache_b.read_bytes() == b
+    cache_a.write_bytes(b)
+    with pytest.warns(CacheWarning, match="another figure's"):
+        again = figures.save(tmp_path / "a2.png", draw, np.arange(3.0))
+    assert len(drawn) == 3 and again.read_bytes() == a
 
 
 def test_the_test_session_caches_outside_the_checkout(tmp_path_factory):

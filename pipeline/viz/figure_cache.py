@@ -6,9 +6,10 @@ stiffness, contact and load-map figures. :meth:`FigureCache.save` keys each PNG 
 the drawing function, the source of the module that defines it, and every argument
 it is drawn from (arrays by their bytes, dataclasses field by field), so a figure is
 redrawn exactly when its data or its drawing code changed. An argument the key
-cannot describe is an error rather than a silently stale figure. A cached file that is
-not a whole PNG (empty, or cut before its end chunk) is reported in one warning line and
-redrawn over.
+cannot describe is an error rather than a silently stale figure. Each cached PNG carries
+its key in a ``tEXt`` chunk (``gearpipe-key``); a cached file that is not a whole PNG
+(empty, or cut before its end chunk) or holds another key (a figure copied or moved onto
+this name) is reported in one warning line and redrawn over.
 """
 
 from __future__ import annotations
@@ -16,8 +17,10 @@ from __future__ import annotations
 import hashlib
 import inspect
 import shutil
+import struct
 import sys
 import warnings
+import zlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, fields, is_dataclass
 from functools import partial
@@ -104,25 +107,62 @@ class FigureCache:
                             args, kwargs)
             cached = Path(self.folder) / f"fig-{key}.png"
             if cached.is_file():
-                if _whole_png(cached):
+                if _whole_png(cached) and stored_key(cached) == key:
                     return atomic_write(path, lambda p: shutil.copyfile(cached, p))
-                warnings.warn(f"cached figure {cached} is not a whole PNG; redrawn",
-                              CacheWarning, stacklevel=2)
-        job = partial(draw_figure, Path(path), cached, self.dpi, draw, args, kwargs)
+                warnings.warn(f"cached figure {cached} is not a whole PNG of this figure "
+                              "(cut, or another figure's); redrawn", CacheWarning, stacklevel=2)
+        job = partial(draw_figure, Path(path), cached, self.dpi, draw, args, kwargs,
+                      cached.stem.removeprefix("fig-") if cached is not None else "")
         return job() if self.queue is None else self.queue.add(path, job)
 
 
 def draw_figure(path: Path, cached: Path | None, dpi: int, draw: Callable[..., Any],
-                args: tuple, kwargs: dict) -> Path:
+                args: tuple, kwargs: dict, key: str = "") -> Path:
     """Draw ``draw(*args, **kwargs)`` into ``path`` (PNG at ``dpi``) and keep a copy as
-    ``cached``; a module-level function, so a queued drawing pickles."""
+    ``cached``, stamped with ``key``; a module-level function, so a queued drawing
+    pickles."""
     out = save(draw(*args, **kwargs), path, dpi)
     if cached is not None:
+        # the drawn file and its cached copy are the same bytes, so a rerun's copy is too
+        stamped = with_key(out.read_bytes(), key)
+        atomic_write(out, lambda p: Path(p).write_bytes(stamped))
         try:
-            atomic_write(cached, lambda p: shutil.copyfile(out, p))
+            atomic_write(cached, lambda p: Path(p).write_bytes(stamped))
         except OSError:
             pass  # a read-only or full cache only costs the next run a redraw
     return out
+
+
+_KEY_WORD = b"gearpipe-key"
+_HEADER_END = 8 + 4 + 4 + 13 + 4  # signature and the IHDR chunk (length, type, data, CRC)
+
+
+def with_key(png: bytes, key: str) -> bytes:
+    """``png`` with a ``tEXt`` chunk ``gearpipe-key: key`` after its header chunk."""
+    data = _KEY_WORD + b"\0" + key.encode("ascii")
+    chunk = (struct.pack(">I", len(data)) + b"tEXt" + data
+             + struct.pack(">I", zlib.crc32(b"tEXt" + data)))
+    return png[:_HEADER_END] + chunk + png[_HEADER_END:]
+
+
+def stored_key(path: Path) -> str | None:
+    """The ``gearpipe-key`` text of a PNG file (:func:`with_key`), or ``None``."""
+    try:
+        with open(path, "rb") as fh:
+            fh.seek(len(_PNG_START))
+            while True:
+                head = fh.read(8)
+                if len(head) < 8:
+                    return None
+                length, kind = struct.unpack(">I", head[:4])[0], head[4:]
+                if kind in (b"IDAT", b"IEND"):
+                    return None
+                body = fh.read(length)
+                fh.seek(4, 1)  # CRC
+                if kind == b"tEXt" and body.startswith(_KEY_WORD + b"\0"):
+                    return body[len(_KEY_WORD) + 1:].decode("ascii", "replace")
+    except OSError:
+        return None
 
 
 _PNG_START = b"\x89PNG\r\n\x1a\n"
