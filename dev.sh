@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # One entry point for set-up, the main job and the tests.
 #   ./dev.sh demo     run the default workflow (embedded spur pair) -> results/
-#   ./dev.sh test     run the test suite (fast cases; add -m slow for FE cases)
+#   ./dev.sh test     the checks CI runs: ruff, the import layers (lint-imports) and every
+#                     test, slow FE cases included; ./dev.sh test ARGS runs pytest ARGS only
+#                     (the default selection leaves out the slow cases)
 #   ./dev.sh bench    run the benchmark scripts in workflows/benchmarks
 #   ./dev.sh chromium install Debian's headless Chromium if missing (the report's render test)
 # The first call creates .venv and installs the package and its dependencies.
@@ -53,9 +55,16 @@ ensure_chromium() {
 cmd="${1:-help}"; shift || true
 case "$cmd" in
     demo)  ensure_env; python workflows/default_case.py "$@" ;;
-    test)  ensure_env; python -m pytest "$@" ;;
+    test)  ensure_env
+           if [ $# -eq 0 ]; then
+               ruff check pipeline tests workflows
+               lint-imports --no-cache >/dev/null || lint-imports --no-cache
+               python -m pytest -m "slow or not slow"
+           else
+               python -m pytest "$@"
+           fi ;;
     bench) ensure_env; for f in workflows/benchmarks/bench_*.py; do python "$f" "$@"; done ;;
     env)   ensure_env; echo "environment ready: $venv" ;;
     chromium) ensure_chromium ;;
-    *)     sed -n '2,8p' "$0"; exit 2 ;;
+    *)     sed -n '2,10p' "$0"; exit 2 ;;
 esac

@@ -69,7 +69,7 @@ def _raise(exc: BaseException):
 
 
 def test_failed_contact_solve_is_one_line(tmp_path, capsys, monkeypatch):
-    import pipeline.contact.commands as commands
+    import pipeline.cli.contact as commands
     from pipeline.contact.complementarity import ContactConvergenceError
 
     monkeypatch.setattr(commands, "analyse_contact", _raise(ContactConvergenceError(
@@ -83,7 +83,7 @@ def test_failed_contact_solve_is_one_line(tmp_path, capsys, monkeypatch):
 def test_singular_model_is_one_line(tmp_path, capsys, monkeypatch):
     from numpy.linalg import LinAlgError
 
-    import pipeline.fem.groove_command as command
+    import pipeline.cli.groove as command
 
     monkeypatch.setattr(command, "analyse_groove", _raise(LinAlgError("Singular matrix")))
     assert cli(["groove", str(GROOVE), "--out", str(tmp_path)]) == 1

@@ -4,7 +4,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from pipeline.commands_common import COMMAND_KINDS, kind_mismatch
+from pipeline.cli.common import COMMAND_KINDS, kind_mismatch
 
 ROOT = Path(__file__).resolve().parents[1]
 

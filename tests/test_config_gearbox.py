@@ -145,11 +145,11 @@ def test_spur_pair_derived_dynamic_inputs():
     with metal), which the exact section includes: 2 (1 - pi/4) rho_f^2 per tooth, 0.17 %
     of the area, so the exact values lie 0-0.3 % above the hand values.
     """
-    from pipeline.dynamics.commands import dynamic_model
     from pipeline.geometry.involute import inv
+    from pipeline.run.dynamics import gearbox_dynamic_model
 
     box = load_gearbox(SPUR)
-    model = dynamic_model(box)
+    model = gearbox_dynamic_model(box)
     assert model.base_radius_pinion == pytest.approx(0.0704769, abs=1e-7)
     assert model.base_radius_gear == pytest.approx(0.0704769, abs=1e-7)
     assert model.mesh_period == pytest.approx(60 / (50 * 2340), rel=1e-12)
@@ -173,9 +173,9 @@ def test_spur_pair_same_frequencies_as_the_hand_typed_model():
     the gearbox file's model has exactly its natural frequencies; with the derived bodies
     (2.543 kg, 7.72e-3 kg m^2 instead of 2.52 kg, 7.4e-3 kg m^2) they move by < 3 %."""
     from pipeline.dynamics.analysis import analyse_modes
-    from pipeline.dynamics.commands import dynamic_model
     from pipeline.dynamics.excitation import rectangular_mesh_stiffness
     from pipeline.dynamics.models.spur_pair import SpurPairModel
+    from pipeline.run.dynamics import gearbox_dynamic_model
 
     hand = SpurPairModel(
         mesh_stiffness=rectangular_mesh_stiffness(2.3e8, 3.9e8, 1.73, samples=360),
@@ -187,13 +187,13 @@ def test_spur_pair_same_frequencies_as_the_hand_typed_model():
     text = BASE.replace("[dynamics]\n", "[dynamics]\nfriction = false\n")
     text += ('[dynamics.mesh_stiffness]\nkind = "rectangular"\nk_single_N_per_m = 2.3e8\n'
              'k_double_N_per_m = 3.9e8\ncontact_ratio = 1.73\nsamples = 360\n')
-    derived = analyse_modes(dynamic_model(gearbox_from_text(text))).frequencies
+    derived = analyse_modes(gearbox_dynamic_model(gearbox_from_text(text))).frequencies
     for role in ("pinion", "gear"):
         text = text.replace("bore_radius_mm = 21.0\n", "bore_radius_mm = 21.0\nmass_kg = 2.52\n"
                             "inertia_kgm2 = 7.4e-3\n", 1) if role == "pinion" else \
             text.replace("bore_radius_mm = 21.0\n[gear", "bore_radius_mm = 21.0\nmass_kg = 2.52\n"
                          "inertia_kgm2 = 7.4e-3\n[gear", 1)
-    given = analyse_modes(dynamic_model(gearbox_from_text(text))).frequencies
+    given = analyse_modes(gearbox_dynamic_model(gearbox_from_text(text))).frequencies
     np.testing.assert_allclose(given, ref, rtol=1e-5)  # r_b typed to 6 digits by hand
     np.testing.assert_allclose(derived[1:], ref[1:], rtol=0.03)
 

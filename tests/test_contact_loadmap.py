@@ -10,8 +10,8 @@ import meshio
 import numpy as np
 import pytest
 
+from pipeline.cli import contact as commands
 from pipeline.config.gearbox import contact_options_from_table
-from pipeline.contact import commands
 from pipeline.contact.loadmap import (
     flank_load_map,
     flank_surface,

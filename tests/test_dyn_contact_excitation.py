@@ -216,7 +216,7 @@ def test_pair_dte_at_operating_speed_analytical_vs_contact():
     static TE, 360 positions) 35.0 um. The contact's Weber local approach is softer than
     the constant Hertz term, so its mean DTE is larger too (15.97 vs 13.86 um)."""
     from pipeline.dynamics.analysis import analyse_response
-    from pipeline.dynamics.commands import dynamic_model
+    from pipeline.run.dynamics import gearbox_dynamic_model
 
     base = (CONFIGS + "spur_pair_assembly_errors.toml")
     text = open(base, encoding="utf-8").read() + "[contact]\npositions = 360\n"
@@ -224,7 +224,7 @@ def test_pair_dte_at_operating_speed_analytical_vs_contact():
     for excitation in ("analytical", "contact"):
         box = gearbox_from_text(text.replace("damping_ratio = 0.07",
                                              f'damping_ratio = 0.07\nexcitation = "{excitation}"'))
-        model = dynamic_model(box)
+        model = gearbox_dynamic_model(box)
         assert (model.transmission_error is not None) == (excitation == "contact")
         out[excitation] = analyse_response(model, box.dynamics.response).summary()["meshes"]
     assert out["analytical"]["mesh"]["dte_peak_to_peak_m"] == pytest.approx(24.996e-6, rel=1e-3)

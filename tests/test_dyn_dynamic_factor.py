@@ -21,12 +21,12 @@ import pytest
 
 from pipeline.config import gearbox_from_text
 from pipeline.dynamics import mesh_input
-from pipeline.dynamics.commands import dynamic_model
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.integrate import steady_state
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.report.dynamics_section import dynamics_meshes_section
+from pipeline.run.dynamics import gearbox_dynamic_model
 from pipeline.signals import PeriodicSignal
 from workflows.default_case import DEFAULT
 
@@ -86,7 +86,7 @@ def test_sweep_dynamic_factor_follows_the_exact_curve_through_resonance():
 def _demo(positions: int):
     text = DEFAULT.replace('compliance = "fe2d"', 'compliance = "analytical"').replace(
         "positions = 60", f"positions = {positions}")
-    return dynamic_model(gearbox_from_text(text)).assembly().assemble()
+    return gearbox_dynamic_model(gearbox_from_text(text)).assembly().assemble()
 
 
 def test_dynamic_factor_converges_in_harmonics_and_contact_positions(monkeypatch):
@@ -133,7 +133,7 @@ def test_demo_dynamic_factor_is_the_same_at_60_and_360_contact_positions():
     factors = {}
     for p in (60, 360):
         text = DEFAULT.replace("positions = 60", f"positions = {p}")
-        system = dynamic_model(gearbox_from_text(text)).assembly().assemble()
+        system = gearbox_dynamic_model(gearbox_from_text(text)).assembly().assemble()
         for h in ((40, 160) if p == 60 else (40,)):
             factors[p, h] = harmonic_balance(system, h).response.dynamic_factor()[0]
     assert factors[60, 40] == pytest.approx(1.7321, rel=1e-3)

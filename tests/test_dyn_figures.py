@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.cli.dynamics_files import shown_meshes, write_sweep
 from pipeline.dynamics.excitation import rectangular_mesh_stiffness
 from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
-from pipeline.dynamics.outputs import shown_meshes, write_sweep
 from pipeline.dynamics.results import HarmonicResponse, Response
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.viz.dynamics import (
@@ -147,10 +147,10 @@ def test_mode_shape_csv_holds_the_mass_normalised_eigenvectors(tmp_path):
     """Lin and Parker (1999)'s planetary set: mode_shapes.csv read back with csv.reader
     gives the model's eigenvectors (9 digits), one row per named coordinate with its
     unit, and they are mass-normalised: phi^T M phi = I on the model's mass matrix."""
+    from pipeline.cli.dynamics_files import write_modes
     from pipeline.dynamics.analysis import analyse_modes
     from pipeline.dynamics.layout import model_layout
     from pipeline.dynamics.models.planetary import PlanetaryModel
-    from pipeline.dynamics.outputs import write_modes
 
     model = PlanetaryModel()
     res = analyse_modes(model)

@@ -151,8 +151,8 @@ def test_helix_couples_the_axial_modes_only_with_the_sun_twist(helix_deg):
 def test_modes_csv_kind_agrees_with_the_shares_it_prints(tmp_path):
     """modes.csv of the lumped herringbone set: kind code 6 (axial) exactly on the rows whose
     axial energy share column is >= 0.5; the three share columns add up to 1."""
+    from pipeline.cli.dynamics_files import write_modes
     from pipeline.dynamics.layout import model_layout
-    from pipeline.dynamics.outputs import write_modes
 
     model = _lumped_model()
     res = analyse_modes(model)

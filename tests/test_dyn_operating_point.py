@@ -258,8 +258,8 @@ def test_sweep_figure_marks_the_operating_point():
 
 def test_operating_point_in_the_titles():
     """The response figures name the operating point: mesh frequency and driver speed."""
+    from pipeline.cli.dynamics_files import operating_title
     from pipeline.dynamics.operating import system_operating_frequency
-    from pipeline.dynamics.outputs import operating_title
 
     op = planetary_operating_frequency(ZS, ZR, NS * RPM)
     assert operating_title(op) == "at f_m = 27.71 Hz (sun 96.67 rpm)"

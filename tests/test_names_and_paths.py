@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-import pipeline.run.commands as run_commands
+import pipeline.cli.run as run_commands
 from pipeline.cli import main as cli
 from pipeline.io import atomic_write_text
 from pipeline.output_folder import LONGEST_FILE_NAME, OutputError, staged_output

@@ -40,7 +40,7 @@ class _Sector:
     ([], ["--kind", "plane_stress"]),
 ])
 def test_fe_options_give_different_hashes(tmp_path, monkeypatch, a, b):
-    import pipeline.fem.commands as fe
+    import pipeline.cli.fem as fe
 
     monkeypatch.setattr(fe, "analyse_sector", lambda gear, opts, **cache: _Sector())
     monkeypatch.setattr(fe, "write_gear", lambda res, out, tag: [])

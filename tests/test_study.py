@@ -466,7 +466,7 @@ def test_sensitivity_and_tradeoff_axes_carry_the_kpi_labels(tmp_path):
 def test_best_point_folder_is_a_run_folder_with_its_report(tmp_path):
     """The best point gets what ``gearpipe run`` writes, report.html included, under the
     best point's name (not the base file's)."""
-    from pipeline.study.commands import report_best_point
+    from pipeline.cli.study import report_best_point
 
     spec = study_from_file(write_study(tmp_path, 2))
     values = {spec.axes[0].label: 12.0}

@@ -1,7 +1,7 @@
 """Workflow folders and command folders never collide, and a clash is one line.
 
 Commands write ``results/<file stem>/<command>/``; workflow scripts write
-``results/<script stem>/workflow/`` (:func:`pipeline.commands_common.workflow_dir`). The
+``results/<script stem>/workflow/`` (:func:`pipeline.cli.common.workflow_dir`). The
 spur-pair workflow and ``gearpipe`` on its gearbox file share the stem
 ``spur_pair_assembly_errors``: both results live side by side, each untouched by the other.
 A workflow folder holding a user's file is refused in one line (exit status 1) before the
@@ -20,7 +20,7 @@ import pytest
 
 from pipeline.cli import SUBCOMMANDS, run_workflow
 from pipeline.cli import main as cli
-from pipeline.commands_common import WORKFLOW_FOLDER, workflow_dir
+from pipeline.cli.common import WORKFLOW_FOLDER, workflow_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKFLOWS = ROOT / "workflows"

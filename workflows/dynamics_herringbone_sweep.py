@@ -65,7 +65,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.dynamics.modal import conservative_mean_stiffness, modal_analysis
 from pipeline.dynamics.models.groove_mesh import XU2020_GROOVE_MESH, side_factors
 from pipeline.dynamics.models.wind_turbine_planetary import (

@@ -32,7 +32,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.dynamics.models.split_torque_helicopter import (
     ROUGHNESS_UM,
     split_torque_helicopter_model,

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.mesh_input import analytical_excitation

@@ -66,7 +66,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import gearbox_from_dict
 from pipeline.io import write_csv
 from pipeline.output_folder import staged_output

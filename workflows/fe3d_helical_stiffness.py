@@ -48,7 +48,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings, FE3DCompliance, FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle

@@ -35,7 +35,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from pipeline.cli import run_workflow  # noqa: E402
-from pipeline.commands_common import workflow_dir  # noqa: E402
+from pipeline.cli.common import workflow_dir  # noqa: E402
 from pipeline.config import load_gearbox  # noqa: E402
 from pipeline.fem.groove.study import analyse_groove  # noqa: E402
 from pipeline.io import write_csv  # noqa: E402

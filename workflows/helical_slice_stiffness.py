@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.io import write_csv, write_json
 from pipeline.output_folder import staged_output

@@ -89,7 +89,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_maps import (

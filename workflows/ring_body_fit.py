@@ -42,7 +42,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from pipeline.cli import run_workflow  # noqa: E402
-from pipeline.commands_common import workflow_dir  # noqa: E402
+from pipeline.cli.common import workflow_dir  # noqa: E402
 from pipeline.contact.fe2d_source import gear_table  # noqa: E402
 from pipeline.contact.fe_settings import FE2DSettings  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.io import write_csv, write_json

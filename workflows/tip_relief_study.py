@@ -24,7 +24,7 @@ import numpy as np
 
 from pipeline.cli import main as gearpipe
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
 from pipeline.io import write_csv
 from pipeline.output_folder import staged_output

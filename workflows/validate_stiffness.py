@@ -73,7 +73,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from pipeline.cli import run_workflow
-from pipeline.commands_common import workflow_dir
+from pipeline.cli.common import workflow_dir
 from pipeline.config import Gearbox, load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load

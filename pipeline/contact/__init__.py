@@ -22,7 +22,7 @@ the loaded approach and the mesh stiffness.
   (:mod:`.herringbone`, result :mod:`.herringbone_results`, the groove condensed to the
   flank DOFs :mod:`.groove_flank`, left/right load maps :mod:`.herringbone_maps`).
 - Load maps over the flank (pyvista PNG, VTU) in :mod:`.loadmap`; the
-  ``gearpipe contact`` command in :mod:`.commands` (options: :mod:`.options`).
+  ``gearpipe contact`` command in :mod:`pipeline.cli.contact` (options: :mod:`.options`).
 - :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),
   and Hertz half-width / maximum pressure (:mod:`.hertz`).
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).

@@ -8,7 +8,7 @@ its numbers as JSON and CSV (``gearpipe report``, and the last step of ``gearpip
 * :mod:`.provenance` - configuration hash, code revision, versions, run time.
 * :mod:`.html` - the self-contained HTML (figures as data URIs, print style sheet).
 * :mod:`.writer` - :func:`write_reports`: every mesh of a run -> HTML, JSON, CSV files.
-* :mod:`.commands` - ``gearpipe report CONFIG``.
+* the command ``gearpipe report CONFIG`` is :mod:`pipeline.cli.report`.
 
 The load distribution quantities themselves (line load, K_Hbeta, K_Halpha, Hertz
 pressure, TE orders) are :func:`pipeline.contact.distribution.load_distribution`, the root

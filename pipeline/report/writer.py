@@ -1,7 +1,7 @@
 """Writing the reports of a run: per gear mesh one HTML file, its JSON and its CSV.
 
 :func:`write_reports` takes a :class:`~pipeline.run.chain.RunResult` and the folder the
-run's stage outputs were written to (:func:`pipeline.run.commands.write_run`): it
+run's stage outputs were written to (:func:`pipeline.cli.run.write_run`): it
 computes the load distribution of every mesh (:func:`pipeline.contact.load_distribution`)
 and the tooth root stress (FE 2D and ISO 6336-3, :mod:`pipeline.contact.root_stress`),
 draws the report's own figures (:mod:`pipeline.viz.distribution`), embeds them and the

@@ -8,7 +8,7 @@
   serially; :func:`run_study`.
 * :mod:`.store` - the results folder: atomic part files, manifest, resume check, Parquet/CSV.
 * :mod:`.plots` - one-at-a-time sensitivity and KPI trade-off figures.
-* :mod:`.commands` - ``gearpipe study``.
+* the command ``gearpipe study`` is :mod:`pipeline.cli.study`.
 """
 
 from pipeline.study.execute import StudyOptions, run_study

@@ -14,9 +14,8 @@ from __future__ import annotations
 
 import argparse
 import json
-from pathlib import Path
 
-from pipeline.commands_common import (
+from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
     cache_folder,
@@ -24,14 +23,12 @@ from pipeline.commands_common import (
     output_dir,
     record,
 )
-from pipeline.config import Gearbox
+from pipeline.cli.dynamics_files import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
 from pipeline.dynamics.layout import model_layout
-from pipeline.dynamics.outputs import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.io import to_jsonable, write_json
 from pipeline.output_folder import staged_output
-from pipeline.run.dynamics import dynamics_options, operating_frequency
-from pipeline.validation import InputError
+from pipeline.run.dynamics import dynamics_options, gearbox_dynamic_model, operating_frequency
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
@@ -45,35 +42,11 @@ add_response_arguments = _common
 add_sweep_arguments = _common
 
 
-def dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True):
-    """The dynamic model a gearbox file describes, excited by its static stages.
-
-    The same composition as ``gearpipe run`` (:func:`pipeline.run.dynamics.dynamic_model`):
-    the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
-    its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
-    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
-    in :class:`pipeline.run.chain.RunOptions`).
-    """
-    from pipeline.run.chain import RunOptions, mesh_stages
-    from pipeline.run.dynamics import dynamic_model as model_of
-    from pipeline.run.dynamics import needs_contact
-    from pipeline.run.steps import StepLog
-
-    if box.kind == "gear":
-        raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
-                         "a gear pair ([pinion] and [gear]), a planetary set or a "
-                         "[lumped_model]")
-    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
-    meshes = mesh_stages(box, options, StepLog(show=False),
-                         contact=needs_contact(box))
-    return model_of(box, meshes)[0]
-
-
 def _setup(args, command: str):
     box = load(args)
     target = output_dir(args, command)
     folder = cache_folder(args)
-    return box, dynamic_model(box, folder, cache=folder is not None), target
+    return box, gearbox_dynamic_model(box, folder, cache=folder is not None), target
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:

@@ -25,7 +25,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from pipeline.commands_common import emit
+from pipeline.cli.common import emit
 from pipeline.io import atomic_write_text, write_json
 from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record
@@ -71,9 +71,9 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
     """
     import tomli_w
 
+    from pipeline.cli.run import figure_cache, write_run
     from pipeline.config import load_gearbox
     from pipeline.run.chain import RunOptions, run_pipeline
-    from pipeline.run.commands import figure_cache, write_run
 
     doc = spec.point_document(values)
     # figure titles and the report name the best point, not the base file

@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
+from pipeline.cli.common import add_common_arguments, emit, load, output_dir, record
 from pipeline.geometry.analysis import GeometryResult, analyse_geometry
 from pipeline.io import write_json
 from pipeline.output_folder import staged_output

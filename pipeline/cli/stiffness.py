@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import add_common_arguments, emit, load, output_dir, record
+from pipeline.cli.common import add_common_arguments, emit, load, output_dir, record
 from pipeline.io import write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness

@@ -12,6 +12,13 @@ line with exit status 1, and the folder keeps its previous result; a solve that 
 with exit status 1. Warnings (an unusable cache, a loaded contact ratio below 1, input
 values that change nothing, ...) are one line each, ``gearpipe <command>: warning: ...``,
 and the run goes on.
+
+Layout: one module per command (``run``, ``report``, ``geometry``, ``stiffness``, ``fe``,
+``groove``, ``contact``, ``dynamics`` for modes/response/sweep, ``study``) with its file
+writers beside it (``dynamics_files``), and ``common`` for the shared arguments, loading
+and records. Only this package reads files and writes results; the stage packages below
+it form a one-way import graph, checked by the layers contract in ``pyproject.toml``
+(``lint-imports``, run by ``./dev.sh test``).
 """
 
 from __future__ import annotations
@@ -31,31 +38,31 @@ from pipeline.validation import InputError
 
 # name -> (module, add-arguments function, run function, help)
 SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
-    "run": ("pipeline.run.commands", "add_arguments", "run",
+    "run": ("pipeline.cli.run", "add_arguments", "run",
             "the whole pipeline: geometry, stiffness, FE-enriched loaded contact, dynamics "
             "(modes, response, speed sweep), into one folder"),
-    "report": ("pipeline.report.commands", "add_arguments", "run",
+    "report": ("pipeline.cli.report", "add_arguments", "run",
                "tooth load distribution report per gear mesh: HTML (self-contained), JSON, "
                "CSV"),
-    "geometry": ("pipeline.geometry.commands", "add_arguments", "run",
+    "geometry": ("pipeline.cli.geometry", "add_arguments", "run",
                  "tooth profiles, contact ratios and line of action"),
-    "stiffness": ("pipeline.stiffness.commands", "add_arguments", "run",
+    "stiffness": ("pipeline.cli.stiffness", "add_arguments", "run",
                   "analytical mesh stiffness over a mesh cycle"),
-    "fe": ("pipeline.fem.commands", "add_arguments", "run",
+    "fe": ("pipeline.cli.fem", "add_arguments", "run",
            "2D sector FE of both gears: mesh, flank influence matrix, FE vs analytical "
            "tooth compliance"),
-    "groove": ("pipeline.fem.groove_command", "add_arguments", "run",
+    "groove": ("pipeline.cli.groove", "add_arguments", "run",
                "herringbone sun relief groove: 3D FE torsional and coupling stiffness"),
-    "contact": ("pipeline.contact.commands", "add_arguments", "run",
+    "contact": ("pipeline.cli.contact", "add_arguments", "run",
                 "loaded tooth contact over a mesh cycle: load sharing, TE, mesh stiffness, "
                 "load maps"),
-    "modes": ("pipeline.dynamics.commands", "add_modes_arguments", "run_modes",
+    "modes": ("pipeline.cli.dynamics", "add_modes_arguments", "run_modes",
               "natural frequencies, mode types and mode shapes of the dynamic model"),
-    "response": ("pipeline.dynamics.commands", "add_response_arguments", "run_response",
+    "response": ("pipeline.cli.dynamics", "add_response_arguments", "run_response",
                  "steady dynamic response: DTE, mesh forces, spectrum"),
-    "sweep": ("pipeline.dynamics.commands", "add_sweep_arguments", "run_sweep",
+    "sweep": ("pipeline.cli.dynamics", "add_sweep_arguments", "run_sweep",
               "RMS dynamic mesh force against mesh frequency"),
-    "study": ("pipeline.study.commands", "add_arguments", "run",
+    "study": ("pipeline.cli.study", "add_arguments", "run",
               "design study: a base gearbox file over design axes, KPIs per point, on Dask "
               "(STUDY.toml instead of a gearbox file)"),
 }
@@ -132,7 +139,3 @@ def run_workflow(script: str, main_function: Callable[[list[str]], Any],
     1 or 2 as :func:`main`). Use as ``sys.exit(run_workflow(__file__, main))``."""
     argv = sys.argv[1:] if argv is None else list(argv)
     return _one_line(Path(script).name, lambda: main_function(argv))
-
-
-if __name__ == "__main__":
-    sys.exit(main())

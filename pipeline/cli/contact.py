@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.commands_common import (
+from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
     cache_folder,

@@ -1,6 +1,6 @@
 """``gearpipe report CONFIG``: the tooth load distribution report of every gear mesh.
 
-The same run as ``gearpipe run`` (:func:`pipeline.run.commands.run`: the stages the
+The same run as ``gearpipe run`` (:func:`pipeline.cli.run.run`: the stages the
 gearbox file asks for, with the same cache, their tables and figures, then the reports of
 :func:`pipeline.report.write_reports`), written to ``results/<file stem>/report/`` (or
 ``--out``): ``report.html`` per mesh (prefixed by the mesh name for a planetary set),
@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import argparse
 
-from pipeline.commands_common import load
-from pipeline.run import commands as run_commands
+from pipeline.cli import run as run_commands
+from pipeline.cli.common import load
 from pipeline.validation import InputError
 
 

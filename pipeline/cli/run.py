@@ -22,7 +22,7 @@ import argparse
 import math
 from pathlib import Path
 
-from pipeline.commands_common import (
+from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
     cache_folder,
@@ -55,9 +55,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
                 figures: FigureCache) -> list[Path]:
-    from pipeline.contact.commands import contact_title, write_contact
-    from pipeline.geometry.commands import write_geometry
-    from pipeline.stiffness.commands import write_stiffness
+    from pipeline.cli.contact import contact_title, write_contact
+    from pipeline.cli.geometry import write_geometry
+    from pipeline.cli.stiffness import write_stiffness
     from pipeline.stiffness.mesh import stiffness_at
 
     pair = st.stiffness.actual
@@ -82,8 +82,8 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
 def write_run(result: RunResult, out: Path, full: bool = False,
               figures: FigureCache = NO_CACHE) -> list[Path]:
     """All files of a run (module docstring); returns them."""
+    from pipeline.cli.dynamics_files import write_modes, write_response, write_sweep
     from pipeline.dynamics.layout import model_layout
-    from pipeline.dynamics.outputs import write_modes, write_response, write_sweep
 
     box = result.gearbox
     files: list[Path] = []
