@@ -169,6 +169,38 @@ def _tolerance(g: np.ndarray, F: np.ndarray, eps: np.ndarray, x: float, tol: flo
     return tol * max(elastic, 0.0) + 64.0 * _EPS * ref
 
 
+def mesh_stiffnesses(G: np.ndarray, loads: np.ndarray, approach: float, separations: np.ndarray,
+                     local=None) -> tuple[float, float, float]:
+    """(tangent, secant, pointwise) mesh stiffness of loaded contact points, N/m.
+
+    Tangent ``k_t = 1^T (G_AA + D_A)^-1 1`` over the loaded points A (D the local contact
+    tangent compliance, when ``local`` gives one), secant ``k_s = P / (x - min eps)`` and
+    pointwise ``k_m = sum_A F_i / (x - eps_i)`` (:mod:`pipeline.contact.results`), with
+    ``x`` the approach and ``eps`` the initial separations (m; ``inf`` off the path of
+    contact). A set of points without load has none of them: (0, 0, 0); a loaded set whose
+    approach does not exceed a separation (no deflection to divide by) gives ``inf``.
+
+    Parameters
+    ----------
+    G : (n, n) compliance of the points, m/N. loads : (n,) N.
+    approach : x, m. separations : (n,) eps, m.
+    local : local contact model with ``tangent(loads)`` (m/N per point), or ``None``.
+    """
+    act = loads > 0.0
+    if not act.any():
+        return 0.0, 0.0, 0.0
+    M = G[np.ix_(act, act)]
+    if local is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):  # +inf at unloaded points
+            M = M + np.diag(np.asarray(local.tangent(loads), dtype=float)[act])
+    P = float(loads[act].sum())
+    delta = approach - float(separations[np.isfinite(separations)].min())
+    k_s = P / delta if delta > 0.0 else math.inf
+    defl = approach - separations[act]
+    k_m = float(np.sum(loads[act] / defl)) if np.all(defl > 0.0) else math.inf
+    return _bordered_tangent(M), k_s, k_m
+
+
 def _bordered_tangent(M: np.ndarray) -> float:
     """``1^T M^{-1} 1`` (N/m) via the bordered system, robust to singular ``M``."""
     m = M.shape[0]
@@ -326,14 +358,7 @@ def _assemble(G, eps, P, idx, Fc, x, res, bound, faces, newton, local, Gc, ec, l
         k_t = 0.0 if local is not None else _bordered_tangent(Gc[np.ix_(first, first)])
         k_s = k_m = k_t
     else:
-        M = Gc[np.ix_(act_c, act_c)]
-        if local is not None:
-            M = M + np.diag(local.tangent(Fc)[act_c])
-        k_t = _bordered_tangent(M)
-        delta = x - float(ec.min())
-        k_s = P / delta if delta > 0.0 else math.inf
-        defl = x - ec[act_c]
-        k_m = float(np.sum(Fc[act_c] / defl)) if np.all(defl > 0.0) else math.inf
+        k_t, k_s, k_m = mesh_stiffnesses(Gc, Fc, x, ec, local)
     loads = np.zeros(n)
     loads[idx] = Fc
     active = np.zeros(n, dtype=bool)

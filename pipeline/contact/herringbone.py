@@ -68,12 +68,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from pipeline.contact.complementarity import solve_contact
+from pipeline.contact.complementarity import mesh_stiffnesses, solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
 from pipeline.contact.hertz import HertzLineContact
 from pipeline.contact.ltca import LOCAL_MODELS, mesh_positions, weber_model
-from pipeline.contact.results import LoadedMeshCycle
+from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource
 from pipeline.progress import progress
@@ -130,33 +130,6 @@ def _stack_hertz(h: HertzLineContact) -> HertzLineContact:
         h.material_1, h.material_2)
 
 
-def _tangent(G: np.ndarray, loads: np.ndarray, hertz) -> float:
-    """Own tangent stiffness 1^T (G_AA + D_A)^-1 1 of one half, N/m (0 if unloaded)."""
-    act = loads > 0.0
-    if not act.any():
-        return 0.0
-    M = G[np.ix_(act, act)]
-    if hertz is not None:
-        with np.errstate(divide="ignore", invalid="ignore"):  # +inf at the unloaded points
-            M = M + np.diag(hertz.tangent(loads)[act])
-    one = np.ones(M.shape[0])
-    return float(one @ np.linalg.lstsq(M, one, rcond=1e-13)[0])
-
-
-@dataclass
-class _Half:
-    """Per-position accumulators of one half."""
-
-    rows: list
-    arrays: dict
-    pair_loads: np.ndarray
-
-
-def _new_half(m: int, n_pairs: int) -> _Half:
-    names = ("x", "k_t", "k_s", "k_m", "res", "tol", "newton", "pmax")
-    return _Half([], {n: np.zeros(m) for n in names}, np.zeros((m, n_pairs)))
-
-
 def herringbone_mesh_cycle(
     source: ComplianceSource,
     load: float,
@@ -208,10 +181,9 @@ def herringbone_mesh_cycle(
     C = groove.compliance
     za = opts.axial_slide
     ka = float(opts.axial_support_stiffness)
-    k_all = pair.pair_indices()
     c_hertz = hertz_compliance(pair.pinion, pair.gear)
     m = s0.size
-    halves = {side: _new_half(m, k_all.size) for side in ("left", "right")}
+    halves = {side: CycleRecorder(pair, m) for side in ("left", "right")}
     per = {n: np.zeros(m) for n in ("PL", "PR", "x", "k", "twist", "torque", "axial", "z")}
     for i in progress(range(m), "herringbone contact", total=m, enabled=show_progress):
         label = f"mesh position {i} (s0 = {s0[i] * 1e3:.6g} mm)"
@@ -267,52 +239,17 @@ def herringbone_mesh_cycle(
         per["twist"][i], per["torque"][i], per["axial"][i], per["z"][i] = (
             d[0], N * g[0], d[1], z)
         for side, p, xh in (("left", pL, x_half[0]), ("right", pR, x_half[1])):
-            _record(halves[side], i, pts, p, eps, xh, G, hertz, c_hertz, local, k_all,
-                    (res, tol_i, newton))
+            u = (c_hertz / pts.width * p if local == "linear"
+                 else hertz.approach(p) if hertz is not None else np.zeros_like(p))
+            k = mesh_stiffnesses(G, p, xh, eps, None if local == "linear" else hertz)
+            halves[side].add(i, pts, p, eps, u, xh, k, (res, tol_i, newton))
     return HerringboneCycle(
-        left=_cycle(halves["left"], s0, pair, per["PL"], local),
-        right=_cycle(halves["right"], s0, pair, per["PR"], local),
+        left=halves["left"].cycle(s0, float(per["PL"].mean()), local),
+        right=halves["right"].cycle(s0, float(per["PR"].mean()), local),
         load_left=per["PL"], load_right=per["PR"], approach=per["x"],
         mesh_stiffness=per["k"], groove_twist=per["twist"], groove_torque=per["torque"],
         groove_axial=per["axial"], sun_axial_position=per["z"], load=float(load),
         n_planets=N, base_radius=rb, base_helix_angle=pair.pinion.base_helix_angle,
         torque_entry=opts.torque_entry, sun_axial=opts.sun_axial, axial_slide=za,
         axial_support_stiffness=ka, groove_compliance=np.array(C),
-    )
-
-
-def _record(h: _Half, i: int, pts, p, eps, x, G, hertz, c_hertz, local, k_all, stats) -> None:
-    """Store one half's state at position ``i``."""
-    act = p > 0.0
-    P = float(p.sum())
-    u = (c_hertz / pts.width * p if local == "linear"
-         else hertz.approach(p) if hertz is not None else np.zeros_like(p))
-    finite = np.isfinite(eps)
-    delta = x - float(eps[finite].min())
-    defl = x - eps[act]
-    a = h.arrays
-    a["x"][i] = x
-    a["k_t"][i] = _tangent(G, p, None if local == "linear" else hertz)
-    a["k_s"][i] = P / delta if delta > 0.0 and P > 0.0 else 0.0
-    a["k_m"][i] = float(np.sum(p[act] / defl)) if act.any() and np.all(defl > 0) else 0.0
-    a["res"][i], a["tol"][i], a["newton"][i] = stats
-    a["pmax"][i] = float((p / pts.width).max())
-    np.add.at(h.pair_loads[i], np.searchsorted(k_all, pts.pair), p)
-    h.rows.append((np.full(len(pts), i), pts.s, pts.z, pts.pair, pts.width, p,
-                   p / pts.width, eps, u))
-
-
-def _cycle(h: _Half, s0: np.ndarray, pair, loads: np.ndarray, local: str) -> LoadedMeshCycle:
-    cols = [np.concatenate(c) for c in zip(*h.rows, strict=True)]
-    a = h.arrays
-    return LoadedMeshCycle(
-        s0=s0, pinion_angle=(s0 - s0[0]) / pair.pinion.base_radius,
-        transmission_error=a["x"], mesh_stiffness=a["k_t"], mesh_stiffness_secant=a["k_s"],
-        mesh_stiffness_pointwise=a["k_m"], residual=a["res"], tolerance=a["tol"],
-        newton_iterations=a["newton"].astype(int), max_unit_load=a["pmax"],
-        pair_index=pair.pair_indices(), pair_loads=h.pair_loads,
-        point_position=cols[0].astype(int), point_s=cols[1], point_z=cols[2],
-        point_pair=cols[3].astype(int), point_width=cols[4], point_load=cols[5],
-        point_unit_load=cols[6], point_separation=cols[7], point_contact_deformation=cols[8],
-        load=float(loads.mean()), local_contact=local,
     )

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 
 from pipeline.contact.complementarity import solve_contact
 from pipeline.contact.hertz import HertzLineContact
+from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints
@@ -136,10 +137,7 @@ def loaded_mesh_cycle(
     k_all = pair.pair_indices()
     c_hertz = hertz_compliance(pair.pinion, pair.gear)  # m^2/N, per unit width
     m = s0.size
-    per_pos = {name: np.zeros(m) for name in (
-        "x", "k_t", "k_s", "k_m", "res", "tol", "newton", "pmax")}
-    pair_loads = np.zeros((m, k_all.size))
-    rows = []
+    record = CycleRecorder(pair, m)
     prev_keys = prev_loads = None
     for i in progress(range(m), "contact", total=m, enabled=show_progress):
         label = f"mesh position {i} (s0 = {s0[i] * 1e3:.6g} mm)"
@@ -163,26 +161,8 @@ def loaded_mesh_cycle(
                             start=_warm_start(prev_keys, prev_loads, keys), label=label)
         prev_keys, prev_loads = keys, sol.loads
         u = sol.contact_deformation if c_lin is None else c_lin * sol.loads
-        p = sol.loads / pts.width
-        for name, v in (("x", sol.approach), ("k_t", sol.mesh_stiffness_tangent),
-                        ("k_s", sol.mesh_stiffness_secant),
-                        ("k_m", sol.mesh_stiffness_pointwise), ("res", sol.residual),
-                        ("tol", sol.tolerance), ("newton", sol.newton_iterations),
-                        ("pmax", p.max())):
-            per_pos[name][i] = v
-        np.add.at(pair_loads[i], np.searchsorted(k_all, pts.pair), sol.loads)
-        rows.append((np.full(len(pts), i), pts.s, pts.z, pts.pair, pts.width, sol.loads, p,
-                     eps, u))
-    cols = [np.concatenate(c) for c in zip(*rows, strict=True)]
-    return LoadedMeshCycle(
-        s0=s0, pinion_angle=(s0 - s0[0]) / pair.pinion.base_radius,
-        transmission_error=per_pos["x"], mesh_stiffness=per_pos["k_t"],
-        mesh_stiffness_secant=per_pos["k_s"], mesh_stiffness_pointwise=per_pos["k_m"],
-        residual=per_pos["res"], tolerance=per_pos["tol"],
-        newton_iterations=per_pos["newton"].astype(int), max_unit_load=per_pos["pmax"],
-        pair_index=k_all, pair_loads=pair_loads,
-        point_position=cols[0].astype(int), point_s=cols[1], point_z=cols[2],
-        point_pair=cols[3].astype(int), point_width=cols[4], point_load=cols[5],
-        point_unit_load=cols[6], point_separation=cols[7], point_contact_deformation=cols[8],
-        load=float(load), local_contact=local,
-    )
+        record.add(i, pts, sol.loads, eps, u, sol.approach,
+                   (sol.mesh_stiffness_tangent, sol.mesh_stiffness_secant,
+                    sol.mesh_stiffness_pointwise),
+                   (sol.residual, sol.tolerance, sol.newton_iterations))
+    return record.cycle(s0, load, local)
