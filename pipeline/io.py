@@ -24,7 +24,7 @@ import os
 import re
 import tempfile
 from collections.abc import Callable, Mapping
-from dataclasses import asdict, is_dataclass
+from dataclasses import asdict, fields, is_dataclass
 from pathlib import Path
 from typing import Any
 
@@ -203,7 +203,44 @@ def write_csv(path: str | os.PathLike, columns: Mapping[str, Any]) -> Path:
     return atomic_write(path, write)
 
 
-def content_hash(data: Any) -> str:
-    """SHA-256 (hex, 16 chars) of a JSON-canonical form of ``data``."""
-    blob = json.dumps(to_jsonable(data), sort_keys=True, separators=(",", ":")).encode()
-    return hashlib.sha256(blob).hexdigest()[:16]
+def _feed(h, obj: Any) -> None:
+    """Feed a canonical description of ``obj`` into the hash ``h``."""
+    if obj is None or isinstance(obj, (bool, int, float, str, complex)):
+        h.update(f"{type(obj).__name__}:{obj!r};".encode())
+    elif isinstance(obj, (np.ndarray, np.generic)):
+        a = np.ascontiguousarray(obj)
+        h.update(f"nd:{a.dtype.str}:{a.shape};".encode())
+        h.update(a.tobytes() if a.dtype != object else repr(a.tolist()).encode())
+    elif is_dataclass(obj) and not isinstance(obj, type):
+        h.update(f"dc:{type(obj).__module__}.{type(obj).__qualname__}(".encode())
+        for f in fields(obj):
+            h.update(f"{f.name}=".encode())
+            _feed(h, getattr(obj, f.name))
+        h.update(b")")
+    elif isinstance(obj, Mapping):
+        h.update(b"{")
+        for k in sorted(obj, key=str):
+            _feed(h, str(k))
+            _feed(h, obj[k])
+        h.update(b"}")
+    elif isinstance(obj, (list, tuple)):
+        h.update(f"seq{len(obj)}[".encode())
+        for v in obj:
+            _feed(h, v)
+        h.update(b"]")
+    elif isinstance(obj, Path):
+        _feed(h, str(obj))
+    else:
+        raise TypeError(f"content hash: cannot describe a value of type {type(obj).__name__}")
+
+
+def content_hash(*objs: Any) -> str:
+    """SHA-256 (hex, 16 characters) of a canonical description of ``objs``: scalars by type
+    and repr, arrays by dtype, shape and bytes, dataclasses field by field with their
+    class, mappings by sorted key, sequences in order, paths as text. Equal data give equal
+    hashes; a value it cannot describe is a ``TypeError`` rather than a silent collision.
+    The one hash of the project: cache keys, figure keys, run records, study points."""
+    h = hashlib.sha256()
+    for o in objs:
+        _feed(h, o)
+    return h.hexdigest()[:16]

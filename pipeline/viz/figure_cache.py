@@ -7,7 +7,8 @@ the drawing function, the source of the module that defines it, and every argume
 it is drawn from (arrays by their bytes, dataclasses field by field), so a figure is
 redrawn exactly when its data or its drawing code changed. An argument the key
 cannot describe is an error rather than a silently stale figure. Each cached PNG carries
-its key in a ``tEXt`` chunk (``gearpipe-key``); a cached file that is not a whole PNG
+its key in a ``tEXt`` chunk (``gearpipe-key``, left out of the copy a run writes, so a
+figure is the same file drawn or copied); a cached file that is not a whole PNG
 (empty, or cut before its end chunk) or holds another key (a figure copied or moved onto
 this name) is reported in one warning line and redrawn over.
 """
@@ -16,64 +17,22 @@ from __future__ import annotations
 
 import hashlib
 import inspect
-import shutil
 import struct
 import sys
 import warnings
 import zlib
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, fields, is_dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from pipeline.fem.cache_dir import CacheWarning
-from pipeline.io import atomic_write
+from pipeline.io import atomic_write, content_hash
 from pipeline.viz.saving import save
 
 if TYPE_CHECKING:
     from pipeline.viz.figure_queue import FigureQueue
-
-
-def _feed(h, obj: Any) -> None:
-    """Feed a canonical description of ``obj`` into the hash ``h``."""
-    if obj is None or isinstance(obj, (bool, int, float, str, complex)):
-        h.update(f"{type(obj).__name__}:{obj!r};".encode())
-    elif isinstance(obj, (np.ndarray, np.generic)):
-        a = np.ascontiguousarray(obj)
-        h.update(f"nd:{a.dtype.str}:{a.shape};".encode())
-        h.update(a.tobytes() if a.dtype != object else repr(a.tolist()).encode())
-    elif is_dataclass(obj) and not isinstance(obj, type):
-        h.update(f"dc:{type(obj).__module__}.{type(obj).__qualname__}(".encode())
-        for f in fields(obj):
-            h.update(f"{f.name}=".encode())
-            _feed(h, getattr(obj, f.name))
-        h.update(b")")
-    elif isinstance(obj, Mapping):
-        h.update(b"{")
-        for k in sorted(obj, key=str):
-            _feed(h, str(k))
-            _feed(h, obj[k])
-        h.update(b"}")
-    elif isinstance(obj, (list, tuple)):
-        h.update(f"seq{len(obj)}[".encode())
-        for v in obj:
-            _feed(h, v)
-        h.update(b"]")
-    elif isinstance(obj, Path):
-        _feed(h, str(obj))
-    else:
-        raise TypeError(f"figure cache: cannot key an argument of type {type(obj).__name__}")
-
-
-def data_hash(*objs: Any) -> str:
-    """SHA-256 (hex, 24 chars) of the canonical description of ``objs``."""
-    h = hashlib.sha256()
-    for o in objs:
-        _feed(h, o)
-    return h.hexdigest()[:24]
 
 
 def _code_hash(func: Callable) -> str:
@@ -103,12 +62,13 @@ class FigureCache:
         """Write ``draw(*args, **kwargs)`` as PNG to ``path``, or copy it from the cache."""
         cached = None
         if self.folder is not None:
-            key = data_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
+            key = content_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
                             args, kwargs)
             cached = Path(self.folder) / f"fig-{key}.png"
             if cached.is_file():
                 if _whole_png(cached) and stored_key(cached) == key:
-                    return atomic_write(path, lambda p: shutil.copyfile(cached, p))
+                    plain = without_key(cached.read_bytes())
+                    return atomic_write(path, lambda p: Path(p).write_bytes(plain))
                 warnings.warn(f"cached figure {cached} is not a whole PNG of this figure "
                               "(cut, or another figure's); redrawn", CacheWarning, stacklevel=2)
         job = partial(draw_figure, Path(path), cached, self.dpi, draw, args, kwargs,
@@ -123,9 +83,8 @@ def draw_figure(path: Path, cached: Path | None, dpi: int, draw: Callable[..., A
     pickles."""
     out = save(draw(*args, **kwargs), path, dpi)
     if cached is not None:
-        # the drawn file and its cached copy are the same bytes, so a rerun's copy is too
+        # only the cached copy carries the key: a figure is the same file drawn or copied
         stamped = with_key(out.read_bytes(), key)
-        atomic_write(out, lambda p: Path(p).write_bytes(stamped))
         try:
             atomic_write(cached, lambda p: Path(p).write_bytes(stamped))
         except OSError:
@@ -143,6 +102,15 @@ def with_key(png: bytes, key: str) -> bytes:
     chunk = (struct.pack(">I", len(data)) + b"tEXt" + data
              + struct.pack(">I", zlib.crc32(b"tEXt" + data)))
     return png[:_HEADER_END] + chunk + png[_HEADER_END:]
+
+
+def without_key(png: bytes) -> bytes:
+    """``png`` without the chunk :func:`with_key` put after its header (unchanged if none)."""
+    length = struct.unpack(">I", png[_HEADER_END:_HEADER_END + 4])[0]
+    chunk = png[_HEADER_END + 4:_HEADER_END + 8 + length]
+    if chunk[:4] == b"tEXt" and chunk[4:].startswith(_KEY_WORD + b"\0"):
+        return png[:_HEADER_END] + png[_HEADER_END + 12 + length:]
+    return png
 
 
 def stored_key(path: Path) -> str | None:
@@ -186,4 +154,4 @@ def _whole_png(path: Path) -> bool:
 NO_CACHE = FigureCache()
 """Draw every figure."""
 
-__all__ = ["NO_CACHE", "FigureCache", "data_hash"]
+__all__ = ["NO_CACHE", "FigureCache"]
