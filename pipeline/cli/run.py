@@ -121,8 +121,7 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
                 with result.log.step("load distribution reports", long=True):
                     files += write_reports(result, out, figure_cache(options),
                                            command=f"gearpipe {command} {args.config}",
-                                           show_progress=options.show_progress,
-                                           cache=options.cache, cache_dir=options.cache_dir)
+                                           show_progress=options.show_progress)
             summary = result.summary()
             files.append(write_json(out / "summary.json", summary))
             record(out, args, box, files)

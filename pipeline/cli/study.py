@@ -94,8 +94,7 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
             from pipeline.report import write_reports
 
             written += write_reports(result, folder, figure_cache(options),
-                                     command=f"gearpipe run {path}", show_progress=False,
-                                     cache=options.cache, cache_dir=options.cache_dir)
+                                     command=f"gearpipe run {path}", show_progress=False)
         written.append(write_json(folder / "summary.json", result.summary()))
         write_run_record(folder, {"gearbox": box.to_dict(), "options": options}, written,
                          f"gearpipe run {path}")

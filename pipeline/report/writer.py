@@ -1,10 +1,10 @@
 """Writing the reports of a run: per gear mesh one HTML file, its JSON and its CSV.
 
 :func:`write_reports` takes a :class:`~pipeline.run.chain.RunResult` and the folder the
-run's stage outputs were written to (:func:`pipeline.cli.run.write_run`): it
-computes the load distribution of every mesh (:func:`pipeline.contact.load_distribution`)
-and the tooth root stress (FE 2D and ISO 6336-3, :mod:`pipeline.contact.root_stress`),
-draws the report's own figures (:mod:`pipeline.viz.distribution`), embeds them and the
+run's stage outputs were written to (:func:`pipeline.cli.run.write_run`): it renders the
+load distribution and tooth root stress the run computed for every mesh
+(:mod:`pipeline.run.distribution`; it computes nothing itself), draws the report's own
+figures (:mod:`pipeline.viz.distribution`), embeds them and the
 stage figures it finds in the folder, and writes, per mesh (prefix ``<mesh>_`` for a
 planetary set):
 
@@ -23,10 +23,11 @@ import csv
 import io
 import math
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from pipeline.contact.distribution import LoadDistribution, load_distribution
+from pipeline.contact.distribution import LoadDistribution
 from pipeline.io import atomic_write_text, write_csv, write_json
 from pipeline.report import content
 from pipeline.report.dynamics_section import dynamics_meshes_section, dynamics_section
@@ -105,19 +106,19 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
 
 
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
-                command: str, root_stress: Any = None, halves: Any = None,
-                half_roots: dict[str, Any] | None = None
-                ) -> tuple[MeshReport, LoadDistribution]:
-    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report;
-    ``halves`` (:class:`~pipeline.contact.herringbone_distribution.HerringboneDistribution`)
-    and ``half_roots`` (root stress by column) add the herringbone section."""
+                command: str, dist: LoadDistribution, root_stress: Any = None,
+                halves: Any = None, half_roots: Mapping[str, Any] | None = None
+                ) -> MeshReport:
+    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report from
+    its load distribution ``dist``; ``halves``
+    (:class:`~pipeline.contact.herringbone_distribution.HerringboneDistribution`) and
+    ``half_roots`` (root stress by column) add the herringbone section."""
     from pipeline.viz import distribution as viz
 
     st = result.meshes[name]
     box = result.gearbox
     prefix = "" if name == "mesh" else f"{name}_"
     actual, op = st.stiffness.actual, st.case.operation
-    dist = load_distribution(st.contact, actual, op)
     stage = _stage_figures(out, prefix, True)
 
     def fig(file: str, caption: str, fn, *args) -> Figure:
@@ -169,7 +170,7 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
     record = provenance(box.to_dict(), file_sha256=src.sha256 if src else None,
                         command=command, run_seconds=run_s)
     sections.append(content.provenance_section(record))
-    return MeshReport(title, name, tuple(sections)), dist
+    return MeshReport(title, name, tuple(sections))
 
 
 def _csv_text(report: MeshReport) -> str:
@@ -196,50 +197,28 @@ def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, pre
     ]
 
 
-def _herringbone_halves(st: Any, root: Any, root_stress: Any
-                        ) -> tuple[Any, dict[str, Any] | None]:
-    """Both halves of a herringbone sun-planet mesh from its contact through the groove,
-    beside the mesh's own cycle (one half at an equal split), and the root stress under
-    each; (None, None) for any other mesh."""
-    if st.herringbone is None:
-        return None, None
-    from pipeline.contact.herringbone_distribution import herringbone_distribution
-
-    stage = st.herringbone
-    halves = herringbone_distribution(stage.cycle, stage.pair, stage.operation,
-                                      equal_split=st.contact)
-    roots = {side: root_stress(halves.half(side).cycle, stage.pair, halves.half(side).operation)
-             for side in ("left", "right")}
-    return halves, {**roots, "equal split": root}
-
-
 def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
-                  command: str = "gearpipe run", show_progress: bool = False,
-                  cache: bool = True, cache_dir: Path | None = None) -> list[Path]:
-    """Reports of every gear mesh of ``result`` into ``out`` (module docstring); returns
-    the files. A run without gear meshes (a lumped model) has none. ``cache``, ``cache_dir``:
-    the on-disk cache of the FE root-stress tables (the run's own). With ``show_progress``
-    a mesh whose report takes over a second gets a line on stderr."""
+                  command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
+    """Reports of every gear mesh of ``result`` with a load distribution
+    (``result.distributions``, :mod:`pipeline.run.distribution`) into ``out`` (module
+    docstring); returns the files. A run without gear meshes (a lumped model) has none.
+    With ``show_progress`` a mesh whose report takes over a second gets a line on stderr."""
     from pipeline.progress import Steps
 
     files: list[Path] = []
     steps = Steps("load distribution reports", enabled=show_progress)
-    for name, st in result.meshes.items():
-        if st.contact is None:
-            continue
+    for name, stage in result.distributions.items():
         with steps.step(f"report of {name.replace('_', '-')}"):
-            files += _write_one_report(result, name, st, out, figures, command, show_progress,
-                                       cache, cache_dir)
+            files += _write_one_report(result, name, stage, out, figures, command)
     return files
 
 
-def _write_one_report(result: Any, name: str, st: Any, out: Path, figures: FigureCache,
-                      command: str, show_progress: bool, cache: bool,
-                      cache_dir: Path | None) -> list[Path]:
-    """The report of one mesh (:func:`write_reports`); its files."""
-    from pipeline.contact.root_stress import analyse_root_stress
-
+def _write_one_report(result: Any, name: str, stage: Any, out: Path, figures: FigureCache,
+                      command: str) -> list[Path]:
+    """The report of one mesh (:func:`write_reports`) from its
+    :class:`~pipeline.run.distribution.DistributionStage`; its files."""
     box = result.gearbox
+    st = result.meshes[name]
     t0 = time.perf_counter()
     prefix = "" if name == "mesh" else f"{name}_"
     pair = st.stiffness.actual
@@ -247,16 +226,11 @@ def _write_one_report(result: Any, name: str, st: Any, out: Path, figures: Figur
     title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
              f"{pair.pinion.module * 1e3:g} mm, beta "
              f"{math.degrees(pair.pinion.helix_angle):g} deg")
-
-    def root_stress(cycle, on_pair, operation):
-        return analyse_root_stress(cycle, on_pair, operation, box.fe_source, cache=cache,
-                                   cache_dir=cache_dir, show_progress=show_progress)
-
-    root = root_stress(st.contact, pair, st.case.operation)
-    halves, half_roots = _herringbone_halves(st, root, root_stress)
-    report, dist = mesh_report(result, name, out, figures, title=title, command=command,
-                               root_stress=root, halves=halves, half_roots=half_roots)
+    report = mesh_report(result, name, out, figures, title=title, command=command,
+                         dist=stage.distribution, root_stress=stage.root_stress,
+                         halves=stage.halves, half_roots=stage.half_roots)
     subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
                 f"{len(st.contact)} mesh positions; written in "
                 f"{time.perf_counter() - t0:.1f} s")
-    return write_mesh_report(report, dist, out, prefix, subtitle, root)
+    return write_mesh_report(report, stage.distribution, out, prefix, subtitle,
+                             stage.root_stress)

@@ -84,6 +84,8 @@ class RunOptions:
         turns it off: one file per design point would fill the cache with cycles that are
         never read again.
     label : the command the step lines name on stderr.
+    distribution : compute the load distribution and root stress of every mesh (what the
+        load distribution reports show; :mod:`pipeline.run.distribution`).
     """
 
     full: bool = False
@@ -92,6 +94,7 @@ class RunOptions:
     show_progress: bool = True
     cache_cycles: bool = True
     label: str = "gearpipe run"
+    distribution: bool = True
 
 
 @dataclass(frozen=True)
@@ -166,12 +169,16 @@ class RunResult:
     dynamics : the dynamics results (:class:`pipeline.run.dynamics.DynamicsStages`) or
         ``None`` when the file asks for no dynamics.
     log : step durations (s) and which steps came from the cache.
+    distributions : name -> the load distribution and root stress of each mesh with a
+        contact cycle (:class:`pipeline.run.distribution.DistributionStage`; empty when
+        ``RunOptions.distribution`` is off).
     """
 
     gearbox: Gearbox
     meshes: dict[str, MeshStages]
     dynamics: Any
     log: StepLog = field(compare=False)
+    distributions: dict[str, Any] = field(default_factory=dict, compare=False)
 
     def summary(self) -> dict[str, Any]:
         """One summary of the run (SI; keys carry units)."""
@@ -268,12 +275,15 @@ def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool =
 
 def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
+    from pipeline.run.distribution import distribution_stages
     from pipeline.run.dynamics import dynamics_stages
 
     options = options or RunOptions()
     log = StepLog(show=options.show_progress, label=options.label)
     meshes = mesh_stages(box, options, log)
+    distributions = (distribution_stages(box, meshes, options, log) if options.distribution
+                     else {})
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
-    return RunResult(box, meshes, dynamics, log)
+    return RunResult(box, meshes, dynamics, log, distributions)
