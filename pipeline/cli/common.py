@@ -155,13 +155,18 @@ def load(args: argparse.Namespace) -> Gearbox:
     return box
 
 
-def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path) -> None:
-    """Print ``summary`` as JSON (``--json``) or a short human-readable report."""
+def emit(args: argparse.Namespace, summary: dict[str, Any], out: Path,
+         lines: list[str] | None = None) -> None:
+    """The one way a command reports on stdout: ``summary`` as JSON (``--json``), else
+    ``lines`` (a command's own table) or the summary's scalars, then where the files are."""
     if args.json:
         json.dump(to_jsonable(summary), sys.stdout, indent=2)
         sys.stdout.write("\n")
         return
-    _print_scalars(summary, "")
+    if lines is None:
+        _print_scalars(summary, "")
+    else:
+        print("\n".join(lines))
     print(f"written to {out}/")
 
 

@@ -13,12 +13,12 @@ Writes CSV/PNG/JSON plus ``run.json`` to ``results/<file stem>/<command>``;
 from __future__ import annotations
 
 import argparse
-import json
 
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
     cache_folder,
+    emit,
     load,
     output_dir,
     record,
@@ -26,7 +26,7 @@ from pipeline.cli.common import (
 from pipeline.cli.dynamics_files import shown_meshes, write_modes, write_response, write_sweep
 from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_sweep
 from pipeline.dynamics.layout import model_layout
-from pipeline.io import to_jsonable, write_json
+from pipeline.io import write_json
 from pipeline.output_folder import staged_output
 from pipeline.run.dynamics import dynamics_options, gearbox_dynamic_model, operating_frequency
 
@@ -49,13 +49,6 @@ def _setup(args, command: str):
     return box, gearbox_dynamic_model(box, folder, cache=folder is not None), target
 
 
-def _emit(args, summary: dict, lines: list[str]) -> None:
-    if args.json:
-        print(json.dumps(to_jsonable(summary)))
-    else:
-        print("\n".join(lines))
-
-
 def run_modes(args) -> int:
     """Natural frequencies, mode types and mode-shape plots of the configured model."""
     box, model, out = _setup(args, "modes")
@@ -65,7 +58,7 @@ def run_modes(args) -> int:
         record(staging, args, box, files)
     summary = {**res.summary(), "out": str(out)}
     shares = res.energy_shares()
-    lines = [f"{res.counts()}, results in {out}; each mode's kinetic energy in "
+    lines = [f"{res.counts()}; each mode's kinetic energy in "
              "in-plane translation, rotation and axial translation (%)",
              "  #   f [Hz]      kind           mult  in-plane [%]  rotation [%]  axial [%]"]
     lines += [
@@ -75,7 +68,7 @@ def run_modes(args) -> int:
                 shares["rotation"], shares["axial"], strict=True)
         )
     ]
-    _emit(args, summary, lines)
+    emit(args, summary, out, lines)
     return 0
 
 
@@ -92,14 +85,14 @@ def run_response(args) -> int:
         files.append(write_json(staging / "summary.json", summary))
         record(staging, args, box, files)
     lines = [
-        f"{box.name}: {resp.method}, mesh period {resp.period * 1e3:.4f} ms, results in {out}",
+        f"{box.name}: {resp.method}, mesh period {resp.period * 1e3:.4f} ms",
         "mesh            RMS force [N]   DTE p-p [um]",
     ]
     lines += [
         f"{m:14s} {v['rms_force_N']:14.1f} {v['dte_peak_to_peak_m'] * 1e6:14.4f}"
         for m, v in summary["meshes"].items()
     ]
-    _emit(args, summary, lines)
+    emit(args, summary, out, lines)
     return 0
 
 
@@ -122,8 +115,8 @@ def run_sweep(args) -> int:
                "peaks_Hz": peaks, "out": str(out)}
     lines = [
         f"{box.name}: {freqs.size} points {freqs[0]:.4g}-{freqs[-1]:.4g} Hz (operating mesh "
-        f"frequency {operating.mesh_frequency:.4g} Hz), results in {out}"
+        f"frequency {operating.mesh_frequency:.4g} Hz)"
     ]
     lines += [f"  {m}: peaks at {', '.join(f'{p:.0f}' for p in v)} Hz" for m, v in peaks.items()]
-    _emit(args, summary, lines)
+    emit(args, summary, out, lines)
     return 0

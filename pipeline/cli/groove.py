@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +20,7 @@ from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
     cache_folder,
+    emit,
     load,
     output_dir,
     record,
@@ -28,7 +28,7 @@ from pipeline.cli.common import (
 from pipeline.fem.groove.result import DOF_NAMES
 from pipeline.fem.groove.spec import COUPLINGS, TEETH_MODELS, GrooveSpec
 from pipeline.fem.groove.study import analyse_groove
-from pipeline.io import to_jsonable, write_csv
+from pipeline.io import write_csv
 from pipeline.output_folder import staged_output
 from pipeline.validation import InputError
 
@@ -114,17 +114,13 @@ def run(args: argparse.Namespace) -> int:
     with staged_output(target) as out:
         files = _write(analysis, rows, spec, out)
         record(out, args, box, files)
-    if args.json:
-        payload = {"result": res.to_dict(), "phase_shift": dataclasses.asdict(shift),
-                   "variants": [r.to_dict() for r in rows[1:]], "outdir": str(target)}
-        print(json.dumps(to_jsonable(payload)))
-    else:
-        print(_summary(spec, res, shift))
-        for r in rows[1:]:
-            print(f"  variant {r.teeth_model}/{r.coupling}: k_t = {r.torsional_stiffness:.4e} "
-                  f"N m/rad ({r.torsional_stiffness / res.torsional_stiffness - 1:+.2%}), "
-                  f"K_j = {r.equivalent_Kj:.4e} N m^2, {r.n_dof} DOF")
-        print(f"  written to {target}")
+    payload = {"result": res.to_dict(), "phase_shift": dataclasses.asdict(shift),
+               "variants": [r.to_dict() for r in rows[1:]], "outdir": str(target)}
+    lines = [_summary(spec, res, shift)] + [
+        f"  variant {r.teeth_model}/{r.coupling}: k_t = {r.torsional_stiffness:.4e} "
+        f"N m/rad ({r.torsional_stiffness / res.torsional_stiffness - 1:+.2%}), "
+        f"K_j = {r.equivalent_Kj:.4e} N m^2, {r.n_dof} DOF" for r in rows[1:]]
+    emit(args, payload, target, lines)
     return 0
 
 
