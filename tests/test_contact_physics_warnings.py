@@ -90,12 +90,12 @@ def test_cli_prints_one_warning_line(tmp_path, capsys):
 
 def test_a_cycle_read_from_the_cache_warns_again(tmp_path):
     from pipeline.config import load_gearbox
+    from pipeline.progress import Steps
     from pipeline.run import RunOptions
     from pipeline.run.chain import mesh_stages
-    from pipeline.run.steps import StepLog
 
     box = load_gearbox(_relief_file(tmp_path))
     options = RunOptions(cache_dir=tmp_path / "cache", show_progress=False)
     for _ in range(2):
         with pytest.warns(PhysicsWarning, match="loaded contact ratio 1.017"):
-            mesh_stages(box, options, StepLog(show=False))
+            mesh_stages(box, options, Steps("", enabled=False))

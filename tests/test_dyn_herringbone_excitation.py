@@ -102,11 +102,11 @@ def test_model_static_limit_carries_the_contact_loads(setup):
 
 def _ring_stages(box):
     """The planet-ring mesh's analytical stiffness stage (for its excitation)."""
+    from pipeline.progress import Steps
     from pipeline.run.chain import RunOptions, static_stages
-    from pipeline.run.steps import StepLog
 
     case = mesh_cases(box)[1]
-    yield static_stages(box, case, RunOptions(show_progress=False), StepLog(show=False),
+    yield static_stages(box, case, RunOptions(show_progress=False), Steps("", enabled=False),
                         contact=False)
 
 

@@ -39,7 +39,6 @@ from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
 from pipeline.fem.sector3d import SectorSettings3D, sector_mesh_3d
 from pipeline.fem.whole3d import whole_gear_area
 from pipeline.geometry.gear import GearSpec
-from pipeline.progress import Steps
 from pipeline.validation import InputError
 
 KW = dict(teeth=30, module=3e-3, pressure_angle=math.radians(20), bore_radius=0.015)
@@ -191,27 +190,3 @@ def test_thin_whole_gear_is_plane_stress(cache):
     ratio = G.fe[:, 1] * b / ref.fe[:, 1]
     print("plane stress 3D/2D", ratio, G.n_dof)
     assert np.all((ratio > 0.98) & (ratio < 1.005))
-
-
-# ---- progress ----------------------------------------------------------------------------
-def test_steps_keep_timings_and_report_slow_steps(capsys):
-    """Every step's wall time is kept (summed over repeats); a step that reaches the
-    reporting threshold is announced and its end printed on stderr, a quicker one is
-    not; a disabled reporter prints nothing; stdout stays empty."""
-    steps = Steps("fe3d test", after=0.0)
-    with steps.step("mesh"):
-        pass
-    with steps.step("mesh"):
-        pass
-    quiet = Steps("fe3d quiet", after=3600.0)
-    with quiet.step("solve"):
-        quiet.advance("solve", 1, 2)
-    silent = Steps("fe3d silent", enabled=False, after=0.0)
-    with silent.step("factorise"):
-        pass
-    out = capsys.readouterr()
-    assert out.out == ""
-    assert set(steps.timings) == {"mesh"} and steps.timings["mesh"] >= 0.0
-    assert set(quiet.timings) == {"solve"} and set(silent.timings) == {"factorise"}
-    assert out.err.count("fe3d test: mesh done in") == 2
-    assert "quiet" not in out.err and "silent" not in out.err

@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import time
 
-from pipeline.progress import REPORT_AFTER, progress
+import pytest
+
+from pipeline.progress import REPORT_AFTER, Steps, progress
 
 
 def _slow(n: int, pause: float):
@@ -81,3 +83,45 @@ def test_figure_drawing_reports_the_figures_written(tmp_path, capsys):
             assert err.startswith("figures drawn: 4 done in ") and err.count("\n") == 1
         else:
             assert err == ""
+
+
+def test_steps_keep_timings_and_report_slow_steps(capsys):
+    """Every step's wall time is kept (summed over repeats); a step that reaches the
+    reporting threshold is announced and its end printed on stderr, a quicker one is
+    not; a disabled reporter prints nothing; stdout stays empty."""
+    steps = Steps("fe3d test", after=0.0)
+    with steps.step("mesh"):
+        pass
+    with steps.step("mesh"):
+        pass
+    quiet = Steps("fe3d quiet", after=3600.0)
+    with quiet.step("solve"):
+        quiet.advance("solve", 1, 2)
+    silent = Steps("fe3d silent", enabled=False, after=0.0)
+    with silent.step("factorise"):
+        pass
+    out = capsys.readouterr()
+    assert out.out == ""
+    assert set(steps.timings) == {"mesh"} and steps.timings["mesh"] >= 0.0
+    assert set(quiet.timings) == {"solve"} and set(silent.timings) == {"factorise"}
+    assert out.err.count("[fe3d test] mesh: ") == 2
+    assert "quiet" not in out.err and "silent" not in out.err
+
+
+def test_a_run_step_list_names_every_step_with_its_cache_hit_and_result(capsys):
+    """every_step: each step's line when it ends, however short, with "(from the cache)"
+    and its note's text; an announced step says so at once; the summary adds the times."""
+    log = Steps("gearpipe run", after=3600.0, every_step=True)
+    with log.step("geometry"):
+        pass
+    with log.step("loaded contact (fe2d)", announce=True) as note:
+        note["cached"] = True
+        note["text"] = "60 positions"
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("[gearpipe run] geometry: ") and lines[0].endswith(" s")
+    assert lines[1] == "[gearpipe run] loaded contact (fe2d) ..."
+    assert lines[2].startswith("[gearpipe run] loaded contact (fe2d): ")
+    assert lines[2].endswith(" s (from the cache), 60 positions") and len(lines) == 3
+    s = log.summary()
+    assert s["from_cache"] == ["loaded contact (fe2d)"]
+    assert s["total_s"] == pytest.approx(sum(s["steps_s"].values()))

@@ -105,15 +105,15 @@ from pipeline.dynamics.models.planetary_gears import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
-from pipeline.fem.cache import cached_file, load_arrays, save_arrays
+from pipeline.fem.cache import cached_file
 from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.output_folder import staged_output
+from pipeline.progress import Steps
 from pipeline.provenance import write_run_record
 from pipeline.run.chain import RunOptions, mesh_cases, static_stages
 from pipeline.run.dynamics import mesh_excitation
 from pipeline.run.herringbone import TORQUE_SIDE, cached_groove, cached_herringbone_cycle
-from pipeline.run.steps import StepLog
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 CONFIG = Path(__file__).parent / "configs" / "wind_turbine_herringbone_planetary.toml"
@@ -129,7 +129,7 @@ def fit_grooves(spec, log, cache, cache_dir):
     """Groove bottoms for the paper's K_1..K_5 and their FE results (module docstring)."""
     fits = []
     for d in FIT_DIAMETERS:
-        with log.step(f"groove FE d = {d * 1e3:.0f} mm", long=True) as note:
+        with log.step(f"groove FE d = {d * 1e3:.0f} mm", announce=True) as note:
             g, note["cached"] = cached_groove(dataclasses.replace(spec, groove_bottom_diameter=d),
                                               cache=cache, cache_dir=cache_dir)
             note["text"] = f"K_j = {g.equivalent_Kj:.4g} N m^2"
@@ -140,7 +140,7 @@ def fit_grooves(spec, log, cache, cache_dir):
     grooves = []
     for kj in PAPER_KJ:
         d = float((b / (g0.l_LR / kj - a)) ** 0.25)
-        with log.step(f"groove FE d = {d * 1e3:.1f} mm", long=True) as note:
+        with log.step(f"groove FE d = {d * 1e3:.1f} mm", announce=True) as note:
             g, note["cached"] = cached_groove(dataclasses.replace(spec, groove_bottom_diameter=d),
                                               cache=cache, cache_dir=cache_dir)
             note["text"] = f"K_j = {g.equivalent_Kj:.4g} N m^2 (target {kj:.3g})"
@@ -194,7 +194,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
     """The study (module docstring); returns the comparison rows, cases, grooves, sweeps,
     peaks, the step timing (s) and the files written."""
     target = workflow_dir(__file__, out)  # refused now, not after the study
-    log = StepLog(show=show_progress)
+    log = Steps("herringbone groove study", enabled=show_progress, every_step=True)
     cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
     figures = FigureCache(cache_dir / "figures") if cache else NO_CACHE
     with log.step("gearbox file"):
@@ -209,7 +209,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
     cases["K5 torque both"] = (grooves[-1][1], dataclasses.replace(hb, torque_entry="both"))
     cases["own groove"] = (own[1], hb)
     cyc = {}
-    with log.step("herringbone contact", long=True) as note:
+    with log.step("herringbone contact", announce=True) as note:
         hits = []
         for name, (g, h) in cases.items():
             cyc[name], pair, op, hit = contact(box, g, h, positions, cache, cache_dir)
@@ -226,7 +226,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
         note["text"] = f"{len(cyc)} cases, {positions} positions"
     with staged_output(target) as out:  # the folder holds one complete study
         files = []
-        with log.step("load maps (Fig. 8)", long=True):
+        with log.step("load maps (Fig. 8)", announce=True):
             from pipeline.viz.loadmap import render_load_map
 
             maps = {k: half_load_maps(cyc[k], pair, box.contact.load_map_profile_points)
@@ -279,24 +279,27 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
             "files": [target / Path(f).relative_to(out) for f in files]}
 
 
-def _save_sweep(path: Path, sw: SweepResult) -> Path:
-    return save_arrays(path, {f.name: np.asarray(getattr(sw, f.name))
-                              for f in dataclasses.fields(sw)})
+SWEEP_CODE = ("pipeline.dynamics", "pipeline.signals")
+"""The code a sweep depends on (part of its cache key)."""
 
 
-def _load_sweep(path: Path) -> SweepResult:
-    z = load_arrays(path)
+def _sweep_arrays(sw: SweepResult) -> dict[str, np.ndarray]:
+    return {f.name: np.asarray(getattr(sw, f.name)) for f in dataclasses.fields(sw)}
+
+
+def _sweep_from_arrays(z: dict[str, np.ndarray]) -> SweepResult:
     return SweepResult(**{**{k: z[k] for k in z}, "mesh_names": tuple(z["mesh_names"].tolist()),
                           "method": str(z["method"])})
 
 
 def cached_sweep(model, freqs, H, executor, cache, cache_dir) -> tuple[SweepResult, bool]:
     """RMS mesh force sweep of ``model``, cached by a hash of the model and the grid."""
-    inputs = {"model": model, "frequencies": freqs, "n_harmonics": H, "format": 1}
+    inputs = {"model": model, "frequencies": freqs, "n_harmonics": H}
     sw, _, hit = cached_file(
         "hbsweep", inputs, lambda: mesh_force_sweep(model.assembly().assemble(), freqs,
                                                     n_harmonics=H, executor=executor),
-        _load_sweep, _save_sweep, cache_dir, cache)
+        _sweep_arrays, _sweep_from_arrays, code=SWEEP_CODE, cache_dir=cache_dir,
+        enabled=cache)
     return sw, hit
 
 
@@ -310,10 +313,10 @@ def fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache, cache_d
     with log.step("planet-ring contact"):
         ring_stage = static_stages(box, ring_case, RunOptions(cache=cache, cache_dir=cache_dir,
                                                               show_progress=False),
-                                   StepLog(show=False))
+                                   Steps("", enabled=False))
         ring = mesh_excitation(ring_stage, box.stiffness.friction_model, "contact")
     sweeps, peaks, hits = {}, {}, []
-    with log.step("Fig. 9 sweeps", long=True) as note:
+    with log.step("Fig. 9 sweeps", announce=True) as note:
         models = {}
         for j, (_, g) in enumerate(grooves):
             exc = excitation_from_herringbone(cyc[f"K{j + 1}"], pair, op)

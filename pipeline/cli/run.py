@@ -112,13 +112,13 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     with parallel_figures(figure_cache(options), prestart=True) as figures:
         result = run_pipeline(box, options)
         with staged_output(target) as out:
-            with result.log.step("writing tables and figures", long=True):
+            with result.log.step("writing tables and figures", announce=True):
                 files = write_run(result, out, args.full, figures)
                 figures.queue.draw_all(show_progress=options.show_progress)
             if result.meshes:  # the report embeds the figures drawn above: after them
                 from pipeline.report import write_reports
 
-                with result.log.step("load distribution reports", long=True):
+                with result.log.step("load distribution reports", announce=True):
                     files += write_reports(result, out, figure_cache(options),
                                            command=f"gearpipe {command} {args.config}",
                                            show_progress=options.show_progress)

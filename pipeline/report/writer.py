@@ -206,7 +206,7 @@ def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
     from pipeline.progress import Steps
 
     files: list[Path] = []
-    steps = Steps("load distribution reports", enabled=show_progress)
+    steps = Steps(result.log.label, enabled=show_progress)
     for name, stage in result.distributions.items():
         with steps.step(f"report of {name.replace('_', '-')}"):
             files += _write_one_report(result, name, stage, out, figures, command)

@@ -65,7 +65,7 @@ from pipeline.geometry.analysis import GeometryResult, analyse_geometry
 from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
-from pipeline.run.steps import StepLog
+from pipeline.progress import Steps
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
 from pipeline.validation import InputError
 
@@ -177,7 +177,7 @@ class RunResult:
     gearbox: Gearbox
     meshes: dict[str, MeshStages]
     dynamics: Any
-    log: StepLog = field(compare=False)
+    log: Steps = field(compare=False)
     distributions: dict[str, Any] = field(default_factory=dict, compare=False)
 
     def summary(self) -> dict[str, Any]:
@@ -234,7 +234,7 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
     return cycle, hit
 
 
-def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLog,
+def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
                   contact: bool = True, prebuilt: Any = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
     (``prebuilt``: :func:`loaded_contact`)."""
@@ -247,7 +247,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
         note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
     cycle = None
     if contact:
-        with log.step(f"loaded contact ({box.contact.compliance}){tag}", long=True) as note:
+        with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
             cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt)
             note["cached"] = hit
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
@@ -262,7 +262,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: StepLo
     return stages
 
 
-def mesh_stages(box: Gearbox, options: RunOptions, log: StepLog, contact: bool = True,
+def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
                 prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
     """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
     ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
@@ -279,7 +279,7 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     from pipeline.run.dynamics import dynamics_stages
 
     options = options or RunOptions()
-    log = StepLog(show=options.show_progress, label=options.label)
+    log = Steps(options.label, enabled=options.show_progress, every_step=True)
     meshes = mesh_stages(box, options, log)
     distributions = (distribution_stages(box, meshes, options, log) if options.distribution
                      else {})

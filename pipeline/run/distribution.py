@@ -22,8 +22,8 @@ from pipeline.contact.herringbone_distribution import (
     herringbone_distribution,
 )
 from pipeline.contact.root_stress import RootStress, analyse_root_stress
+from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions
-from pipeline.run.steps import StepLog
 
 
 @dataclass(frozen=True)
@@ -46,7 +46,7 @@ class DistributionStage:
 
 
 def distribution_stages(box: Gearbox, meshes: Mapping[str, MeshStages], options: RunOptions,
-                        log: StepLog) -> dict[str, DistributionStage]:
+                        log: Steps) -> dict[str, DistributionStage]:
     """The :class:`DistributionStage` of every mesh with a contact cycle (module docstring),
     one timed step per mesh."""
     out: dict[str, DistributionStage] = {}

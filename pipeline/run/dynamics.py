@@ -42,7 +42,7 @@ from pipeline.dynamics.operating import (
 )
 from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
 from pipeline.dynamics.sweep import SweepResult
-from pipeline.run.steps import StepLog
+from pipeline.progress import Steps
 from pipeline.validation import InputError
 
 
@@ -200,7 +200,7 @@ def operating_frequency(box: Gearbox, model: Any) -> OperatingFrequency:
     return pair_operating_frequency(pair.pinion.teeth, pair.gear.teeth, box.operation.speed)
 
 
-def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> DynamicsStages:
+def dynamics_stages(box: Gearbox, meshes: dict, options, log: Steps) -> DynamicsStages:
     """Model, modes, response at the operating speed and speed sweep."""
     opts = dynamics_options(box)
     with log.step("dynamic model"):
@@ -211,7 +211,7 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: StepLog) -> Dynami
         note["text"] = modes.counts()
     with log.step("response at the operating speed"):
         response = analyse_response(model, opts.response, refine=2 if options.full else 1)
-    with log.step("speed sweep", long=True) as note:
+    with log.step("speed sweep", announce=True) as note:
         sweep = analyse_sweep(model, opts.sweep, full=options.full,
                               show_progress=options.show_progress,
                               natural_frequencies=modes.frequencies)
@@ -232,14 +232,14 @@ def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bo
     when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
     in :class:`pipeline.run.chain.RunOptions`).
     """
+    from pipeline.progress import Steps
     from pipeline.run.chain import RunOptions, mesh_stages
-    from pipeline.run.steps import StepLog
 
     if box.kind == "gear":
         raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
                          "a gear pair ([pinion] and [gear]), a planetary set or a "
                          "[lumped_model]")
     options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
-    meshes = mesh_stages(box, options, StepLog(show=False),
+    meshes = mesh_stages(box, options, Steps("", enabled=False),
                          contact=needs_contact(box))
     return dynamic_model(box, meshes)[0]

@@ -155,7 +155,7 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
     ps = box.planetary
     if box.kind != "planetary" or not ps.sun.herringbone or box.groove is None:
         return None
-    with log.step("groove FE", long=True) as note:
+    with log.step("groove FE", announce=True) as note:
         groove, g_hit = cached_groove(box.groove, cache=options.cache,
                                       cache_dir=options.cache_dir,
                                       progress=options.show_progress)
@@ -164,7 +164,7 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
     op = mesh_operations(ps, box.operation, 1)[0]
     pair = stages.case.pair
     with log.step(f"herringbone contact ({box.contact.compliance}) [sun_planet]",
-                  long=True) as note:
+                  announce=True) as note:
         cycle, c_hit = cached_herringbone_cycle(
             pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
             box.contact, box.stiffness, box.herringbone, fe=box.fe_source,

@@ -88,13 +88,13 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     """Static stages of every mesh (:func:`pipeline.run.chain.mesh_stages`, contact cycles
     not kept in the cache) and, with ``speed_range_rpm``, a sweep of the dynamic model over
     that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
+    from pipeline.progress import Steps
     from pipeline.run.chain import RunOptions, RunResult, mesh_stages
-    from pipeline.run.steps import StepLog
 
     options = RunOptions(cache=cache, cache_dir=cache_dir, show_progress=False,
                          cache_cycles=False)
-    meshes = mesh_stages(box, options, StepLog(show=False), prebuilt=fe)
-    run = RunResult(box, meshes, None, StepLog(show=False))
+    meshes = mesh_stages(box, options, Steps("", enabled=False), prebuilt=fe)
+    run = RunResult(box, meshes, None, Steps("", enabled=False))
     if speed_range_rpm is None:
         return PointResult(run, cache=cache, cache_dir=cache_dir)
     from pipeline.dynamics.sweep import mesh_force_sweep
