@@ -177,7 +177,7 @@ def test_load_map_title_names_the_half_both_flanks_and_the_torque_side(entry, wo
     """A half's load map draws the sun *and* planet flanks of that helical half; its title
     says so, how the sun torque leaves ([herringbone] torque_entry), and the band's
     extremes in N/mm (from N/m)."""
-    from pipeline.run.herringbone import herringbone_map_title
+    from pipeline.cli.herringbone_files import herringbone_map_title
 
     title = herringbone_map_title("left", 5.98e7, entry, 266.2e3, 623.4e3)
     assert title == (f"left helical half: sun and planet flanks (K_j = 5.98e+07 N m^2, "

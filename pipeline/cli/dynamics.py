@@ -28,7 +28,8 @@ from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_
 from pipeline.dynamics.layout import model_layout
 from pipeline.io import write_json
 from pipeline.output_folder import staged_output
-from pipeline.run.dynamics import dynamics_options, gearbox_dynamic_model, operating_frequency
+from pipeline.run.chain import gearbox_dynamic_model
+from pipeline.run.dynamics import dynamics_options, operating_frequency
 
 
 def _common(parser: argparse.ArgumentParser) -> None:

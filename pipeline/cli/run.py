@@ -72,7 +72,7 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
     files += write_contact(st.contact, pair, opts, ref.total,
                            contact_title(name, st.contact, pair, opts), out, prefix, figures)
     if st.herringbone is not None:
-        from pipeline.run.herringbone import write_herringbone
+        from pipeline.cli.herringbone_files import write_herringbone
 
         files += write_herringbone(st.herringbone, out, prefix, figures,
                                    opts.load_map_profile_points, opts.render)

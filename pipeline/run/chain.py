@@ -287,3 +287,25 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
     return RunResult(box, meshes, dynamics, log, distributions)
+
+
+def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True) -> Any:
+    """The dynamic model a gearbox file describes, excited by its static stages.
+
+    The same composition as ``gearpipe run`` (:func:`mesh_stages`, then
+    :func:`pipeline.run.dynamics.dynamic_model`):
+    the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
+    its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
+    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
+    in :class:`pipeline.run.chain.RunOptions`).
+    """
+    from pipeline.run.dynamics import dynamic_model, needs_contact
+
+    if box.kind == "gear":
+        raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
+                         "a gear pair ([pinion] and [gear]), a planetary set or a "
+                         "[lumped_model]")
+    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
+    meshes = mesh_stages(box, options, Steps("", enabled=False),
+                         contact=needs_contact(box))
+    return dynamic_model(box, meshes)[0]

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -43,7 +42,6 @@ from pipeline.dynamics.operating import (
 from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
 from pipeline.dynamics.sweep import SweepResult
 from pipeline.progress import Steps
-from pipeline.validation import InputError
 
 
 @dataclass(frozen=True)
@@ -220,26 +218,3 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: Steps) -> Dynamics
                         f"{operating.mesh_frequency:.4g} Hz)")
     return DynamicsStages(model, excitation, modes, response, sweep, operating,
                           opts.sweep.given)
-
-
-def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True) -> Any:
-    """The dynamic model a gearbox file describes, excited by its static stages.
-
-    The same composition as ``gearpipe run`` (:func:`dynamic_model`, after
-    :func:`pipeline.run.chain.mesh_stages`):
-    the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
-    its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
-    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
-    in :class:`pipeline.run.chain.RunOptions`).
-    """
-    from pipeline.progress import Steps
-    from pipeline.run.chain import RunOptions, mesh_stages
-
-    if box.kind == "gear":
-        raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
-                         "a gear pair ([pinion] and [gear]), a planetary set or a "
-                         "[lumped_model]")
-    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
-    meshes = mesh_stages(box, options, Steps("", enabled=False),
-                         contact=needs_contact(box))
-    return dynamic_model(box, meshes)[0]
