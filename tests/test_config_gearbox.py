@@ -146,7 +146,7 @@ def test_spur_pair_derived_dynamic_inputs():
     of the area, so the exact values lie 0-0.3 % above the hand values.
     """
     from pipeline.geometry.involute import inv
-    from pipeline.run.chain import gearbox_dynamic_model
+    from pipeline.run.runner import gearbox_dynamic_model
 
     box = load_gearbox(SPUR)
     model = gearbox_dynamic_model(box)
@@ -175,7 +175,7 @@ def test_spur_pair_same_frequencies_as_the_hand_typed_model():
     from pipeline.dynamics.analysis import analyse_modes
     from pipeline.dynamics.excitation import rectangular_mesh_stiffness
     from pipeline.dynamics.models.spur_pair import SpurPairModel
-    from pipeline.run.chain import gearbox_dynamic_model
+    from pipeline.run.runner import gearbox_dynamic_model
 
     hand = SpurPairModel(
         mesh_stiffness=rectangular_mesh_stiffness(2.3e8, 3.9e8, 1.73, samples=360),

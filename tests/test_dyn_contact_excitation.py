@@ -216,7 +216,7 @@ def test_pair_dte_at_operating_speed_analytical_vs_contact():
     static TE, 360 positions) 35.0 um. The contact's Weber local approach is softer than
     the constant Hertz term, so its mean DTE is larger too (15.97 vs 13.86 um)."""
     from pipeline.dynamics.analysis import analyse_response
-    from pipeline.run.chain import gearbox_dynamic_model
+    from pipeline.run.runner import gearbox_dynamic_model
 
     base = (CONFIGS + "spur_pair_assembly_errors.toml")
     text = open(base, encoding="utf-8").read() + "[contact]\npositions = 360\n"

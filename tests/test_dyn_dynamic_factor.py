@@ -26,7 +26,7 @@ from pipeline.dynamics.integrate import steady_state
 from pipeline.dynamics.models.spur_pair import SpurPairModel
 from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.report.dynamics_section import dynamics_meshes_section
-from pipeline.run.chain import gearbox_dynamic_model
+from pipeline.run.runner import gearbox_dynamic_model
 from pipeline.signals import PeriodicSignal
 from workflows.default_case import DEFAULT
 

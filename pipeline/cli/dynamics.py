@@ -28,8 +28,8 @@ from pipeline.dynamics.analysis import analyse_modes, analyse_response, analyse_
 from pipeline.dynamics.layout import model_layout
 from pipeline.io import write_json
 from pipeline.output_folder import staged_output
-from pipeline.run.chain import gearbox_dynamic_model
 from pipeline.run.dynamics import dynamics_options, operating_frequency
+from pipeline.run.runner import gearbox_dynamic_model
 
 
 def _common(parser: argparse.ArgumentParser) -> None:

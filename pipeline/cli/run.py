@@ -1,6 +1,6 @@
 """``gearpipe run CONFIG``: every stage the gearbox file asks for, into one results folder.
 
-Runs :func:`pipeline.run.chain.run_pipeline` and writes, to ``results/<file stem>/run/``
+Runs :func:`pipeline.run.runner.run_pipeline` and writes, to ``results/<file stem>/run/``
 (or ``--out``): per mesh the geometry (``line_of_action.png``, ``tooth_profiles.png``),
 the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
 contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
@@ -34,7 +34,8 @@ from pipeline.cli.common import (
 from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import write_json
 from pipeline.output_folder import staged_output
-from pipeline.run.chain import MeshStages, RunOptions, RunResult, run_pipeline
+from pipeline.run.chain import MeshStages, RunOptions
+from pipeline.run.runner import RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 from pipeline.viz.figure_queue import parallel_figures
 

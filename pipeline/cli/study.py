@@ -73,7 +73,8 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
 
     from pipeline.cli.run import figure_cache, write_run
     from pipeline.config import load_gearbox
-    from pipeline.run.chain import RunOptions, run_pipeline
+    from pipeline.run.chain import RunOptions
+    from pipeline.run.runner import run_pipeline
 
     doc = spec.point_document(values)
     # figure titles and the report name the best point, not the base file

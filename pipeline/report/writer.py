@@ -1,6 +1,6 @@
 """Writing the reports of a run: per gear mesh one HTML file, its JSON and its CSV.
 
-:func:`write_reports` takes a :class:`~pipeline.run.chain.RunResult` and the folder the
+:func:`write_reports` takes a :class:`~pipeline.run.runner.RunResult` and the folder the
 run's stage outputs were written to (:func:`pipeline.cli.run.write_run`): it renders the
 load distribution and tooth root stress the run computed for every mesh
 (:mod:`pipeline.run.distribution`; it computes nothing itself), draws the report's own

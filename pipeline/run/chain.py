@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -158,38 +158,6 @@ class MeshStages:
         return out
 
 
-@dataclass(frozen=True)
-class RunResult:
-    """Everything one run computed.
-
-    Attributes
-    ----------
-    gearbox : the gearbox it ran on.
-    meshes : name -> the static stages of each mesh.
-    dynamics : the dynamics results (:class:`pipeline.run.dynamics.DynamicsStages`) or
-        ``None`` when the file asks for no dynamics.
-    log : step durations (s) and which steps came from the cache.
-    distributions : name -> the load distribution and root stress of each mesh with a
-        contact cycle (:class:`pipeline.run.distribution.DistributionStage`; empty when
-        ``RunOptions.distribution`` is off).
-    """
-
-    gearbox: Gearbox
-    meshes: dict[str, MeshStages]
-    dynamics: Any
-    log: Steps = field(compare=False)
-    distributions: dict[str, Any] = field(default_factory=dict, compare=False)
-
-    def summary(self) -> dict[str, Any]:
-        """One summary of the run (SI; keys carry units)."""
-        out: dict[str, Any] = {"gearbox": self.gearbox.name, "kind": self.gearbox.kind,
-                               "meshes": {k: v.summary() for k, v in self.meshes.items()}}
-        if self.dynamics is not None:
-            out["dynamics"] = self.dynamics.summary()
-        out["timing"] = self.log.summary()
-        return out
-
-
 def mesh_cases(box: Gearbox) -> list[MeshCase]:
     """The meshes of a gearbox with their loads (a pair: one; a planetary set: two)."""
     if box.kind == "pair":
@@ -271,41 +239,3 @@ def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = T
     return {case.name: static_stages(box, case, options, log, contact,
                                      None if prebuilt is None else prebuilt[case.name])
             for case in mesh_cases(box)}
-
-
-def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
-    """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
-    from pipeline.run.distribution import distribution_stages
-    from pipeline.run.dynamics import dynamics_stages
-
-    options = options or RunOptions()
-    log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    meshes = mesh_stages(box, options, log)
-    distributions = (distribution_stages(box, meshes, options, log) if options.distribution
-                     else {})
-    dynamics = None
-    if box.kind == "lumped" or box.dynamics is not None:
-        dynamics = dynamics_stages(box, meshes, options, log)
-    return RunResult(box, meshes, dynamics, log, distributions)
-
-
-def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True) -> Any:
-    """The dynamic model a gearbox file describes, excited by its static stages.
-
-    The same composition as ``gearpipe run`` (:func:`mesh_stages`, then
-    :func:`pipeline.run.dynamics.dynamic_model`):
-    the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
-    its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
-    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
-    in :class:`pipeline.run.chain.RunOptions`).
-    """
-    from pipeline.run.dynamics import dynamic_model, needs_contact
-
-    if box.kind == "gear":
-        raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
-                         "a gear pair ([pinion] and [gear]), a planetary set or a "
-                         "[lumped_model]")
-    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
-    meshes = mesh_stages(box, options, Steps("", enabled=False),
-                         contact=needs_contact(box))
-    return dynamic_model(box, meshes)[0]

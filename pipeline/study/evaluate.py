@@ -89,7 +89,8 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     not kept in the cache) and, with ``speed_range_rpm``, a sweep of the dynamic model over
     that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
     from pipeline.progress import Steps
-    from pipeline.run.chain import RunOptions, RunResult, mesh_stages
+    from pipeline.run.chain import RunOptions, mesh_stages
+    from pipeline.run.runner import RunResult
 
     options = RunOptions(cache=cache, cache_dir=cache_dir, show_progress=False,
                          cache_cycles=False)

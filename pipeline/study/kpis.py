@@ -37,7 +37,7 @@ class PointResult:
 
     Attributes
     ----------
-    run : the static stages of every mesh (:class:`pipeline.run.chain.RunResult`, without
+    run : the static stages of every mesh (:class:`pipeline.run.runner.RunResult`, without
         its dynamics stages).
     sweep : the dynamic mesh forces over the study's speed range
         (:class:`pipeline.dynamics.sweep.SweepResult`), or ``None``.
