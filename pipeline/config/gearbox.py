@@ -43,7 +43,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pipeline.config import tables as T
 from pipeline.config.schema import (
@@ -79,6 +79,10 @@ from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
+
+if TYPE_CHECKING:
+    from pipeline.contact.fe_settings import FE2DSettings, FE3DSettings
+    from pipeline.dynamics.assembly import DynamicModel
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
@@ -144,11 +148,11 @@ class Gearbox:
     stiffness: StiffnessOptions = field(default_factory=StiffnessOptions)
     contact: ContactOptions = field(default_factory=ContactOptions)
     fe: SectorFEOptions = field(default_factory=SectorFEOptions)
-    fe_source: Any = None
+    fe_source: FE2DSettings | FE3DSettings | None = None
     groove: GrooveSpec | None = None
     herringbone: HerringboneOptions = field(default_factory=HerringboneOptions)
     dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
-    lumped: Any = None
+    lumped: DynamicModel | None = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 

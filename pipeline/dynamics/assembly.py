@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from typing import Protocol
 
 import numpy as np
 import scipy.linalg as sla
@@ -252,3 +253,12 @@ def _product(a: PeriodicSignal, b: PeriodicSignal) -> PeriodicSignal:
         n = 2 * n
     tau = np.arange(n) / n
     return PeriodicSignal(a(tau) * b(tau), a.period)
+
+
+class DynamicModel(Protocol):
+    """Any lumped-parameter model of :mod:`pipeline.dynamics.models`: what the analyses and
+    the run need of it is its :class:`Assembly` (bodies, couplings, loads)."""
+
+    def assembly(self) -> Assembly:
+        """The model's bodies, couplings and loads."""
+        ...

@@ -48,7 +48,7 @@ import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pipeline.config import Gearbox
 from pipeline.contact.analysis import analyse_contact, warn_physics
@@ -68,6 +68,9 @@ from pipeline.operation import OperatingPoint
 from pipeline.progress import Steps
 from pipeline.stiffness.analysis import StiffnessResult, analyse_stiffness
 from pipeline.validation import InputError
+
+if TYPE_CHECKING:
+    from pipeline.run.herringbone import HerringboneStage
 
 
 @dataclass(frozen=True)
@@ -138,7 +141,7 @@ class MeshStages:
     stiffness: StiffnessResult
     contact: LoadedMeshCycle | None
     compliance: str
-    herringbone: Any = None
+    herringbone: HerringboneStage | None = None
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""

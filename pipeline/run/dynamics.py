@@ -24,6 +24,7 @@ from pipeline.dynamics.analysis import (
     analyse_response,
     analyse_sweep,
 )
+from pipeline.dynamics.assembly import DynamicModel
 from pipeline.dynamics.contact_excitation import excitation_from_contact
 from pipeline.dynamics.mesh_input import (
     MeshExcitation,
@@ -61,7 +62,7 @@ class DynamicsStages:
         (:func:`pipeline.dynamics.options.default_sweep_range`).
     """
 
-    model: Any
+    model: DynamicModel
     excitation: str
     modes: ModalResult
     response: ResponseResult

@@ -9,10 +9,11 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.config import Gearbox
+from pipeline.dynamics.assembly import DynamicModel
 from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
 from pipeline.run.distribution import distribution_stages
-from pipeline.run.dynamics import dynamic_model, dynamics_stages, needs_contact
+from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
 from pipeline.validation import InputError
 
 
@@ -34,7 +35,7 @@ class RunResult:
 
     gearbox: Gearbox
     meshes: dict[str, MeshStages]
-    dynamics: Any
+    dynamics: DynamicsStages | None
     log: Steps = field(compare=False)
     distributions: dict[str, Any] = field(default_factory=dict, compare=False)
 
@@ -61,7 +62,8 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     return RunResult(box, meshes, dynamics, log, distributions)
 
 
-def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None, cache: bool = True) -> Any:
+def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None,
+                          cache: bool = True) -> DynamicModel:
     """The dynamic model a gearbox file describes, excited by its static stages.
 
     The same composition as ``gearpipe run`` (:func:`mesh_stages`, then

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -53,6 +54,12 @@ from pipeline.validation import (
     check_choice,
     check_range,
 )
+
+if TYPE_CHECKING:
+    from pipeline.fem.groove.result import GrooveStiffness
+
+HalfSignal = PeriodicSignal | tuple[PeriodicSignal, PeriodicSignal]
+"""A mesh signal of both halves, or a (left, right) pair."""
 
 SIDES = ("L", "R")
 HAND = {"L": 1, "R": -1}
@@ -143,8 +150,8 @@ class HerringbonePlanetaryModel:
     pressure_angle_sun: float = math.radians(24.6)
     pressure_angle_ring: float = math.radians(24.6)
     base_helix_angle: float = 0.0
-    k_sun_mesh: object = 2.5e8
-    k_ring_mesh: object = 2.5e8
+    k_sun_mesh: HalfSignal | float = 2.5e8
+    k_ring_mesh: HalfSignal | float = 2.5e8
     k_sun: float = 1e8
     k_ring: float = 1e8
     k_carrier: float = 1e8
@@ -156,7 +163,7 @@ class HerringbonePlanetaryModel:
     kt_sun: float = 0.0
     kt_ring: float = 1e9 * 0.1375**2
     kt_carrier: float = 0.0
-    groove: object = None
+    groove: float | np.ndarray | GrooveStiffness | None = None
     groove_rotations: str = "drop"
     groove_translational: tuple[float, float, float] | None = None
     half_coupling: tuple[float, float, float, float] | None = None
@@ -173,8 +180,8 @@ class HerringbonePlanetaryModel:
     sun_torque: float = 0.0
     carrier_speed: float = 0.0
     mesh_period: float = 1e-3
-    e_sun_mesh: object = None
-    e_ring_mesh: object = None
+    e_sun_mesh: HalfSignal | None = None
+    e_ring_mesh: HalfSignal | None = None
 
     def __post_init__(self) -> None:
         check_range("base_helix_angle", self.base_helix_angle, 0.0, math.radians(45), unit="rad")

@@ -54,7 +54,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
@@ -68,6 +68,9 @@ from pipeline.geometry.planetary import PlanetarySet, dec
 from pipeline.operation import OperatingPoint
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import InputError
+
+if TYPE_CHECKING:
+    from pipeline.fem.groove.result import GrooveStiffness
 
 ROLES = ("sun", "planet", "ring")
 LIN_PARKER_RING_SUPPORT = 1.0e9  # N/m at the ring's base circle (Lin and Parker 1999, Table 1)
@@ -240,7 +243,7 @@ def herringbone_planetary_model_from_gears(
     sun_excitation: MeshExcitation | tuple[MeshExcitation, MeshExcitation],
     ring_excitation: MeshExcitation,
     *,
-    groove: object = None,
+    groove: float | np.ndarray | GrooveStiffness | None = None,
     sun_load_side: str | None = None,
 ) -> HerringbonePlanetaryModel:
     """The herringbone planetary model (Xu et al. 2020, 8(N+3) DOF) of a set, from its gears.

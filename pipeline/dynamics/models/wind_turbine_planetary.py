@@ -30,7 +30,7 @@ from pipeline.dynamics.models.groove_mesh import (
     GrooveMeshRelation,
     side_factors,
 )
-from pipeline.dynamics.models.herringbone_planetary import HerringbonePlanetaryModel
+from pipeline.dynamics.models.herringbone_planetary import HalfSignal, HerringbonePlanetaryModel
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.planetary import PlanetarySet, dec
@@ -133,7 +133,7 @@ def wind_turbine_herringbone_model(
     t_c = POWER / (RATED_CARRIER_RPM * 2 * math.pi / 60)
     t_s = t_c / (1 + Z_R / Z_S)
     if groove is None:
-        k_groove: object = groove_Kj / L_TORSION
+        k_groove: float | GrooveStiffness = groove_Kj / L_TORSION
         lam_lr = ps.left_right_phase(t_s / k_groove)
         translational = (5e9, 5e9, 5e9)
     else:
@@ -141,7 +141,7 @@ def wind_turbine_herringbone_model(
         lam_lr = float(dec(groove.phase_shift(t_s).lambda_LR))
         translational = None
     lam_lr = float(dec(stagger + lam_lr))
-    k_sun: object = k
+    k_sun: HalfSignal = k
     if groove_mesh is not None:
         kj = groove_Kj if groove is None else groove.equivalent_Kj
         sf = side_factors(kj, groove_mesh)
