@@ -48,7 +48,7 @@ FIELD_UNITS: tuple[tuple[str, str], ...] = (
     ("bearing_stiffness", "N_per_m"), ("bearing_damping", "Ns_per_m"), ("sun_torque", "Nm"),
     ("torque", "Nm"), ("carrier_speed", "rpm"), ("speed", "rpm"),
 )
-_SKIP = {"mesh_stiffness", "k_sun_mesh", "k_ring_mesh", "transmission_error", "extra",
+_SKIP = {"mesh_stiffness", "k_sun_mesh", "k_ring_mesh", "transmission_error",
          "friction_stiffness", "friction_torque_pinion", "friction_torque_gear",
          "groove_translational", "half_coupling", "groove_rotations", "e_sun_mesh",
          "e_ring_mesh", "t1t2"}  # t1t2: the pair's drawing, derived from gear geometry

@@ -46,7 +46,7 @@ from pipeline.dynamics.bodies import Body, add_measures
 from pipeline.dynamics.couplings import Bearing, GearMesh, Load, MatrixCoupling, Spring, Tie
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
-from pipeline.dynamics.models.planetary import check_lumped_members
+from pipeline.dynamics.models.planetary import PlanetaryMembers, check_lumped_members
 from pipeline.dynamics.reduction import rigid_body_modes
 from pipeline.signals import PeriodicSignal
 from pipeline.validation import (
@@ -99,7 +99,7 @@ def _scaled_signal(k, factor: float):
 
 
 @dataclass(frozen=True)
-class HerringbonePlanetaryModel:
+class HerringbonePlanetaryModel(PlanetaryMembers):
     """Inputs of the herringbone planetary model (totals per member; halves get half).
 
     Attributes
@@ -134,35 +134,13 @@ class HerringbonePlanetaryModel:
         mesh period, one signal or a (left, right) pair, or ``None`` (perfect flanks).
     """
 
-    n_planets: int = 4
-    mass_sun: float = 0.4
-    mass_ring: float = 2.35
-    mass_carrier: float = 5.43
-    mass_planet: float = 0.66
-    inertia_sun: float = 0.39 * 0.0387**2
-    inertia_ring: float = 3.00 * 0.1375**2
-    inertia_carrier: float = 6.29 * 0.0884**2
-    inertia_planet: float = 0.61 * 0.05015**2
-    base_radius_sun: float = 0.0387
-    base_radius_ring: float = 0.1375
-    base_radius_planet: float = 0.05015
-    carrier_radius: float = 0.0884
-    pressure_angle_sun: float = math.radians(24.6)
-    pressure_angle_ring: float = math.radians(24.6)
     base_helix_angle: float = 0.0
     k_sun_mesh: HalfSignal | float = 2.5e8
     k_ring_mesh: HalfSignal | float = 2.5e8
-    k_sun: float = 1e8
-    k_ring: float = 1e8
-    k_carrier: float = 1e8
     kz_sun: float = 1e8
     kz_ring: float = 1e8
     kz_carrier: float = 1e8
-    k_planet: float = 1e8
     kz_planet: float = 1e8
-    kt_sun: float = 0.0
-    kt_ring: float = 1e9 * 0.1375**2
-    kt_carrier: float = 0.0
     groove: float | np.ndarray | GrooveStiffness | None = None
     groove_rotations: str = "drop"
     groove_translational: tuple[float, float, float] | None = None
@@ -171,15 +149,7 @@ class HerringbonePlanetaryModel:
     axial_slide: float = 0.0
     engaged_width: float | None = None
     sun_load_side: str = "both"
-    planet_angles: tuple[float, ...] | None = None
-    phase_sun: tuple[float, ...] | None = None
-    phase_ring: tuple[float, ...] | None = None
     phase_lr: float = 0.0
-    damping_ratio: float = 0.0
-    modal_damping_ratio: float = 0.0
-    sun_torque: float = 0.0
-    carrier_speed: float = 0.0
-    mesh_period: float = 1e-3
     e_sun_mesh: HalfSignal | None = None
     e_ring_mesh: HalfSignal | None = None
 
@@ -200,12 +170,6 @@ class HerringbonePlanetaryModel:
         check_lumped_members(self, ("k_sun", "k_ring", "k_carrier", "kz_sun", "kz_ring",
                                     "kz_carrier", "k_planet", "kz_planet", "kt_sun", "kt_ring",
                                     "kt_carrier"))
-
-    @property
-    def angles(self) -> np.ndarray:
-        if self.planet_angles is not None:
-            return np.array(self.planet_angles)
-        return 2 * np.pi * np.arange(self.n_planets) / self.n_planets
 
     def _side(self, value, side: str):
         if isinstance(value, (tuple, list)) and len(value) == 2:

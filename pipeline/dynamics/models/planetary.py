@@ -22,7 +22,7 @@ Planet bearings tie each planet centre to the carrier point at radius r_c
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -116,8 +116,10 @@ def check_lumped_members(model, stiffnesses: tuple[str, ...]) -> None:
 
 
 @dataclass(frozen=True)
-class PlanetaryModel:
-    """Inputs of the planar planetary model (defaults: Lin and Parker 1999 Table 1).
+class PlanetaryMembers:
+    """What the planar and the herringbone planetary models share (defaults: Lin and Parker
+    1999 Table 1): the members, their supports, the planets' layout and phases, damping,
+    load and speed. Checked by :func:`check_lumped_members` in each model.
 
     Attributes
     ----------
@@ -127,7 +129,6 @@ class PlanetaryModel:
     base_radius_sun, base_radius_ring, base_radius_planet : m.
     carrier_radius : radius of the planet centres r_c, m.
     pressure_angle_sun, pressure_angle_ring : transverse operating pressure angles, rad.
-    k_sun_mesh, k_ring_mesh : mesh stiffness (N/m), constant or over one mesh period.
     k_sun, k_ring, k_carrier : translational bearing stiffness of the central members, N/m.
     k_planet : planet bearing stiffness (radial and tangential), N/m.
     kt_sun, kt_ring, kt_carrier : torsional support stiffness, N m/rad.
@@ -139,9 +140,6 @@ class PlanetaryModel:
         the sun-carrier path has a rigid-body mode; otherwise it reacts on the supports).
     carrier_speed : Omega_c, rad/s.
     mesh_period : T_m in s.
-    e_sun_mesh, e_ring_mesh : transmission error e(tau) of every sun-planet / ring-planet
-        mesh over one mesh period (m, shifted by the mesh phases like the stiffness), or
-        ``None`` (perfect flanks).
     """
 
     n_planets: int = 4
@@ -159,8 +157,6 @@ class PlanetaryModel:
     carrier_radius: float = 0.0884
     pressure_angle_sun: float = math.radians(24.6)
     pressure_angle_ring: float = math.radians(24.6)
-    k_sun_mesh: PeriodicSignal | float = 5e8
-    k_ring_mesh: PeriodicSignal | float = 5e8
     k_sun: float = 1e8
     k_ring: float = 1e8
     k_carrier: float = 1e8
@@ -176,13 +172,6 @@ class PlanetaryModel:
     sun_torque: float = 0.0
     carrier_speed: float = 0.0
     mesh_period: float = 1e-3
-    e_sun_mesh: PeriodicSignal | None = None
-    e_ring_mesh: PeriodicSignal | None = None
-    extra: dict = field(default_factory=dict, compare=False)
-
-    def __post_init__(self) -> None:
-        check_lumped_members(self, ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun",
-                                    "kt_ring", "kt_carrier"))
 
     @property
     def angles(self) -> np.ndarray:
@@ -193,6 +182,29 @@ class PlanetaryModel:
 
     def planet_names(self) -> list[str]:
         return [f"p{i + 1}" for i in range(self.n_planets)]
+
+
+@dataclass(frozen=True)
+class PlanetaryModel(PlanetaryMembers):
+    """Inputs of the planar planetary model (defaults: Lin and Parker 1999 Table 1): the
+    members of :class:`PlanetaryMembers` and its meshes.
+
+    Attributes
+    ----------
+    k_sun_mesh, k_ring_mesh : mesh stiffness (N/m), constant or over one mesh period.
+    e_sun_mesh, e_ring_mesh : transmission error e(tau) of every sun-planet / ring-planet
+        mesh over one mesh period (m, shifted by the mesh phases like the stiffness), or
+        ``None`` (perfect flanks).
+    """
+
+    k_sun_mesh: PeriodicSignal | float = 5e8
+    k_ring_mesh: PeriodicSignal | float = 5e8
+    e_sun_mesh: PeriodicSignal | None = None
+    e_ring_mesh: PeriodicSignal | None = None
+
+    def __post_init__(self) -> None:
+        check_lumped_members(self, ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun",
+                                    "kt_ring", "kt_carrier"))
 
     def assembly(self) -> Assembly:
         """Bodies, bearings, meshes and loads of the set."""
