@@ -70,6 +70,18 @@ _LONGEST_TEMP = len("..tmp--") + LONGEST_FILE_NAME + _PID_DIGITS + _RANDOM + len
 ``.<name>.tmp-<pid>-<random><suffix>``."""
 
 
+def mesh_prefix(mesh: str) -> str:
+    """File-name prefix of a mesh's outputs in a run folder: none for a pair's one mesh
+    ("mesh"), ``"<mesh>_"`` for each mesh of a planetary set."""
+    return "" if mesh == "mesh" else f"{mesh}_"
+
+
+def mesh_label(gearbox: str, mesh: str) -> str:
+    """How titles name a mesh: the gearbox's name, with ``sun-planet`` / ``planet-ring``
+    for the meshes of a planetary set."""
+    return gearbox if mesh == "mesh" else f"{gearbox} {mesh.replace('_', '-')}"
+
+
 class OutputError(Exception):
     """The results cannot be written where asked (full or read-only disk, a file in the
     way, a folder holding other files); the message is one line naming the folder."""

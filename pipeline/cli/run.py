@@ -33,7 +33,7 @@ from pipeline.cli.common import (
 )
 from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import write_json
-from pipeline.output_folder import staged_output
+from pipeline.output_folder import mesh_label, mesh_prefix, staged_output
 from pipeline.run.chain import MeshStages, RunOptions
 from pipeline.run.runner import RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
@@ -89,9 +89,8 @@ def write_run(result: RunResult, out: Path, full: bool = False,
     box = result.gearbox
     files: list[Path] = []
     for name, st in result.meshes.items():
-        prefix = "" if name == "mesh" else f"{name}_"
-        label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
-        files += _write_mesh(label, st, box, out, prefix, figures)
+        files += _write_mesh(mesh_label(box.name, name), st, box, out, mesh_prefix(name),
+                             figures)
     dyn = result.dynamics
     if dyn is not None:
         files += write_modes(dyn.modes, out, model_layout(dyn.model), figures, box.name)

@@ -152,8 +152,7 @@ def _check_cycle(cycle: LoadedMeshCycle, pair: GearPair) -> None:
     if m < 4:
         raise InputError(f"contact cycle has {m} positions; a mesh excitation needs >= 4 "
                          "(contact.positions)")
-    expected = pair.mesh_cycle(m)
-    if not np.allclose(cycle.s0, expected, rtol=0.0, atol=1e-9 * pair.base_pitch):
+    if not pair.is_mesh_cycle(cycle.s0):
         raise InputError("the contact cycle is not one mesh cycle of equally spaced positions "
                          "of this pair (pair.mesh_cycle): a mesh excitation needs "
                          "analyse_contact(..., positions=<number>) on the same pair")

@@ -120,7 +120,7 @@ def tooth_pair_jumps(pair: GearPair) -> tuple[Jump, ...]:
     leave gradually, nor when eps_alpha is a whole number (entry and exit coincide)."""
     if pair.pinion.base_helix_angle != 0.0:
         return ()
-    eps = (pair.s_end - pair.s_start) / pair.base_pitch
+    eps = pair.transverse_contact_ratio
     leave = eps - math.floor(eps)
     if min(leave, 1.0 - leave) < JUMP_TOLERANCE:
         return ()
@@ -214,10 +214,7 @@ def excitation_from_stiffness(ms: MeshStiffness, tooth_model: str = "exact") -> 
         tooth_model=tooth_model,
         source="analytical",
     )
-    cycle = ms.pair.mesh_cycle(ms.s0.size)
-    if np.allclose(ms.s0, cycle, rtol=0.0, atol=1e-9 * ms.pair.base_pitch):
-        return with_resolved_jumps(excitation, ms.pair)
-    return excitation
+    return with_resolved_jumps(excitation, ms.pair) if ms.pair.is_mesh_cycle(ms.s0) else excitation
 
 
 def excitation_from_signal(

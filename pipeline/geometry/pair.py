@@ -311,6 +311,13 @@ class GearPair:
         """``n`` equally spaced roll coordinates of the leading pair over one mesh cycle, m."""
         return self.s_start + self.base_pitch * np.arange(n) / n
 
+    def is_mesh_cycle(self, s0: ArrayLike) -> bool:
+        """True when the roll coordinates ``s0`` (m) are :meth:`mesh_cycle` of their count
+        (to 1e-9 of a base pitch)."""
+        s0 = np.asarray(s0, dtype=float)
+        return bool(np.allclose(s0, self.mesh_cycle(s0.size), rtol=0.0,
+                                atol=1e-9 * self.base_pitch))
+
     def contact_line_lengths(self, s0: ArrayLike) -> np.ndarray:
         """Length of each tooth pair's contact line on the plane of action, m.
 

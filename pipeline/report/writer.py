@@ -29,6 +29,7 @@ from typing import Any
 
 from pipeline.contact.distribution import LoadDistribution
 from pipeline.io import atomic_write_text, write_csv, write_json
+from pipeline.output_folder import mesh_label, mesh_prefix
 from pipeline.report import content
 from pipeline.report.dynamics_section import dynamics_meshes_section, dynamics_section
 from pipeline.report.html import render_html
@@ -117,7 +118,7 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
 
     st = result.meshes[name]
     box = result.gearbox
-    prefix = "" if name == "mesh" else f"{name}_"
+    prefix = mesh_prefix(name)
     actual, op = st.stiffness.actual, st.case.operation
     stage = _stage_figures(out, prefix, True)
 
@@ -220,10 +221,9 @@ def _write_one_report(result: Any, name: str, stage: Any, out: Path, figures: Fi
     box = result.gearbox
     st = result.meshes[name]
     t0 = time.perf_counter()
-    prefix = "" if name == "mesh" else f"{name}_"
+    prefix = mesh_prefix(name)
     pair = st.stiffness.actual
-    label = box.name if name == "mesh" else f"{box.name} {name.replace('_', '-')}"
-    title = (f"{label}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
+    title = (f"{mesh_label(box.name, name)}: z {pair.pinion.teeth}/{pair.gear.teeth}, m_n "
              f"{pair.pinion.module * 1e3:g} mm, beta "
              f"{math.degrees(pair.pinion.helix_angle):g} deg")
     report = mesh_report(result, name, out, figures, title=title, command=command,

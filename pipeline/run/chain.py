@@ -87,8 +87,6 @@ class RunOptions:
         turns it off: one file per design point would fill the cache with cycles that are
         never read again.
     label : the command the step lines name on stderr.
-    distribution : compute the load distribution and root stress of every mesh (what the
-        load distribution reports show; :mod:`pipeline.run.distribution`).
     """
 
     full: bool = False
@@ -97,7 +95,6 @@ class RunOptions:
     show_progress: bool = True
     cache_cycles: bool = True
     label: str = "gearpipe run"
-    distribution: bool = True
 
 
 @dataclass(frozen=True)
@@ -161,6 +158,12 @@ class MeshStages:
         return out
 
 
+def step_tag(mesh: str) -> str:
+    """What a step line adds for a mesh: nothing for a pair's one mesh, ``" [<mesh>]"`` for
+    each mesh of a planetary set."""
+    return "" if mesh == "mesh" else f" [{mesh}]"
+
+
 def mesh_cases(box: Gearbox) -> list[MeshCase]:
     """The meshes of a gearbox with their loads (a pair: one; a planetary set: two)."""
     if box.kind == "pair":
@@ -209,7 +212,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
                   contact: bool = True, prebuilt: Any = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
     (``prebuilt``: :func:`loaded_contact`)."""
-    tag = "" if case.name == "mesh" else f" [{case.name}]"
+    tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
     with log.step(f"analytical stiffness{tag}") as note:

@@ -23,7 +23,7 @@ from pipeline.contact.herringbone_distribution import (
 )
 from pipeline.contact.root_stress import RootStress, analyse_root_stress
 from pipeline.progress import Steps
-from pipeline.run.chain import MeshStages, RunOptions
+from pipeline.run.chain import MeshStages, RunOptions, step_tag
 
 
 @dataclass(frozen=True)
@@ -49,18 +49,16 @@ def distribution_stages(box: Gearbox, meshes: Mapping[str, MeshStages], options:
                         log: Steps) -> dict[str, DistributionStage]:
     """The :class:`DistributionStage` of every mesh with a contact cycle (module docstring),
     one timed step per mesh."""
+    def root(cycle, pair, operation):
+        return analyse_root_stress(cycle, pair, operation, box.fe_source,
+                                   cache=options.cache, cache_dir=options.cache_dir,
+                                   show_progress=options.show_progress)
+
     out: dict[str, DistributionStage] = {}
     for name, st in meshes.items():
         if st.contact is None:
             continue
-
-        def root(cycle, pair, operation):
-            return analyse_root_stress(cycle, pair, operation, box.fe_source,
-                                       cache=options.cache, cache_dir=options.cache_dir,
-                                       show_progress=options.show_progress)
-
-        tag = "" if name == "mesh" else f" [{name}]"
-        with log.step(f"load distribution and root stress{tag}"):
+        with log.step(f"load distribution and root stress{step_tag(name)}"):
             actual, op = st.stiffness.actual, st.case.operation
             rs = root(st.contact, actual, op)
             halves = half_roots = None

@@ -12,7 +12,7 @@ from pipeline.config import Gearbox
 from pipeline.dynamics.assembly import DynamicModel
 from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
-from pipeline.run.distribution import distribution_stages
+from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
 from pipeline.validation import InputError
 
@@ -29,15 +29,14 @@ class RunResult:
         ``None`` when the file asks for no dynamics.
     log : step durations (s) and which steps came from the cache.
     distributions : name -> the load distribution and root stress of each mesh with a
-        contact cycle (:class:`pipeline.run.distribution.DistributionStage`; empty when
-        ``RunOptions.distribution`` is off).
+        contact cycle (:class:`pipeline.run.distribution.DistributionStage`).
     """
 
     gearbox: Gearbox
     meshes: dict[str, MeshStages]
     dynamics: DynamicsStages | None
     log: Steps = field(compare=False)
-    distributions: dict[str, Any] = field(default_factory=dict, compare=False)
+    distributions: dict[str, DistributionStage] = field(default_factory=dict, compare=False)
 
     def summary(self) -> dict[str, Any]:
         """One summary of the run (SI; keys carry units)."""
@@ -54,8 +53,7 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
     meshes = mesh_stages(box, options, log)
-    distributions = (distribution_stages(box, meshes, options, log) if options.distribution
-                     else {})
+    distributions = distribution_stages(box, meshes, options, log)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
