@@ -216,7 +216,7 @@ def test_identical_pinion_and_gear_are_meshed_once(tmp_path, monkeypatch):
     pinion = spur(20, "pinion", bore_radius=0.012)
     wheel = spur(20, "wheel", bore_radius=0.012, material=relabelled)
     other = spur(20, "other", bore_radius=0.0121)
-    meshes = [sector2d.sector_mesh_2d(g, sector2d.SectorSettings2D.for_gear(g, 3, 0.3),
+    meshes = [sector2d.sector_mesh_2d(g, sector2d.SectorSettings.for_gear(g, 3, 0.3),
                                       cache_dir=tmp_path) for g in (pinion, wheel, other)]
     assert meshed == ["pinion", "other"]
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 2

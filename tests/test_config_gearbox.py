@@ -107,19 +107,27 @@ def test_bad_input_one_line(tmp_path, capsys, case, data, words):
     assert not out.exists()  # nothing written
 
 
-def test_fe_table_feeds_the_chosen_compliance_source():
-    """[fe] keys go to the FE source [contact] compliance names (points -> tabulated radii,
-    face_points -> face grid), the slices come from [contact], and gearpipe fe keeps its
-    own sector defaults for the keys the file leaves out."""
+def test_fe_table_is_the_chosen_fe_model():
+    """Each [fe] key sets the field of its name on the FE model [contact] compliance
+    names (2D for "analytical" and "fe2d", 3D for "fe3d"), the slices come from
+    [contact], and gearpipe fe's sector has 5 teeth where the contact source models the
+    whole gear; a key of the other model is refused naming the compliance it needs."""
+    from pipeline.fem.settings import FE2DSettings, FE3DSettings
+
     box = gearbox_from_text(BASE + '[contact]\ncompliance = "fe2d"\nslices = 3\n'
                             '[fe]\npoints = 20\nrefinement = 1.5\n')
-    assert (box.fe_source.radii, box.fe_source.refinement, box.fe_source.slices) == (20, 1.5, 3)
-    assert box.fe_source.teeth is None          # contact sources: the whole gear
-    assert (box.fe.points, box.fe.teeth) == (20, 5)  # gearpipe fe: 5-tooth sector default
+    assert isinstance(box.fe, FE2DSettings) and box.fe_source is box.fe
+    assert (box.fe.points, box.fe.refinement, box.fe.slices) == (20, 1.5, 3)
+    assert box.fe.teeth is None and box.fe.sector_teeth == 5
     box3 = gearbox_from_text(BASE + '[contact]\ncompliance = "fe3d"\n'
-                             '[fe]\nface_points = 7\nends = "sliding"\n')
-    assert (box3.fe_source.face, box3.fe_source.ends) == (7, "sliding")
-    assert gearbox_from_text(BASE).fe_source is None
+                             '[fe]\nface_points = 7\nends = "sliding"\nsolver = "splu"\n')
+    assert isinstance(box3.fe, FE3DSettings)
+    assert (box3.fe.face_points, box3.fe.ends, box3.fe.solver) == (7, "sliding", "splu")
+    plain = gearbox_from_text(BASE + '[fe]\nkind = "plane_stress"\n')
+    assert plain.fe_source is None and plain.fe.kind == "plane_stress"
+    with pytest.raises(InputError, match=r"^fe.kind applies to \[contact\] compliance = "
+                       r"'analytical' or 'fe2d' only; this file's contact compliance is 'fe3d'"):
+        gearbox_from_text(BASE + '[contact]\ncompliance = "fe3d"\n[fe]\nkind = "plane_stress"\n')
 
 
 def test_units_defined_once():

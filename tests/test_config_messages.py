@@ -84,8 +84,7 @@ def _signal(kind: str) -> dict:
 
 def _fe_keys(compliance: str) -> tuple[Key, ...]:
     """The ``[fe]`` keys that act with this contact compliance."""
-    acting = set(T.FE_COMMAND_KEYS) | set(T.FE_SOURCE_FIELDS.get(compliance, {}))
-    return tuple(k for k in T.FE if k.name in acting)
+    return tuple(k for k in T.FE if k.name in T.FE_MODEL_KEYS[compliance])
 
 
 # (tables.py name, base document, table path, its keys)

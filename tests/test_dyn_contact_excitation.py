@@ -264,7 +264,7 @@ def test_fe2d_source_static_limit_and_stiffer_sector():
     from pipeline.contact import FE2DCompliance, FE2DSettings
 
     box, pair, cycle, friction, _ = _case("spur")
-    source = FE2DCompliance.build(pair, FE2DSettings(teeth=7, radii=20))
+    source = FE2DCompliance.build(pair, FE2DSettings(teeth=7, points=20))
     fe = analyse_contact(source, box.operation, ContactOptions(positions=POSITIONS))
     ex = excitation_from_contact(fe, pair, box.operation, friction)
     r = quasi_static_response(_model(box, pair, ex).assembly().assemble())

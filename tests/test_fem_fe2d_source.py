@@ -26,8 +26,9 @@ from pipeline.contact.analysis import analyse_contact
 from pipeline.contact.options import ContactOptions
 from pipeline.fem.cache_dir import CacheWarning
 from pipeline.fem.flank import active_radii, flank_points
+from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.patch_loads import patch_loads
-from pipeline.fem.sector2d import SectorSettings2D, build_sector_mesh_2d, sector_mesh_2d
+from pipeline.fem.sector2d import build_sector_mesh_2d, sector_mesh_2d
 from pipeline.fem.sector2d_size import estimated_size
 from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
@@ -61,7 +62,7 @@ def _facet_basis_loads(sector, pts, c):
 def test_edge_loads_equal_facet_basis(side, tmp_path):
     """Curved 3-node edge quadrature vs FacetBasis on a 3-tooth sector: equal to 1e-12."""
     g = SMALL.gear
-    sec = sector_mesh_2d(g, SectorSettings2D.for_gear(g, 3, 0.7), cache_dir=tmp_path)
+    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 3, 0.7), cache_dir=tmp_path)
     r = active_radii(g, 6)
     pts = flank_points(g, 3, np.repeat(np.arange(3), r.size), np.tile(r, 3), side)
     c = 0.1 * g.module
@@ -80,7 +81,7 @@ def test_loads_on_small_elements_of_a_large_gear(helical_traction_pair, tmp_path
     1e-3 here, so 2e-3 is the bound.
     """
     g = helical_traction_pair.gear
-    sec = sector_mesh_2d(g, SectorSettings2D.for_gear(g, 5, 2.0), cache_dir=tmp_path)
+    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 5, 2.0), cache_dir=tmp_path)
     r = active_radii(g, 8)
     pts = flank_points(g, 5, np.repeat(np.arange(5), r.size), np.tile(r, 5))
     F = patch_loads(sec, pts, 0.1 * g.module)
@@ -90,9 +91,9 @@ def test_loads_on_small_elements_of_a_large_gear(helical_traction_pair, tmp_path
 
 
 @pytest.mark.parametrize("settings", [
-    SectorSettings2D.for_gear(SMALL.gear, 3, 1.0),
-    SectorSettings2D.for_gear(SMALL.pinion, 20, 0.5),
-    SectorSettings2D.graded(SMALL.gear, 30, (14, 15), 1.0),
+    SectorSettings.for_gear(SMALL.gear, 3, 1.0),
+    SectorSettings.for_gear(SMALL.pinion, 20, 0.5),
+    SectorSettings.graded(SMALL.gear, 30, (14, 15), 1.0),
 ], ids=["sector", "whole-uniform", "whole-graded"])
 def test_size_estimate(settings):
     """Estimated unknowns within 35 % of the mesh's (measured: -28 % .. +4 % on the
@@ -109,7 +110,7 @@ def test_too_big_refused_before_meshing(spur_pair_z50, capsys, tmp_path):
     refused in one line naming the size, from the library and from ``gearpipe fe``."""
     g = spur_pair_z50.pinion
     with pytest.raises(InputError, match=r"about 1\d\.\d million unknowns and need about "):
-        sector_mesh_2d(g, SectorSettings2D.for_gear(g, 50, 20.0), cache=False)
+        sector_mesh_2d(g, SectorSettings.for_gear(g, 50, 20.0), cache=False)
     from pathlib import Path
 
     from pipeline.cli import main
@@ -129,7 +130,7 @@ def test_whole_ring_mesh_area(tmp_path):
     from pipeline.geometry.profile import tooth_profile
 
     ring = spur(60, "ring", internal=True, bore_radius=0.105)
-    sec = sector_mesh_2d(ring, SectorSettings2D.graded(ring, 60, (29, 30)), cache_dir=tmp_path)
+    sec = sector_mesh_2d(ring, SectorSettings.graded(ring, 60, (29, 30)), cache_dir=tmp_path)
     area = Functional(lambda w: 1.0 + 0.0 * w.x[0]).assemble(Basis(sec.mesh, ElementTriP2()))
     exact = math.pi * (ring.bore_radius**2 - ring.root_radius**2) + 60 * tooth_profile(
         ring).area()
@@ -151,7 +152,7 @@ def test_graded_matches_uniform_coarse(tmp_path):
     field (0.15 % measured on the assembly-error paper's pair) with a margin for the
     coarse flank mesh here (measured +0.09 %). The graded model has at most a third of
     the unknowns."""
-    base = dict(radii=8, refinement=0.5)
+    base = dict(points=8, refinement=0.5)
     g = FE2DCompliance.build(SMALL, FE2DSettings(**base), cache_dir=tmp_path)
     u = FE2DCompliance.build(SMALL, FE2DSettings(mesh="uniform", **base), cache_dir=tmp_path)
     kg, ku = _cycle(g), _cycle(u)
@@ -163,7 +164,7 @@ def test_graded_matches_uniform_coarse(tmp_path):
 def test_warm_build_reads_the_tables(tmp_path, monkeypatch):
     """Second build: both tables from the cache, bit-identical, no mesh or FE call; a
     truncated table file is rebuilt (same numbers)."""
-    s = FE2DSettings(radii=6, refinement=0.3)
+    s = FE2DSettings(points=6, refinement=0.3)
     cold = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
     assert not cold.info["pinion"]["cached"] and cold.info["pinion"]["timings"]["factor"] > 0
     files = sorted(tmp_path.glob("fe2dtable-*.npz"))
@@ -198,7 +199,7 @@ def test_settings_refused():
     with pytest.raises(InputError, match="fe.body_size"):
         FE2DSettings(tooth_size=1.0, body_size=0.5)
     with pytest.raises(InputError, match="sector.loaded"):
-        SectorSettings2D(teeth=3, loaded=(3,))
+        SectorSettings(teeth=3, loaded=(3,))
 
 
 @pytest.mark.slow
@@ -241,10 +242,10 @@ def test_spur_sector_at_refinement_4(spur_pair_z50):
     inverse mapping): the single-tooth structural compliance at the pitch point changes by
     less than 0.3 % from refinement 2 (the FE part converges at O(h^2); the near field is
     analytical)."""
-    from pipeline.fem.options import SectorFEOptions
     from pipeline.fem.sector_analysis import analyse_sector
+    from pipeline.fem.settings import FE2DSettings
 
     g = spur_pair_z50.pinion
-    c = [analyse_sector(g, SectorFEOptions(teeth=3, points=10, refinement=r)).summary()[
+    c = [analyse_sector(g, FE2DSettings(teeth=3, points=10, refinement=r)).summary()[
         "fe_compliance_pitch_m2_per_N"] for r in (2.0, 4.0)]
     assert c[1] == pytest.approx(c[0], rel=3e-3)

@@ -24,8 +24,9 @@ import pytest
 
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import influence_matrix
+from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.nearfield_halfplane import halfplane_kernel, weber_halfplane
-from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
+from pipeline.fem.sector2d import sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.stiffness.tooth import tooth_compliance, tooth_model
 from pipeline.validation import InputError
@@ -37,7 +38,7 @@ GEAR = GearSpec(teeth=30, module=3e-3, pressure_angle=math.radians(20), face_wid
 @pytest.fixture(scope="module")
 def sector3(tmp_path_factory):
     d = tmp_path_factory.mktemp("meshes")
-    return sector_mesh_2d(GEAR, SectorSettings2D.for_gear(GEAR, teeth=3, refinement=1.0),
+    return sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=1.0),
                        cache_dir=d)
 
 
@@ -80,7 +81,7 @@ def test_symmetry_and_rim_coupling(sector3):
 
 def test_patch_width_independence():
     """Structural compliance at c = 0.05, 0.1, 0.2 m_n agrees within 0.5 % (raw FE: ~6 %)."""
-    sec = sector_mesh_2d(GEAR, SectorSettings2D.for_gear(GEAR, teeth=3, refinement=2.0),
+    sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=2.0),
                       cache=False)
     r = active_radii(GEAR, 5, margin=0.25 * GEAR.module)
     pts = flank_points(GEAR, 3, np.ones(r.size, int), r)
@@ -98,7 +99,7 @@ def test_mesh_convergence_single_tooth():
     pts = flank_points(GEAR, 3, [1], r)
     vals = []
     for ref in (1.0, 2.0, 4.0):
-        sec = sector_mesh_2d(GEAR, SectorSettings2D.for_gear(GEAR, teeth=3, refinement=ref),
+        sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=ref),
                           cache=False)
         vals.append(influence_matrix(sec, pts).structural[0, 0])
     d1, d2 = abs(vals[1] / vals[0] - 1), abs(vals[2] / vals[1] - 1)
@@ -109,7 +110,7 @@ def test_mesh_convergence_single_tooth():
 def test_fe_vs_analytical_tooth_compliance():
     """7-tooth sector, plane stress (the beam model's E, G), 7 points on the middle tooth:
     FE structural vs bending + shear + axial + foundation within 20 %."""
-    sec = sector_mesh_2d(GEAR, SectorSettings2D.for_gear(GEAR, teeth=7, refinement=1.0),
+    sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=7, refinement=1.0),
                       cache=False)
     r = active_radii(GEAR, 7)
     pts = flank_points(GEAR, 7, np.full(r.size, 3), r)
@@ -143,7 +144,7 @@ def test_whole_gear_mesh_and_fe_source(spur_pair_z50):
     from pipeline.contact.source import ComplianceSource, SliceCompliance
     from pipeline.stiffness.mesh import PairModel
 
-    src = FE2DCompliance.build(spur_pair_z50, FE2DSettings(radii=12, refinement=0.7,
+    src = FE2DCompliance.build(spur_pair_z50, FE2DSettings(points=12, refinement=0.7,
                                                             kind="plane_stress"))
     assert isinstance(src, ComplianceSource)
     an = SliceCompliance(PairModel.build(spur_pair_z50))

@@ -15,12 +15,8 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, Functional
 
-from pipeline.fem.sector2d import (
-    SectorSettings2D,
-    build_sector_mesh_2d,
-    outline_pieces,
-    sector_mesh_2d,
-)
+from pipeline.fem.mesh_settings import SectorSettings
+from pipeline.fem.sector2d import build_sector_mesh_2d, outline_pieces, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
 from pipeline.validation import InputError
@@ -39,7 +35,7 @@ def _area(mesh) -> float:
 @pytest.mark.parametrize("gear", [EXT, INT], ids=["external", "internal"])
 def test_sector_area_matches_profile(gear, tmp_path):
     """Mesh area vs n * tooth area + annular sector, relative difference < 5e-5."""
-    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, teeth=3), cache_dir=tmp_path)
+    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, teeth=3), cache_dir=tmp_path)
     n, z = 3, gear.teeth
     ring = 0.5 * (n * 2 * math.pi / z) * abs(gear.root_radius**2 - gear.bore_radius**2)
     exact = n * tooth_profile(gear).area() + ring
@@ -59,7 +55,7 @@ def test_sector_area_matches_profile(gear, tmp_path):
 
 def test_flank_refinement():
     """Edges on the flanks are about ``size_flank`` long, bore edges about ``size_body``."""
-    s = SectorSettings2D.for_gear(EXT, teeth=3, refinement=1.0)
+    s = SectorSettings.for_gear(EXT, teeth=3, refinement=1.0)
     data = build_sector_mesh_2d(EXT, s)
     pts = data.points
 
@@ -73,12 +69,12 @@ def test_flank_refinement():
 
 def test_cache_hit_and_new_key(tmp_path):
     """A second call reads the cached file (same arrays); a changed setting makes a new file."""
-    s = SectorSettings2D.for_gear(EXT, teeth=3, refinement=0.5)
+    s = SectorSettings.for_gear(EXT, teeth=3, refinement=0.5)
     a = sector_mesh_2d(EXT, s, cache_dir=tmp_path)
     b = sector_mesh_2d(EXT, s, cache_dir=tmp_path)
     assert np.array_equal(a.mesh.doflocs, b.mesh.doflocs)
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 1
-    sector_mesh_2d(EXT, SectorSettings2D.for_gear(EXT, teeth=5, refinement=0.5),
+    sector_mesh_2d(EXT, SectorSettings.for_gear(EXT, teeth=5, refinement=0.5),
                    cache_dir=tmp_path)
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 2
 
@@ -86,7 +82,7 @@ def test_cache_hit_and_new_key(tmp_path):
 def test_rejects_too_many_teeth():
     """A sector must span less than half the gear."""
     with pytest.raises(InputError, match="sector.teeth"):
-        build_sector_mesh_2d(EXT, SectorSettings2D(teeth=15))
+        build_sector_mesh_2d(EXT, SectorSettings(teeth=15))
 
 
 def test_whole_gear_with_full_round_root(helical_traction_pair, tmp_path):
@@ -101,7 +97,7 @@ def test_whole_gear_with_full_round_root(helical_traction_pair, tmp_path):
     """
     gear = helical_traction_pair.pinion
     assert np.all(np.hypot(*np.diff(tooth_profile(gear).outline()[:10], axis=0).T) == 0.0)
-    s = SectorSettings2D.for_gear(gear, teeth=gear.teeth, refinement=0.3)
+    s = SectorSettings.for_gear(gear, teeth=gear.teeth, refinement=0.3)
     pieces = outline_pieces(gear, gear.teeth, s.profile_points)
     length = [np.hypot(*np.diff(seg, axis=0).T).sum() for _, seg in pieces]
     assert min(length) > 0.1 * gear.module
@@ -112,4 +108,4 @@ def test_whole_gear_with_full_round_root(helical_traction_pair, tmp_path):
     assert _area(sec.mesh) == pytest.approx(exact, rel=5e-5)
     assert {"right0", f"left{gear.teeth - 1}", "bore"} <= set(sec.facets)
     # the 3-tooth sector of the same gear came back empty (no triangles) before the fix
-    assert build_sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, 3, 0.3)).cells.shape[1] > 500
+    assert build_sector_mesh_2d(gear, SectorSettings.for_gear(gear, 3, 0.3)).cells.shape[1] > 500

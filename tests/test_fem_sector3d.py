@@ -28,6 +28,7 @@ from skfem.refdom import RefTri
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
+from pipeline.fem.mesh_settings import SectorSettings, SectorSettings3D
 from pipeline.fem.nearfield_halfplane import halfplane_kernel
 from pipeline.fem.nearfield_halfspace import (
     halfspace_kernel,
@@ -36,8 +37,8 @@ from pipeline.fem.nearfield_halfspace import (
     singular_integral,
 )
 from pipeline.fem.pmultigrid import PMultigridCG
-from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
-from pipeline.fem.sector3d import SectorSettings3D, helix_sign, section_area, sector_mesh_3d
+from pipeline.fem.sector2d import sector_mesh_2d
+from pipeline.fem.sector3d import helix_sign, section_area, sector_mesh_3d
 from pipeline.fem.solvers import DirectSolver, solver_named
 from pipeline.fem.tetmesh import tri_shape
 from pipeline.geometry.gear import GearSpec
@@ -223,7 +224,7 @@ def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: 
 @pytest.fixture(scope="module")
 def plane_2d():
     """2D plane-strain and plane-stress compliances (m^2/N) at the pitch point, c = 1 mm."""
-    sec = sector_mesh_2d(SPUR, SectorSettings2D.for_gear(SPUR, 3, 1.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 1.0), cache=False)
     pts = flank_points(SPUR, 3, [1], [SPUR.reference_radius])
     return {k: influence_matrix(sec, pts, patch_half_width=1e-3, kind=k)
             for k in ("plane_strain", "plane_stress")}
@@ -256,7 +257,7 @@ def test_plane_strain_limit_converges(cache):
     shrinks monotonically, at a fitted rate > 1.2 in the flank element size (measured
     2.1 for the FE value, 1.6 for the structural one) and is < 1.5 % at the finest
     (measured 0.5 % FE, 0.9 % structural)."""
-    sec = sector_mesh_2d(SPUR, SectorSettings2D.for_gear(SPUR, 3, 2.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 2.0), cache=False)
     ref = influence_matrix(sec, flank_points(SPUR, 3, [1], [SPUR.reference_radius]),
                            patch_half_width=1e-3)
     refinements = np.array([1.0, 1.5, 2.0])

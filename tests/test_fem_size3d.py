@@ -19,7 +19,8 @@ from scipy.integrate import quad
 from pipeline.config import load_gearbox
 from pipeline.fem.groove.mesh import mesh_coaxial_body
 from pipeline.fem.groove.size import estimated_size
-from pipeline.fem.sector3d import SectorSettings3D, build_sector_mesh_3d, meshed_width
+from pipeline.fem.mesh_settings import SectorSettings3D, meshed_width
+from pipeline.fem.sector3d import build_sector_mesh_3d
 from pipeline.fem.sector3d_size import estimated_size_3d
 from pipeline.fem.size3d import (
     MAX_DOF,

@@ -23,11 +23,11 @@ import numpy as np
 import pytest
 
 from pipeline.contact.fe3d_source import FE3DCompliance, touching_pairs
-from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import ComplianceSource, SliceCompliance
 from pipeline.fem.flank_grid import flank_grid
 from pipeline.fem.sector3d import sector_mesh_3d
+from pipeline.fem.settings import FE3DSettings
 from pipeline.geometry import GearPair, GearSpec
 from pipeline.stiffness.mesh import PairModel
 from pipeline.validation import InputError
@@ -39,10 +39,10 @@ GEAR = GearSpec(face_width=12e-3, helix_angle=BETA, hand="left", name="g", **KW)
 HELICAL_PAIR = GearPair(PINION, GEAR)
 # coarse whole gears (the default body): 25k DOF per gear; c = 0.6 m_n spans ~1 flank
 # element (fe3d_table docstring)
-COARSE = FE3DSettings(radii=4, refinement=0.6, patch=0.6, slices=8)
+COARSE = FE3DSettings(points=4, refinement=0.6, patch=0.6, slices=8)
 # the same as 3-tooth sectors clamped at their cuts: 10k DOF per gear
-SECTOR = FE3DSettings(body="sector", radii=4, refinement=0.6, patch=0.6, slices=8,
-                      method="splu")
+SECTOR = FE3DSettings(body="sector", points=4, refinement=0.6, patch=0.6, slices=8,
+                      solver="splu")
 
 
 @pytest.fixture(scope="module")
@@ -57,11 +57,11 @@ def helical(cache):
 
 
 # ---- inputs ----------------------------------------------------------------------------
-@pytest.mark.parametrize("kw, field", [({"radii": 1}, "fe3d.radii"),
-                                       ({"patch": 5.0}, "fe3d.patch"),
-                                       ({"teeth": 2}, "fe3d.teeth"),
-                                       ({"ends": "glued"}, "fe3d.ends"),
-                                       ({"hub_depth": 0.5}, "fe3d.hub_depth")])
+@pytest.mark.parametrize("kw, field", [({"points": 1}, "fe.points"),
+                                       ({"patch": 5.0}, "fe.patch"),
+                                       ({"teeth": 2}, "fe.teeth"),
+                                       ({"ends": "glued"}, "fe.ends"),
+                                       ({"hub_depth": 0.5}, "fe.hub_depth")])
 def test_settings_are_validated(kw, field):
     with pytest.raises(InputError, match=field):
         FE3DSettings(**kw)
@@ -79,7 +79,7 @@ def test_unsupported_pairs_and_small_sectors_are_rejected():
     assert list(touching_pairs(HELICAL_PAIR)) == [-1, 0, 1]
     wide = GearPair(GearSpec(face_width=60e-3, helix_angle=BETA, hand="right", **KW),
                     GearSpec(face_width=60e-3, helix_angle=BETA, hand="left", **KW))
-    with pytest.raises(InputError, match="fe3d.teeth"):
+    with pytest.raises(InputError, match="fe.teeth"):
         FE3DCompliance.build(wide, FE3DSettings(body="sector", teeth=3))
 
 
@@ -211,10 +211,10 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
 
     spur = GearSpec(face_width=6e-3, name="s", **KW)
     pair = GearPair(spur, spur)
-    fe3 = FE3DCompliance.build(pair, FE3DSettings(body="sector", teeth=5, radii=5,
+    fe3 = FE3DCompliance.build(pair, FE3DSettings(body="sector", teeth=5, points=5,
                                                   refinement=0.6, ends="sliding",
-                                                  method="splu", slices=1), cache_dir=cache)
-    fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, radii=12, refinement=1.0,
+                                                  solver="splu", slices=1), cache_dir=cache)
+    fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, points=12, refinement=1.0,
                                                     kind="plane_strain", slices=1))
     ratios, cross = [], []
     for s0 in pair.mesh_cycle(6):
@@ -305,17 +305,17 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
     from pipeline.contact import FE2DCompliance, FE2DSettings
 
     P = 4000.0
-    kw = dict(body="sector", teeth=5, radii=4, refinement=0.6, patch=0.6, slices=8,
-              method="splu")
+    kw = dict(body="sector", teeth=5, points=4, refinement=0.6, patch=0.6, slices=8,
+              solver="splu")
     k = {}
     for name, src in {
         "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache_dir=cache),
         "sliding": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(ends="sliding", **kw),
                                         cache_dir=cache),
         "strain": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
-            teeth=5, radii=12, slices=8, kind="plane_strain")),
+            teeth=5, points=12, slices=8, kind="plane_strain")),
         "stress": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
-            teeth=5, radii=12, slices=8, kind="plane_stress")),
+            teeth=5, points=12, slices=8, kind="plane_stress")),
         "three_teeth": FE3DCompliance.build(HELICAL_PAIR, SECTOR, cache_dir=cache),
     }.items():
         cyc = loaded_mesh_cycle(src, P, positions=8)
@@ -353,7 +353,7 @@ def test_whole_gears_against_2d_limits(helical, cache):
         src3 = src3 or FE3DCompliance.build(pair, COARSE, cache_dir=cache)
         k = {"3d": loaded_mesh_cycle(src3, P, positions=8).mesh_stiffness.mean()}
         for kind in ("strain", "stress"):
-            src = FE2DCompliance.build(pair, FE2DSettings(radii=12, slices=COARSE.slices,
+            src = FE2DCompliance.build(pair, FE2DSettings(points=12, slices=COARSE.slices,
                                                           kind=f"plane_{kind}"))
             k[kind] = loaded_mesh_cycle(src, P, positions=8).mesh_stiffness.mean()
         out[name] = (k["3d"] / k["stress"], k["3d"] / k["strain"])

@@ -31,12 +31,13 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.fem.flank import flank_points
 from pipeline.fem.flank_grid import flank_grid
 from pipeline.fem.influence import influence_matrix
-from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
-from pipeline.fem.sector3d import SectorSettings3D, sector_mesh_3d
+from pipeline.fem.mesh_settings import SectorSettings, SectorSettings3D
+from pipeline.fem.sector2d import sector_mesh_2d
+from pipeline.fem.sector3d import sector_mesh_3d
+from pipeline.fem.settings import FE3DSettings
 from pipeline.fem.whole3d import whole_gear_area
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError
@@ -80,7 +81,7 @@ def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
 
 def _whole_2d(gear: GearSpec, kind: str, c: float, refinement: float = 2.0):
     """2D whole gear (teeth = z), points at the pitch radius of teeth 14, 15, 16."""
-    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, gear.teeth, refinement),
+    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, gear.teeth, refinement),
                          cache=False)
     pts = flank_points(gear, gear.teeth, LOADED, [gear.reference_radius] * 3)
     return influence_matrix(sec, pts, patch_half_width=c, kind=kind)
@@ -111,13 +112,13 @@ def test_whole_gear_volume_groups_and_grading(coarse):
 
 
 def test_whole_gear_inputs_are_validated():
-    with pytest.raises(InputError, match="sector3d.loaded"):
+    with pytest.raises(InputError, match="sector.loaded"):
         SectorSettings3D.whole_gear(SPUR, [30], 1.0)
     with pytest.raises(InputError, match="sector3d.teeth"):
         sector_mesh_3d(SPUR, SectorSettings3D(teeth=16), cache=False)
-    with pytest.raises(InputError, match="fe3d.teeth"):
+    with pytest.raises(InputError, match="fe.teeth"):
         FE3DSettings(teeth=5)  # body = "whole" has all its teeth
-    with pytest.raises(InputError, match="fe3d.body"):
+    with pytest.raises(InputError, match="fe.body"):
         FE3DSettings(body="half")
     assert FE3DSettings(body="sector", teeth=5).teeth == 5
 

@@ -646,11 +646,11 @@ def test_ring_tooth_and_body_against_whole_ring_fe(z, alpha, rim):
     external formula mapped to h_f = r_rim / r_f is far off (measured +23 % at the tip to
     +220 % at the root; asserted > 25 % somewhere): the reason for the ring fit."""
     from pipeline.contact.fe2d_source import gear_table
-    from pipeline.contact.fe_settings import FE2DSettings
+    from pipeline.fem.settings import FE2DSettings
     from pipeline.stiffness.foundation import foundation_coefficients
 
     g = ring(z, alpha_deg=alpha, rim_modules=rim)
-    tab, _ = gear_table(g, FE2DSettings(teeth=None, radii=9, refinement=1.0,
+    tab, _ = gear_table(g, FE2DSettings(teeth=None, points=9, refinement=1.0,
                                         kind="plane_stress"), np.array([0]))
     fe = np.diag(tab.structural)
     model = tooth_model(g)

@@ -100,17 +100,18 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
     load = cfg.operation.torque / pair.pinion.base_radius
     op = cfg.operation
     sources = {"slice": SliceCompliance(PairModel.build(pair), slices, FrictionModel(mu=0.0), op)}
-    settings = FE3DSettings(body="whole", refinement=refinement, radii=radii, face=face,
+    settings = FE3DSettings(body="whole", refinement=refinement, points=radii, face_points=face,
                             slices=slices)
     t0 = time.perf_counter()
-    sources["fe3d"] = FE3DCompliance.build(pair, settings, cache_dir=cache_dir)
+    sources["fe3d"] = FE3DCompliance.build(pair, settings, cache_dir=cache_dir,
+                                         show_progress=True)
     t_build = time.perf_counter() - t0
     rss_3d = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
     t0 = time.perf_counter()
     if references:
         for kind in ("strain", "stress"):
             sources[f"fe2d_{kind}"] = FE2DCompliance.build(pair, FE2DSettings(
-                teeth=None, radii=12, slices=slices, kind=f"plane_{kind}"))
+                teeth=None, points=12, slices=slices, kind=f"plane_{kind}"))
     t_build_2d = time.perf_counter() - t0
     cycles, t_ltca = {}, {}
     s0 = pair.mesh_cycle(positions)

@@ -44,7 +44,7 @@ sys.path.insert(0, str(ROOT))
 from pipeline.cli import run_workflow  # noqa: E402
 from pipeline.cli.common import workflow_dir  # noqa: E402
 from pipeline.contact.fe2d_source import gear_table  # noqa: E402
-from pipeline.contact.fe_settings import FE2DSettings  # noqa: E402
+from pipeline.fem.settings import FE2DSettings  # noqa: E402
 from pipeline.geometry.gear import GearSpec, Material  # noqa: E402
 from pipeline.io import write_csv, write_json  # noqa: E402
 from pipeline.output_folder import staged_output  # noqa: E402
@@ -70,7 +70,7 @@ def samples(cases, refinement: float, radii: int, show_progress: bool = True) ->
                                              "fe_m2_per_N")}
     for z, a, t in progress(cases, "ring FE", enabled=show_progress):
         g = ring(z, a, t)
-        tab, _ = gear_table(g, FE2DSettings(teeth=None, radii=radii, refinement=refinement,
+        tab, _ = gear_table(g, FE2DSettings(teeth=None, points=radii, refinement=refinement,
                                             kind="plane_stress"), np.array([0]))
         r = tab.points.radius
         for k, v in (("teeth", z), ("alpha_n_deg", a), ("rim_over_m", t), ("radius_m", r),

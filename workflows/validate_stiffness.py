@@ -217,7 +217,8 @@ def main(argv: list[str] | None = None) -> dict:
     args = ap.parse_args(argv)
     args.out = workflow_dir(__file__, args.out)
     # whole gears (teeth=None): a clamped sector stiffens a deep gear body (fe2d_source docs)
-    fe = FE2DSettings(teeth=None, radii=args.radii, refinement=args.refinement, slices=args.slices)
+    fe = FE2DSettings(teeth=None, points=args.radii, refinement=args.refinement,
+                      slices=args.slices)
     with staged_output(args.out) as out:
         table = run(out, args.positions, fe, args.only)
     for name, row in table.items():

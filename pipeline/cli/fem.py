@@ -31,9 +31,9 @@ from pipeline.cli.common import (
     output_dir,
     record,
 )
-from pipeline.fem.options import PLANE_KINDS, SectorFEOptions
 from pipeline.fem.sector2d_size import check_size
 from pipeline.fem.sector_analysis import SectorResult, analyse_sector, sector_settings
+from pipeline.fem.settings import PLANE_KINDS, SECTOR_TEETH, FE2DSettings, FE3DSettings
 from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.progress import progress
@@ -44,12 +44,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common_arguments(parser)
     add_cache_arguments(parser)
     parser.add_argument("--teeth", type=int, default=None,
-                        help="teeth in the sector (default: [fe] teeth, else 5)")
+                        help=f"teeth in the sector (default: [fe] teeth, else {SECTOR_TEETH})")
     parser.add_argument("--points", type=int, default=None,
-                        help="points per flank (default: [fe] points, else 40)")
+                        help=f"points per flank (default: [fe] points, else "
+                             f"{FE2DSettings.points})")
     parser.add_argument("--refinement", type=float, default=None,
                         help="mesh refinement, flank size m_n / (12 refinement) "
-                             "(default: [fe] refinement, else 2)")
+                             f"(default: [fe] refinement, else {FE2DSettings.refinement:g})")
     parser.add_argument("--kind", choices=PLANE_KINDS, default=None,
                         help="2D model (default: [fe] kind, else plane_strain)")
 
@@ -64,7 +65,7 @@ def write_gear(res: SectorResult, out: Path, tag: str) -> list[Path]:
     files = [write_csv(out / f"{tag}_tooth_compliance.csv", cols)]
     files.append(atomic_write(out / f"{tag}_influence_m2_per_N.npy",
                               lambda p: np.save(p, res.influence.structural)))
-    title = f"{g.name}: z {g.teeth}, m_n {g.module * 1e3:g} mm, {opts.teeth}-tooth sector"
+    title = f"{g.name}: z {g.teeth}, m_n {g.module * 1e3:g} mm, {opts.sector_teeth}-tooth sector"
     files.append(save(plot_sector_mesh(res.sector, title), out / f"{tag}_mesh.png"))
     files.append(save(plot_compliance(res.radii, [
         ("FE structural (" + opts.kind + ")", cols["fe_structural [m^2/N]"]),
@@ -78,12 +79,14 @@ def write_gear(res: SectorResult, out: Path, tag: str) -> list[Path]:
     return files
 
 
-def options(box_fe: SectorFEOptions, args: argparse.Namespace) -> SectorFEOptions:
-    """The ``[fe]`` table with the command-line options that were given on top."""
+def options(box_fe: FE2DSettings | FE3DSettings, args: argparse.Namespace) -> FE2DSettings:
+    """The ``[fe]`` table's 2D model with the command-line options that were given on top
+    (a file whose ``[fe]`` describes the 3D model: the 2D defaults)."""
     given = {k: getattr(args, k) for k in ("teeth", "points", "refinement", "kind")
              if getattr(args, k) is not None}
+    base = box_fe if isinstance(box_fe, FE2DSettings) else FE2DSettings()
     try:
-        return dataclasses.replace(box_fe, **given)
+        return dataclasses.replace(base, **given)
     except InputError as exc:  # name the option as typed on the command line
         name = (exc.field or "").rsplit(".", 1)[-1]
         if name in given and exc.bounds is not None:

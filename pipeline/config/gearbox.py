@@ -69,7 +69,7 @@ from pipeline.dynamics.options import (
     SweepOptions,
 )
 from pipeline.fem.groove.spec import GrooveSpec
-from pipeline.fem.options import SectorFEOptions
+from pipeline.fem.settings import FE2DSettings, FE3DSettings
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors, assemble
 from pipeline.geometry.body import GearBody
 from pipeline.geometry.gear import GearSpec, Material
@@ -81,7 +81,6 @@ from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
 
 if TYPE_CHECKING:
-    from pipeline.contact.fe_settings import FE2DSettings, FE3DSettings
     from pipeline.dynamics.assembly import DynamicModel
 
 PAIR_ROLES = ("pinion", "gear")
@@ -122,10 +121,10 @@ class Gearbox:
     planetary : the planetary set (kind "planetary"), or ``None``.
     carrier : the carrier body (kind "planetary"), or ``None``.
     operation : load and speed of the driving gear.
-    stiffness, contact, fe : options of those stages (defaults when the table is absent);
-        ``fe`` is what ``gearpipe fe`` reads from ``[fe]``.
-    fe_source : settings of the FE compliance source ``[contact] compliance`` names
-        (``FE2DSettings`` / ``FE3DSettings`` from ``[fe]``), or ``None`` for "analytical".
+    stiffness, contact : options of those stages (defaults when the table is absent).
+    fe : the FE model of the gears (``[fe]``): ``FE3DSettings`` when ``[contact]
+        compliance = "fe3d"``, else ``FE2DSettings`` (the ``"fe2d"`` source's and
+        ``gearpipe fe``'s model); its ``slices`` are the contact's.
     groove : relief-groove analysis of a herringbone gear (``[groove]``), or ``None``.
     herringbone : how a herringbone sun's halves are loaded and held in the sun-planet
         contact through its groove (``[herringbone]``, planetary sets with a ``[groove]``).
@@ -147,14 +146,19 @@ class Gearbox:
     operation: OperatingPoint = field(default_factory=OperatingPoint)
     stiffness: StiffnessOptions = field(default_factory=StiffnessOptions)
     contact: ContactOptions = field(default_factory=ContactOptions)
-    fe: SectorFEOptions = field(default_factory=SectorFEOptions)
-    fe_source: FE2DSettings | FE3DSettings | None = None
+    fe: FE2DSettings | FE3DSettings = field(default_factory=FE2DSettings)
     groove: GrooveSpec | None = None
     herringbone: HerringboneOptions = field(default_factory=HerringboneOptions)
     dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
     lumped: DynamicModel | None = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
+
+    @property
+    def fe_source(self) -> FE2DSettings | FE3DSettings | None:
+        """``fe`` when ``[contact] compliance`` is an FE source (``"fe2d"``, ``"fe3d"``),
+        else None: what the loaded contact's tables and cache keys depend on."""
+        return None if self.contact.compliance == "analytical" else self.fe
 
     @property
     def pinion(self) -> GearSpec:
@@ -375,41 +379,28 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     return opts
 
 
-def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> tuple[SectorFEOptions, Any]:
-    """``[fe]`` -> (``gearpipe fe`` options, settings of the contact's FE compliance source).
+def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> FE2DSettings | FE3DSettings:
+    """``[fe]`` -> the FE model of the gears: ``FE3DSettings`` for ``[contact] compliance
+    = "fe3d"``, else ``FE2DSettings``, each key setting the field of its name.
 
-    A key applies to ``gearpipe fe`` (:data:`FE_COMMAND_KEYS`) and/or to the FE source
-    the ``[contact]`` table chose (:data:`FE_SOURCE_FIELDS`); a key that applies to
-    neither is refused rather than ignored.
+    A key the model does not have (:data:`~pipeline.config.tables.FE_MODEL_KEYS`) is
+    refused rather than ignored, naming the compliance it applies to.
     """
     table = doc.get("fe", {})
     values = read_table(table, T.FE, "fe")
-    command = {k: v for k, v in values.items() if k in T.FE_COMMAND_KEYS}
-    mapping = T.FE_SOURCE_FIELDS.get(contact.compliance, {})
+    accepted = T.FE_MODEL_KEYS[contact.compliance]
     for k in values:
-        if k not in command and k not in mapping:
-            used = [c for c, m in T.FE_SOURCE_FIELDS.items() if k in m]
+        if k not in accepted:
+            used = [c for c, keys in T.FE_MODEL_KEYS.items() if k in keys]
             raise InputError(f"fe.{k} applies to [contact] compliance = "
                              f"{' or '.join(repr(c) for c in used)} only; this file's contact "
                              f"compliance is {contact.compliance!r}")
-    if not mapping:
-        return _sector(command, table), None
-    from pipeline.contact.compliance import fe_settings, fe_settings_class
-
-    cls = fe_settings_class(contact.compliance)
-    keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE
-                 if k.name in mapping)
-    kw = {mapping[k]: v for k, v in values.items() if k in mapping}
-    if contact.compliance == "fe3d" and "teeth" in kw:
-        kw["body"] = "sector"  # a tooth count in 3D asks for a sector, not the whole gear
-    with restated("fe", keys, table):  # first: its ranges lie within gearpipe fe's
-        source = cls(**kw)
-    return _sector(command, table), fe_settings(contact.compliance, source, contact)
-
-
-def _sector(command: dict[str, Any], table: Any) -> SectorFEOptions:
+    three_d = contact.compliance == "fe3d"
+    if three_d and "teeth" in values:
+        values["body"] = "sector"  # a tooth count in 3D asks for a sector, not the whole gear
     with restated("fe", T.FE, table):
-        return SectorFEOptions(**command)
+        fe = (FE3DSettings if three_d else FE2DSettings)(**values)
+    return dataclasses.replace(fe, slices=contact.slices)
 
 
 def _groove(doc: Mapping[str, Any], gears: Mapping[str, GearSpec],
@@ -587,7 +578,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
     contact = contact_options_from_table(doc.get("contact"))
-    fe, fe_source = _fe(doc, contact)
+    fe = _fe(doc, contact)
     operation = _operation(doc)
     box = Gearbox(
         name=str(doc.get("name", name)),
@@ -598,7 +589,6 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         stiffness=_stiffness(doc),
         contact=contact,
         fe=fe,
-        fe_source=fe_source,
         groove=_groove(doc, gears, kw.get("planetary"), operation),
         herringbone=_herringbone(doc, kind, gears),
         dynamics=_dynamics(doc, base, kind,
@@ -626,13 +616,11 @@ def _check_fe3d_meshes(box: Gearbox, doc: Mapping[str, Any]) -> None:
     from pipeline.contact.fe3d_source import FE3DCompliance
 
     meshes = box.contact_meshes()
-    mapping = T.FE_SOURCE_FIELDS["fe3d"]
-    keys = tuple(dataclasses.replace(k, field=mapping[k.name]) for k in T.FE if k.name in mapping)
     contact = {"contact": Scope("contact", T.CONTACT, doc.get("contact", {}))}
-    with restated("fe", keys, doc.get("fe", {}), also=contact):
+    with restated("fe", T.FE, doc.get("fe", {}), also=contact):
         for name, pair in meshes:
             if not (pair.pinion.herringbone or pair.gear.herringbone):
-                FE3DCompliance.check_pair(pair, box.fe_source, name if len(meshes) > 1 else "")
+                FE3DCompliance.check_pair(pair, box.fe, name if len(meshes) > 1 else "")
 
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:

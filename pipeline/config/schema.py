@@ -12,8 +12,8 @@ the key as written, the value in the file's unit and the allowed range in that
 unit, e.g. ``pinion.pressure_angle_deg = 60 deg is outside the allowed range
 (0, 35] deg`` (keys are shown as dotted TOML paths, which name them exactly).
 Any other message of a dataclass is rewritten the same way: each field it names
-(``gear.module = 0.0035 m``, ``fe3d.method = 'x'``, ``web_width``) becomes the key
-of the file's table (``gear.module_mm = 3.5 mm``, ``fe.solver = "x"``,
+(``gear.module = 0.0035 m``, ``groove.mesh_size = 0.0005 m``, ``web_width``) becomes the
+key of the file's table (``gear.module_mm = 3.5 mm``, ``groove.mesh_size_mm = 0.5 mm``,
 ``web_width_mm``), found through :class:`Scope` - the table being read, and the
 other tables whose fields the dataclass may name under their own prefix (a
 pair's ``pinion.`` and ``gear.``, also under a gear's own ``name``). So a
@@ -281,7 +281,7 @@ def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> st
 
     A field names a key when its prefix names a table (``pinion.module``, ``gear.module``
     in a pair's message) or, without a known prefix, when it is given a value
-    (``fe3d.method = 'x'``, ``n_harmonics = 40``) or has an underscore (``web_width``) and
+    (``sweep.method = 'x'``, ``n_harmonics = 40``) or has an underscore (``web_width``) and
     is a field of ``primary``; values and allowed ranges in SI are shown in the key's unit.
     Other words are left alone.
     """
@@ -294,7 +294,7 @@ def _in_file_terms(text: str, primary: Scope, scopes: Mapping[str, Scope]) -> st
     def replace(m: re.Match) -> str:
         prefix, name = m.group("prefix"), m.group("name")
         scope = by_alias.get(prefix) if prefix else None
-        # another prefix (a dataclass's own, "fe3d.method"): a field of the table being read
+        # another prefix (a dataclass's own, "sweep.method"): a field of the table being read
         # only by its field name, so that "operation.torque" never becomes "groove.torque_Nm"
         guess = scope is None and (m.group("value") is not None or "_" in name)
         if guess:

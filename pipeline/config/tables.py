@@ -164,7 +164,8 @@ FE = (
     Key("teeth", I, help="teeth in the FE model (default: gearpipe fe 5, contact sources "
                          "the whole gear)"),
     Key("points", I, help="tabulated points per flank (profile direction)"),
-    Key("refinement", N, help="mesh refinement: flank element size m_n / (12 refinement)"),
+    Key("refinement", N, help="mesh refinement: flank element size m_n / (12 refinement) "
+                              "in 2D, m_n / (3 refinement) in 3D"),
     Key("kind", S, choices=("plane_strain", "plane_stress"), help="2D model"),
     Key("mesh", S, choices=("graded", "uniform"),
         help="2D source: graded from the loaded teeth (default) or uniform"),
@@ -172,15 +173,15 @@ FE = (
     Key("ends", S, choices=("free", "sliding"), help="3D: end faces free or u_z = 0"),
     Key("solver", S, help="3D: linear solver (pipeline.fem.solvers)"),
 )
-FE_COMMAND_KEYS = ("teeth", "points", "refinement", "kind")
-"""The ``[fe]`` keys ``gearpipe fe`` (2D sectors of each gear) reads."""
-FE_SOURCE_FIELDS = {
-    "fe2d": {"teeth": "teeth", "points": "radii", "refinement": "refinement", "kind": "kind",
-             "mesh": "mesh"},
-    "fe3d": {"teeth": "teeth", "points": "radii", "refinement": "refinement",
-             "face_points": "face", "ends": "ends", "solver": "method"},
+FE_MODEL_KEYS = {
+    "analytical": ("teeth", "points", "refinement", "kind"),
+    "fe2d": ("teeth", "points", "refinement", "kind", "mesh"),
+    "fe3d": ("teeth", "points", "refinement", "face_points", "ends", "solver"),
 }
-"""``[fe]`` key -> settings field of the contact compliance sources (``[contact] compliance``)."""
+"""The ``[fe]`` keys of the FE model each ``[contact] compliance`` reads (each names the
+settings field it sets): ``gearpipe fe``'s 2D sectors with the analytical compliance, the
+2D source's model (:class:`~pipeline.fem.settings.FE2DSettings`), the 3D source's
+(:class:`~pipeline.fem.settings.FE3DSettings`)."""
 
 GROOVE = (
     Key("gear", S, field="gear_role", help="the herringbone gear with the groove"),

@@ -60,9 +60,9 @@ from pipeline.contact.sweep import solve_positions
 
 # FE sources are imported on first use: they pull in scikit-fem and Gmsh (seconds)
 _FE_EXPORTS = {"FE2DCompliance": "pipeline.contact.fe2d_source",
-               "FE2DSettings": "pipeline.contact.fe_settings",
+               "FE2DSettings": "pipeline.fem.settings",
                "FE3DCompliance": "pipeline.contact.fe3d_source",
-               "FE3DSettings": "pipeline.contact.fe_settings"}
+               "FE3DSettings": "pipeline.fem.settings"}
 
 
 __getattr__ = lazy_exports(__name__, _FE_EXPORTS)

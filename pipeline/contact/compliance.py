@@ -23,9 +23,9 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.contact.analysis import analytical_compliance
-from pipeline.contact.fe_settings import FE2DSettings, FE3DSettings
 from pipeline.contact.options import COMPLIANCES, ContactOptions
 from pipeline.contact.source import ComplianceSource, FrictionCorrected
+from pipeline.fem.settings import FE2DSettings, FE3DSettings
 from pipeline.geometry.pair import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.mesh import PairModel
@@ -33,18 +33,14 @@ from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, check_choice
 
 
-def fe_settings_class(compliance: str) -> type:
-    """``FE2DSettings`` for ``"fe2d"``, ``FE3DSettings`` for ``"fe3d"``."""
-    return FE2DSettings if compliance == "fe2d" else FE3DSettings
-
-
-def fe_settings(compliance: str, fe: Any, contact: ContactOptions
-                ) -> FE2DSettings | FE3DSettings | None:
-    """The FE settings of ``compliance`` with the contact slices (``None`` for analytical)."""
+def fe_settings(compliance: str, fe: FE2DSettings | FE3DSettings | None,
+                contact: ContactOptions) -> FE2DSettings | FE3DSettings | None:
+    """The FE settings of ``compliance`` with the contact slices (``None`` for analytical;
+    defaults when ``fe`` is None)."""
     check_choice("contact.compliance", compliance, COMPLIANCES)
     if compliance == "analytical":
         return None
-    kind = fe_settings_class(compliance)
+    kind = FE2DSettings if compliance == "fe2d" else FE3DSettings
     if fe is None:
         fe = kind()
     if not isinstance(fe, kind):
@@ -103,7 +99,7 @@ def compliance_source(
         from pipeline.contact.fe3d_source import FE3DCompliance
 
         base = FE3DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
-                                    progress=show_progress)
+                                    show_progress=show_progress)
     if slices.friction.mu == 0.0 and slices.friction.kind == "constant":
         return base
     return FrictionCorrected(base, slices)

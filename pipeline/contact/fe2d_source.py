@@ -32,7 +32,7 @@ Graded meshes (the default, ``mesh = "graded"``). Whole gears (``teeth = None``)
 meshed fine only on the outline of the teeth whose flanks are tabulated (flank and
 fillet elements ``m_n / (12 refinement)``), ``0.6 m_n`` on the outline of the other
 teeth, and the element size grows by half the distance from the outline up to
-``4 m_n`` in the body (:meth:`pipeline.fem.sector2d.SectorSettings2D.graded`). The
+``4 m_n`` in the body (:meth:`pipeline.fem.sector2d.SectorSettings.graded`). The
 unloaded teeth stay in the model (they stiffen the rim), coarsely meshed.
 
 Convergence (the assembly-error paper's pair, z 50/50, m 3 mm, 21 mm bores, plane strain,
@@ -87,9 +87,9 @@ import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe2d_table import gear_table, sector_teeth
-from pipeline.contact.fe_settings import FE2DSettings
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.influence import InfluenceMatrix
+from pipeline.fem.settings import FE2DSettings
 from pipeline.geometry.pair import GearPair
 from pipeline.progress import progress
 from pipeline.validation import InputError
@@ -161,7 +161,7 @@ class FE2DCompliance:
         """``G`` (m/N), (n, n): pinion + gear structural compliance, same-section coupling."""
         pts = self.points(position)
         r1, r2 = self.pair.contact_radii(pts.s)
-        n_r = self.settings.radii
+        n_r = self.settings.points
         out = np.zeros((len(pts), len(pts)))
         same = np.isclose(pts.z[:, None], pts.z[None, :], rtol=0, atol=1e-12)
         i, j = np.nonzero(same)

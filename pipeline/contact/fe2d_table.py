@@ -27,12 +27,13 @@ import numpy as np
 from pipeline.fem.cache import MESH_CODE, cached_file, unlabelled
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
-from pipeline.fem.options import check_table_points
-from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
+from pipeline.fem.mesh_settings import SectorSettings
+from pipeline.fem.sector2d import sector_mesh_2d
+from pipeline.fem.settings import check_table_points
 from pipeline.geometry.gear import GearSpec
 
 if TYPE_CHECKING:
-    from pipeline.contact.fe_settings import FE2DSettings
+    from pipeline.fem.settings import FE2DSettings
 
 TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe2d_table")
 """The code the 2D tables depend on (part of their cache key)."""
@@ -45,20 +46,20 @@ def sector_teeth(gear: GearSpec, settings: FE2DSettings) -> int:
 
 
 def sector_settings(gear: GearSpec, settings: FE2DSettings, loaded: np.ndarray
-                    ) -> SectorSettings2D:
+                    ) -> SectorSettings:
     """Mesh settings of ``gear``'s model: graded from the ``loaded`` sector teeth, or
     uniform (every tooth at the flank size) for ``settings.mesh = "uniform"``."""
     n = sector_teeth(gear, settings)
     if settings.mesh == "uniform":
-        return SectorSettings2D.for_gear(gear, n, settings.refinement)
-    return SectorSettings2D.graded(gear, n, tuple(int(k) for k in loaded), settings.refinement,
+        return SectorSettings.for_gear(gear, n, settings.refinement)
+    return SectorSettings.graded(gear, n, tuple(int(k) for k in loaded), settings.refinement,
                                    tooth=settings.tooth_size, body=settings.body_size,
                                    growth=settings.growth)
 
 
 def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> FlankPoints:
-    """Right-flank points: ``settings.radii`` radii on each of ``teeth`` (ascending)."""
-    r = table_radii(gear, settings.radii)
+    """Right-flank points: ``settings.points`` radii on each of ``teeth`` (ascending)."""
+    r = table_radii(gear, settings.points)
     return flank_points(gear, sector_teeth(gear, settings), np.repeat(teeth, r.size),
                         np.tile(r, teeth.size))
 
@@ -92,8 +93,8 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     t0 = time.perf_counter()
     teeth = np.asarray(teeth, dtype=int)
     ss = sector_settings(gear, settings, teeth)
-    check_table_points(settings.radii * teeth.size,
-                       f"fe.points x loaded teeth = {settings.radii} x {teeth.size}",
+    check_table_points(settings.points * teeth.size,
+                       f"fe.points x loaded teeth = {settings.points} x {teeth.size}",
                        "lower fe.points")
     pts = table_points(gear, settings, teeth)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),

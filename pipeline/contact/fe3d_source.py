@@ -105,9 +105,9 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.contact.fe3d_table import FlankTable3D, flank_table
-from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.sector3d import helix_sign
+from pipeline.fem.settings import FE3DSettings
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import InputError
 
@@ -142,11 +142,13 @@ class FE3DCompliance:
     gear_table: FlankTable3D | None = None
 
     @classmethod
-    def build(cls, pair: GearPair, settings: FE3DSettings | None = None, cache: bool = True,
-              cache_dir: str | Path | None = None, progress: bool = True) -> FE3DCompliance:
-        """Mesh and solve (or read from the cache) both gears' tables, once.
+    def build(cls, pair: GearPair, settings: FE3DSettings | None = None, *,
+              cache: bool = True, cache_dir: str | Path | None = None,
+              show_progress: bool = False) -> FE3DCompliance:
+        """Mesh and solve (or read from the cache) both gears' tables, once; ``cache=False``
+        neither reads nor writes the cache, ``cache_dir`` moves it.
 
-        ``progress`` reports every step longer than a second (mesh, assembly,
+        ``show_progress`` reports every step longer than a second (mesh, assembly,
         factorisation, solves) on stderr; the tables' ``info["timings_s"]`` keep the
         breakdown (:meth:`summary`).
         """
@@ -157,7 +159,7 @@ class FE3DCompliance:
         k = touching_pairs(pair)
         teeth = cls._model_teeth(pair, settings)
         tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache, cache_dir,
-                              progress)
+                              show_progress)
                   for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
         return cls(pair, settings, *tables)
 
@@ -176,9 +178,9 @@ class FE3DCompliance:
                                           or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
             need = 2 * int(np.abs(k).max()) + 1
             raise InputError(
-                f"fe3d.teeth = {settings.teeth} is outside the allowed range [{need}, 99]: the "
+                f"fe.teeth = {settings.teeth} is outside the allowed range [{need}, 99]: the "
                 f"sector must hold the tooth pairs {k.min()}..{k.max()} in contact{of}",
-                field="fe3d.teeth", value=settings.teeth, bounds=(need, 99, False, False),
+                field="fe.teeth", value=settings.teeth, bounds=(need, 99, False, False),
                 note=f"the tooth pairs in contact{of}")
 
     @staticmethod

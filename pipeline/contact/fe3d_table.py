@@ -40,14 +40,14 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.contact._interpolation import linear_weights
-from pipeline.contact.fe_settings import FE3DSettings
 from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
-from pipeline.fem.options import check_table_points
+from pipeline.fem.mesh_settings import SectorSettings3D
 from pipeline.fem.sector2d import inner_radius
-from pipeline.fem.sector3d import SectorSettings3D, sector_mesh_3d
+from pipeline.fem.sector3d import sector_mesh_3d
+from pipeline.fem.settings import FE3DSettings, check_table_points
 from pipeline.fem.solvers import solver_named
 from pipeline.geometry.gear import GearSpec
 from pipeline.progress import Steps
@@ -137,9 +137,9 @@ def _grid(gear: GearSpec, sector_width: float, settings: FE3DSettings
 
     c = settings.patch * gear.module
     form = tooth_profile(gear).form_radius
-    r = active_radii(gear, settings.radii, lo=max(form, gear.base_radius), margin=c)
+    r = active_radii(gear, settings.points, lo=max(form, gear.base_radius), margin=c)
     margin = min(settings.face_margin * c, 0.5 * sector_width * (1 - 1e-9))
-    n = settings.face
+    n = settings.face_points
     if n is None:
         n = max(2, int(round((sector_width - 2 * margin) / c)) + 1)
     z = face_positions(sector_width, n, margin)
@@ -183,7 +183,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
             sector = sector_mesh_3d(gear, s3, cache=cache, cache_dir=cache_dir)
         pts = flank_grid(sector, loaded, r, z)
         res = influence_matrix(sector, pts, patch_half_width=c,
-                               solver=solver_named(settings.method, dim=3),
+                               solver=solver_named(settings.solver, dim=3),
                                cuts=settings.cuts, ends=settings.ends, steps=steps)
         seconds = time.perf_counter() - t0
         timings = {**steps.timings, "total": seconds}

@@ -1,5 +1,8 @@
 """Finite elements: Gmsh meshing (one session manager), scikit-fem elasticity, solvers.
 
+* ``settings`` / ``mesh_settings`` - the FE model of a gear (``[fe]``: ``FE2DSettings``,
+  ``FE3DSettings``) and the mesh of a sector or whole gear (``SectorSettings``, its 3D
+  extension ``SectorSettings3D``); no scikit-fem or Gmsh imports.
 * ``gmsh_session`` - the only place Gmsh is initialised; meshes leave as plain arrays.
 * ``cache`` - meshes on disk keyed by a content hash, written atomically.
 * ``tetmesh`` - arrays -> scikit-fem meshes with named surfaces; surface integrals.
@@ -36,14 +39,15 @@ _EXPORTS = {
     "build_model": "pipeline.fem.linear_static",
     "load_compliance": "pipeline.fem.linear_static",
     "solve_static": "pipeline.fem.linear_static",
-    "SectorFEOptions": "pipeline.fem.options",
+    "FE2DSettings": "pipeline.fem.settings",
+    "FE3DSettings": "pipeline.fem.settings",
     "patch_loads": "pipeline.fem.patch_loads",
     "PMultigridCG": "pipeline.fem.pmultigrid",
     "SectorMesh2D": "pipeline.fem.sector2d",
-    "SectorSettings2D": "pipeline.fem.sector2d",
+    "SectorSettings": "pipeline.fem.mesh_settings",
     "sector_mesh_2d": "pipeline.fem.sector2d",
     "SectorMesh3D": "pipeline.fem.sector3d",
-    "SectorSettings3D": "pipeline.fem.sector3d",
+    "SectorSettings3D": "pipeline.fem.mesh_settings",
     "sector_mesh_3d": "pipeline.fem.sector3d",
     "SectorResult": "pipeline.fem.sector_analysis",
     "analyse_sector": "pipeline.fem.sector_analysis",

@@ -31,7 +31,8 @@ import numpy as np
 
 from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
 from pipeline.fem.flank import table_radii
-from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
+from pipeline.fem.mesh_settings import SectorSettings
+from pipeline.fem.sector2d import SectorMesh2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.profile import tooth_profile
 from pipeline.validation import check_choice, check_int_range, check_range
@@ -184,7 +185,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
     mid = z // 2
     offsets = np.arange(-settings.offsets, settings.offsets + 1)
     teeth = mid + offsets
-    ss = SectorSettings2D.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
+    ss = SectorSettings.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
     r = table_radii(gear, settings.radii)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
               "radii": r.tolist()}

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from pipeline.fem.gmsh_session import size_from_fields
 
 if TYPE_CHECKING:
-    from pipeline.fem.sector3d import SectorSettings3D
+    from pipeline.fem.mesh_settings import SectorSettings3D
 
 
 def tooth_size_field(gmsh, settings: SectorSettings3D, groups: dict[str, list[int]],

@@ -65,10 +65,10 @@ from pipeline.fem.flank import FlankPoints
 from pipeline.fem.linear_static import ElasticModel, build_model, load_compliance
 from pipeline.fem.nearfield_halfplane import nearfield_halfplane
 from pipeline.fem.nearfield_halfspace import nearfield_halfspace
-from pipeline.fem.options import CUTS, ENDS
 from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorMesh2D
 from pipeline.fem.sector3d import SectorMesh3D
+from pipeline.fem.settings import CUTS, ENDS
 from pipeline.fem.solvers import Solver, solver_named
 from pipeline.progress import Steps
 from pipeline.validation import InputError, check_choice, check_positive

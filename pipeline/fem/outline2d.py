@@ -22,15 +22,14 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError
 
 if TYPE_CHECKING:
-    from pipeline.fem.sector2d import SectorSettings2D
-    from pipeline.fem.sector3d import SectorSettings3D
+    from pipeline.fem.mesh_settings import SectorSettings, SectorSettings3D
 
 CORNER_DEG = 12.0  # outline turns sharper than this split the spline (tip corners)
 # outline points closer than this (times m_n) are one point: Gmsh cannot mesh a zero-length curve
 MERGE_TOL = 1e-6
 
 
-def inner_radius(gear: GearSpec, settings: SectorSettings2D | SectorSettings3D) -> float:
+def inner_radius(gear: GearSpec, settings: SectorSettings | SectorSettings3D) -> float:
     """Radius of the sector's inner (external gear) or outer (internal gear) boundary, m.
 
     ``settings.inner_radius`` if given, else ``gear.bore_radius`` if > 0, else (solid

@@ -9,7 +9,7 @@ rim circle ``gear.bore_radius``, the outer boundary of a whole ring). Quadratic
 (6-node) triangles, graded from ``size_flank`` on the tooth outline to ``size_body`` a
 distance ``grading`` away, so flanks and fillets are refined.
 
-Graded meshes (:meth:`SectorSettings2D.graded`): only the ``loaded`` teeth get
+Graded meshes (:meth:`SectorSettings.graded`): only the ``loaded`` teeth get
 ``size_flank`` on their outline, the others ``size_tooth``; from either the size grows
 linearly with the distance up to ``size_body``. A whole gear then has most of its
 unknowns where the loads are (the assembly-error paper's gear: 20k unknowns instead of
@@ -43,93 +43,18 @@ import numpy as np
 
 from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session, size_from_fields
-from pipeline.fem.options import GRADED_BODY, GRADED_GROWTH, GRADED_TOOTH
+from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector2d_size import check_size
 from pipeline.geometry.gear import GearSpec
-from pipeline.validation import InputError, check_int_range, check_range
+from pipeline.validation import InputError
 
 if TYPE_CHECKING:
     from skfem import MeshTri2
 
-# graded meshes (SectorSettings2D.graded): sizes and growth in pipeline.fem.options
+# graded meshes (SectorSettings.graded): sizes and growth in pipeline.fem.settings
 # (module docstring, "Graded meshes")
 THIN = 4  # outline point stride on unloaded teeth of graded meshes
-
-
-@dataclass(frozen=True)
-class SectorSettings2D:
-    """Mesh settings of a 2D sector.
-
-    Attributes
-    ----------
-    teeth : consecutive teeth in the sector (>= 1, < z/2, or z for the whole gear).
-    size_flank : element size on the outline of the loaded teeth, m.
-    size_body : largest element size (rim, body far from the outline), m.
-    grading : distance from the outline at which the size reaches ``size_body``, m (it is
-        ``size_flank`` up to ``size_flank / 2`` away, then grows linearly; the same growth
-        rate holds from the outline of the other teeth).
-    profile_points : involute points of the profile polyline (the fillet gets as many).
-    inner_radius : bore (hub) radius of the mesh, m; None uses :func:`inner_radius`.
-    loaded : sector teeth meshed at ``size_flank`` (whole outline: both flanks and
-        fillets), or None for all teeth.
-    size_tooth : element size on the outline of the other teeth, m (None:
-        ``size_flank``); from there the size grows at the same rate.
-    """
-
-    teeth: int = 3
-    size_flank: float = 1e-4
-    size_body: float = 1e-3
-    grading: float = 3e-3
-    profile_points: int = 60
-    inner_radius: float | None = None
-    loaded: tuple[int, ...] | None = None
-    size_tooth: float | None = None
-
-    def __post_init__(self) -> None:
-        check_int_range("sector.teeth", self.teeth, 1, 1000)
-        check_range("sector.size_flank", self.size_flank, 1e-7, 1.0, unit="m")
-        check_range("sector.size_body", self.size_body, self.size_flank, 10.0, unit="m")
-        check_range("sector.grading", self.grading, 0.0, 10.0, unit="m")
-        check_int_range("sector.profile_points", self.profile_points, 8, 10000)
-        if self.loaded is not None:
-            loaded = tuple(sorted({int(k) for k in self.loaded}))
-            if not loaded:
-                raise InputError("sector.loaded: give at least one tooth, or None for all")
-            for k in loaded:
-                check_int_range("sector.loaded", k, 0, self.teeth - 1)
-            object.__setattr__(self, "loaded", loaded)
-        if self.size_tooth is not None:
-            check_range("sector.size_tooth", self.size_tooth, self.size_flank, self.size_body,
-                        unit="m")
-
-    @classmethod
-    def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0
-                 ) -> SectorSettings2D:
-        """Settings scaled by the module: flank size m_n / (12 refinement), body m_n / 2.5."""
-        check_range("sector.refinement", refinement, 0.05, 100.0)
-        m = gear.module
-        return cls(teeth=teeth, size_flank=m / (12.0 * refinement),
-                   size_body=max(m / 2.5 / math.sqrt(refinement), m / (12.0 * refinement)),
-                   grading=1.2 * m, profile_points=max(60, int(40 * refinement)))
-
-    @classmethod
-    def graded(cls, gear: GearSpec, teeth: int, loaded: tuple[int, ...],
-               refinement: float = 1.0, *, tooth: float = GRADED_TOOTH,
-               body: float = GRADED_BODY, growth: float = GRADED_GROWTH) -> SectorSettings2D:
-        """Graded from the ``loaded`` teeth: flank size m_n / (12 refinement) on their
-        outline, ``tooth`` m_n on the other teeth, growing at ``growth`` (m of size per m
-        of distance) up to ``body`` m_n (module docstring: "Graded meshes")."""
-        check_range("sector.refinement", refinement, 0.05, 100.0)
-        check_range("sector.tooth", tooth, 0.01, 10.0, unit="m_n")
-        check_range("sector.body", body, tooth, 100.0, unit="m_n")
-        check_range("sector.growth", growth, 0.01, 2.0)
-        m = gear.module
-        h = m / (12.0 * refinement)
-        return cls(teeth=teeth, size_flank=h, size_body=max(body * m, h),
-                   grading=0.5 * h + max(body * m - h, 0.0) / growth,
-                   profile_points=max(60, int(40 * refinement)), loaded=tuple(loaded),
-                   size_tooth=min(max(tooth * m, h), max(body * m, h)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -148,7 +73,7 @@ class SectorMesh2D:
     mesh: MeshTri2
     facets: dict
     gear: GearSpec
-    settings: SectorSettings2D
+    settings: SectorSettings
     inner_radius: float
 
     def tooth_angle(self, k: int) -> float:
@@ -161,7 +86,7 @@ class SectorMesh2D:
         return int(self.mesh.doflocs.shape[1])
 
 
-def _thin_unloaded(pieces: list[tuple[str, np.ndarray]], settings: SectorSettings2D
+def _thin_unloaded(pieces: list[tuple[str, np.ndarray]], settings: SectorSettings
                    ) -> list[tuple[str, np.ndarray]]:
     """Every ``THIN``-th outline point (and the ends) on the pieces of unloaded teeth.
 
@@ -180,7 +105,7 @@ def _thin_unloaded(pieces: list[tuple[str, np.ndarray]], settings: SectorSetting
     return out
 
 
-def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshData:
+def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings) -> TetMeshData:
     """Mesh the sector in Gmsh (quadratic triangles); returns 2D data (see module docstring)."""
     full = settings.teeth == gear.teeth
     if 2 * settings.teeth >= gear.teeth and not full:
@@ -230,7 +155,7 @@ def build_sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D) -> TetMeshD
         return _mesh_and_extract(gmsh, curves, outline_curves, settings)
 
 
-def _threshold(fld, curves: list[int], size: float, settings: SectorSettings2D,
+def _threshold(fld, curves: list[int], size: float, settings: SectorSettings,
                sampling: int = 400) -> int:
     """Size field: ``size`` on ``curves`` (distance sampled at ``sampling`` points per curve),
     growing linearly with the distance at the rate of ``settings`` up to ``size_body``."""
@@ -249,7 +174,7 @@ def _threshold(fld, curves: list[int], size: float, settings: SectorSettings2D,
 
 
 def _mesh_and_extract(gmsh, curves: dict[str, list[int]], outline_curves: list[int],
-                      settings: SectorSettings2D) -> TetMeshData:
+                      settings: SectorSettings) -> TetMeshData:
     """Size field (fine on the loaded teeth' outline), P2 mesh -> 2D data (the groups are
     read per curve: no physical groups, whose creation cost 1 ms each on a whole gear)."""
     fld = gmsh.model.mesh.field
@@ -325,10 +250,10 @@ def to_skfem_tri(data: TetMeshData) -> tuple[MeshTri2, dict]:
     return mesh, facets
 
 
-def sector_mesh_2d(gear: GearSpec, settings: SectorSettings2D | None = None, cache: bool = True,
+def sector_mesh_2d(gear: GearSpec, settings: SectorSettings | None = None, cache: bool = True,
                    cache_dir=None) -> SectorMesh2D:
     """The (cached) 2D sector mesh of ``gear``; see the module docstring for the groups."""
-    settings = settings or SectorSettings2D.for_gear(gear)
+    settings = settings or SectorSettings.for_gear(gear)
     r_in = inner_radius(gear, settings)
     check_size(gear, settings)
     inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}

@@ -17,7 +17,7 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError
 
 if TYPE_CHECKING:
-    from pipeline.fem.sector2d import SectorSettings2D
+    from pipeline.fem.mesh_settings import SectorSettings
 
 # FE memory per unknown of a 2D P2 model (stiffness, CHOLMOD factor, loads; peak RSS of
 # whole-gear builds of 97k-526k unknowns rose by 2.8 kB per unknown), and the largest
@@ -26,7 +26,7 @@ BYTES_PER_DOF = 3500
 MAX_DOF = 4_000_000
 
 
-def estimated_size(gear: GearSpec, settings: SectorSettings2D) -> tuple[int, float]:
+def estimated_size(gear: GearSpec, settings: SectorSettings) -> tuple[int, float]:
     """(unknowns, memory in bytes) of the FE model of the mesh ``settings`` would give,
     estimated before meshing (within about 30 %, see :data:`BYTES_PER_DOF`).
 
@@ -55,7 +55,7 @@ def estimated_size(gear: GearSpec, settings: SectorSettings2D) -> tuple[int, flo
     return dof, dof * BYTES_PER_DOF
 
 
-def check_size(gear: GearSpec, settings: SectorSettings2D, max_dof: int = MAX_DOF) -> int:
+def check_size(gear: GearSpec, settings: SectorSettings, max_dof: int = MAX_DOF) -> int:
     """Refuse (InputError) a mesh whose FE model would exceed ``max_dof`` unknowns; returns
     the estimate."""
     dof, mem = estimated_size(gear, settings)

@@ -41,124 +41,20 @@ cached in ``meshes/`` by a hash of the gear and the settings
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 
 import numpy as np
 from skfem import Basis, ElementTetP0
 
 from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
-from pipeline.fem.sector2d import inner_radius, outline_pieces
+from pipeline.fem.mesh_settings import SectorSettings3D, meshed_width
+from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector3d_size import estimated_size_3d
 from pipeline.fem.size3d import check_size_3d
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.geometry.gear import GearSpec
-from pipeline.validation import InputError, check_int_range, check_range
-
-# Whole-gear element sizes in normal modules (over sqrt(refinement)), and the grading
-# distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
-WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
-WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
-
-
-@dataclass(frozen=True)
-class SectorSettings3D:
-    """Mesh settings of a 3D sector.
-
-    Attributes
-    ----------
-    teeth : consecutive teeth (1 <= teeth < z/2).
-    size_flank : element size on the tooth sides (flank, fillet, tip land), m.
-    size_body : element size in the rim and far from the teeth, m.
-    grading : distance from the tooth sides over which the size grows, m.
-    profile_points : involute points of the section polyline (the fillet gets as many).
-    loft_sections : transverse sections the helical solid is lofted through (>= 2;
-        a spur sector needs 2).
-    half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
-        second (opposite hand); each is ``face_width / 2`` wide.
-    inner_radius : bore radius of the mesh, m; None as in
-        :func:`pipeline.fem.sector2d.inner_radius`.
-    loaded : tooth indices (0 .. teeth-1) whose sides get ``size_flank``; None: all.
-    size_tooth : element size on the sides of the other teeth, m (size_flank ..
-        size_body); None: ``size_flank``.
-    """
-
-    teeth: int = 3
-    size_flank: float = 1e-3
-    size_body: float = 3e-3
-    grading: float = 3e-3
-    profile_points: int = 40
-    loft_sections: int = 7
-    half: int = 0
-    inner_radius: float | None = None
-    loaded: tuple[int, ...] | None = None
-    size_tooth: float | None = None
-
-    def __post_init__(self) -> None:
-        check_int_range("sector3d.teeth", self.teeth, 1, 1000)
-        if self.loaded is not None:
-            object.__setattr__(self, "loaded", tuple(sorted({int(k) for k in self.loaded})))
-            if not self.loaded:
-                raise InputError("sector3d.loaded = () must name at least one tooth (or None)")
-            for k in self.loaded:
-                check_int_range("sector3d.loaded", k, 0, self.teeth - 1)
-        if self.size_tooth is not None:
-            check_range("sector3d.size_tooth", self.size_tooth, self.size_flank, self.size_body,
-                        unit="m")
-        check_range("sector3d.size_flank", self.size_flank, 1e-6, 1.0, unit="m")
-        check_range("sector3d.size_body", self.size_body, self.size_flank, 10.0, unit="m")
-        check_range("sector3d.grading", self.grading, 0.0, 10.0, unit="m")
-        check_int_range("sector3d.profile_points", self.profile_points, 8, 2000)
-        check_int_range("sector3d.loft_sections", self.loft_sections, 2, 100)
-        check_int_range("sector3d.half", self.half, 0, 1)
-
-    @classmethod
-    def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0, half: int = 0
-                 ) -> SectorSettings3D:
-        """Settings scaled by the module: tooth sides m_n / (3 refinement), body m_n.
-
-        Coarser than 2D (m_n / 12): a 3D P2 model at that size would have millions
-        of DOFs. z 50, m_n 3 mm, 3 teeth x 20 mm: 56k DOF at refinement 1, 114k at
-        1.5. The 3D load patches of :mod:`pipeline.fem.influence` need refinement >= 2
-        for their near field to be resolved (see there).
-        """
-        check_range("sector3d.refinement", refinement, 0.05, 20.0)
-        m = gear.module
-        sf = m / (3.0 * refinement)
-        beta = gear.helix_angle
-        # ~8 sections per angular pitch of twist: the loft then strays ~3e-7 rad from the
-        # exact helix (measured at the tip land, z 30, beta 15 deg)
-        turn = (math.tan(beta) * meshed_width(gear) / gear.reference_radius * gear.teeth
-                / (2 * math.pi))
-        return cls(teeth=teeth, size_flank=sf, size_body=max(m / math.sqrt(refinement), sf),
-                   grading=1.5 * m, profile_points=max(30, int(30 * refinement)),
-                   loft_sections=2 if beta == 0 else max(5, int(math.ceil(8 * turn)) + 1),
-                   half=half)
-
-    @classmethod
-    def whole_gear(cls, gear: GearSpec, loaded, refinement: float = 1.0, half: int = 0
-                   ) -> SectorSettings3D:
-        """Whole-gear settings (``teeth = z``) graded from the ``loaded`` teeth.
-
-        The loaded teeth's sides get the sector's flank size ``m_n / (3 refinement)``;
-        the other teeth ``WHOLE_TOOTH m_n / sqrt(refinement)``; the body grows to
-        ``WHOLE_BODY m_n / sqrt(refinement)`` over ``WHOLE_GRADING`` times that distance
-        (a growth rate Gmsh meshes with well-shaped cells). See
-        :mod:`pipeline.fem.whole3d` for the measured DOF counts and convergence.
-        """
-        s = cls.for_gear(gear, 1, refinement, half)
-        m, root = gear.module, math.sqrt(refinement)
-        # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
-        # cells spanning the face would be poorly shaped
-        body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
-        return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
-                       size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
-                       size_body=body, grading=WHOLE_GRADING * body)
-
-
-def meshed_width(gear: GearSpec) -> float:
-    """Meshed face width, m: ``face_width``, half of it for a herringbone half."""
-    return gear.face_width / 2 if gear.herringbone else gear.face_width
+from pipeline.validation import InputError
 
 
 def helix_sign(gear: GearSpec, half: int = 0) -> int:

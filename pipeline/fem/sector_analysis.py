@@ -15,9 +15,10 @@ import numpy as np
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import InfluenceMatrix, constrained_dofs, influence_matrix
 from pipeline.fem.linear_static import build_model, solve_static
-from pipeline.fem.options import SectorFEOptions
+from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.patch_loads import patch_loads
-from pipeline.fem.sector2d import SectorMesh2D, SectorSettings2D, sector_mesh_2d
+from pipeline.fem.sector2d import SectorMesh2D, sector_mesh_2d
+from pipeline.fem.settings import FE2DSettings, check_table_points
 from pipeline.geometry.gear import GearSpec
 
 
@@ -28,7 +29,8 @@ class SectorResult:
     Attributes
     ----------
     gear : the gear.
-    options : teeth, points, refinement, plane model.
+    options : the 2D FE model (teeth of the sector: ``options.sector_teeth``, points,
+        refinement, plane model).
     sector : the sector mesh.
     radii : shape (p,), radii of the flank points on each tooth, m.
     influence : the influence matrix of all ``teeth x p`` points (``structural``: m^2/N,
@@ -38,7 +40,7 @@ class SectorResult:
     """
 
     gear: GearSpec
-    options: SectorFEOptions
+    options: FE2DSettings
     sector: SectorMesh2D
     radii: np.ndarray
     influence: InfluenceMatrix
@@ -47,7 +49,7 @@ class SectorResult:
 
     @property
     def _mid(self) -> slice:
-        mid, p = self.options.teeth // 2, self.radii.size
+        mid, p = self.options.sector_teeth // 2, self.radii.size
         return slice(mid * p, (mid + 1) * p)
 
     @property
@@ -72,7 +74,8 @@ class SectorResult:
         ratio = diag / (self.analytical_tooth + self.analytical_foundation)
         p = self.radii.size
         return {
-            "sector_teeth": self.options.teeth, "nodes": self.sector.n_nodes, "dof": G.n_dof,
+            "sector_teeth": self.options.sector_teeth, "nodes": self.sector.n_nodes,
+            "dof": G.n_dof,
             "points": S.shape[0], "solver": G.method, "timings_s": G.timings,
             "symmetry_error": G.symmetry_error(),
             "rim_coupling_max_ratio": float(np.max(S[self._mid, :p] / diag[:, None])),
@@ -84,7 +87,7 @@ class SectorResult:
 
     def pitch_load_displacement(self, line_load: float = 1e3) -> np.ndarray:
         """Nodal displacements (m) under ``line_load`` (N/m) at the middle tooth's pitch point."""
-        g, n = self.gear, self.options.teeth
+        g, n = self.gear, self.options.sector_teeth
         model = build_model(self.sector.mesh, g.material, kind=self.options.kind)
         one = flank_points(g, n, [n // 2], [g.reference_radius])
         loads = line_load * patch_loads(self.sector, one, self.influence.patch_half_width)
@@ -92,20 +95,24 @@ class SectorResult:
                             constrained_dofs(self.sector, model)).displacements[:, 0]
 
 
-def sector_settings(gear: GearSpec, options: SectorFEOptions) -> SectorSettings2D:
-    """Mesh settings of ``gear``'s sector for ``options`` (every tooth at the flank size)."""
-    return SectorSettings2D.for_gear(gear, options.teeth, options.refinement)
+def sector_settings(gear: GearSpec, options: FE2DSettings) -> SectorSettings:
+    """Mesh settings of ``gear``'s sector for ``options`` (every tooth at the flank size);
+    an influence matrix of more flank points than the machine holds is refused first."""
+    n = options.sector_teeth
+    check_table_points(options.points * n, f"fe.points x fe.teeth = {options.points} x {n}",
+                       "lower fe.points or fe.teeth")
+    return SectorSettings.for_gear(gear, n, options.refinement)
 
 
-def analyse_sector(gear: GearSpec, options: SectorFEOptions | None = None, *,
+def analyse_sector(gear: GearSpec, options: FE2DSettings | None = None, *,
                    cache: bool = True, cache_dir: str | Path | None = None) -> SectorResult:
     """Mesh a 2D sector of ``gear`` (from the mesh cache ``cache_dir`` unless ``cache`` is
     False), compute its flank influence matrix and compare the middle tooth's compliance
     with the analytical tooth model."""
     from pipeline.stiffness.tooth import tooth_compliance, tooth_model
 
-    options = options or SectorFEOptions()
-    n = options.teeth
+    options = options or FE2DSettings()
+    n = options.sector_teeth
     sec = sector_mesh_2d(gear, sector_settings(gear, options), cache=cache, cache_dir=cache_dir)
     r = active_radii(gear, options.points)
     pts = flank_points(gear, n, np.repeat(np.arange(n), r.size), np.tile(r, n))

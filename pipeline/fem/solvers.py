@@ -44,8 +44,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis
 
-from pipeline.fem.options import FACTOR_METHODS, SOLVERS
 from pipeline.fem.pmultigrid import PMultigridCG
+from pipeline.fem.settings import FACTOR_METHODS, SOLVERS
 from pipeline.validation import InputError, check_choice
 
 

@@ -30,7 +30,8 @@ import numpy as np
 
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
-from pipeline.fem.sector3d import SectorSettings3D, generate_curved_tets, loft_inputs
+from pipeline.fem.mesh_settings import SectorSettings3D
+from pipeline.fem.sector3d import generate_curved_tets, loft_inputs
 from pipeline.geometry.gear import GearSpec
 
 

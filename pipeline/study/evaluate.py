@@ -78,7 +78,7 @@ def build_fe_tables(doc: Mapping[str, Any], *, cache: bool = True,
             from pipeline.contact.fe3d_source import FE3DCompliance
 
             out[case.name] = FE3DCompliance.build(pair, box.fe_source, cache=cache,
-                                                  cache_dir=cache_dir, progress=False)
+                                                  cache_dir=cache_dir)
     return out
 
 

@@ -25,9 +25,10 @@ from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import constrained_dofs, influence_matrix
 from pipeline.fem.linear_static import build_model
+from pipeline.fem.mesh_settings import SectorSettings, SectorSettings3D
 from pipeline.fem.patch_loads import patch_loads
-from pipeline.fem.sector2d import SectorSettings2D, sector_mesh_2d
-from pipeline.fem.sector3d import SectorSettings3D, section_area, sector_mesh_3d
+from pipeline.fem.sector2d import sector_mesh_2d
+from pipeline.fem.sector3d import section_area, sector_mesh_3d
 from pipeline.fem.solvers import factorize_spd, solver_named, sparse_cholesky
 from pipeline.geometry import GearSpec, Material
 from pipeline.io import write_json
@@ -40,7 +41,7 @@ def bench_2d(refinement: float = 2.0) -> dict:
     gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
                     bore_radius=0.021, material=STEEL)
     t0 = time.perf_counter()
-    sec = sector_mesh_2d(gear, SectorSettings2D.for_gear(gear, 3, refinement), cache=False)
+    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, 3, refinement), cache=False)
     t_mesh = time.perf_counter() - t0
     r = active_radii(gear, 40)
     pts = flank_points(gear, 3, np.repeat(np.arange(3), 40), np.tile(r, 3))

@@ -50,11 +50,11 @@ def bench_case(name: str, pair: GearPair, settings: FE3DSettings) -> dict:
     peak RSS (GiB)."""
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        cold = FE3DCompliance.build(pair, settings, cache_dir=tmp)
+        cold = FE3DCompliance.build(pair, settings, cache_dir=tmp, show_progress=True)
         t_cold = time.perf_counter() - t0
         rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
         t0 = time.perf_counter()
-        warm = FE3DCompliance.build(pair, settings, cache_dir=tmp, progress=False)
+        warm = FE3DCompliance.build(pair, settings, cache_dir=tmp)
         t_warm = time.perf_counter() - t0
     tables = {g: getattr(cold, f"{g}_table").info for g in ("pinion", "gear")}
     return {"case": name, "settings": settings, "cold_s": t_cold, "warm_s": t_warm,
@@ -79,11 +79,11 @@ def _print(r: dict) -> None:
 
 def main(full: bool = False) -> dict:
     cases = [bench_case("helical z30/30 m3 b12, whole gears, refinement 1", _small_pair(),
-                        FE3DSettings(refinement=1.0, radii=8))]
+                        FE3DSettings(refinement=1.0, points=8))]
     if full:
         cases.append(bench_case("Yang et al. (2026) z31/104 m7.35 b130, whole gears, "
                                 "refinement 0.6", _yang_pair(),
-                                FE3DSettings(refinement=0.6, radii=6, face=24)))
+                                FE3DSettings(refinement=0.6, points=6, face_points=24)))
     for r in cases:
         _print(r)
     out = {"cases": cases, "versions": library_versions()}
