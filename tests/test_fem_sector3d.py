@@ -28,6 +28,7 @@ from skfem.refdom import RefTri
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
+from pipeline.fem.loft3d import helix_sign
 from pipeline.fem.mesh_settings import SectorSettings, SectorSettings3D
 from pipeline.fem.nearfield_halfplane import halfplane_kernel
 from pipeline.fem.nearfield_halfspace import (
@@ -38,7 +39,7 @@ from pipeline.fem.nearfield_halfspace import (
 )
 from pipeline.fem.pmultigrid import PMultigridCG
 from pipeline.fem.sector2d import sector_mesh_2d
-from pipeline.fem.sector3d import helix_sign, section_area, sector_mesh_3d
+from pipeline.fem.sector3d import section_area, sector_mesh_3d
 from pipeline.fem.solvers import DirectSolver, solver_named
 from pipeline.fem.tetmesh import tri_shape
 from pipeline.geometry.gear import GearSpec

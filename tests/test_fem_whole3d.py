@@ -114,7 +114,7 @@ def test_whole_gear_volume_groups_and_grading(coarse):
 def test_whole_gear_inputs_are_validated():
     with pytest.raises(InputError, match="sector.loaded"):
         SectorSettings3D.whole_gear(SPUR, [30], 1.0)
-    with pytest.raises(InputError, match="sector3d.teeth"):
+    with pytest.raises(InputError, match="sector.teeth"):
         sector_mesh_3d(SPUR, SectorSettings3D(teeth=16), cache=False)
     with pytest.raises(InputError, match="fe.teeth"):
         FE3DSettings(teeth=5)  # body = "whole" has all its teeth

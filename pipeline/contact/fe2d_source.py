@@ -32,7 +32,7 @@ Graded meshes (the default, ``mesh = "graded"``). Whole gears (``teeth = None``)
 meshed fine only on the outline of the teeth whose flanks are tabulated (flank and
 fillet elements ``m_n / (12 refinement)``), ``0.6 m_n`` on the outline of the other
 teeth, and the element size grows by half the distance from the outline up to
-``4 m_n`` in the body (:meth:`pipeline.fem.sector2d.SectorSettings.graded`). The
+``4 m_n`` in the body (:meth:`pipeline.fem.mesh_settings.SectorSettings.graded`). The
 unloaded teeth stay in the model (they stiffen the rim), coarsely meshed.
 
 Convergence (the assembly-error paper's pair, z 50/50, m 3 mm, 21 mm bores, plane strain,

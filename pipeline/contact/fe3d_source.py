@@ -106,7 +106,7 @@ import numpy as np
 
 from pipeline.contact.fe3d_table import FlankTable3D, flank_table
 from pipeline.contact.source import ContactPoints, slice_points
-from pipeline.fem.sector3d import helix_sign
+from pipeline.fem.loft3d import helix_sign
 from pipeline.fem.settings import FE3DSettings
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import InputError

@@ -41,7 +41,7 @@ the face this is exactly plane strain, which the tests use to compare with 2D).
 
 3D resolution. The FE must resolve the patch for the subtraction to cancel the near
 field: with the default ``c = 0.3 m_n`` the flank elements should be ``m_n / 6``
-(:class:`~pipeline.fem.sector3d.SectorSettings3D` refinement 2). At refinement 1
+(:class:`~pipeline.fem.mesh_settings.SectorSettings3D` refinement 2). At refinement 1
 (``m_n / 3``) the structural self compliance at the pitch point is ~10 % below the
 refinement-2 value (z 30, m_n 3 mm, beta 15 deg: 3.74e-9 vs 4.16e-9 m/N), and the
 raw FE value ~6 % below; off-diagonal terms converge faster. The structural matrix

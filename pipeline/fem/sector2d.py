@@ -9,11 +9,12 @@ rim circle ``gear.bore_radius``, the outer boundary of a whole ring). Quadratic
 (6-node) triangles, graded from ``size_flank`` on the tooth outline to ``size_body`` a
 distance ``grading`` away, so flanks and fillets are refined.
 
-Graded meshes (:meth:`SectorSettings.graded`): only the ``loaded`` teeth get
-``size_flank`` on their outline, the others ``size_tooth``; from either the size grows
-linearly with the distance up to ``size_body``. A whole gear then has most of its
-unknowns where the loads are (the assembly-error paper's gear: 20k unknowns instead of
-221k, mesh stiffness within 0.4 %: :mod:`pipeline.contact.fe2d_source`). The outline of
+Graded meshes (:meth:`~pipeline.fem.mesh_settings.SectorSettings.graded`): only the
+``loaded`` teeth get ``size_flank`` on their outline, the others ``size_tooth``; from
+either the size grows linearly with the distance up to ``size_body``. A whole gear then
+has most of its unknowns where the loads are (the assembly-error paper's gear: 20k
+unknowns instead of 221k, mesh stiffness within 0.4 %:
+:mod:`pipeline.contact.fe2d_source`). The outline of
 unloaded teeth is thinned to every ``THIN``-th profile point.
 
 Size guard: :func:`~pipeline.fem.sector2d_size.check_size` estimates the unknowns of the FE

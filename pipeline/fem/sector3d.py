@@ -48,19 +48,14 @@ from skfem import Basis, ElementTetP0
 
 from pipeline.fem.cache import cached_tet_mesh, unlabelled
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
+from pipeline.fem.loft3d import check_sector_teeth, generate_curved_tets, helix_sign, loft_inputs
 from pipeline.fem.mesh_settings import SectorSettings3D, meshed_width
-from pipeline.fem.outline2d import inner_radius, outline_pieces
+from pipeline.fem.outline2d import inner_radius
 from pipeline.fem.sector3d_size import estimated_size_3d
 from pipeline.fem.size3d import check_size_3d
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.geometry.gear import GearSpec
 from pipeline.validation import InputError
-
-
-def helix_sign(gear: GearSpec, half: int = 0) -> int:
-    """+1 (right hand), -1 (left hand) or 0 (spur) for ``half`` of ``gear``."""
-    s = {"right": 1, "left": -1, "none": 0}[gear.hand]
-    return -s if (gear.herringbone and half == 1) else s
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,42 +110,6 @@ def section_area(gear: GearSpec, teeth: int, points: int, r_in: float) -> float:
     shoelace = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
     th = a1 - a0
     return shoelace - 0.5 * r_in**2 * (th - math.sin(th))  # the bore arc, not its chord
-
-
-def generate_curved_tets(gmsh) -> None:
-    """Mesh the synchronised model with curved P2 tetrahedra (sectors and whole gears).
-
-    ``HighOrderOptimize`` untangles curved cells that come out inverted (found: one in a
-    5-tooth sector at refinement 0.6, which a factorisation reports only as "not positive
-    definite"; large cells on the fillets of a whole gear's coarse teeth).
-    """
-    gmsh.option.setNumber("Mesh.ElementOrder", 2)
-    gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-    gmsh.option.setNumber("Mesh.Algorithm", 6)
-    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
-    gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
-    gmsh.model.mesh.generate(3)
-
-
-def check_sector_teeth(gear: GearSpec, settings: SectorSettings3D) -> None:
-    """External gears only; ``teeth`` < z/2 (a sector) or = z (the whole gear)."""
-    if gear.internal:
-        raise InputError(f"{gear.name}: the 3D sector mesh supports external gears only")
-    if 2 * settings.teeth >= gear.teeth and settings.teeth != gear.teeth:
-        raise InputError(f"sector3d.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
-                         f"or = z (whole gear)")
-
-
-def loft_inputs(gear: GearSpec, settings: SectorSettings3D, teeth: int
-                ) -> tuple[float, float, float, list]:
-    """What a lofted 3D model of ``teeth`` teeth is built from, after checking the tooth
-    count: bore radius (m), meshed width (m), twist rate along the face (rad/m, signed by
-    the hand) and the outline pieces of :func:`pipeline.fem.sector2d.outline_pieces`."""
-    check_sector_teeth(gear, settings)
-    rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
-    return (inner_radius(gear, settings), meshed_width(gear), rate,
-            outline_pieces(gear, teeth, settings.profile_points))
 
 
 def build_sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
@@ -241,7 +200,7 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
     settings = settings or SectorSettings3D.for_gear(gear)
     if settings.half == 1 and not gear.herringbone:
-        raise InputError(f"sector3d.half = 1 needs a herringbone gear ({gear.name} is not)")
+        raise InputError(f"sector.half = 1 needs a herringbone gear ({gear.name} is not)")
     r_in = inner_radius(gear, settings)
     inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}
     check_sector_teeth(gear, settings)

@@ -27,7 +27,7 @@ SURFACE_FACTOR = 1.4
 
 def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
     """Estimated cells and unknowns of the P2 model of ``gear`` meshed with ``settings``
-    (a :class:`~pipeline.fem.sector3d.SectorSettings3D`) over the meshed ``width`` (m)."""
+    (a :class:`~pipeline.fem.mesh_settings.SectorSettings3D`) over the meshed ``width`` (m)."""
     n, z = settings.teeth, gear.teeth
     loaded = range(n) if settings.loaded is None else settings.loaded
     keep = {f"{side}{k}" for k in loaded for side in ("right", "left")}

@@ -2,10 +2,10 @@
 
 Geometry. The transverse outline of all ``z`` teeth (involute, trochoidal fillet,
 root and tip circles of :mod:`pipeline.geometry.profile`, split into the named
-pieces of :func:`pipeline.fem.sector2d.outline_pieces`) is lofted along the helix
+pieces of :func:`pipeline.fem.outline2d.outline_pieces`) is lofted along the helix
 exactly as the sectors of :mod:`pipeline.fem.sector3d` are (section at ``z`` turned
 by ``theta(z) = s tan(beta) / r (z - b/2)``), giving a toothed solid; a cylinder of
-the bore radius (:func:`pipeline.fem.sector2d.inner_radius`) is cut out of it. So
+the bore radius (:func:`pipeline.fem.outline2d.inner_radius`) is cut out of it. So
 tooth ``k`` at mid-face sits where the 2D whole gear of ``sector2d`` (``teeth = z``)
 puts it, and the flank grids, load patches and influence routine of the sectors
 apply unchanged (a whole gear is a "sector" of ``teeth = z`` teeth without cut faces).
@@ -17,7 +17,7 @@ and ``end1`` (z = b). Boundary conditions are those of the 2D whole gear
 Mesh. One P2 tetrahedral mesh graded by :func:`pipeline.fem.grading3d.tooth_size_field`:
 ``size_flank`` on both sides of the *loaded* teeth (those whose flanks carry grid
 points), ``size_tooth`` on the other teeth, growing to ``size_body`` in the rim,
-web and far teeth (:meth:`~pipeline.fem.sector3d.SectorSettings3D.whole_gear`).
+web and far teeth (:meth:`~pipeline.fem.mesh_settings.SectorSettings3D.whole_gear`).
 The unknowns then scale with the loaded teeth, not with ``z`` (defaults: flank cells
 m_n / (3 refinement), 2 m_n on the other teeth, 5 m_n in the body).
 """
@@ -30,8 +30,8 @@ import numpy as np
 
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
+from pipeline.fem.loft3d import generate_curved_tets, loft_inputs
 from pipeline.fem.mesh_settings import SectorSettings3D
-from pipeline.fem.sector3d import generate_curved_tets, loft_inputs
 from pipeline.geometry.gear import GearSpec
 
 
