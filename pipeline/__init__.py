@@ -11,8 +11,7 @@ Stages, one sub-package each, in the order data flows through them:
   :func:`~pipeline.stiffness.analyse_stiffness`.
 * ``fem`` - Gmsh meshing (one session manager), scikit-fem elasticity, solvers, one
   influence routine for 2D and 3D sectors and whole gears, fillet stress, the relief
-  groove of a herringbone sun (``fem.groove``), size estimates before meshing, the
-  on-disk cache (``cache``, ``cache_dir``).
+  groove of a herringbone sun (``fem.groove``), size estimates before meshing.
 * ``contact`` - loaded tooth contact (complementarity solver, Hertz/Weber local contact),
   compliance sources (analytical slices, FE 2D, FE 3D), load distribution (K_Hbeta,
   K_Halpha, Hertz pressure, TE orders), root stress (FE 2D beside ISO 6336-3), both
@@ -27,7 +26,9 @@ Stages, one sub-package each, in the order data flows through them:
 
 The command line (``gearpipe``, one module per command, with the file writers beside
 them) lives in ``pipeline/cli/``; the stages do not import it. Shared by all:
-``io`` (atomic files), ``output_folder`` (a result folder written as a unit),
+``io`` (atomic files), ``cache`` (the on-disk cache: one :class:`~pipeline.cache.Cache`
+passed to every step that caches, entries keyed by inputs and producing code),
+``output_folder`` (a result folder written as a unit),
 ``provenance`` (``run.json``), ``signals`` (periodic signals, Fourier series),
 ``operation`` (the operating point), ``validation`` (input checks), ``progress``,
 ``child_processes``.

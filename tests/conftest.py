@@ -57,7 +57,7 @@ def _temporary_cache_folder(tmp_path_factory):
     subprocesses inherit), never into the checkout's meshes/ or the user's cache: a user's
     first run after the tests stays cold, and no test depends on what an earlier run left.
     A test that names its own --cache-dir or sets the variable itself still wins."""
-    from pipeline.fem.cache_dir import CACHE_ENV
+    from pipeline.cache.folder import CACHE_ENV
 
     with pytest.MonkeyPatch.context() as mp:
         mp.setenv(CACHE_ENV, str(tmp_path_factory.mktemp("gearpipe-cache")))

@@ -14,15 +14,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.fem import cache
-from pipeline.fem.cache_dir import (
+from pipeline.cache import entries as cache
+from pipeline.cache.folder import (
     CACHE_ENV,
+    Cache,
     CacheWarning,
     default_cache_dir,
     source_checkout_cache,
     user_cache_dir,
     writable_cache_dir,
 )
+from pipeline.fem import mesh_cache
 from pipeline.fem.gmsh_session import TetMeshData
 
 POINTS = np.array([[0.0, 0, 0], [1e-3, 0, 0], [0, 1e-3, 0], [0, 0, 1e-3]])
@@ -32,8 +34,8 @@ MESH = TetMeshData(POINTS, np.array([[0, 1, 2, 3]]), {"face": np.array([[0, 1, 2
 def _entry(tmp_path: Path) -> tuple[Path, list]:
     """One mesh entry in ``tmp_path`` and the list counting its builds."""
     calls: list = []
-    _, path, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
-                                         cache_dir=tmp_path)
+    _, path, hit = mesh_cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
+                                         cache=Cache(tmp_path))
     assert not hit and path is not None and len(calls) == 1
     return path, calls
 
@@ -70,14 +72,14 @@ def test_damaged_entry_is_reported_deleted_and_rebuilt(tmp_path, case, damage, w
     path, calls = _entry(tmp_path)
     damage(path)
     with pytest.warns(CacheWarning, match=why) as record:
-        data, again, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
-                                                 cache_dir=tmp_path)
+        data, again, hit = mesh_cache.cached_tet_mesh(
+            "t", {"a": 1}, lambda: calls.append(1) or MESH, cache=Cache(tmp_path))
     assert len(record) == 1 and "deleted and rebuilt" in str(record[0].message)
     assert not hit and again == path and len(calls) == 2
     np.testing.assert_array_equal(data.points, POINTS)
     # the rebuilt entry is whole again: the next call reads it without a warning
-    _, _, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
-                                      cache_dir=tmp_path)
+    _, _, hit = mesh_cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
+                                      cache=Cache(tmp_path))
     assert hit and len(calls) == 2
     assert [p.name for p in tmp_path.iterdir()] == [path.name]  # no temporary files left
 
@@ -126,8 +128,8 @@ def test_read_only_folder_runs_uncached_with_one_warning(tmp_path, read_only):
     calls: list = []
     with pytest.warns(CacheWarning, match="cannot be written") as record:
         for _ in range(3):
-            data, path, hit = cache.cached_tet_mesh(
-                "t", {"a": 1}, lambda: calls.append(1) or MESH, cache_dir=folder)
+            data, path, hit = mesh_cache.cached_tet_mesh(
+                "t", {"a": 1}, lambda: calls.append(1) or MESH, cache=Cache(folder))
             assert path is None and not hit
             np.testing.assert_array_equal(data.points, POINTS)
     assert len(calls) == 3 and len({str(r.message) for r in record}) == 1
@@ -141,7 +143,8 @@ def test_a_file_in_place_of_the_folder_degrades(tmp_path):
     blocker = tmp_path / "cache"
     blocker.write_text("not a folder")
     with pytest.warns(CacheWarning, match="cannot be written"):
-        _, path, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: MESH, cache_dir=blocker)
+        _, path, hit = mesh_cache.cached_tet_mesh("t", {"a": 1}, lambda: MESH,
+                                                  cache=Cache(blocker))
     assert path is None and not hit
     with pytest.warns(CacheWarning):
         assert writable_cache_dir(blocker / "sub") is None
@@ -152,8 +155,8 @@ def test_damaged_entry_in_read_only_folder_is_rebuilt_without_saving(tmp_path, r
     path.write_bytes(b"")
     read_only(tmp_path)
     with pytest.warns(CacheWarning) as record:
-        data, again, hit = cache.cached_tet_mesh(
-            "t", {"a": 1}, lambda: calls.append(1) or MESH, cache_dir=tmp_path)
+        data, again, hit = mesh_cache.cached_tet_mesh(
+            "t", {"a": 1}, lambda: calls.append(1) or MESH, cache=Cache(tmp_path))
     assert again is None and not hit and len(calls) == 2
     np.testing.assert_array_equal(data.points, POINTS)
     assert [("empty" in str(r.message), "cannot be written" in str(r.message))
@@ -186,9 +189,9 @@ def test_source_checkout_uses_its_meshes_folder():
 
 def test_installed_package_uses_the_user_cache(tmp_path, monkeypatch):
     """A copy of the package outside a checkout (as in site-packages) has no meshes/."""
-    import pipeline.fem.cache_dir as cd
+    import pipeline.cache.folder as cd
 
-    fake = tmp_path / "site-packages" / "pipeline" / "fem" / "cache_dir.py"
+    fake = tmp_path / "site-packages" / "pipeline" / "cache" / "folder.py"
     monkeypatch.setattr(cd, "__file__", str(fake))
     assert cd.source_checkout_cache() is None
     assert cd.default_cache_dir({"XDG_CACHE_HOME": str(tmp_path / "xdg")}) == \
@@ -217,7 +220,7 @@ def test_identical_pinion_and_gear_are_meshed_once(tmp_path, monkeypatch):
     wheel = spur(20, "wheel", bore_radius=0.012, material=relabelled)
     other = spur(20, "other", bore_radius=0.0121)
     meshes = [sector2d.sector_mesh_2d(g, sector2d.SectorSettings.for_gear(g, 3, 0.3),
-                                      cache_dir=tmp_path) for g in (pinion, wheel, other)]
+                                      cache=Cache(tmp_path)) for g in (pinion, wheel, other)]
     assert meshed == ["pinion", "other"]
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 2
     assert np.array_equal(meshes[0].mesh.p, meshes[1].mesh.p)
@@ -302,11 +305,11 @@ def test_an_entry_moved_onto_another_name_is_rebuilt(tmp_path):
     returns the first's own result, never the other's."""
     other = TetMeshData(2 * POINTS, MESH.cells, MESH.surfaces, {})
     path_a, calls = _entry(tmp_path)
-    _, path_b, _ = cache.cached_tet_mesh("t", {"a": 2}, lambda: other, cache_dir=tmp_path)
+    _, path_b, _ = mesh_cache.cached_tet_mesh("t", {"a": 2}, lambda: other, cache=Cache(tmp_path))
     path_a.write_bytes(path_b.read_bytes())
     with pytest.warns(CacheWarning, match="holds another entry") as record:
-        data, _, hit = cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
-                                             cache_dir=tmp_path)
+        data, _, hit = mesh_cache.cached_tet_mesh("t", {"a": 1}, lambda: calls.append(1) or MESH,
+                                             cache=Cache(tmp_path))
     assert len(record) == 1 and not hit and len(calls) == 2
     np.testing.assert_array_equal(data.points, POINTS)
 
@@ -332,3 +335,35 @@ def test_the_key_follows_the_producing_code(tmp_path, monkeypatch):
     cache.code_digest.cache_clear()
     with pytest.raises(ValueError, match="no module or package named 'no_such_pkg'"):
         cache.entry_key("t", {}, ("no_such_pkg",))
+
+
+def test_one_cache_object_reaches_every_step(tmp_path):
+    """``Cache`` is the one cache argument: off builds every time and writes nothing; a
+    command's cache is off with --no-cache and its folder otherwise; and the dynamics
+    commands' model (``gearbox_dynamic_model``, which once ignored the folder) keeps its
+    loaded contact cycle in the folder it is given, then reads it back."""
+    from pipeline.config import gearbox_from_text
+    from pipeline.run.runner import gearbox_dynamic_model
+    from workflows.default_case import DEMO_PAIR
+
+    calls: list[int] = []
+    for _ in range(2):
+        _, path, hit = cache.cached_file("t", {"a": 1}, lambda: calls.append(1) or {},
+                                         dict, dict, code=("pipeline.io",), cache=Cache.off())
+        assert path is None and not hit
+    assert len(calls) == 2
+    assert Cache.for_command(tmp_path / "c", disabled=True) == Cache.off()
+    assert Cache.for_command(tmp_path / "c") == Cache(tmp_path / "c")
+    assert Cache().root == default_cache_dir() and Cache().subfolder("figures") is not None
+    assert Cache.off().subfolder("figures") is None
+
+    box = gearbox_from_text(DEMO_PAIR + '[contact]\npositions = 8\n'
+                            '[dynamics]\nexcitation = "contact"\n')
+    folder = tmp_path / "dyn"
+    gearbox_dynamic_model(box, Cache(folder))
+    cycles = sorted(folder.glob("contactcycle-*.npz"))
+    assert len(cycles) == 1
+    stamp = cycles[0].stat().st_mtime_ns
+    gearbox_dynamic_model(box, Cache(folder))
+    assert sorted(folder.glob("contactcycle-*.npz")) == cycles
+    assert cycles[0].stat().st_mtime_ns == stamp  # read back, not rewritten

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from helpers import load_workflow
 
+from pipeline.cache.folder import Cache
 from pipeline.cli import main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -168,7 +169,7 @@ def test_excitation_fe3d_between_plane_limits(tmp_path):
     from pipeline.run import RunOptions, run_pipeline
 
     wf = load_workflow("excitation_comparison")
-    options = RunOptions(cache_dir=tmp_path / "cache", show_progress=False)
+    options = RunOptions(cache=Cache(tmp_path / "cache"), show_progress=False)
 
     def run(compliance, fe=None):
         res = run_pipeline(wf.gearbox(compliance, "contact", False, fe), options)

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 from gearsets import spur
 
+from pipeline.cache.folder import Cache
 from pipeline.cli import main as cli
 from pipeline.contact.analysis import analyse_contact, analytical_compliance
 from pipeline.contact.options import ContactOptions
@@ -95,7 +96,7 @@ def test_a_cycle_read_from_the_cache_warns_again(tmp_path):
     from pipeline.run.chain import mesh_stages
 
     box = load_gearbox(_relief_file(tmp_path))
-    options = RunOptions(cache_dir=tmp_path / "cache", show_progress=False)
+    options = RunOptions(cache=Cache(tmp_path / "cache"), show_progress=False)
     for _ in range(2):
         with pytest.warns(PhysicsWarning, match="loaded contact ratio 1.017"):
             mesh_stages(box, options, Steps("", enabled=False))

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.config import gearbox_from_text, load_gearbox
 from pipeline.dynamics.operating import (
     elastic_modes,
@@ -144,7 +145,7 @@ def wind_run(tmp_path_factory):
     from pipeline.run import RunOptions, run_pipeline
 
     box = load_gearbox(WIND)
-    return box, run_pipeline(box, RunOptions(cache_dir=tmp_path_factory.mktemp("cache"),
+    return box, run_pipeline(box, RunOptions(cache=Cache(tmp_path_factory.mktemp("cache")),
                                              show_progress=False))
 
 

@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.config import load_gearbox
 from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analyse_contact, analytical_compliance
@@ -61,7 +62,7 @@ def curves(tmp_path_factory):
     pair, op = box.actual_pair, box.operation
     opts = ContactOptions(positions=60, slices=1)
     fe = FE2DCompliance.build(pair, FE2DSettings(slices=1),
-                              cache_dir=tmp_path_factory.mktemp("tables"))
+                              cache=Cache(tmp_path_factory.mktemp("tables")))
     sl = analytical_compliance(pair, op, opts)
     analytical = stiffness_at(sl.model, pair.mesh_cycle(60), 1, sl.friction, sl.operating,
                               sl.foundation_correction).total

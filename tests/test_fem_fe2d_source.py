@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 from gearsets import spur
 
+from pipeline.cache.folder import Cache, CacheWarning
 from pipeline.contact import FE2DCompliance, FE2DSettings
 from pipeline.contact.analysis import analyse_contact
 from pipeline.contact.options import ContactOptions
-from pipeline.fem.cache_dir import CacheWarning
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.patch_loads import patch_loads
@@ -62,7 +62,7 @@ def _facet_basis_loads(sector, pts, c):
 def test_edge_loads_equal_facet_basis(side, tmp_path):
     """Curved 3-node edge quadrature vs FacetBasis on a 3-tooth sector: equal to 1e-12."""
     g = SMALL.gear
-    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 3, 0.7), cache_dir=tmp_path)
+    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 3, 0.7), cache=Cache(tmp_path))
     r = active_radii(g, 6)
     pts = flank_points(g, 3, np.repeat(np.arange(3), r.size), np.tile(r, 3), side)
     c = 0.1 * g.module
@@ -81,7 +81,7 @@ def test_loads_on_small_elements_of_a_large_gear(helical_traction_pair, tmp_path
     1e-3 here, so 2e-3 is the bound.
     """
     g = helical_traction_pair.gear
-    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 5, 2.0), cache_dir=tmp_path)
+    sec = sector_mesh_2d(g, SectorSettings.for_gear(g, 5, 2.0), cache=Cache(tmp_path))
     r = active_radii(g, 8)
     pts = flank_points(g, 5, np.repeat(np.arange(5), r.size), np.tile(r, 5))
     F = patch_loads(sec, pts, 0.1 * g.module)
@@ -110,7 +110,7 @@ def test_too_big_refused_before_meshing(spur_pair_z50, capsys, tmp_path):
     refused in one line naming the size, from the library and from ``gearpipe fe``."""
     g = spur_pair_z50.pinion
     with pytest.raises(InputError, match=r"about 1\d\.\d million unknowns and need about "):
-        sector_mesh_2d(g, SectorSettings.for_gear(g, 50, 20.0), cache=False)
+        sector_mesh_2d(g, SectorSettings.for_gear(g, 50, 20.0), cache=Cache.off())
     from pathlib import Path
 
     from pipeline.cli import main
@@ -130,7 +130,7 @@ def test_whole_ring_mesh_area(tmp_path):
     from pipeline.geometry.profile import tooth_profile
 
     ring = spur(60, "ring", internal=True, bore_radius=0.105)
-    sec = sector_mesh_2d(ring, SectorSettings.graded(ring, 60, (29, 30)), cache_dir=tmp_path)
+    sec = sector_mesh_2d(ring, SectorSettings.graded(ring, 60, (29, 30)), cache=Cache(tmp_path))
     area = Functional(lambda w: 1.0 + 0.0 * w.x[0]).assemble(Basis(sec.mesh, ElementTriP2()))
     exact = math.pi * (ring.bore_radius**2 - ring.root_radius**2) + 60 * tooth_profile(
         ring).area()
@@ -153,8 +153,8 @@ def test_graded_matches_uniform_coarse(tmp_path):
     coarse flank mesh here (measured +0.09 %). The graded model has at most a third of
     the unknowns."""
     base = dict(points=8, refinement=0.5)
-    g = FE2DCompliance.build(SMALL, FE2DSettings(**base), cache_dir=tmp_path)
-    u = FE2DCompliance.build(SMALL, FE2DSettings(mesh="uniform", **base), cache_dir=tmp_path)
+    g = FE2DCompliance.build(SMALL, FE2DSettings(**base), cache=Cache(tmp_path))
+    u = FE2DCompliance.build(SMALL, FE2DSettings(mesh="uniform", **base), cache=Cache(tmp_path))
     kg, ku = _cycle(g), _cycle(u)
     for f in (np.mean, np.min, np.max):
         assert f(kg) == pytest.approx(f(ku), rel=5e-3)
@@ -165,7 +165,7 @@ def test_warm_build_reads_the_tables(tmp_path, monkeypatch):
     """Second build: both tables from the cache, bit-identical, no mesh or FE call; a
     truncated table file is rebuilt (same numbers)."""
     s = FE2DSettings(points=6, refinement=0.3)
-    cold = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
+    cold = FE2DCompliance.build(SMALL, s, cache=Cache(tmp_path))
     assert not cold.info["pinion"]["cached"] and cold.info["pinion"]["timings"]["factor"] > 0
     files = sorted(tmp_path.glob("fe2dtable-*.npz"))
     assert len(files) == 2
@@ -178,7 +178,7 @@ def test_warm_build_reads_the_tables(tmp_path, monkeypatch):
     with monkeypatch.context() as m:
         m.setattr(table, "sector_mesh_2d", boom)
         m.setattr(table, "influence_matrix", boom)
-        warm = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
+        warm = FE2DCompliance.build(SMALL, s, cache=Cache(tmp_path))
     assert warm.info["pinion"]["cached"] and warm.info["gear"]["cached"]
     for a, b in ((cold.pinion_table, warm.pinion_table), (cold.gear_table, warm.gear_table)):
         assert np.array_equal(a.structural, b.structural)
@@ -187,7 +187,7 @@ def test_warm_build_reads_the_tables(tmp_path, monkeypatch):
     assert np.array_equal(cold.matrix(s0), warm.matrix(s0))
     files[0].write_bytes(files[0].read_bytes()[:100])
     with pytest.warns(CacheWarning, match="deleted and rebuilt"):
-        again = FE2DCompliance.build(SMALL, s, cache_dir=tmp_path)
+        again = FE2DCompliance.build(SMALL, s, cache=Cache(tmp_path))
     assert not (again.info["pinion"]["cached"] and again.info["gear"]["cached"])
     assert np.allclose(again.matrix(s0), cold.matrix(s0), rtol=1e-10, atol=0)
 
@@ -210,8 +210,8 @@ def test_graded_default_against_refined_uniform():
     assembly-error paper's pair): mean, min and max mesh stiffness within the 1 % the
     default promises (measured there: +0.28 / +0.34 / +0.24 % against the limit)."""
     pair = GearPair(spur(24, "pinion", bore_radius=0.015), spur(36, "gear", bore_radius=0.02))
-    g = FE2DCompliance.build(pair, FE2DSettings(), cache=False)
-    u = FE2DCompliance.build(pair, FE2DSettings(mesh="uniform", refinement=2.0), cache=False)
+    g = FE2DCompliance.build(pair, FE2DSettings(), cache=Cache.off())
+    u = FE2DCompliance.build(pair, FE2DSettings(mesh="uniform", refinement=2.0), cache=Cache.off())
     kg, ku = _cycle(g, 30), _cycle(u, 30)
     for f in (np.mean, np.min, np.max):
         assert f(kg) == pytest.approx(f(ku), rel=1e-2)

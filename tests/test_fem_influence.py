@@ -22,6 +22,7 @@ import math
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import influence_matrix
 from pipeline.fem.mesh_settings import SectorSettings
@@ -39,7 +40,7 @@ GEAR = GearSpec(teeth=30, module=3e-3, pressure_angle=math.radians(20), face_wid
 def sector3(tmp_path_factory):
     d = tmp_path_factory.mktemp("meshes")
     return sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=1.0),
-                       cache_dir=d)
+                       cache=Cache(d))
 
 
 def test_halfplane_kernel_reproduces_weber():
@@ -82,7 +83,7 @@ def test_symmetry_and_rim_coupling(sector3):
 def test_patch_width_independence():
     """Structural compliance at c = 0.05, 0.1, 0.2 m_n agrees within 0.5 % (raw FE: ~6 %)."""
     sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=2.0),
-                      cache=False)
+                      cache=Cache.off())
     r = active_radii(GEAR, 5, margin=0.25 * GEAR.module)
     pts = flank_points(GEAR, 3, np.ones(r.size, int), r)
     res = [influence_matrix(sec, pts, patch_half_width=c * GEAR.module) for c in (0.05, 0.1, 0.2)]
@@ -100,7 +101,7 @@ def test_mesh_convergence_single_tooth():
     vals = []
     for ref in (1.0, 2.0, 4.0):
         sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=3, refinement=ref),
-                          cache=False)
+                          cache=Cache.off())
         vals.append(influence_matrix(sec, pts).structural[0, 0])
     d1, d2 = abs(vals[1] / vals[0] - 1), abs(vals[2] / vals[1] - 1)
     assert d2 < 0.02
@@ -111,7 +112,7 @@ def test_fe_vs_analytical_tooth_compliance():
     """7-tooth sector, plane stress (the beam model's E, G), 7 points on the middle tooth:
     FE structural vs bending + shear + axial + foundation within 20 %."""
     sec = sector_mesh_2d(GEAR, SectorSettings.for_gear(GEAR, teeth=7, refinement=1.0),
-                      cache=False)
+                      cache=Cache.off())
     r = active_radii(GEAR, 7)
     pts = flank_points(GEAR, 7, np.full(r.size, 3), r)
     fe = np.diag(influence_matrix(sec, pts, kind="plane_stress").structural)

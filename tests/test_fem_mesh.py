@@ -14,7 +14,9 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP2
 
-from pipeline.fem import cache
+from pipeline.cache import entries as cache
+from pipeline.cache.folder import Cache
+from pipeline.fem import mesh_cache
 from pipeline.fem.gmsh_session import gmsh_session
 from pipeline.fem.groove.body import CoaxialBody, Segment
 from pipeline.fem.groove.mesh import MeshSettings, mesh_coaxial_body
@@ -72,17 +74,18 @@ def test_cache_hit_miss_and_atomic(tmp_path, tube):
         return data
 
     inputs = {"R": R, "L": L}
-    d1, p1, hit1 = cache.cached_tet_mesh("t", inputs, build, cache_dir=tmp_path)
-    d2, p2, hit2 = cache.cached_tet_mesh("t", inputs, build, cache_dir=tmp_path)
+    d1, p1, hit1 = mesh_cache.cached_tet_mesh("t", inputs, build, cache=Cache(tmp_path))
+    d2, p2, hit2 = mesh_cache.cached_tet_mesh("t", inputs, build, cache=Cache(tmp_path))
     assert (hit1, hit2) == (False, True) and p1 == p2 and len(calls) == 1
     np.testing.assert_array_equal(d2.cells, data.cells)
     np.testing.assert_array_equal(d2.surfaces["a:outer"], data.surfaces["a:outer"])
     # A changed input gives a new file.
-    _, p3, hit3 = cache.cached_tet_mesh("t", {"R": R * 1.01, "L": L}, build, cache_dir=tmp_path)
+    _, p3, hit3 = mesh_cache.cached_tet_mesh("t", {"R": R * 1.01, "L": L}, build,
+                                             cache=Cache(tmp_path))
     assert not hit3 and p3 != p1
     # A truncated file is rebuilt, and no temporary files are left behind.
     p1.write_bytes(p1.read_bytes()[:100])
     with pytest.warns(cache.CacheWarning, match="deleted and rebuilt"):
-        _, _, hit4 = cache.cached_tet_mesh("t", inputs, build, cache_dir=tmp_path)
+        _, _, hit4 = mesh_cache.cached_tet_mesh("t", inputs, build, cache=Cache(tmp_path))
     assert not hit4 and len(calls) == 3
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([p1.name, p3.name])

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, Functional
 
+from pipeline.cache.folder import Cache
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.sector2d import build_sector_mesh_2d, outline_pieces, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
@@ -35,7 +36,7 @@ def _area(mesh) -> float:
 @pytest.mark.parametrize("gear", [EXT, INT], ids=["external", "internal"])
 def test_sector_area_matches_profile(gear, tmp_path):
     """Mesh area vs n * tooth area + annular sector, relative difference < 5e-5."""
-    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, teeth=3), cache_dir=tmp_path)
+    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, teeth=3), cache=Cache(tmp_path))
     n, z = 3, gear.teeth
     ring = 0.5 * (n * 2 * math.pi / z) * abs(gear.root_radius**2 - gear.bore_radius**2)
     exact = n * tooth_profile(gear).area() + ring
@@ -70,12 +71,12 @@ def test_flank_refinement():
 def test_cache_hit_and_new_key(tmp_path):
     """A second call reads the cached file (same arrays); a changed setting makes a new file."""
     s = SectorSettings.for_gear(EXT, teeth=3, refinement=0.5)
-    a = sector_mesh_2d(EXT, s, cache_dir=tmp_path)
-    b = sector_mesh_2d(EXT, s, cache_dir=tmp_path)
+    a = sector_mesh_2d(EXT, s, cache=Cache(tmp_path))
+    b = sector_mesh_2d(EXT, s, cache=Cache(tmp_path))
     assert np.array_equal(a.mesh.doflocs, b.mesh.doflocs)
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 1
     sector_mesh_2d(EXT, SectorSettings.for_gear(EXT, teeth=5, refinement=0.5),
-                   cache_dir=tmp_path)
+                   cache=Cache(tmp_path))
     assert len(list(tmp_path.glob("sector2d-*.npz"))) == 2
 
 
@@ -102,7 +103,7 @@ def test_whole_gear_with_full_round_root(helical_traction_pair, tmp_path):
     length = [np.hypot(*np.diff(seg, axis=0).T).sum() for _, seg in pieces]
     assert min(length) > 0.1 * gear.module
     assert len(pieces) == 4 * gear.teeth
-    sec = sector_mesh_2d(gear, s, cache_dir=tmp_path)
+    sec = sector_mesh_2d(gear, s, cache=Cache(tmp_path))
     exact = (gear.teeth * tooth_profile(gear).area()
              + math.pi * (gear.root_radius**2 - gear.bore_radius**2))
     assert _area(sec.mesh) == pytest.approx(exact, rel=5e-5)

@@ -25,6 +25,7 @@ from scipy.integrate import quad
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTri
 
+from pipeline.cache.folder import Cache
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
@@ -58,7 +59,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def helical(cache):
-    return sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, 0.6), cache_dir=cache)
+    return sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, 0.6), cache=Cache(cache))
 
 
 # ---- geometry -----------------------------------------------------------------------------
@@ -68,7 +69,7 @@ def test_volume_is_extruded_section(gear, cache):
     through the section points vs its polyline, and the loft between sections; the
     tolerance is 10x that, far below a lost tooth (~4 % of the volume) or a wrong width."""
     s = SectorSettings3D.for_gear(gear, 3, 0.6)
-    sec = sector_mesh_3d(gear, s, cache_dir=cache)
+    sec = sector_mesh_3d(gear, s, cache=Cache(cache))
     exact = section_area(gear, 3, s.profile_points, sec.inner_radius) * gear.face_width
     assert sec.volume() == pytest.approx(exact, rel=5e-4)
 
@@ -79,13 +80,13 @@ def test_herringbone_half_has_opposite_twist(cache):
                  groove_width=5e-3, **KW)
     assert helix_sign(g, 0) == -1 and helix_sign(g, 1) == 1
     s = SectorSettings3D.for_gear(g, 1, 0.5, half=1)
-    sec = sector_mesh_3d(g, s, cache_dir=cache)
+    sec = sector_mesh_3d(g, s, cache=Cache(cache))
     assert sec.width == pytest.approx(6e-3)
     assert sec.twist_rate == pytest.approx(math.tan(g.helix_angle) / g.reference_radius)
     exact = section_area(g, 1, s.profile_points, sec.inner_radius) * 6e-3
     assert sec.volume() == pytest.approx(exact, rel=5e-4)
     with pytest.raises(InputError, match="half"):
-        sector_mesh_3d(HELICAL, SectorSettings3D(half=1), cache=False)
+        sector_mesh_3d(HELICAL, SectorSettings3D(half=1), cache=Cache.off())
 
 
 def test_flank_groups_lie_on_their_tooth_side(helical):
@@ -214,7 +215,7 @@ def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: 
     b = gear.face_width
     nz = 7
     cz = b / (nz - 1)
-    sec = sector_mesh_3d(gear, SectorSettings3D.for_gear(gear, 3, refinement), cache_dir=cache)
+    sec = sector_mesh_3d(gear, SectorSettings3D.for_gear(gear, 3, refinement), cache=Cache(cache))
     pts = flank_grid(sec, [1], [radius], np.linspace(0.0, b, nz))
     G = influence_matrix(sec, pts, patch_half_width=cz, solver=DirectSolver("splu"), ends=ends)
     w = np.full(nz, cz)
@@ -225,7 +226,7 @@ def _line_load_compliance(gear: GearSpec, refinement: float, ends: str, radius: 
 @pytest.fixture(scope="module")
 def plane_2d():
     """2D plane-strain and plane-stress compliances (m^2/N) at the pitch point, c = 1 mm."""
-    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 1.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 1.0), cache=Cache.off())
     pts = flank_points(SPUR, 3, [1], [SPUR.reference_radius])
     return {k: influence_matrix(sec, pts, patch_half_width=1e-3, kind=k)
             for k in ("plane_strain", "plane_stress")}
@@ -258,7 +259,7 @@ def test_plane_strain_limit_converges(cache):
     shrinks monotonically, at a fitted rate > 1.2 in the flank element size (measured
     2.1 for the FE value, 1.6 for the structural one) and is < 1.5 % at the finest
     (measured 0.5 % FE, 0.9 % structural)."""
-    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 2.0), cache=False)
+    sec = sector_mesh_2d(SPUR, SectorSettings.for_gear(SPUR, 3, 2.0), cache=Cache.off())
     ref = influence_matrix(sec, flank_points(SPUR, 3, [1], [SPUR.reference_radius]),
                            patch_half_width=1e-3)
     refinements = np.array([1.0, 1.5, 2.0])
@@ -283,7 +284,7 @@ def test_structural_compliance_independent_of_patch_width(cache):
     c = 0.6 and 0.9 mm (measured 25 % -> 5.6 %: the smallest patch needs a finer mesh)."""
     spread = {}
     for r in (1.0, 2.0):
-        sec = sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, r), cache_dir=cache)
+        sec = sector_mesh_3d(HELICAL, SectorSettings3D.for_gear(HELICAL, 3, r), cache=Cache(cache))
         pts = flank_grid(sec, [1], [HELICAL.reference_radius], [0.5 * sec.width])
         vals = np.array([[g.fe[0, 0], g.structural[0, 0]] for g in
                          (influence_matrix(sec, pts, patch_half_width=c)

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from pipeline.cache.folder import Cache
 from pipeline.config import load_gearbox
 from pipeline.fem.groove.mesh import mesh_coaxial_body
 from pipeline.fem.groove.size import estimated_size
@@ -117,6 +118,6 @@ def test_groove_refused_before_meshing(monkeypatch):
 
     monkeypatch.setattr(study, "mesh_coaxial_body", lambda *a: pytest.fail("meshed"))
     with pytest.raises(InputError, match=r"billion unknowns.*groove.mesh_size_mm \(now 0.5 mm\)"):
-        study.analyse_groove(_groove(0.5e-3), use_cache=False)
+        study.analyse_groove(_groove(0.5e-3), cache=Cache.off())
     assert np.isfinite(estimated_size(_groove(0.5e-3).body(),
                                       _groove(0.5e-3).mesh_settings()).memory)

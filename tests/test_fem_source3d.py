@@ -22,6 +22,7 @@ import math
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.contact.fe3d_source import FE3DCompliance, touching_pairs
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.source import ComplianceSource, SliceCompliance
@@ -53,7 +54,7 @@ def cache(tmp_path_factory):
 @pytest.fixture(scope="module")
 def helical(cache):
     """The coarse 3D tables of the helical pair (10 s cold on 2 cores): its tests are slow."""
-    return FE3DCompliance.build(HELICAL_PAIR, COARSE, cache_dir=cache)
+    return FE3DCompliance.build(HELICAL_PAIR, COARSE, cache=Cache(cache))
 
 
 # ---- inputs ----------------------------------------------------------------------------
@@ -95,7 +96,7 @@ def test_slice_points_map_onto_one_contact_line_of_each_flank(helical, cache):
     for gear, table, (tooth, arc, zs) in zip((PINION, GEAR), (helical.pinion_table,
                                              helical.gear_table),
                                              helical.flank_coordinates(pts), strict=True):
-        sec = sector_mesh_3d(gear, _model_settings(gear, table), cache_dir=cache)
+        sec = sector_mesh_3d(gear, _model_settings(gear, table), cache=Cache(cache))
         rb = gear.base_radius
         r = np.sqrt(2 * rb * arc[sel, 0] + rb * rb)
         for z, tol in ((zs[sel, 0], 1e-9), (gear.face_width - zs[sel, 0], None)):
@@ -213,7 +214,7 @@ def test_spur_sliding_ends_matches_2d_plane_strain(cache):
     pair = GearPair(spur, spur)
     fe3 = FE3DCompliance.build(pair, FE3DSettings(body="sector", teeth=5, points=5,
                                                   refinement=0.6, ends="sliding",
-                                                  solver="splu", slices=1), cache_dir=cache)
+                                                  solver="splu", slices=1), cache=Cache(cache))
     fe2 = FE2DCompliance.build(pair, FE2DSettings(teeth=5, points=12, refinement=1.0,
                                                     kind="plane_strain", slices=1))
     ratios, cross = [], []
@@ -276,7 +277,7 @@ def test_fe3d_helical_workflow_coarse(tmp_path):
     spec.loader.exec_module(mod)
     out = tmp_path / "out"
     s = mod.run(out, refinement=0.3, radii=3, face=6, slices=12, positions=4,
-                cache_dir=tmp_path / "cache", references=False)
+                cache=Cache(tmp_path / "cache"), references=False)
     for name in ("stiffness.csv", "summary.json", "stiffness.png", "run.json"):
         assert (out / name).is_file()
     assert len(json.loads((out / "run.json").read_text())["hash"]) == 16
@@ -309,14 +310,14 @@ def test_helical_3d_against_2d_on_the_same_sector(cache):
               solver="splu")
     k = {}
     for name, src in {
-        "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache_dir=cache),
+        "free": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(**kw), cache=Cache(cache)),
         "sliding": FE3DCompliance.build(HELICAL_PAIR, FE3DSettings(ends="sliding", **kw),
-                                        cache_dir=cache),
+                                        cache=Cache(cache)),
         "strain": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, points=12, slices=8, kind="plane_strain")),
         "stress": FE2DCompliance.build(HELICAL_PAIR, FE2DSettings(
             teeth=5, points=12, slices=8, kind="plane_stress")),
-        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, SECTOR, cache_dir=cache),
+        "three_teeth": FE3DCompliance.build(HELICAL_PAIR, SECTOR, cache=Cache(cache)),
     }.items():
         cyc = loaded_mesh_cycle(src, P, positions=8)
         assert np.all(cyc.residual <= cyc.tolerance)
@@ -350,7 +351,7 @@ def test_whole_gears_against_2d_limits(helical, cache):
     out = {}
     for name, pair, src3 in (
             ("spur", GearPair(spur, spur), None), ("helical", HELICAL_PAIR, helical)):
-        src3 = src3 or FE3DCompliance.build(pair, COARSE, cache_dir=cache)
+        src3 = src3 or FE3DCompliance.build(pair, COARSE, cache=Cache(cache))
         k = {"3d": loaded_mesh_cycle(src3, P, positions=8).mesh_stiffness.mean()}
         for kind in ("strain", "stress"):
             src = FE2DCompliance.build(pair, FE2DSettings(points=12, slices=COARSE.slices,

@@ -31,6 +31,7 @@ import math
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.fem.flank import flank_points
 from pipeline.fem.flank_grid import flank_grid
 from pipeline.fem.influence import influence_matrix
@@ -54,7 +55,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def coarse(cache):
-    return sector_mesh_3d(SPUR, SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), cache_dir=cache)
+    return sector_mesh_3d(SPUR, SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), cache=Cache(cache))
 
 
 def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
@@ -69,7 +70,7 @@ def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
     b = gear.face_width
     c = b / (nz - 1)
     sec = sector_mesh_3d(gear, SectorSettings3D.whole_gear(gear, LOADED, refinement),
-                         cache_dir=cache)
+                         cache=Cache(cache))
     pts = flank_grid(sec, LOADED, [gear.reference_radius], np.linspace(0.0, b, nz))
     G = influence_matrix(sec, pts, patch_half_width=c, ends=ends)
     w = np.full(nz, c)
@@ -82,7 +83,7 @@ def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
 def _whole_2d(gear: GearSpec, kind: str, c: float, refinement: float = 2.0):
     """2D whole gear (teeth = z), points at the pitch radius of teeth 14, 15, 16."""
     sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, gear.teeth, refinement),
-                         cache=False)
+                         cache=Cache.off())
     pts = flank_points(gear, gear.teeth, LOADED, [gear.reference_radius] * 3)
     return influence_matrix(sec, pts, patch_half_width=c, kind=kind)
 
@@ -115,7 +116,7 @@ def test_whole_gear_inputs_are_validated():
     with pytest.raises(InputError, match="sector.loaded"):
         SectorSettings3D.whole_gear(SPUR, [30], 1.0)
     with pytest.raises(InputError, match="sector.teeth"):
-        sector_mesh_3d(SPUR, SectorSettings3D(teeth=16), cache=False)
+        sector_mesh_3d(SPUR, SectorSettings3D(teeth=16), cache=Cache.off())
     with pytest.raises(InputError, match="fe.teeth"):
         FE3DSettings(teeth=5)  # body = "whole" has all its teeth
     with pytest.raises(InputError, match="fe.body"):
@@ -184,7 +185,7 @@ def test_thin_whole_gear_is_plane_stress(cache):
     came out 12 % too stiff: a thin gear needs cells <= b / 2."""
     b, c = 1.5e-3, 2e-3
     gear = GearSpec(face_width=b, **KW)
-    sec = sector_mesh_3d(gear, SectorSettings3D.whole_gear(gear, LOADED, 2.0), cache_dir=cache)
+    sec = sector_mesh_3d(gear, SectorSettings3D.whole_gear(gear, LOADED, 2.0), cache=Cache(cache))
     pts = flank_grid(sec, LOADED, [gear.reference_radius], [0.5 * b])
     G = influence_matrix(sec, pts, patch_half_width=c)
     ref = _whole_2d(gear, "plane_stress", c)

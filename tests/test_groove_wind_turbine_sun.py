@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.config import load_gearbox
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.fem.groove.study import analyse_groove
@@ -39,7 +40,7 @@ def sun_case():
 @pytest.fixture(scope="module")
 def coarse(sun_case):
     spec = dataclasses.replace(sun_case, mesh_size=0.06, coupling="tooth_forces")
-    return analyse_groove(spec, use_cache=False)
+    return analyse_groove(spec, cache=Cache.off())
 
 
 def test_tooth_loads_resultant(coarse):
@@ -74,7 +75,7 @@ def test_contract_and_loading_options(coarse):
     # Tooth forces vs smeared: 2.9 % apart on this coarse mesh (bands of whole triangles),
     # 0.2 % at h = 40 mm and 0.8 % at h = 30 mm.
     assert r.torsional_stiffness == pytest.approx(k_dist, rel=0.05)
-    rigid = analyse_groove(dataclasses.replace(coarse.spec, coupling="rigid"), use_cache=False)
+    rigid = analyse_groove(dataclasses.replace(coarse.spec, coupling="rigid"), cache=Cache.off())
     assert rigid.result.torsional_stiffness > 1.2 * k_dist  # rigid halves: upper bound
     # Dynamics contract: JSON round trip and Xu et al. (2020), eq. 11 phase shift.
     back = GrooveStiffness.from_dict(r.to_dict())

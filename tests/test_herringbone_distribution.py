@@ -14,6 +14,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.config import load_gearbox
 from pipeline.contact import analytical_compliance, loaded_mesh_cycle
 from pipeline.contact.distribution import load_distribution
@@ -141,7 +142,7 @@ def test_mirror_symmetric_halves_have_equal_root_stress(case, tmp_path):
     cycle, _ = solve(case, GrooveFlankCoupling.rigid())
     hd = herringbone_distribution(cycle, pair, op, equal_split=single)
     roots = {side: analyse_root_stress(hd.half(side).cycle, pair, hd.half(side).operation,
-                                       cache_dir=tmp_path)
+                                       cache=Cache(tmp_path))
              for side in ("left", "right", "equal split")}
     for gear in ("pinion", "gear"):
         ref = getattr(roots["equal split"], gear)

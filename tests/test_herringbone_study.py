@@ -57,13 +57,14 @@ def test_study_grooves_and_directions(study):
 
 
 def test_run_excites_the_sun_meshes_from_the_herringbone_contact(tmp_path):
+    from pipeline.cache.folder import Cache
     from pipeline.config import load_gearbox
     from pipeline.run.chain import RunOptions
     from pipeline.run.dynamics import dynamic_model
     from pipeline.run.runner import run_pipeline
 
     box = load_gearbox(ROOT / "workflows/configs/wind_turbine_herringbone_planetary.toml")
-    res = run_pipeline(box, RunOptions(show_progress=False, cache_dir=tmp_path))
+    res = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
     hb = res.meshes["sun_planet"].herringbone
     assert hb.groove.equivalent_Kj == pytest.approx(5.98e7, rel=0.01)
     s = res.summary()["meshes"]["sun_planet"]["herringbone_contact"]

@@ -20,6 +20,7 @@ import pytest
 from gearsets import SMALL
 from helpers import Cells, json_value, small_report
 
+from pipeline.cache.folder import Cache
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
 from pipeline.contact.distribution import load_distribution
@@ -132,7 +133,7 @@ def test_report_numbers_match_the_distribution(report):
     from pipeline.run import RunOptions, run_pipeline
 
     out, box = report
-    res = run_pipeline(box, RunOptions(cache_dir=out.parent / "c", show_progress=False))
+    res = run_pipeline(box, RunOptions(cache=Cache(out.parent / "c"), show_progress=False))
     st = res.meshes["mesh"]
     dist = load_distribution(st.contact, st.stiffness.actual, st.case.operation)
     s = json.loads((out / "report.json").read_text())["sections"]

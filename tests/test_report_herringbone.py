@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 from helpers import Cells, json_value
 
+from pipeline.cache.folder import CACHE_ENV, Cache
 from pipeline.cli import main as cli
 from pipeline.config import load_gearbox
 from pipeline.contact.herringbone_distribution import herringbone_distribution
-from pipeline.fem.cache_dir import CACHE_ENV
 from pipeline.output_folder import LONGEST_FILE_NAME
 from pipeline.report.model import format_value
 
@@ -147,7 +147,7 @@ def test_numbers_are_the_distributions(report):
     from pipeline.run import RunOptions, run_pipeline
 
     out, cfg, cache = report
-    res = run_pipeline(load_gearbox(cfg), RunOptions(cache_dir=cache, show_progress=False))
+    res = run_pipeline(load_gearbox(cfg), RunOptions(cache=Cache(cache), show_progress=False))
     st = res.meshes["sun_planet"]
     hb = st.herringbone
     hd = herringbone_distribution(hb.cycle, hb.pair, hb.operation, equal_split=st.contact)

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 from gearsets import spur
 
+from pipeline.cache.folder import Cache
 from pipeline.contact import analyse_contact, analytical_compliance
 from pipeline.contact.iso_root_stress import helix_factor, iso_root_stress
 from pipeline.contact.options import ContactOptions
@@ -89,7 +90,7 @@ def test_iso_tip_load_and_helix_factor():
 
 def _tip_stress(gear, refinement):
     table = build_fillet_stress(gear, FilletStressSettings(refinement=refinement, radii=12),
-                                cache=False)
+                                cache=Cache.off())
     mid = table.load_offsets.size // 2
     return principal_stress(*table.stress[:, :, mid, -1]).max(), table
 
@@ -120,7 +121,7 @@ def test_root_stress_under_contact_loads_peaks_at_iso_point(tmp_path):
     op = OperatingPoint(torque=340.0, speed=245.0)
     opts = ContactOptions(positions=48)
     cyc = analyse_contact(analytical_compliance(pair, op, opts), op, opts)
-    rs = analyse_root_stress(cyc, pair, op, cache_dir=tmp_path)
+    rs = analyse_root_stress(cyc, pair, op, cache=Cache(tmp_path))
     spacing = pair.base_pitch / 48
     hpstc = {"pinion": pair.s_start + pair.base_pitch, "gear": pair.s_end - pair.base_pitch}
     for g in (rs.pinion, rs.gear):
@@ -139,7 +140,7 @@ def test_root_stress_under_contact_loads_peaks_at_iso_point(tmp_path):
     # linear in the load
     op2 = OperatingPoint(torque=680.0, speed=245.0)
     cyc2 = analyse_contact(analytical_compliance(pair, op2, opts), op2, opts)
-    rs2 = analyse_root_stress(cyc2, pair, op2, cache_dir=tmp_path)
+    rs2 = analyse_root_stress(cyc2, pair, op2, cache=Cache(tmp_path))
     assert rs2.pinion.max_stress == pytest.approx(2 * rs.pinion.max_stress, rel=2e-2)
 
 
@@ -160,7 +161,7 @@ def test_ring_gear_root_stress_without_iso(tmp_path):
     pair = box.actual_pair
     opts = ContactOptions(positions=24)
     cyc = analyse_contact(analytical_compliance(pair, box.operation, opts), box.operation, opts)
-    rs = analyse_root_stress(cyc, pair, box.operation, cache_dir=tmp_path)
+    rs = analyse_root_stress(cyc, pair, box.operation, cache=Cache(tmp_path))
     ring = rs.gear
     assert ring.iso is None and math.isnan(ring.difference_to_iso)
     form = tooth_profile(pair.gear).form_radius

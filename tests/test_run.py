@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 from gearsets import SMALL
 
+from pipeline.cache.folder import Cache, CacheWarning
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_text
-from pipeline.fem.cache_dir import CacheWarning
 from pipeline.output_folder import LONGEST_FILE_NAME
 from pipeline.run import RunOptions, run_pipeline
 
@@ -27,7 +27,7 @@ CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
 
 def _run(text: str, cache_dir: Path):
     return run_pipeline(gearbox_from_text(text, "small"),
-                        RunOptions(cache_dir=cache_dir, show_progress=False))
+                        RunOptions(cache=Cache(cache_dir), show_progress=False))
 
 
 def test_rerun_reads_the_contact_cycle_from_the_cache(tmp_path):

@@ -14,6 +14,7 @@ import numpy as np
 import pyarrow.parquet as pq
 import pytest
 
+from pipeline.cache.folder import Cache
 from pipeline.study.execute import StudyOptions, run_study
 from pipeline.study.spec import study_from_file
 from pipeline.validation import InputError
@@ -194,11 +195,11 @@ def test_load_distribution_kpis_are_the_reports(tmp_path):
     doc = tomllib.loads(BASE.read_text())
     doc["contact"] = {"compliance": "fe2d", "positions": 20, "render": False}
     names = ("k_hbeta", "contact_pressure_max_MPa", "root_stress_max_MPa")
-    res = point_result(point_gearbox(doc), cache_dir=str(tmp_path))
+    res = point_result(point_gearbox(doc), cache=Cache(str(tmp_path)))
     row = kpi_row(res, tuple(KPI_BY_NAME[n] for n in names))
     dist = load_distribution(res.contact, res.pair, res.operation)
     root = analyse_root_stress(res.contact, res.pair, res.operation, res.run.gearbox.fe_source,
-                               cache_dir=tmp_path)
+                               cache=Cache(tmp_path))
     assert row["k_hbeta"] == pytest.approx(1.0, abs=1e-12)
     assert row["contact_pressure_max_MPa"] == pytest.approx(dist.hertz_max.value * 1e-6,
                                                             rel=1e-12)

@@ -65,6 +65,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from pipeline.cache.folder import Cache
 from pipeline.cli import run_workflow
 from pipeline.cli.common import workflow_dir
 from pipeline.config import gearbox_from_dict
@@ -164,7 +165,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--cache-dir", type=Path, default=None)
     args = ap.parse_args(argv)
     args.out = workflow_dir(__file__, args.out)
-    options = RunOptions(full=args.full, cache_dir=args.cache_dir)
+    options = RunOptions(full=args.full, cache=Cache(args.cache_dir))
     runs = {}
     for label, (compliance, excitation) in CASES.items():
         if args.no_3d and compliance == "fe3d":

@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.cli import run_workflow
 from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
@@ -91,7 +92,7 @@ def plot(deg: np.ndarray, curves: dict, title: str):
 
 
 def run(out: Path, refinement: float, radii: int, face: int | None, slices: int, positions: int,
-        cache_dir: Path | None = None, references: bool = True) -> dict:
+        cache: Cache = DEFAULT_CACHE, references: bool = True) -> dict:
     """Run the study into ``out``; ``references`` False skips the 2D FE references."""
     from pipeline.viz import save
 
@@ -103,7 +104,7 @@ def run(out: Path, refinement: float, radii: int, face: int | None, slices: int,
     settings = FE3DSettings(body="whole", refinement=refinement, points=radii, face_points=face,
                             slices=slices)
     t0 = time.perf_counter()
-    sources["fe3d"] = FE3DCompliance.build(pair, settings, cache_dir=cache_dir,
+    sources["fe3d"] = FE3DCompliance.build(pair, settings, cache=cache,
                                          show_progress=True)
     t_build = time.perf_counter() - t0
     rss_3d = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20

@@ -88,6 +88,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.entries import cached_file
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.cli import run_workflow
 from pipeline.cli.common import workflow_dir
 from pipeline.config import load_gearbox
@@ -105,8 +107,6 @@ from pipeline.dynamics.models.planetary_gears import (
 )
 from pipeline.dynamics.peaks import refined_peak
 from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
-from pipeline.fem.cache import cached_file
-from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.progress import Steps
@@ -125,13 +125,13 @@ PAPER_FIG8 = {"K1": ((880, 260), (850, 270)), "K5": ((940, 280), (780, 240)),
               "K1 slide +1 mm": ((790, 250), (940, 280))}
 
 
-def fit_grooves(spec, log, cache, cache_dir):
+def fit_grooves(spec, log, cache):
     """Groove bottoms for the paper's K_1..K_5 and their FE results (module docstring)."""
     fits = []
     for d in FIT_DIAMETERS:
         with log.step(f"groove FE d = {d * 1e3:.0f} mm", announce=True) as note:
             g, note["cached"] = cached_groove(dataclasses.replace(spec, groove_bottom_diameter=d),
-                                              cache=cache, cache_dir=cache_dir)
+                                              cache=cache)
             note["text"] = f"K_j = {g.equivalent_Kj:.4g} N m^2"
         fits.append((d, g))
     (d0, g0), (d1, g1) = fits
@@ -142,13 +142,13 @@ def fit_grooves(spec, log, cache, cache_dir):
         d = float((b / (g0.l_LR / kj - a)) ** 0.25)
         with log.step(f"groove FE d = {d * 1e3:.1f} mm", announce=True) as note:
             g, note["cached"] = cached_groove(dataclasses.replace(spec, groove_bottom_diameter=d),
-                                              cache=cache, cache_dir=cache_dir)
+                                              cache=cache)
             note["text"] = f"K_j = {g.equivalent_Kj:.4g} N m^2 (target {kj:.3g})"
         grooves.append((d, g))
     return grooves, fits[0]
 
 
-def contact(box, groove, hb, positions, cache, cache_dir):
+def contact(box, groove, hb, positions, cache):
     """Herringbone contact of the sun-planet mesh with groove result ``groove``."""
     ps = box.planetary
     pair = mesh_cases(box)[0].pair
@@ -156,15 +156,15 @@ def contact(box, groove, hb, positions, cache, cache_dir):
     cyc, hit = cached_herringbone_cycle(
         pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
         dataclasses.replace(box.contact, positions=positions), box.stiffness, hb,
-        cache=cache, cache_dir=cache_dir)
+        cache=cache)
     return cyc, pair, op, hit
 
 
-def slide_matching(box, groove, target, positions, cache, cache_dir, ref_max):
+def slide_matching(box, groove, target, positions, cache, ref_max):
     """Slide (m) at which the left half's max unit load falls by ``target`` (secant)."""
     def change(z):
         hb = dataclasses.replace(box.herringbone, axial_slide=z)
-        c = contact(box, groove, hb, positions, cache, cache_dir)[0]
+        c = contact(box, groove, hb, positions, cache)[0]
         return c.left.max_unit_load.max() / ref_max - 1.0
 
     z0, z1 = 0.0, 20e-6
@@ -189,18 +189,18 @@ def write_table(path: Path, rows: list[tuple]) -> Path:
     return atomic_write(path, write)
 
 
-def run(full: bool = False, out: Path | None = None, cache: bool = True,
-        cache_dir: Path | None = None, executor=None, show_progress: bool = True) -> dict:
+def run(full: bool = False, out: Path | None = None, cache: Cache = DEFAULT_CACHE,
+        executor=None, show_progress: bool = True) -> dict:
     """The study (module docstring); returns the comparison rows, cases, grooves, sweeps,
     peaks, the step timing (s) and the files written."""
     target = workflow_dir(__file__, out)  # refused now, not after the study
     log = Steps("herringbone groove study", enabled=show_progress, every_step=True)
-    cache_dir = Path(cache_dir) if cache_dir else default_cache_dir()
-    figures = FigureCache(cache_dir / "figures") if cache else NO_CACHE
+    folder = cache.subfolder("figures")
+    figures = NO_CACHE if folder is None else FigureCache(folder)
     with log.step("gearbox file"):
         box = load_gearbox(CONFIG)
     positions = 60 if full else 30
-    grooves, own = fit_grooves(box.groove, log, cache, cache_dir)
+    grooves, own = fit_grooves(box.groove, log, cache)
     hb = box.herringbone
     cases = {f"K{j + 1}": (g, hb) for j, (_, g) in enumerate(grooves)}
     cases["K1 slide +1 mm"] = (grooves[0][1], dataclasses.replace(hb, axial_slide=1e-3))
@@ -212,16 +212,15 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
     with log.step("herringbone contact", announce=True) as note:
         hits = []
         for name, (g, h) in cases.items():
-            cyc[name], pair, op, hit = contact(box, g, h, positions, cache, cache_dir)
+            cyc[name], pair, op, hit = contact(box, g, h, positions, cache)
             hits.append(hit)
         ref_max = cyc["K1"].left.max_unit_load.max()
-        z_match, _ = slide_matching(box, grooves[0][1], 790 / 880 - 1, positions, cache,
-                                    cache_dir, ref_max)
+        z_match, _ = slide_matching(box, grooves[0][1], 790 / 880 - 1, positions, cache, ref_max)
         cases["K1 slide matching Fig. 8e"] = (grooves[0][1],
                                               dataclasses.replace(hb, axial_slide=z_match))
         cyc["K1 slide matching Fig. 8e"] = contact(box, grooves[0][1],
                                                    cases["K1 slide matching Fig. 8e"][1],
-                                                   positions, cache, cache_dir)[0]
+                                                   positions, cache)[0]
         note["cached"] = all(hits)
         note["text"] = f"{len(cyc)} cases, {positions} positions"
     with staged_output(target) as out:  # the folder holds one complete study
@@ -256,8 +255,7 @@ def run(full: bool = False, out: Path | None = None, cache: bool = True,
                 k["right"], ks["left"], ks["right"],
                 title="Herringbone sun-planet mesh stiffness against the groove's FE stiffness "
                       "(cf. Xu et al. 2020, Fig. 5)"))
-        sweeps, peaks = fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache,
-                                    cache_dir)
+        sweeps, peaks = fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache)
         with log.step("Fig. 9 figure"):
             from pipeline.viz.dynamics import plot_sweep
 
@@ -292,18 +290,17 @@ def _sweep_from_arrays(z: dict[str, np.ndarray]) -> SweepResult:
                           "method": str(z["method"])})
 
 
-def cached_sweep(model, freqs, H, executor, cache, cache_dir) -> tuple[SweepResult, bool]:
+def cached_sweep(model, freqs, H, executor, cache) -> tuple[SweepResult, bool]:
     """RMS mesh force sweep of ``model``, cached by a hash of the model and the grid."""
     inputs = {"model": model, "frequencies": freqs, "n_harmonics": H}
     sw, _, hit = cached_file(
         "hbsweep", inputs, lambda: mesh_force_sweep(model.assembly().assemble(), freqs,
                                                     n_harmonics=H, executor=executor),
-        _sweep_arrays, _sweep_from_arrays, code=SWEEP_CODE, cache_dir=cache_dir,
-        enabled=cache)
+        _sweep_arrays, _sweep_from_arrays, code=SWEEP_CODE, cache=cache)
     return sw, hit
 
 
-def fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache, cache_dir):
+def fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache):
     """RMS mesh force sweeps of the herringbone model per groove (Fig. 9), and the main
     peak of each side refined on a fine grid around the K_1 peak: (sweeps, peaks) with
     peaks[K][mesh] = (frequency Hz, RMS force N)."""
@@ -311,7 +308,7 @@ def fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache, cache_d
     H = 20 if full else 10
     ring_case = mesh_cases(box)[1]
     with log.step("planet-ring contact"):
-        ring_stage = static_stages(box, ring_case, RunOptions(cache=cache, cache_dir=cache_dir,
+        ring_stage = static_stages(box, ring_case, RunOptions(cache=cache,
                                                               show_progress=False),
                                    Steps("", enabled=False))
         ring = mesh_excitation(ring_stage, box.stiffness.friction_model, "contact")
@@ -324,14 +321,14 @@ def fig9_sweeps(box, grooves, cyc, pair, op, full, executor, log, cache, cache_d
                 box.planetary, box.bodies, box.carrier, box.operation, box.dynamics, exc, ring,
                 groove=g, sun_load_side=TORQUE_SIDE[box.herringbone.torque_entry])
             sweeps[f"K{j + 1}"], hit = cached_sweep(models[f"K{j + 1}"], freqs, H, executor,
-                                                    cache, cache_dir)
+                                                    cache)
             hits.append(hit)
         step, half = (1.0, 60.0) if full else (4.0, 40.0)
         for m in MESHES:
             f0 = main_peak(sweeps["K1"], m)[0]
             fine = np.arange(f0 - half, f0 + half + step / 2, step)
             for k, model in models.items():
-                sw, hit = cached_sweep(model, fine, H, executor, cache, cache_dir)
+                sw, hit = cached_sweep(model, fine, H, executor, cache)
                 hits.append(hit)
                 pk = refined_peak(fine, sw.rms_force[sw.mesh_names.index(m)])
                 peaks.setdefault(k, {})[m] = (pk.frequency, pk.value)
@@ -421,7 +418,7 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--no-cache", action="store_true")
     ap.add_argument("--cache-dir", default=None, help="cache folder (default meshes/)")
     a = ap.parse_args(argv)
-    res = run(a.full, a.out, cache=not a.no_cache, cache_dir=a.cache_dir)
+    res = run(a.full, a.out, cache=Cache.for_command(a.cache_dir, disabled=a.no_cache))
     print(f"{'figure':8s} {'quantity':62s} {'unit':6s} {'paper':>14s} {'computed':>14s}")
     for r in res["rows"]:
         v = f"{r[4]:.4g}" if isinstance(r[4], float) else str(r[4])

@@ -23,9 +23,9 @@ from typing import Any
 
 import numpy as np
 
+from pipeline.cache.folder import CACHE_ENV, Cache
 from pipeline.config import Gearbox, load_gearbox
 from pipeline.config.signals import referenced_files
-from pipeline.fem.cache_dir import CACHE_ENV, writable_cache_dir
 from pipeline.io import to_jsonable
 from pipeline.output_folder import check_target
 from pipeline.provenance import write_run_record
@@ -54,12 +54,11 @@ def add_cache_arguments(parser: argparse.ArgumentParser) -> None:
                              "checkout, else $XDG_CACHE_HOME/gearpipe or ~/.cache/gearpipe)")
 
 
-def cache_folder(args: argparse.Namespace) -> Path | None:
-    """The cache folder of this run, or None for no cache (``--no-cache``, or a folder that
-    cannot be written: one warning line, and the run goes on without it)."""
-    if args.no_cache:
-        return None
-    return writable_cache_dir(args.cache_dir)
+def command_cache(args: argparse.Namespace) -> Cache:
+    """The cache of this run: off with ``--no-cache`` or when the folder cannot be written
+    (one warning line, and the run goes on without it), else ``--cache-dir`` or the
+    default folder."""
+    return Cache.for_command(args.cache_dir, disabled=args.no_cache)
 
 
 def output_dir(args: argparse.Namespace, command: str) -> Path:

@@ -19,7 +19,7 @@ import numpy as np
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
-    cache_folder,
+    command_cache,
     emit,
     load,
     output_dir,
@@ -81,9 +81,9 @@ def run(args: argparse.Namespace) -> int:
     target = output_dir(args, "contact")
     slices = analytical_compliance(pair, box.operation, opts, box.stiffness,
                                    tooth_model=args.tooth_model)
-    folder = cache_folder(args)
+    cache = command_cache(args)
     src = compliance_source(pair, box.operation, opts, box.stiffness, box.fe_source,
-                            model=slices.model, cache=folder is not None, cache_dir=folder)
+                            model=slices.model, cache=cache)
     cyc = analyse_contact(src, box.operation, opts, show_progress=True)
     ref = stiffness_at(slices.model, cyc.s0, opts.slices, slices.friction, slices.operating,
                        box.stiffness.foundation_correction)

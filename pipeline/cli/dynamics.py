@@ -17,7 +17,7 @@ import argparse
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
-    cache_folder,
+    command_cache,
     emit,
     load,
     output_dir,
@@ -46,8 +46,8 @@ add_sweep_arguments = _common
 def _setup(args, command: str):
     box = load(args)
     target = output_dir(args, command)
-    folder = cache_folder(args)
-    return box, gearbox_dynamic_model(box, folder, cache=folder is not None), target
+    cache = command_cache(args)
+    return box, gearbox_dynamic_model(box, cache), target
 
 
 def run_modes(args) -> int:

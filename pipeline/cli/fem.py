@@ -25,7 +25,7 @@ import numpy as np
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
-    cache_folder,
+    command_cache,
     emit,
     load,
     output_dir,
@@ -101,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
     pair = box.require_pair()
     opts = options(box.fe, args)
     target = output_dir(args, "fe")
-    folder = cache_folder(args)
+    cache = command_cache(args)
     for gear in (pair.pinion, pair.gear):  # refuse models too big for the machine up front
         check_size(gear, sector_settings(gear, opts))
     summary = {}
@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> int:
         files = []
         for tag, gear in progress((("pinion", pair.pinion), ("gear", pair.gear)),
                                   "2D sector FE"):
-            res = analyse_sector(gear, opts, cache=folder is not None, cache_dir=folder)
+            res = analyse_sector(gear, opts, cache=cache)
             summary[tag] = res.summary()
             files += write_gear(res, out, tag)
         files.append(write_json(out / "fe_summary.json", summary))

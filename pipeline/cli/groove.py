@@ -19,7 +19,7 @@ import numpy as np
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
-    cache_folder,
+    command_cache,
     emit,
     load,
     output_dir,
@@ -96,8 +96,8 @@ def run(args: argparse.Namespace) -> int:
                          "(bottom_diameter_mm, ...) and a herringbone gear")
     spec = box.groove
     target = output_dir(args, "groove")
-    folder = cache_folder(args)
-    analysis = analyse_groove(spec, cache_dir=folder, use_cache=folder is not None,
+    cache = command_cache(args)
+    analysis = analyse_groove(spec, cache=cache,
                               progress=not args.json)
     res = analysis.result
     shift = res.phase_shift(spec.sun_torque)
@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> int:
             dataclasses.replace(spec, coupling="rigid" if spec.coupling == "distributed"
                                 else "distributed"),
         ):
-            rows.append(analyse_groove(variant, cache_dir=folder, use_cache=folder is not None,
+            rows.append(analyse_groove(variant, cache=cache,
                                        progress=not args.json).result)
     with staged_output(target) as out:
         files = _write(analysis, rows, spec, out)

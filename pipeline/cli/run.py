@@ -25,13 +25,12 @@ from pathlib import Path
 from pipeline.cli.common import (
     add_cache_arguments,
     add_common_arguments,
-    cache_folder,
+    command_cache,
     emit,
     load,
     output_dir,
     record,
 )
-from pipeline.fem.cache_dir import default_cache_dir
 from pipeline.io import write_json
 from pipeline.output_folder import mesh_label, mesh_prefix, staged_output
 from pipeline.run.chain import MeshStages, RunOptions
@@ -42,9 +41,8 @@ from pipeline.viz.figure_queue import parallel_figures
 
 def figure_cache(options: RunOptions) -> FigureCache:
     """Figures cached beside the FE tables and contact cycles (none with ``--no-cache``)."""
-    if not options.cache:
-        return NO_CACHE
-    return FigureCache(Path(options.cache_dir or default_cache_dir()) / "figures")
+    folder = options.cache.subfolder("figures")
+    return NO_CACHE if folder is None else FigureCache(folder)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -105,8 +103,7 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     """``gearpipe run`` (and ``gearpipe report``, the same files in ``results/<stem>/report``)."""
     box = load(args)
     target = output_dir(args, command)
-    folder = cache_folder(args)
-    options = RunOptions(full=args.full, cache=folder is not None, cache_dir=folder,
+    options = RunOptions(full=args.full, cache=command_cache(args),
                          show_progress=not args.json, label=f"gearpipe {command}")
     # the drawer imports matplotlib while the stages compute (pipeline.viz.figure_queue)
     with parallel_figures(figure_cache(options), prestart=True) as figures:

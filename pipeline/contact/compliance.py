@@ -19,9 +19,9 @@ lead crowning or helix slope deviation).
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 from typing import Any
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact.analysis import analytical_compliance
 from pipeline.contact.options import COMPLIANCES, ContactOptions
 from pipeline.contact.source import ComplianceSource, FrictionCorrected
@@ -56,8 +56,7 @@ def compliance_source(
     stiffness: StiffnessOptions | None = None,
     fe: FE2DSettings | FE3DSettings | None = None,
     *,
-    cache: bool = True,
-    cache_dir: str | Path | None = None,
+    cache: Cache = DEFAULT_CACHE,
     tooth_model: str = "exact",
     model: PairModel | None = None,
     show_progress: bool = False,
@@ -72,7 +71,7 @@ def compliance_source(
     contact : contact options; ``contact.compliance`` picks the source.
     stiffness : friction model and foundation correction.
     fe : FE settings of the chosen FE source (defaults if ``None``).
-    cache, cache_dir : on-disk cache of FE meshes and tables (default ``meshes/``).
+    cache : the on-disk cache of FE meshes and tables.
     tooth_model, model : tooth model of the analytical slices
         (:func:`~pipeline.contact.analysis.analytical_compliance`); with an FE source they
         give only the friction change.
@@ -93,12 +92,12 @@ def compliance_source(
     elif contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 
-        base = FE2DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
+        base = FE2DCompliance.build(pair, settings, cache=cache,
                                     show_progress=show_progress)
     else:
         from pipeline.contact.fe3d_source import FE3DCompliance
 
-        base = FE3DCompliance.build(pair, settings, cache=cache, cache_dir=cache_dir,
+        base = FE3DCompliance.build(pair, settings, cache=cache,
                                     show_progress=show_progress)
     if slices.friction.mu == 0.0 and slices.friction.kind == "constant":
         return base

@@ -1,7 +1,7 @@
 """A :class:`LoadedMeshCycle` as named arrays and back, exactly, for the cache.
 
 The loaded contact cycle is the pipeline's most expensive intermediate after the FE
-tables; ``gearpipe run`` caches it (:func:`pipeline.fem.cache.cached_file`) by everything
+tables; ``gearpipe run`` caches it (:func:`pipeline.cache.entries.cached_file`) by everything
 it depends on (:func:`cycle_cache_inputs`) and the code that computes it
 (:data:`CYCLE_CODE`). Arrays are stored bit for bit, so a cycle read back gives identical
 downstream numbers.

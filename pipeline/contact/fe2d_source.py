@@ -81,10 +81,10 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.fe2d_table import gear_table, sector_teeth
 from pipeline.contact.source import ContactPoints, slice_points
@@ -130,10 +130,10 @@ class FE2DCompliance:
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE2DSettings | None = None, *,
-              cache: bool = True, cache_dir: str | Path | None = None,
+              cache: Cache = DEFAULT_CACHE,
               show_progress: bool = False) -> FE2DCompliance:
         """Tables of both gears from the cache, or meshed and solved (one factorisation
-        each); ``cache=False`` neither reads nor writes it, ``cache_dir`` moves it."""
+        each), read from and written to ``cache``."""
         t0 = time.perf_counter()
         settings = settings or FE2DSettings()
         if pair.pinion.herringbone:
@@ -147,8 +147,7 @@ class FE2DCompliance:
                 ("gear", pair.gear, np.sort(sector_teeth(pair.gear, settings) // 2 + k)))
         tables, info = {}, {}
         for name, gear, teeth in progress(jobs, "2D FE tables", enabled=show_progress):
-            tables[name], info[name] = gear_table(gear, settings, teeth, cache=cache,
-                                                  cache_dir=cache_dir)
+            tables[name], info[name] = gear_table(gear, settings, teeth, cache=cache)
             info[name]["timings"] = dict(tables[name].timings)
         info["seconds"] = time.perf_counter() - t0
         return cls(pair, settings, tables["pinion"], tables["gear"], info)

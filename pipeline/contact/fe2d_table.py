@@ -11,7 +11,7 @@ half-width ``0.1 m_n``, stays on the involute).
 
 Tables are cached on disk by a content hash of the gear, the mesh settings, the points
 and the boundary conditions (``meshes/fe2dtable-<hash>.npz``, written atomically by
-:func:`pipeline.fem.cache.cached_file`; an unreadable file is rebuilt), so a warm build
+:func:`pipeline.cache.entries.cached_file`; an unreadable file is rebuilt), so a warm build
 reads two small files and neither meshes nor solves.
 """
 
@@ -19,14 +19,15 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import MESH_CODE, cached_file, unlabelled
+from pipeline.cache.entries import cached_file, unlabelled
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
+from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.sector2d import sector_mesh_2d
 from pipeline.fem.settings import check_table_points
@@ -81,7 +82,7 @@ def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> Influen
 
 
 def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
-               cache: bool = True, cache_dir: str | Path | None = None
+               cache: Cache = DEFAULT_CACHE
                ) -> tuple[InfluenceMatrix, dict]:
     """Influence matrix of the right-flank points of the sector teeth ``teeth`` (consecutive
     indices, ascending) of ``gear``, from the cache or built (mesh, FE, near field).
@@ -102,7 +103,7 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
 
     def build() -> InfluenceMatrix:
         t = time.perf_counter()
-        sec = sector_mesh_2d(gear, ss, cache=cache, cache_dir=cache_dir)
+        sec = sector_mesh_2d(gear, ss, cache=cache)
         t_mesh = time.perf_counter() - t
         G = influence_matrix(sec, pts, kind=settings.kind, cuts=settings.cuts)
         G.timings["mesh"] = t_mesh
@@ -111,7 +112,7 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
 
     G, _, hit = cached_file("fe2dtable", inputs, build, _table_arrays,
                             lambda z: _table_from_arrays(z, pts), code=TABLE_CODE,
-                            cache_dir=cache_dir, enabled=cache)
+                            cache=cache)
     info = {"cached": hit, "seconds": time.perf_counter() - t0, "dof": G.n_dof,
             "free_dof": G.n_free, "solver": G.method, "sector": asdict(ss)}
     return G, info

@@ -100,10 +100,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact.fe3d_table import FlankTable3D, flank_table
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.loft3d import helix_sign
@@ -143,10 +143,9 @@ class FE3DCompliance:
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE3DSettings | None = None, *,
-              cache: bool = True, cache_dir: str | Path | None = None,
+              cache: Cache = DEFAULT_CACHE,
               show_progress: bool = False) -> FE3DCompliance:
-        """Mesh and solve (or read from the cache) both gears' tables, once; ``cache=False``
-        neither reads nor writes the cache, ``cache_dir`` moves it.
+        """Mesh and solve (or read from ``cache``) both gears' tables, once.
 
         ``show_progress`` reports every step longer than a second (mesh, assembly,
         factorisation, solves) on stderr; the tables' ``info["timings_s"]`` keep the
@@ -158,7 +157,7 @@ class FE3DCompliance:
         cls.check_pair(pair, settings)
         k = touching_pairs(pair)
         teeth = cls._model_teeth(pair, settings)
-        tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache, cache_dir,
+        tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache,
                               show_progress)
                   for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
         return cls(pair, settings, *tables)

@@ -35,15 +35,16 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass, field, replace
-from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.entries import cached_file, same_arrays, unlabelled
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact._interpolation import linear_weights
-from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
 from pipeline.fem.flank import active_radii
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import influence_matrix
+from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.fem.mesh_settings import SectorSettings3D
 from pipeline.fem.sector2d import inner_radius
 from pipeline.fem.sector3d import sector_mesh_3d
@@ -147,8 +148,7 @@ def _grid(gear: GearSpec, sector_width: float, settings: FE3DSettings
 
 
 def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: FE3DSettings,
-                cache: bool = True, cache_dir: str | Path | None = None,
-                progress: bool = True) -> FlankTable3D:
+                cache: Cache = DEFAULT_CACHE, progress: bool = True) -> FlankTable3D:
     """The (cached) structural table of ``gear``'s right flanks on teeth ``loaded``.
 
     Parameters
@@ -157,7 +157,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
     model_teeth : teeth of the 3D model: ``gear.teeth`` for the whole gear, else a sector.
     loaded : tooth indices of the model whose right flanks carry grid points.
     settings : grid, mesh and boundary-condition settings.
-    cache, cache_dir : on-disk cache of tables and meshes (default ``meshes/``).
+    cache : the on-disk cache of tables and meshes.
     progress : report the steps on stderr (:class:`pipeline.progress.Steps`).
     """
     t_call = time.perf_counter()
@@ -180,7 +180,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
     def build() -> dict:
         t0 = time.perf_counter()
         with steps.step("mesh"):
-            sector = sector_mesh_3d(gear, s3, cache=cache, cache_dir=cache_dir)
+            sector = sector_mesh_3d(gear, s3, cache=cache)
         pts = flank_grid(sector, loaded, r, z)
         res = influence_matrix(sector, pts, patch_half_width=c,
                                solver=solver_named(settings.solver, dim=3),
@@ -197,7 +197,7 @@ def flank_table(gear: GearSpec, model_teeth: int, loaded: np.ndarray, settings: 
         return {k: v[k] for k in _STORED}
 
     v, _, hit = cached_file("fe3dtable", key, build, stored, same_arrays, code=TABLE_CODE,
-                            cache_dir=cache_dir, enabled=cache)
+                            cache=cache)
     timings = {str(n): float(t) for n, t in zip(v["timing_names"], v["timing_values"],
                                                strict=True)}
     info = {"body": body, "model_teeth": int(model_teeth), "dof": int(v["dof"]),

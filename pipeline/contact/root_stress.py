@@ -35,11 +35,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact._interpolation import linear_weights
 from pipeline.contact.iso_root_stress import IsoRootStress, iso_root_stress
 from pipeline.contact.results import LoadedMeshCycle
@@ -192,8 +192,8 @@ def _gear_result(name: str, cycle: LoadedMeshCycle, pair: GearPair, gear: GearSp
 
 
 def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: OperatingPoint,
-                        fe: Any = None, *, settings: Any = None, cache: bool = True,
-                        cache_dir: str | Path | None = None, show_progress: bool = False
+                        fe: Any = None, *, settings: Any = None, cache: Cache = DEFAULT_CACHE,
+                        show_progress: bool = False
                         ) -> RootStress:
     """Root stress of both gears under the loads of ``cycle`` (module docstring).
 
@@ -206,7 +206,7 @@ def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: Opera
         stress) is used when given.
     settings : :class:`pipeline.fem.fillet_stress.FilletStressSettings` (default: refinement
         2, 20 flank points per tooth, one neighbour on each side, ``fe.kind``).
-    cache, cache_dir : on-disk cache of the FE stress tables.
+    cache : the on-disk cache of the FE stress tables.
     show_progress : progress on stderr.
     """
     from pipeline.fem.fillet_stress import FilletStressSettings, build_fillet_stress
@@ -221,7 +221,7 @@ def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: Opera
     out, dofs = [], []
     for name, gear, sign in progress((("pinion", pair.pinion, -1), ("gear", pair.gear, 1)),
                                      "root stress (FE 2D)", enabled=show_progress):
-        table = build_fillet_stress(gear, settings, cache=cache, cache_dir=cache_dir)
+        table = build_fillet_stress(gear, settings, cache=cache)
         iso = None if gear.internal else iso_root_stress(gear, pair, f_t)
         out.append(_gear_result(name, cycle, pair, gear, sign, table, iso))
         dofs.append(table.n_dof)

@@ -25,12 +25,13 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from pipeline.fem.cache import MESH_CODE, cached_file, same_arrays, unlabelled
+from pipeline.cache.entries import cached_file, same_arrays, unlabelled
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import table_radii
+from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.sector2d import SectorMesh2D, sector_mesh_2d
 from pipeline.geometry.gear import GearSpec
@@ -178,7 +179,7 @@ def _profile_arc(gear: GearSpec, xy: np.ndarray) -> np.ndarray:
 
 
 def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
-                        cache: bool = True, cache_dir: str | Path | None = None
+                        cache: Cache = DEFAULT_CACHE
                         ) -> FilletStressTable:
     """The fillet stress table of ``gear`` (module docstring), from the cache or solved."""
     z = gear.teeth
@@ -199,7 +200,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
         from pipeline.fem.patch_loads import patch_loads
 
         t0 = time.perf_counter()
-        sec = sector_mesh_2d(gear, ss, cache=cache, cache_dir=cache_dir)
+        sec = sector_mesh_2d(gear, ss, cache=cache)
         t1 = time.perf_counter()
         model = build_model(sec.mesh, gear.material, order=2, kind=settings.kind)
         t2 = time.perf_counter()
@@ -220,7 +221,7 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
                 "timings": np.array([t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4])}
 
     data, _, _ = cached_file("filletstress", inputs, build, same_arrays, same_arrays,
-                             code=MESH_CODE, cache_dir=cache_dir, enabled=cache)
+                             code=MESH_CODE, cache=cache)
     rb = gear.base_radius
     names = ("mesh", "assembly", "loads", "solve", "recovery")
     return FilletStressTable(gear, settings, offsets, r, (r * r - rb * rb) / (2 * rb),

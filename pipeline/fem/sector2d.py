@@ -30,7 +30,7 @@ space over fillet and involute to the middle of the tip land), ``bore``,
 ``cut_right`` (clockwise cut) and ``cut_left``.
 
 Meshes are cached in ``meshes/`` keyed by the gear and the mesh settings
-(:mod:`pipeline.fem.cache`); the 2D data travel in a ``TetMeshData`` container
+(:mod:`pipeline.fem.mesh_cache`); the 2D data travel in a ``TetMeshData`` container
 (points (2, n), cells (6, m), boundary edges (3, k) as its ``surfaces``).
 """
 
@@ -42,8 +42,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.fem.cache import cached_tet_mesh, unlabelled
+from pipeline.cache.entries import unlabelled
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.gmsh_session import TetMeshData, gmsh_session, size_from_fields
+from pipeline.fem.mesh_cache import cached_tet_mesh
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.sector2d_size import check_size
@@ -251,14 +253,14 @@ def to_skfem_tri(data: TetMeshData) -> tuple[MeshTri2, dict]:
     return mesh, facets
 
 
-def sector_mesh_2d(gear: GearSpec, settings: SectorSettings | None = None, cache: bool = True,
-                   cache_dir=None) -> SectorMesh2D:
+def sector_mesh_2d(gear: GearSpec, settings: SectorSettings | None = None,
+                   cache: Cache = DEFAULT_CACHE) -> SectorMesh2D:
     """The (cached) 2D sector mesh of ``gear``; see the module docstring for the groups."""
     settings = settings or SectorSettings.for_gear(gear)
     r_in = inner_radius(gear, settings)
     check_size(gear, settings)
     inputs = {"gear": unlabelled(gear), "settings": asdict(settings), "inner_radius": r_in}
     data, _, _ = cached_tet_mesh("sector2d", inputs, lambda: build_sector_mesh_2d(gear, settings),
-                                 cache_dir=cache_dir, enabled=cache)
+                                 cache=cache)
     mesh, facets = to_skfem_tri(data)
     return SectorMesh2D(mesh, facets, gear, settings, r_in)

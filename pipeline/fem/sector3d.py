@@ -35,7 +35,7 @@ surfaces), graded from ``size_flank`` on the tooth sides of the ``loaded`` teeth
 sides of the other teeth get ``size_tooth``
 (:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are
 cached in ``meshes/`` by a hash of the gear and the settings
-(:mod:`pipeline.fem.cache`). Lengths in m.
+(:mod:`pipeline.fem.mesh_cache`). Lengths in m.
 """
 
 from __future__ import annotations
@@ -46,9 +46,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from skfem import Basis, ElementTetP0
 
-from pipeline.fem.cache import cached_tet_mesh, unlabelled
+from pipeline.cache.entries import unlabelled
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.loft3d import check_sector_teeth, generate_curved_tets, helix_sign, loft_inputs
+from pipeline.fem.mesh_cache import cached_tet_mesh
 from pipeline.fem.mesh_settings import SectorSettings3D, meshed_width
 from pipeline.fem.outline2d import inner_radius
 from pipeline.fem.sector3d_size import estimated_size_3d
@@ -195,8 +197,8 @@ def _classify_surfaces(gmsh, vol: int, pieces, r_in: float, b: float, rate: floa
     return groups
 
 
-def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cache: bool = True,
-                   cache_dir=None) -> SectorMesh3D:
+def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None,
+                   cache: Cache = DEFAULT_CACHE) -> SectorMesh3D:
     """The (cached) 3D sector mesh of ``gear``; groups as in the module docstring."""
     settings = settings or SectorSettings3D.for_gear(gear)
     if settings.half == 1 and not gear.herringbone:
@@ -214,7 +216,7 @@ def sector_mesh_3d(gear: GearSpec, settings: SectorSettings3D | None = None, cac
     else:
         build = build_sector_mesh_3d
     data, _, _ = cached_tet_mesh("sector3d", inputs, lambda: build(gear, settings),
-                                 cache_dir=cache_dir, enabled=cache)
+                                 cache=cache)
     rate = helix_sign(gear, settings.half) * math.tan(gear.helix_angle) / gear.reference_radius
     tets = to_skfem(data)
     _check_cells(tets.mesh)

@@ -8,10 +8,10 @@ its columns, matrix and figures.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.influence import InfluenceMatrix, constrained_dofs, influence_matrix
 from pipeline.fem.linear_static import build_model, solve_static
@@ -105,15 +105,15 @@ def sector_settings(gear: GearSpec, options: FE2DSettings) -> SectorSettings:
 
 
 def analyse_sector(gear: GearSpec, options: FE2DSettings | None = None, *,
-                   cache: bool = True, cache_dir: str | Path | None = None) -> SectorResult:
-    """Mesh a 2D sector of ``gear`` (from the mesh cache ``cache_dir`` unless ``cache`` is
-    False), compute its flank influence matrix and compare the middle tooth's compliance
-    with the analytical tooth model."""
+                   cache: Cache = DEFAULT_CACHE) -> SectorResult:
+    """Mesh a 2D sector of ``gear`` (read from and written to ``cache``), compute its
+    flank influence matrix and compare the middle tooth's compliance with the analytical
+    tooth model."""
     from pipeline.stiffness.tooth import tooth_compliance, tooth_model
 
     options = options or FE2DSettings()
     n = options.sector_teeth
-    sec = sector_mesh_2d(gear, sector_settings(gear, options), cache=cache, cache_dir=cache_dir)
+    sec = sector_mesh_2d(gear, sector_settings(gear, options), cache=cache)
     r = active_radii(gear, options.points)
     pts = flank_points(gear, n, np.repeat(np.arange(n), r.size), np.tile(r, n))
     G = influence_matrix(sec, pts, kind=options.kind)

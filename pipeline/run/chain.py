@@ -25,7 +25,7 @@ and speed with the ring fixed. The dynamic factor is the largest over the mean m
 ``gearpipe modes|response|sweep`` build the dynamic model the same way.
 
 Cached by content hash (``meshes/`` of a checkout; ``--cache-dir`` moves it,
-:mod:`pipeline.fem.cache_dir`): FE meshes and tables (gear geometry, FE settings, format),
+:mod:`pipeline.cache.folder`): FE meshes and tables (gear geometry, FE settings, format),
 loaded contact cycles (installed pair, operating point, contact options, friction, FE
 settings, formats) and figures (drawing code, every plotted array); a rerun that changes
 only a dynamics option reads the contact cycle back and redraws only the dynamics figures.
@@ -46,10 +46,11 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
-from dataclasses import dataclass
-from pathlib import Path
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from pipeline.cache.entries import cached_file
+from pipeline.cache.folder import Cache
 from pipeline.config import Gearbox
 from pipeline.contact.analysis import analyse_contact, warn_physics
 from pipeline.contact.compliance import compliance_source
@@ -60,7 +61,6 @@ from pipeline.contact.cycle_io import (
     cycle_from_arrays,
 )
 from pipeline.contact.results import LoadedMeshCycle
-from pipeline.fem.cache import cached_file
 from pipeline.geometry.analysis import GeometryResult, analyse_geometry
 from pipeline.geometry.assembly_errors import AssemblyErrors
 from pipeline.geometry.pair import GearPair
@@ -80,21 +80,25 @@ class RunOptions:
     Attributes
     ----------
     full : fine settings of the dynamics (more harmonics, all sweep points).
-    cache : read and write the on-disk cache of FE tables and contact cycles.
-    cache_dir : cache folder (default :func:`pipeline.fem.cache.default_cache_dir`).
+    cache : the on-disk cache of meshes, FE tables, contact cycles and root-stress tables
+        (:class:`~pipeline.cache.folder.Cache`: its folder, or off).
     show_progress : a line per step and progress bars on stderr.
-    cache_cycles : keep loaded contact cycles in the cache (with ``cache``); a design study
+    cache_cycles : keep loaded contact cycles in ``cache``; a design study
         turns it off: one file per design point would fill the cache with cycles that are
         never read again.
     label : the command the step lines name on stderr.
     """
 
     full: bool = False
-    cache: bool = True
-    cache_dir: Path | None = None
+    cache: Cache = field(default_factory=Cache)
     show_progress: bool = True
     cache_cycles: bool = True
     label: str = "gearpipe run"
+
+    @property
+    def cycle_cache(self) -> Cache:
+        """Where contact cycles are kept: ``cache``, or off without ``cache_cycles``."""
+        return self.cache if self.cache_cycles else Cache.off()
 
 
 @dataclass(frozen=True)
@@ -194,15 +198,13 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
     def build() -> LoadedMeshCycle:
         source = compliance_source(actual, case.operation, box.contact, box.stiffness,
-                                   box.fe_source, cache=options.cache,
-                                   cache_dir=options.cache_dir, model=stiffness.model,
+                                   box.fe_source, cache=options.cache, model=stiffness.model,
                                    show_progress=options.show_progress, prebuilt=prebuilt)
         return analyse_contact(source, case.operation, box.contact,
                                show_progress=options.show_progress)
 
     cycle, _, hit = cached_file("contactcycle", inputs, build, cycle_arrays, cycle_from_arrays,
-                                code=CYCLE_CODE, cache_dir=options.cache_dir,
-                                enabled=options.cache and options.cache_cycles)
+                                code=CYCLE_CODE, cache=options.cycle_cache)
     if hit:
         warn_physics(cycle)  # a cycle solved now has warned already
     return cycle, hit

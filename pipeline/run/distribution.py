@@ -51,7 +51,7 @@ def distribution_stages(box: Gearbox, meshes: Mapping[str, MeshStages], options:
     one timed step per mesh."""
     def root(cycle, pair, operation):
         return analyse_root_stress(cycle, pair, operation, box.fe_source,
-                                   cache=options.cache, cache_dir=options.cache_dir,
+                                   cache=options.cache,
                                    show_progress=options.show_progress)
 
     out: dict[str, DistributionStage] = {}

@@ -20,11 +20,12 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from pipeline.cache.entries import cached_file
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact.analysis import line_of_action_load
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.cycle_io import CYCLE_CODE, cycle_cache_inputs
@@ -40,9 +41,9 @@ from pipeline.contact.herringbone_results import (
     herringbone_from_arrays,
 )
 from pipeline.contact.options import ContactOptions
-from pipeline.fem.cache import MESH_CODE, cached_file
 from pipeline.fem.groove.result import GrooveStiffness
 from pipeline.fem.groove.spec import GrooveSpec
+from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.geometry.pair import GearPair
 from pipeline.io import to_jsonable
 from pipeline.operation import OperatingPoint
@@ -88,7 +89,7 @@ def _groove_from_arrays(z: dict[str, np.ndarray]) -> GrooveStiffness:
     return GrooveStiffness.from_dict(json.loads(str(z["json"])))
 
 
-def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path | None = None,
+def cached_groove(spec: GrooveSpec, *, cache: Cache = DEFAULT_CACHE,
                   progress: bool = False) -> tuple[GrooveStiffness, bool]:
     """The groove FE result of ``spec`` from the cache, or computed and stored (its phases
     on stderr with ``progress``).
@@ -99,18 +100,17 @@ def cached_groove(spec: GrooveSpec, *, cache: bool = True, cache_dir: str | Path
     from pipeline.fem.groove.study import groove_stiffness
 
     res, _, hit = cached_file("groovestiffness", {"spec": spec},
-                              lambda: groove_stiffness(spec, cache_dir=cache_dir,
-                                                       use_cache=cache, progress=progress),
+                              lambda: groove_stiffness(spec, cache=cache, progress=progress),
                               _groove_arrays, _groove_from_arrays, code=MESH_CODE,
-                              cache_dir=cache_dir, enabled=cache)
+                              cache=cache)
     return res, hit
 
 
 def cached_herringbone_cycle(
     pair: GearPair, operation: OperatingPoint, groove: GrooveFlankCoupling, n_planets: int,
     contact: ContactOptions, stiffness: StiffnessOptions, herringbone: HerringboneOptions,
-    *, fe: Any = None, model: Any = None, cache: bool = True,
-    cache_dir: str | Path | None = None, show_progress: bool = False,
+    *, fe: Any = None, model: Any = None, cache: Cache = DEFAULT_CACHE,
+    cycle_cache: Cache | None = None, show_progress: bool = False,
 ) -> tuple[HerringboneCycle, bool]:
     """Herringbone contact of a sun-planet mesh, from the cache when its inputs are unchanged.
 
@@ -122,6 +122,7 @@ def cached_herringbone_cycle(
     contact, stiffness, fe : the ``[contact]``, ``[stiffness]`` options and FE source settings.
     herringbone : torque entry and axial holding.
     model : prebuilt analytical tooth models of ``pair`` (optional).
+    cache : the cache of the FE tables, and of the cycle unless ``cycle_cache`` is given.
 
     Returns (cycle, True if read from the cache).
     """
@@ -132,8 +133,7 @@ def cached_herringbone_cycle(
     def build() -> HerringboneCycle:
         # the source sees one half's load (friction direction, EHL pressure)
         half = OperatingPoint(0.5 * operation.torque, operation.speed, operation.driver)
-        source = compliance_source(pair, half, contact, stiffness, fe, cache=cache,
-                                   cache_dir=cache_dir, model=model,
+        source = compliance_source(pair, half, contact, stiffness, fe, cache=cache, model=model,
                                    show_progress=show_progress)
         return herringbone_mesh_cycle(source, line_of_action_load(pair, operation), groove,
                                       n_planets, options=herringbone,
@@ -142,8 +142,8 @@ def cached_herringbone_cycle(
                                       show_progress=show_progress)
 
     cycle, _, hit = cached_file("herringbone", inputs, build, herringbone_arrays,
-                                herringbone_from_arrays, code=CYCLE_CODE, cache_dir=cache_dir,
-                                enabled=cache)
+                                herringbone_from_arrays, code=CYCLE_CODE,
+                                cache=cache if cycle_cache is None else cycle_cache)
     return cycle, hit
 
 
@@ -157,7 +157,6 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         return None
     with log.step("groove FE", announce=True) as note:
         groove, g_hit = cached_groove(box.groove, cache=options.cache,
-                                      cache_dir=options.cache_dir,
                                       progress=options.show_progress)
         note["cached"] = g_hit
         note["text"] = f"K_j = {groove.equivalent_Kj:.4g} N m^2"
@@ -168,8 +167,8 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
         cycle, c_hit = cached_herringbone_cycle(
             pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
             box.contact, box.stiffness, box.herringbone, fe=box.fe_source,
-            model=stages.stiffness.model, cache=options.cache and options.cache_cycles,
-            cache_dir=options.cache_dir, show_progress=options.show_progress)
+            model=stages.stiffness.model, cache=options.cache, cycle_cache=options.cycle_cache,
+            show_progress=options.show_progress)
         note["cached"] = c_hit
         s = cycle.summary()
         note["text"] = (f"load left/right {s['left']['load_share_mean']:.3f} / "

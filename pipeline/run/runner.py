@@ -5,9 +5,9 @@ a gearbox file describes (:func:`gearbox_dynamic_model`) for the dynamics comman
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.config import Gearbox
 from pipeline.dynamics.assembly import DynamicModel
 from pipeline.progress import Steps
@@ -60,22 +60,20 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     return RunResult(box, meshes, dynamics, log, distributions)
 
 
-def gearbox_dynamic_model(box: Gearbox, cache_dir: Path | None = None,
-                          cache: bool = True) -> DynamicModel:
+def gearbox_dynamic_model(box: Gearbox, cache: Cache = DEFAULT_CACHE) -> DynamicModel:
     """The dynamic model a gearbox file describes, excited by its static stages.
 
     The same composition as ``gearpipe run`` (:func:`mesh_stages`, then
     :func:`pipeline.run.dynamics.dynamic_model`):
     the analytical stiffness of each mesh, or with ``[dynamics] excitation = "contact"``
     its loaded contact cycle on the ``[contact] compliance`` source (read from the cache
-    when ``gearpipe run`` or an earlier command computed it; ``cache_dir`` and ``cache`` as
-    in :class:`pipeline.run.chain.RunOptions`).
+    when ``gearpipe run`` or an earlier command computed it, in ``cache``).
     """
     if box.kind == "gear":
         raise InputError(f"{box.name}: the file describes a single gear; a dynamic model needs "
                          "a gear pair ([pinion] and [gear]), a planetary set or a "
                          "[lumped_model]")
-    options = RunOptions(show_progress=False, cache=cache, cache_dir=cache_dir)
+    options = RunOptions(show_progress=False, cache=cache)
     meshes = mesh_stages(box, options, Steps("", enabled=False),
                          contact=needs_contact(box))
     return dynamic_model(box, meshes)[0]

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.config import Gearbox, gearbox_from_dict
 from pipeline.io import content_hash
 from pipeline.study.kpis import KPI, PointResult, kpi_row
@@ -44,7 +45,7 @@ def _actual(case) -> Any:
 def fe_geometry_key(box: Gearbox) -> str | None:
     """Content hash of what the FE tables of every mesh depend on (gears, FE settings,
     tooth pairs in contact), or ``None`` for the analytical compliance."""
-    from pipeline.fem.cache import unlabelled
+    from pipeline.cache.entries import unlabelled
     from pipeline.run.chain import mesh_cases
 
     if box.fe_source is None:
@@ -59,8 +60,7 @@ def fe_geometry_key(box: Gearbox) -> str | None:
                          "settings": dataclasses.asdict(box.fe_source), "meshes": parts})
 
 
-def build_fe_tables(doc: Mapping[str, Any], *, cache: bool = True,
-                    cache_dir: str | None = None) -> dict[str, Any]:
+def build_fe_tables(doc: Mapping[str, Any], *, cache: Cache = DEFAULT_CACHE) -> dict[str, Any]:
     """The FE compliance source (both gears' tables) of every mesh of a point's gearbox,
     ``{mesh name: FE2DCompliance | FE3DCompliance}`` (read from the FE cache when there)."""
     from pipeline.run.chain import mesh_cases
@@ -72,19 +72,17 @@ def build_fe_tables(doc: Mapping[str, Any], *, cache: bool = True,
         if box.contact.compliance == "fe2d":
             from pipeline.contact.fe2d_source import FE2DCompliance
 
-            out[case.name] = FE2DCompliance.build(pair, box.fe_source, cache=cache,
-                                                  cache_dir=cache_dir)
+            out[case.name] = FE2DCompliance.build(pair, box.fe_source, cache=cache)
         else:
             from pipeline.contact.fe3d_source import FE3DCompliance
 
-            out[case.name] = FE3DCompliance.build(pair, box.fe_source, cache=cache,
-                                                  cache_dir=cache_dir)
+            out[case.name] = FE3DCompliance.build(pair, box.fe_source, cache=cache)
     return out
 
 
 def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
                  speed_range_rpm: tuple[float, float] | None = None, speed_points: int = 40,
-                 cache: bool = True, cache_dir: str | None = None) -> PointResult:
+                 cache: Cache = DEFAULT_CACHE) -> PointResult:
     """Static stages of every mesh (:func:`pipeline.run.chain.mesh_stages`, contact cycles
     not kept in the cache) and, with ``speed_range_rpm``, a sweep of the dynamic model over
     that driver speed range (rpm, ``speed_points`` equally spaced speeds)."""
@@ -92,12 +90,11 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     from pipeline.run.chain import RunOptions, mesh_stages
     from pipeline.run.runner import RunResult
 
-    options = RunOptions(cache=cache, cache_dir=cache_dir, show_progress=False,
-                         cache_cycles=False)
+    options = RunOptions(cache=cache, show_progress=False, cache_cycles=False)
     meshes = mesh_stages(box, options, Steps("", enabled=False), prebuilt=fe)
     run = RunResult(box, meshes, None, Steps("", enabled=False))
     if speed_range_rpm is None:
-        return PointResult(run, cache=cache, cache_dir=cache_dir)
+        return PointResult(run, cache=cache)
     from pipeline.dynamics.sweep import mesh_force_sweep
     from pipeline.run.dynamics import dynamic_model, dynamics_options
 
@@ -109,12 +106,12 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     freqs = speeds / op_rpm / period
     sweep = mesh_force_sweep(model.assembly().assemble(), freqs, opts.method, opts.n_harmonics,
                              executor=None)
-    return PointResult(run, sweep, speeds, cache=cache, cache_dir=cache_dir)
+    return PointResult(run, sweep, speeds, cache=cache)
 
 
 def evaluate_point(doc: Mapping[str, Any], fe: Mapping[str, Any] | None = None, *,
                    kpis: tuple[KPI, ...], speed_range_rpm: tuple[float, float] | None = None,
-                   speed_points: int = 40, cache: bool = True, cache_dir: str | None = None
+                   speed_points: int = 40, cache: Cache = DEFAULT_CACHE
                    ) -> dict[str, float]:
     """KPI row ``{name: value}`` of one point document (units in the KPI names).
 
@@ -125,9 +122,9 @@ def evaluate_point(doc: Mapping[str, Any], fe: Mapping[str, Any] | None = None, 
         (:func:`build_fe_tables`), or ``None`` to build or read them here.
     kpis : the KPIs to compute.
     speed_range_rpm, speed_points : driver speed range (rpm) of the dynamic KPIs.
-    cache, cache_dir : FE cache used when ``fe`` is ``None``.
+    cache : the FE cache used when ``fe`` is ``None``.
     """
     box = point_gearbox(doc)
     res = point_result(box, fe, speed_range_rpm=speed_range_rpm, speed_points=speed_points,
-                       cache=cache, cache_dir=cache_dir)
+                       cache=cache)
     return kpi_row(res, kpis)

@@ -53,12 +53,13 @@ import sys
 import uuid
 from collections.abc import Iterator
 from contextlib import ExitStack, contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import pyarrow as pa
 
+from pipeline.cache.folder import Cache
 from pipeline.output_folder import OutputError, check_target
 from pipeline.progress import progress
 from pipeline.study.evaluate import build_fe_tables, evaluate_point, fe_geometry_key
@@ -79,7 +80,7 @@ class StudyOptions:
     scheduler : address of an existing Dask scheduler, or ``None`` for a LocalCluster.
     workers : LocalCluster worker processes (default: CPU count); 0 runs serially here.
     resume : continue the unfinished study in the results folder.
-    cache, cache_dir : the FE table cache (workers on this machine share it).
+    cache : the FE table cache (workers on this machine share it).
     point_log : append ``"<session> <point>"`` per computed point to
         ``OUT/computed_points.log`` (workers on this machine only).
     show_progress : progress bar on stderr.
@@ -88,8 +89,7 @@ class StudyOptions:
     scheduler: str | None = None
     workers: int | None = None
     resume: bool = False
-    cache: bool = True
-    cache_dir: str | None = None
+    cache: Cache = field(default_factory=Cache)
     point_log: bool = True
     show_progress: bool = True
 
@@ -143,8 +143,7 @@ class _Job:
     kpis: tuple[KPI, ...]
     speed_range_rpm: tuple[float, float] | None
     speed_points: int
-    cache: bool
-    cache_dir: str | None
+    cache: Cache
     log_path: str | None
     session: str
 
@@ -162,8 +161,7 @@ def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[di
         for index, doc in batch:
             try:
                 row = evaluate_point(doc, fe, kpis=job.kpis, speed_range_rpm=job.speed_range_rpm,
-                                     speed_points=job.speed_points, cache=job.cache,
-                                     cache_dir=job.cache_dir)
+                                     speed_points=job.speed_points, cache=job.cache)
                 err = ""
             except InputError as exc:
                 row, err = {k.name: float("nan") for k in job.kpis}, str(exc)
@@ -178,7 +176,7 @@ def _fe_batch(doc: dict, job: _Job) -> Any:
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1):
-        return build_fe_tables(doc, cache=job.cache, cache_dir=job.cache_dir)
+        return build_fe_tables(doc, cache=job.cache)
 
 
 def _arrow_type(values: list[Any]) -> pa.DataType:
@@ -332,7 +330,6 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
         todo = [p.index for p in points if p.index not in done]
         session = uuid.uuid4().hex[:8]
         job = _Job(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
-                   options.cache_dir,
                    str(Path(out).resolve() / "computed_points.log")
                    if options.point_log and client is None else None, session)
         nw = (os.cpu_count() or 1) if options.workers is None else options.workers

@@ -18,12 +18,13 @@ sun-planet mesh).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 
+from pipeline.cache.folder import Cache
 from pipeline.contact.distribution import LoadDistribution, load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.pair import GearPair
@@ -42,14 +43,13 @@ class PointResult:
     sweep : the dynamic mesh forces over the study's speed range
         (:class:`pipeline.dynamics.sweep.SweepResult`), or ``None``.
     speeds_rpm : shape (F,), driver speeds of the sweep points, rpm (or ``None``).
-    cache, cache_dir : FE cache of the root stress tables (as the run's).
+    cache : the cache of the root stress tables (as the run's).
     """
 
     run: Any
     sweep: Any = None
     speeds_rpm: np.ndarray | None = None
-    cache: bool = True
-    cache_dir: str | None = None
+    cache: Cache = field(default_factory=Cache)
 
     @property
     def main(self) -> Any:
@@ -82,8 +82,7 @@ class PointResult:
         from pipeline.contact.root_stress import analyse_root_stress
 
         return analyse_root_stress(self.contact, self.pair, self.operation,
-                                   self.run.gearbox.fe_source, cache=self.cache,
-                                   cache_dir=self.cache_dir)
+                                   self.run.gearbox.fe_source, cache=self.cache)
 
 
 @dataclass(frozen=True)

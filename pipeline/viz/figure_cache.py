@@ -3,7 +3,8 @@
 Drawing and rasterising a figure costs 0.2-1 s; a rerun of ``gearpipe run`` that
 changes only a dynamics option would spend most of its time redrawing the same
 stiffness, contact and load-map figures. :meth:`FigureCache.save` keys each PNG by
-the drawing function, the source of the module that defines it, and every argument
+the drawing function, the source of the module that defines it
+(:func:`pipeline.cache.entries.code_digest`, as every cache entry), and every argument
 it is drawn from (arrays by their bytes, dataclasses field by field), so a figure is
 redrawn exactly when its data or its drawing code changed. An argument the key
 cannot describe is an error rather than a silently stale figure. Each cached PNG carries
@@ -15,10 +16,7 @@ this name) is reported in one warning line and redrawn over.
 
 from __future__ import annotations
 
-import hashlib
-import inspect
 import struct
-import sys
 import warnings
 import zlib
 from collections.abc import Callable
@@ -27,18 +25,13 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from pipeline.fem.cache_dir import CacheWarning
+from pipeline.cache.entries import code_digest
+from pipeline.cache.folder import CacheWarning
 from pipeline.io import atomic_write, content_hash
 from pipeline.viz.saving import save
 
 if TYPE_CHECKING:
     from pipeline.viz.figure_queue import FigureQueue
-
-
-def _code_hash(func: Callable) -> str:
-    """Hash of the source file of the module defining ``func`` (its drawing code)."""
-    path = inspect.getsourcefile(sys.modules[func.__module__]) or ""
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
 
 
 @dataclass(frozen=True)
@@ -62,8 +55,8 @@ class FigureCache:
         """Write ``draw(*args, **kwargs)`` as PNG to ``path``, or copy it from the cache."""
         cached = None
         if self.folder is not None:
-            key = content_hash(draw.__module__, draw.__qualname__, _code_hash(draw), self.dpi,
-                            args, kwargs)
+            key = content_hash(draw.__module__, draw.__qualname__,
+                               code_digest((draw.__module__,)), self.dpi, args, kwargs)
             cached = Path(self.folder) / f"fig-{key}.png"
             if cached.is_file():
                 if _whole_png(cached) and stored_key(cached) == key:

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.cache.folder import Cache
 from pipeline.fem.flank import active_radii, flank_points
 from pipeline.fem.flank_grid import face_positions, flank_grid
 from pipeline.fem.influence import constrained_dofs, influence_matrix
@@ -41,7 +42,7 @@ def bench_2d(refinement: float = 2.0) -> dict:
     gear = GearSpec(teeth=50, module=3e-3, pressure_angle=math.radians(20), face_width=0.02,
                     bore_radius=0.021, material=STEEL)
     t0 = time.perf_counter()
-    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, 3, refinement), cache=False)
+    sec = sector_mesh_2d(gear, SectorSettings.for_gear(gear, 3, refinement), cache=Cache.off())
     t_mesh = time.perf_counter() - t0
     r = active_radii(gear, 40)
     pts = flank_points(gear, 3, np.repeat(np.arange(3), 40), np.tile(r, 3))

@@ -24,6 +24,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from pipeline.cache.folder import Cache
 from pipeline.contact import FE3DCompliance, FE3DSettings
 from pipeline.geometry import GearPair, GearSpec
 from pipeline.io import write_json
@@ -50,11 +51,11 @@ def bench_case(name: str, pair: GearPair, settings: FE3DSettings) -> dict:
     peak RSS (GiB)."""
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        cold = FE3DCompliance.build(pair, settings, cache_dir=tmp, show_progress=True)
+        cold = FE3DCompliance.build(pair, settings, cache=Cache(tmp), show_progress=True)
         t_cold = time.perf_counter() - t0
         rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
         t0 = time.perf_counter()
-        warm = FE3DCompliance.build(pair, settings, cache_dir=tmp)
+        warm = FE3DCompliance.build(pair, settings, cache=Cache(tmp))
         t_warm = time.perf_counter() - t0
     tables = {g: getattr(cold, f"{g}_table").info for g in ("pinion", "gear")}
     return {"case": name, "settings": settings, "cold_s": t_cold, "warm_s": t_warm,

@@ -46,6 +46,7 @@ UNIFORM_LEVELS = (0.5, 0.7, 1.0, 1.4, 2.0)
 def run_once(settings: dict, cache_dir: str | None) -> dict:
     """One FE-enriched mesh cycle in this process (called in a child process)."""
     t0 = time.perf_counter()
+    from pipeline.cache.folder import Cache
     from pipeline.config import load_gearbox
     from pipeline.contact import FE2DCompliance, FE2DSettings
     from pipeline.contact.analysis import analyse_contact
@@ -55,8 +56,8 @@ def run_once(settings: dict, cache_dir: str | None) -> dict:
     box = load_gearbox(CONFIG)
     fe = FE2DSettings(**settings)
     t2 = time.perf_counter()
-    src = FE2DCompliance.build(box.actual_pair, fe, cache=cache_dir is not None,
-                               cache_dir=cache_dir)
+    src = FE2DCompliance.build(box.actual_pair, fe,
+                               cache=Cache.off() if cache_dir is None else Cache(cache_dir))
     t3 = time.perf_counter()
     k = analyse_contact(src, box.operation, ContactOptions(positions=60)).mesh_stiffness
     t4 = time.perf_counter()

@@ -41,13 +41,14 @@ def _case(parent_pid: int, args: tuple[str, float, str, str], queue) -> None:
     die_with_parent(parent_pid)  # a killed benchmark leaves no FE case running
     teeth_model, h, coupling, solver = args
     os.environ.setdefault("OMP_NUM_THREADS", "2")
+    from pipeline.cache.folder import Cache
     from pipeline.config import load_gearbox
     from pipeline.fem.groove.study import analyse_groove
 
     spec = dataclasses.replace(load_gearbox(CONFIG).groove, mesh_size=h, teeth_model=teeth_model,
                                coupling=coupling)
     t0 = time.perf_counter()
-    a = analyse_groove(spec, use_cache=False, solver=solver)
+    a = analyse_groove(spec, cache=Cache.off(), solver=solver)
     wall = time.perf_counter() - t0
     r = a.result
     queue.put({

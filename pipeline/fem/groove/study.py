@@ -9,11 +9,10 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass
-from pathlib import Path
 
 import numpy as np
 
-from pipeline.fem.cache import cached_tet_mesh
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.groove.coupling import TwoNodeCoupling, couple_two_surfaces
 from pipeline.fem.groove.mesh import mesh_coaxial_body
 from pipeline.fem.groove.result import GrooveStiffness
@@ -21,6 +20,7 @@ from pipeline.fem.groove.size import estimated_size
 from pipeline.fem.groove.spec import GrooveSpec
 from pipeline.fem.groove.toothload import planet_mesh_loads
 from pipeline.fem.linear_static import ElasticModel, build_model
+from pipeline.fem.mesh_cache import cached_tet_mesh
 from pipeline.fem.size3d import check_size_3d
 from pipeline.fem.tetmesh import SkfemTetMesh, to_skfem
 from pipeline.progress import Steps
@@ -63,8 +63,7 @@ class GrooveAnalysis:
 
 
 def analyse_groove(
-    spec: GrooveSpec, cache_dir: str | Path | None = None, use_cache: bool = True,
-    solver: str = "auto", progress: bool = False,
+    spec: GrooveSpec, cache: Cache = DEFAULT_CACHE, solver: str = "auto", progress: bool = False,
 ) -> GrooveAnalysis:
     """Run the FE model of ``spec`` (see module doc). ``progress``: its phases (meshing,
     assembly, factorisation and solves) on stderr when one takes over a second
@@ -78,8 +77,7 @@ def analyse_groove(
     with steps.step("meshing the body (Gmsh)"):
         data, _, hit = cached_tet_mesh(
             "groove", {"body": asdict(body), "mesh": asdict(settings)},
-            lambda: mesh_coaxial_body(body, settings), cache_dir=cache_dir,
-            enabled=use_cache)
+            lambda: mesh_coaxial_body(body, settings), cache=cache)
         sk = to_skfem(data)
     t_mesh = time.perf_counter() - t_start
     with steps.step("assembling the stiffness (P2 tetrahedra)"):

@@ -1,6 +1,5 @@
-"""On-disk cache of generated meshes, FE tables and contact results: keyed by their inputs
-and by the code that produces them, each entry checked against its key and a SHA-256 of its
-contents when it is read.
+"""Cache entries: named arrays in ``.npz`` files, keyed by their inputs and by the code that
+produces them, each checked against its key and a SHA-256 of its contents when read.
 
 Key
 ---
@@ -10,8 +9,9 @@ the packages or modules its producer names (``code``, e.g. ``MESH_CODE`` for mes
 :func:`code_digest`). A changed input or a changed line of that code gives a new key, so a
 stale result is never read and no version number needs bumping by hand. Labels (a gear's
 or its material's ``name``, :func:`unlabelled`) change no number and stay out of inputs,
-so an identical pinion and gear share one entry. The folder is
-:func:`pipeline.fem.cache_dir.default_cache_dir` unless moved.
+so an identical pinion and gear share one entry. The folder is that of the
+:class:`~pipeline.cache.folder.Cache` passed in (:func:`~pipeline.cache.folder.default_cache_dir`
+unless moved).
 
 Entries
 -------
@@ -37,6 +37,7 @@ and blocked entries and folders, and a key that follows the producing code.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib.util
 import os
@@ -44,14 +45,12 @@ import warnings
 import zipfile
 from collections.abc import Callable, Mapping
 from dataclasses import asdict
-from functools import cache
 from pathlib import Path
 from typing import Any, TypeVar
 
 import numpy as np
 
-from pipeline.fem.cache_dir import CACHE_ENV, CacheWarning, default_cache_dir
-from pipeline.fem.gmsh_session import TetMeshData
+from pipeline.cache.folder import CACHE_ENV, DEFAULT_CACHE, Cache, CacheWarning
 from pipeline.io import atomic_write, content_hash
 
 T = TypeVar("T")
@@ -61,15 +60,11 @@ DIGEST = "__sha256__"
 KEY = "__key__"
 """Name of the array holding an entry's key (:func:`entry_key`)."""
 
-MESH_CODE = ("pipeline.geometry", "pipeline.fem")
-"""The code a mesh or an FE result of :mod:`pipeline.fem` depends on."""
-
-
 class CorruptEntry(ValueError):
     """A cache file that cannot be read back exactly (the message says why)."""
 
 
-@cache
+@functools.cache
 def code_digest(code: tuple[str, ...]) -> str:
     """SHA-256 (hex, 16 characters) of the source of the named packages or modules: each
     name, then every ``.py`` file's path within it and its bytes, in path order. Computed
@@ -145,21 +140,6 @@ def load_arrays(path: str | Path) -> dict[str, np.ndarray]:
     return arrays
 
 
-def tet_mesh_arrays(data: TetMeshData) -> dict[str, np.ndarray]:
-    """A mesh as named arrays (:func:`tet_mesh_from_arrays` reads them back)."""
-    arrays = {"points": data.points, "cells": data.cells}
-    arrays.update({f"surface:{k}": v for k, v in data.surfaces.items()})
-    arrays.update({f"volume:{k}": v for k, v in data.volumes.items()})
-    return arrays
-
-
-def tet_mesh_from_arrays(z: Mapping[str, np.ndarray]) -> TetMeshData:
-    """The mesh of :func:`tet_mesh_arrays`."""
-    surfaces = {k.split(":", 1)[1]: v for k, v in z.items() if k.startswith("surface:")}
-    volumes = {k.split(":", 1)[1]: v for k, v in z.items() if k.startswith("volume:")}
-    return TetMeshData(z["points"], z["cells"], surfaces, volumes)
-
-
 def same_arrays(arrays: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     """The identity conversion, for results that are named arrays already."""
     return dict(arrays)
@@ -168,7 +148,7 @@ def same_arrays(arrays: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
 def cached_file(
     kind: str, inputs: Mapping[str, Any], build: Callable[[], T],
     to_arrays: Callable[[T], Mapping[str, Any]], from_arrays: Callable[[dict], T], *,
-    code: tuple[str, ...], cache_dir: str | Path | None = None, enabled: bool = True,
+    code: tuple[str, ...], cache: Cache = DEFAULT_CACHE,
 ) -> tuple[T, Path | None, bool]:
     """Return the cached result for ``inputs`` and ``code`` or build, store and return it.
 
@@ -180,18 +160,18 @@ def cached_file(
     to_arrays, from_arrays : the result as named arrays and back; ``from_arrays`` raises
         (``KeyError``, ``ValueError``) on arrays it cannot use.
     code : the packages or modules whose source produces the result (part of the key).
-    cache_dir : folder of the cache (default :func:`default_cache_dir`).
-    enabled : False builds without reading or writing the cache.
+    cache : the cache to read and write (:class:`~pipeline.cache.folder.Cache`; disabled:
+        build without reading or writing).
 
     Returns
     -------
     (result, path of the cache file or None when nothing was stored, True if it was read
     from the cache)
     """
-    if not enabled:
+    if not cache.enabled:
         return build(), None, False
     key = entry_key(kind, inputs, code)
-    path = Path(cache_dir or default_cache_dir()) / f"{kind}-{key}.npz"
+    path = cache.root / f"{kind}-{key}.npz"
     if path.is_file():
         try:
             return from_arrays(_checked_arrays(path, key)), path, True
@@ -229,13 +209,3 @@ def _discard(path: Path, exc: BaseException) -> None:
         path.unlink()
     except OSError:
         pass  # a read-only folder keeps the file; the rebuilt result is still returned
-
-
-def cached_tet_mesh(
-    kind: str, inputs: Mapping[str, Any], build: Callable[[], TetMeshData],
-    cache_dir: str | Path | None = None, enabled: bool = True,
-) -> tuple[TetMeshData, Path | None, bool]:
-    """:func:`cached_file` for meshes (code :data:`MESH_CODE`): (mesh, cache path or None,
-    True if read from it)."""
-    return cached_file(kind, inputs, build, tet_mesh_arrays, tet_mesh_from_arrays,
-                       code=MESH_CODE, cache_dir=cache_dir, enabled=enabled)

@@ -1,4 +1,5 @@
-"""Where the on-disk cache lives, and whether it can be written.
+"""Where the on-disk cache lives, whether it can be written, and the one object that says
+which cache a computation uses (:class:`Cache`).
 
 One rule for every command (``--cache-dir DIR`` overrides it):
 
@@ -10,6 +11,10 @@ One rule for every command (``--cache-dir DIR`` overrides it):
 
 A folder that cannot be created or written is not an error: :func:`writable_cache_dir`
 warns once (:class:`CacheWarning`, one line) and the run continues without a cache.
+
+Every step that reads or writes the cache (meshes, FE tables, groove bodies, contact
+cycles, root-stress tables, figures) takes one :class:`Cache`: the folder, or off
+(``--no-cache``). The commands build it once (:meth:`Cache.for_command`).
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ import os
 import tempfile
 import warnings
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 CACHE_ENV = "GEARPIPE_CACHE_DIR"
@@ -76,3 +82,51 @@ def writable_cache_dir(cache_dir: str | os.PathLike | None = None) -> Path | Non
                       CacheWarning, stacklevel=2)
         return None
     return folder
+
+
+@dataclass(frozen=True)
+class Cache:
+    """The on-disk cache a computation reads and writes.
+
+    Attributes
+    ----------
+    folder : the cache folder, or None for :func:`default_cache_dir` (looked up when an
+        entry is read or written).
+    enabled : False neither reads nor writes any entry (``--no-cache``).
+    """
+
+    folder: Path | None = None
+    enabled: bool = True
+
+    def __post_init__(self) -> None:
+        if self.folder is not None:
+            object.__setattr__(self, "folder", Path(self.folder))
+
+    @classmethod
+    def off(cls) -> Cache:
+        """No cache: every result is built, nothing is read or written."""
+        return cls(enabled=False)
+
+    @classmethod
+    def for_command(cls, folder: str | os.PathLike | None, disabled: bool = False) -> Cache:
+        """The cache of a command: off when ``disabled`` (``--no-cache``) or when the folder
+        (``folder``, else :func:`default_cache_dir`) cannot be written (one
+        :class:`CacheWarning`), else that folder."""
+        if disabled:
+            return cls.off()
+        writable = writable_cache_dir(folder)
+        return cls.off() if writable is None else cls(writable)
+
+    @property
+    def root(self) -> Path:
+        """The cache folder (:func:`default_cache_dir` when none was given)."""
+        return self.folder if self.folder is not None else default_cache_dir()
+
+    def subfolder(self, name: str) -> Path | None:
+        """``root / name`` (e.g. ``figures``), or None when the cache is off."""
+        return self.root / name if self.enabled else None
+
+
+DEFAULT_CACHE = Cache()
+"""The default folder (:func:`default_cache_dir`), on: the default of every ``cache``
+argument."""
