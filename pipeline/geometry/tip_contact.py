@@ -1,0 +1,215 @@
+"""Contact beyond the path of contact: a tooth's tip corner against its mate's flank.
+
+Inside the path of contact ``[s_start, s_end]`` both flanks are involutes touching on the
+transverse line of action. Outside it one of them has ended: past ``s_end`` the pinion's
+flank stops at its tip circle, before ``s_start`` the gear's does. The tooth pair can
+still touch there, at the *tip corner* of the tooth whose flank has ended, against the
+mate's flank a little off the line of action. This module gives the rigid geometry of
+that contact in the transverse plane, exactly, for external and internal (ring) pairs.
+
+Frame. ``T1`` (the pinion's base tangent point) at the origin, the line of action along
+``+x``, the pinion centre ``O1 = (0, -r_b1)``; the gear's base tangent point ``T2 =
+(+-T1T2, 0)`` with its centre at ``(T1T2, +r_b2)`` (external) or ``(-T1T2, -r_b2)``
+(ring, same side as the pinion). Tooth pair ``k`` is described by the roll coordinate
+``s`` at which its two (extended) involutes cross the line of action; the pinion pushes
+its flank towards ``+x``.
+
+Involute families. The involutes of one base circle with one orientation, turned about
+its centre, are parallel curves: two of them are ``r_b dphi`` apart along their common
+normals, which are the tangents to the base circle. So every point ``W`` lies on exactly
+one involute of a family, identified by where that involute crosses the line of action
+(:func:`crossing`), and the normal distance from ``W`` to the flank that crosses at
+``s`` is the difference of the two crossings. The rigid gap of a tip corner to the mate's
+flank is thus closed form: pinion corner against the gear flank ``s - x_2(C)``, gear
+corner against the pinion flank ``x_1(D) - s`` (positive: apart).
+
+Rigid approach. Turning the pinion so that its flank advances by ``delta`` along the line
+of action (the transmission error coordinate) moves every point of every pinion involute
+by ``delta`` along its normal, so the gap of a gear corner against a pinion flank closes
+by ``delta``. A pinion corner moves on its tip circle instead, and its gap to the gear
+flank closes by ``a delta`` with ``a = h_1 / r_b1``, ``h_1`` the distance from ``O1`` to
+the contact normal (the gear's base tangent through the corner), ``a < 1`` off the line
+of action. With the gear turning and the pinion held the roles swap (``a = h_2 / r_b2``
+for a gear corner). ``a`` is also the ratio of the torque the contact force exerts on the
+turning gear to the torque a force on the line of action would: the same factor enters
+the approach and the equilibrium (virtual work).
+
+Lengths in m, angles in rad. The tip corner is the end of the involute on the tip circle
+(an unrounded, unchamfered tip).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pipeline.geometry.pair import GearPair
+
+
+@dataclass(frozen=True)
+class BaseCircle:
+    """A base circle and the orientation of its flanks in the frame of the module docstring.
+
+    Attributes
+    ----------
+    centre : (x, y) of the centre, m.
+    radius : base radius r_b, m.
+    tangent_x : x of its tangent point on the line of action, m.
+    below : True when the centre lies below the line of action (pinion, ring): its
+        involute of crossing ``x`` has roll length ``x - tangent_x`` at the line;
+        False (external gear): roll length ``tangent_x - x``.
+    """
+
+    centre: tuple[float, float]
+    radius: float
+    tangent_x: float
+    below: bool
+
+
+def base_circles(pair: GearPair) -> tuple[BaseCircle, BaseCircle]:
+    """The pinion's and the gear's base circles in the module's frame."""
+    g, rb1, rb2 = pair.t1t2, pair.pinion.base_radius, pair.gear.base_radius
+    pinion = BaseCircle((0.0, -rb1), rb1, 0.0, True)
+    if pair.gear.internal:
+        return pinion, BaseCircle((-g, -rb2), rb2, -g, True)
+    return pinion, BaseCircle((g, rb2), rb2, g, False)
+
+
+def _point(base: BaseCircle, phi: np.ndarray, roll: np.ndarray) -> np.ndarray:
+    """Points (2, n) at roll length ``roll`` along the base tangent at angle ``phi``
+    (``phi = 0``: the tangent point on the line of action)."""
+    cx, cy = base.centre
+    rb = base.radius
+    if base.below:
+        return np.array([cx + rb * np.sin(phi) + roll * np.cos(phi),
+                         cy + rb * np.cos(phi) - roll * np.sin(phi)])
+    return np.array([cx + rb * np.sin(phi) - roll * np.cos(phi),
+                     cy - rb * np.cos(phi) - roll * np.sin(phi)])
+
+
+def _normal(base: BaseCircle, phi: np.ndarray) -> np.ndarray:
+    """Unit normals (2, n) of the involutes at base-tangent angle ``phi``: the direction of
+    growing roll length (``+x`` on the line of action for a circle below it)."""
+    if base.below:
+        return np.array([np.cos(phi), -np.sin(phi)])
+    return np.array([-np.cos(phi), -np.sin(phi)])
+
+
+def _tangent_angle(base: BaseCircle, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(phi, roll length) of the base tangent through the points ``w`` (2, n) that touches
+    the base circle on the side of the line of action's tangent point."""
+    dx, dy = w[0] - base.centre[0], w[1] - base.centre[1]
+    rb = base.radius
+    roll = np.sqrt(np.maximum(dx * dx + dy * dy - rb * rb, 0.0))
+    if base.below:  # w - O is (roll, rb) turned clockwise by phi
+        phi = np.arctan2(rb, roll) - np.arctan2(dy, dx)
+    else:  # w - O is (-roll, -rb) turned anticlockwise by phi
+        phi = np.arctan2(dy, dx) - np.arctan2(-rb, -roll)
+    return (phi + math.pi) % (2.0 * math.pi) - math.pi, roll
+
+
+def crossing(base: BaseCircle, w: ArrayLike) -> np.ndarray:
+    """x where the involute of ``base`` through each point of ``w`` (2, n), m, crosses the
+    line of action (module docstring: the involutes of one family are parallel, so the
+    normal distance between two of them is the difference of their crossings)."""
+    w = np.asarray(w, dtype=float).reshape(2, -1)
+    phi, roll = _tangent_angle(base, w)
+    phase = roll + base.radius * phi if base.below else roll - base.radius * phi
+    return base.tangent_x + phase if base.below else base.tangent_x - phase
+
+
+def _corner(base: BaseCircle, s: np.ndarray, tip_radius: float) -> np.ndarray:
+    """Tip corners (2, n): the end on the tip circle of the involute of ``base`` crossing
+    the line of action at ``s``."""
+    rb = base.radius
+    tip_roll = math.sqrt(tip_radius**2 - rb**2)
+    if base.below:  # roll = (s - tangent_x) - rb phi
+        phi = ((s - base.tangent_x) - tip_roll) / rb
+    else:  # roll = (tangent_x - s) + rb phi
+        phi = (tip_roll - (base.tangent_x - s)) / rb
+    return _point(base, phi, np.full_like(s, tip_roll))
+
+
+@dataclass(frozen=True)
+class TipContact:
+    """Rigid geometry of tip-corner contact of tooth pairs at roll coordinates ``s``
+    (shape (n,) each; module docstring).
+
+    Attributes
+    ----------
+    s : roll coordinates where the pairs' involutes cross the line of action, m.
+    corner : "pinion" (``s > s_end``: the pinion's tip), "gear" (``s < s_start``) or
+        "" (inside the path: an ordinary line-of-action contact).
+    gap : rigid gap between the corner and the mate's flank along the contact normal, m
+        (0 inside the path).
+    point : (2, n) contact point on the mate's flank, m (on the line of action inside).
+    normal : (2, n) unit contact normal, pointing from the pinion towards the gear.
+    radius_pinion, radius_gear : radii of the contact point on each gear, m (the corner
+        is at its tip radius).
+    lever_pinion, lever_gear : ``h_i / r_bi``: distance from each centre to the contact
+        normal over its base radius (1 on the line of action).
+    """
+
+    s: np.ndarray
+    corner: np.ndarray
+    gap: np.ndarray
+    point: np.ndarray
+    normal: np.ndarray
+    radius_pinion: np.ndarray
+    radius_gear: np.ndarray
+    lever_pinion: np.ndarray
+    lever_gear: np.ndarray
+
+    def lever(self, driver: str) -> np.ndarray:
+        """``lever_pinion`` when the pinion turns (drives), else ``lever_gear``: the factor
+        ``a`` of the module docstring."""
+        return self.lever_pinion if driver == "pinion" else self.lever_gear
+
+
+def _lever(centre: tuple[float, float], rb: float, point: np.ndarray,
+           normal: np.ndarray) -> np.ndarray:
+    """Distance from ``centre`` to the lines through ``point`` along ``normal``, over ``rb``."""
+    dx, dy = point[0] - centre[0], point[1] - centre[1]
+    return np.abs(dx * normal[1] - dy * normal[0]) / rb
+
+
+def tip_contact(pair: GearPair, s: ArrayLike) -> TipContact:
+    """Tip-corner contact geometry of tooth pairs crossing the line of action at ``s`` (m,
+    any shape, flattened): the rigid gap, the contact point and normal, the radii on both
+    gears and the lever factors (module docstring). Inside the path the contact is the
+    ordinary one on the line of action (gap 0, levers 1)."""
+    s = np.asarray(s, dtype=float).reshape(-1)
+    b1, b2 = base_circles(pair)
+    ra1, ra2 = pair.pinion.tip_radius_, pair.gear.tip_radius_
+    after, before = s > pair.s_end, s < pair.s_start
+    corner = np.where(after, "pinion", np.where(before, "gear", ""))
+    point = np.array([s, np.zeros_like(s)])
+    normal = np.array([np.ones_like(s), np.zeros_like(s)])
+    gap = np.zeros_like(s)
+    if after.any():  # the pinion's corner against the gear's flank
+        c = _corner(b1, s[after], ra1)
+        gap[after] = s[after] - crossing(b2, c)
+        phi, _ = _tangent_angle(b2, c)
+        n2 = _normal(b2, phi)  # growing roll of the gear family
+        # from the pinion towards the gear: along -x for the external gear's family
+        # (its roll grows towards T1), +x for the ring's
+        n = n2 if b2.below else -n2
+        point[:, after] = c + gap[after] * n
+        normal[:, after] = n
+    if before.any():  # the gear's corner against the pinion's flank
+        d = _corner(b2, s[before], ra2)
+        gap[before] = crossing(b1, d) - s[before]
+        phi, _ = _tangent_angle(b1, d)
+        n = _normal(b1, phi)  # the pinion family's normal, +x on the line
+        point[:, before] = d - gap[before] * n
+        normal[:, before] = n
+    r1 = np.hypot(point[0] - b1.centre[0], point[1] - b1.centre[1])
+    r2 = np.hypot(point[0] - b2.centre[0], point[1] - b2.centre[1])
+    r1 = np.where(after, ra1, r1)
+    r2 = np.where(before, ra2, r2)
+    return TipContact(s, corner, gap, point, normal, r1, r2,
+                      _lever(b1.centre, b1.radius, point, normal),
+                      _lever(b2.centre, b2.radius, point, normal))
