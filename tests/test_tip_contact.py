@@ -146,3 +146,29 @@ def test_lever_is_the_rate_at_which_a_rigid_turn_closes_the_gap(pair):
     assert far.lever_gear[1] < 1.0 and far.lever_gear[0] == pytest.approx(1.0, abs=1e-12)
     assert far.lever("pinion")[0] == far.lever_pinion[0]
     assert far.lever("gear")[1] == far.lever_gear[1]
+
+
+def test_tip_zone_ends_where_the_gap_reaches_the_limit():
+    """The widened path ends where the corner gap equals the limit (to 1e-9 m of roll),
+    or where the contact point would leave the mate's involute: the ring pair's path
+    already starts below the planet's form circle (22.605 < 22.676 mm), so no ring corner
+    can touch the planet's involute before it."""
+    from pipeline.geometry.profile import tooth_profile
+    from pipeline.geometry.tip_contact import contact_radii_at, tip_zone
+
+    p = EXTERNAL
+    lo, hi = tip_zone(p, 50e-6)
+    assert lo < p.s_start and hi > p.s_end
+    assert tip_contact(p, [lo, hi]).gap == pytest.approx([50e-6, 50e-6], rel=1e-6)
+    assert hi - p.s_end == pytest.approx(p.s_start - lo, rel=1e-9)  # a symmetric pair
+    r = RING
+    lo, hi = tip_zone(r, 50e-6)
+    assert lo == r.s_start
+    assert r.contact_radii(r.s_start)[0] < tooth_profile(r.pinion).form_radius
+    assert tip_contact(r, [hi]).gap[0] == pytest.approx(50e-6, rel=1e-6)
+    # radii: the line of action's inside the path, the corner's and the flank's beyond
+    s = np.array([[p.s_start, p.s_pitch], [p.s_end + 1e-3, p.s_start - 1e-3]])
+    r1, r2 = contact_radii_at(p, s)
+    assert r1.shape == s.shape == r2.shape
+    np.testing.assert_allclose(np.array(p.contact_radii(s[0])), [r1[0], r2[0]], rtol=1e-15)
+    assert r1[1, 0] == p.pinion.tip_radius_ and r2[1, 1] == p.gear.tip_radius_

@@ -213,3 +213,54 @@ def tip_contact(pair: GearPair, s: ArrayLike) -> TipContact:
     return TipContact(s, corner, gap, point, normal, r1, r2,
                       _lever(b1.centre, b1.radius, point, normal),
                       _lever(b2.centre, b2.radius, point, normal))
+
+
+def contact_radii_at(pair: GearPair, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Radii (R1, R2) of the contact point on each gear for tooth pairs crossing the line of
+    action at ``s`` (m, any shape; the result has its shape): on the line of action inside
+    the path (:meth:`GearPair.contact_radii`), at the tip corner and on the mate's flank
+    beyond it (:func:`tip_contact`)."""
+    s = np.asarray(s, dtype=float)
+    tc = tip_contact(pair, s)
+    return tc.radius_pinion.reshape(s.shape), tc.radius_gear.reshape(s.shape)
+
+
+def tip_zone(pair: GearPair, max_gap: float) -> tuple[float, float]:
+    """Roll coordinates ``(s_lo, s_hi)``, m, between which a tooth pair's rigid tip-corner
+    gap is at most ``max_gap`` (m): the path of contact widened at each end as far as a
+    corner can still be reached under load. The gap grows monotonically (about with the
+    square of the roll past the path), so each end is found by bisection to 1e-9 m; it is
+    capped where the contact point leaves the mate's involute (its form circle, where the
+    fillet begins)."""
+    def reach(sign: int, start: float) -> float:
+        step = 1e-4 * pair.base_pitch
+        lo, hi = 0.0, step
+        while hi < pair.base_pitch:
+            tc = tip_contact(pair, [start + sign * hi])
+            if not np.isfinite(tc.gap[0]) or tc.gap[0] > max_gap or not _on_flank(pair, tc):
+                break
+            lo, hi = hi, 2.0 * hi
+        else:
+            return pair.base_pitch
+        while hi - lo > 1e-9:
+            mid = 0.5 * (lo + hi)
+            tc = tip_contact(pair, [start + sign * mid])
+            if tc.gap[0] <= max_gap and _on_flank(pair, tc):
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+    return pair.s_start - reach(-1, pair.s_start), pair.s_end + reach(1, pair.s_end)
+
+
+def _on_flank(pair: GearPair, tc: TipContact) -> bool:
+    """The contact point of a one-point :class:`TipContact` lies on the mate's involute:
+    outside an external mate's form circle, inside a ring's."""
+    from pipeline.geometry.profile import tooth_profile
+
+    if tc.corner[0] == "pinion":
+        form = tooth_profile(pair.gear).form_radius
+        r = tc.radius_gear[0]
+        return bool(r <= form if pair.gear.internal else r >= form)
+    return bool(tc.radius_pinion[0] >= tooth_profile(pair.pinion).form_radius)
