@@ -83,7 +83,8 @@ def analyse_contact(
     options = options or ContactOptions()
     load = line_of_action_load(source.pair, operation)
     cycle = loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
-                              options.positions, show_progress=show_progress)
+                              options.positions, driver=operation.driver,
+                              show_progress=show_progress)
     warn_physics(cycle)
     return cycle
 

@@ -91,6 +91,7 @@ from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.influence import InfluenceMatrix
 from pipeline.fem.settings import FE2DSettings
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.progress import progress
 from pipeline.validation import InputError
 
@@ -159,7 +160,7 @@ class FE2DCompliance:
     def matrix(self, position: float) -> np.ndarray:
         """``G`` (m/N), (n, n): pinion + gear structural compliance, same-section coupling."""
         pts = self.points(position)
-        r1, r2 = self.pair.contact_radii(pts.s)
+        r1, r2 = contact_radii_at(self.pair, pts.s)
         n_r = self.settings.points
         out = np.zeros((len(pts), len(pts)))
         same = np.isclose(pts.z[:, None], pts.z[None, :], rtol=0, atol=1e-12)

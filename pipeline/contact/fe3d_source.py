@@ -109,6 +109,7 @@ from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.loft3d import helix_sign
 from pipeline.fem.settings import FE3DSettings
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.validation import InputError
 
 
@@ -221,18 +222,17 @@ class FE3DCompliance:
         tb = math.tan(pair.pinion.base_helix_angle)
         u = (np.arange(samples) + 0.5) / samples - 0.5  # offsets, fractions of the width
         z = pts.z[:, None] + pts.width[:, None] * u[None, :]
-        s = np.clip(pts.s[:, None] + (z - pts.z[:, None]) * tb, pair.s_start, pair.s_end)
-        rho1, rho2 = pair.curvature_radii(s)
+        r1, r2 = contact_radii_at(pair, pts.s[:, None] + (z - pts.z[:, None]) * tb)
         mid1, mid2 = (n // 2 for n in self.model_teeth)
         b = pair.face_width
         out = []
         # z' = b - z for a right-hand pinion / left-hand gear (module docstring)
         flips = (helix_sign(pair.pinion) > 0, helix_sign(pair.gear) < 0)
-        for table, gear, rho, tooth, flip in (
-                (self.pinion_table, pair.pinion, rho1, mid1 - pts.pair, flips[0]),
-                (self.gear_table, pair.gear, rho2, mid2 + pts.pair, flips[1])):
+        for table, gear, r, tooth, flip in (
+                (self.pinion_table, pair.pinion, r1, mid1 - pts.pair, flips[0]),
+                (self.gear_table, pair.gear, r2, mid2 + pts.pair, flips[1])):
             zs = (b - z if flip else z) + 0.5 * (table.width - b)
-            arc = np.asarray(rho) ** 2 / (2 * gear.base_radius)
+            arc = (r**2 - gear.base_radius**2) / (2 * gear.base_radius)
             out.append((np.repeat(tooth[:, None], samples, axis=1), arc, zs))
         return out[0], out[1]
 

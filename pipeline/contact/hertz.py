@@ -280,3 +280,29 @@ class LinearLocalCompliance:
     def tangent(self, loads: np.ndarray) -> np.ndarray:
         """du_c/dF = c, m/N, broadcast to the shape of ``loads``."""
         return np.broadcast_to(self.compliance, np.shape(loads)).astype(float)
+
+
+@dataclass(frozen=True)
+class LeverScaled:
+    """A local contact model seen through lever factors ``a`` (shape (n,)): the approach
+    along the line of action of a point whose force ``F = Ft / a`` acts off it
+    (:mod:`pipeline.geometry.tip_contact`): ``ut(Ft) = u(Ft / a) / a``, tangent
+    ``u'(Ft / a) / a^2``; still the gradient of a convex potential, as the solve needs.
+
+    Attributes
+    ----------
+    model : the local model in the points' own normal directions.
+    lever : (n,) factors ``a`` in (0, 1], 1 on the line of action.
+    """
+
+    model: LocalCompliance
+    lever: np.ndarray
+
+    def approach(self, loads: np.ndarray) -> np.ndarray:
+        return self.model.approach(np.asarray(loads, dtype=float) / self.lever) / self.lever
+
+    def tangent(self, loads: np.ndarray) -> np.ndarray:
+        return self.model.tangent(np.asarray(loads, dtype=float) / self.lever) / self.lever**2
+
+    def max_valid_load(self) -> np.ndarray:
+        return np.asarray(self.model.max_valid_load()) * self.lever

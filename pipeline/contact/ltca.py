@@ -31,12 +31,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pipeline.contact.complementarity import solve_contact
-from pipeline.contact.hertz import HertzLineContact
+from pipeline.contact.hertz import HertzLineContact, LeverScaled
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.source import ComplianceSource, ContactPoints
+from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_zone
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import tip_contact
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance, load_geometry
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -66,6 +67,20 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
         radius_1 = radius_2 = 2.0 * rho1 * np.abs(rho2) / (np.abs(rho2) - rho1)
     return HertzLineContact(points.width, radius_1, radius_2, depths[0], depths[1],
                             pair.pinion.material, pair.gear.material)
+
+
+def _check_tip_zone(eps: np.ndarray, sol, label: str) -> None:
+    """Refuse a solution whose elastic approach (beyond the smallest separation ``eps`` of
+    a loaded point, m) would close a tip corner beyond the candidate zone
+    (:data:`~pipeline.contact.source.TIP_GAP`): its loads would be wrong."""
+    loaded = sol.loads > 0.0
+    if not loaded.any():
+        return
+    elastic = sol.approach - float(np.min(eps[loaded]))
+    if elastic >= TIP_GAP:
+        raise InputError(f"{label}: elastic approach {elastic * 1e6:.4g} um reaches the "
+                         f"{TIP_GAP * 1e6:.4g} um tip zone of the candidate points: the load "
+                         "is beyond what the loaded contact models")
 
 
 def _keys(points: ContactPoints) -> np.ndarray:
@@ -103,6 +118,7 @@ def loaded_mesh_cycle(
     local: str = "weber",
     positions: int | ArrayLike = 60,
     *,
+    driver: str = "pinion",
     tol: float = 1e-10,
     max_iter: int = 100,
     show_progress: bool = False,
@@ -118,6 +134,8 @@ def loaded_mesh_cycle(
     local : local contact model, one of "weber", "linear", "none" (module docstring).
     positions : number of equally spaced positions over one mesh cycle (>= 1), or the
         roll coordinates s0 (m) themselves.
+    driver : "pinion" or "gear", the gear that turns under ``load`` (sets the lever
+        factors of tip-corner contact, module docstring).
     tol, max_iter : passed to :func:`~pipeline.contact.complementarity.solve_contact`.
     show_progress : progress bar on stderr.
 
@@ -148,7 +166,7 @@ def loaded_mesh_cycle(
             raise InputError(f"{label}: tooth-pair indices {np.setdiff1d(pts.pair, k_all)} of "
                              f"the candidate points are not among pair.pair_indices() {k_all}")
         G = np.asarray(source.matrix(float(s0[i])), dtype=float)
-        eps = initial_separations(pair, pts, mods)
+        eps = initial_separations(pair, pts, mods, candidate_zone(pair))
         hertz = None
         c_lin = None
         if local == "weber":
@@ -156,9 +174,14 @@ def loaded_mesh_cycle(
         elif local == "linear":
             c_lin = c_hertz / pts.width
             G = G + np.diag(c_lin)
+        a = tip_contact(pair, pts.s).lever(driver)
+        if hertz is not None and np.any(a != 1.0):
+            hertz = LeverScaled(hertz, a)
         keys = _keys(pts)
-        sol = solve_contact(G, eps, load, hertz, tol=tol, max_iter=max_iter,
-                            start=_warm_start(prev_keys, prev_loads, keys), label=label)
+        sol = solve_contact(G / np.outer(a, a), eps / a, load, hertz, tol=tol,
+                            max_iter=max_iter, start=_warm_start(prev_keys, prev_loads, keys),
+                            label=label)
+        _check_tip_zone(eps / a, sol, label)
         prev_keys, prev_loads = keys, sol.loads
         u = sol.contact_deformation if c_lin is None else c_lin * sol.loads
         record.add(i, pts, sol.loads, eps, u, sol.approach,

@@ -23,6 +23,13 @@ Contributions add up:
   flank lies behind its nominal position. Only the first :func:`meshing_pairs` entries
   can act: the later pairs never reach the path of contact during the analysed cycle.
 
+Beyond the path of contact (the tip zones of
+:func:`pipeline.contact.source.candidate_zone`) a pair touches at a tip corner: its gap
+is the rigid gap of the corner to the mate's flank
+(:func:`pipeline.geometry.tip_contact.tip_contact`, along the contact normal) plus the
+corner gear's tip relief at its tip (the full amount ``C_a``) and the lead and pitch terms
+above; the mate's flank point there lies near its root, where no tip relief acts.
+
 Centre-distance assembly errors do not appear here: an involute pair stays
 conjugate when its centres move in the plane, so they change the path of contact
 (use the actual pair of :class:`pipeline.geometry.assembly_errors.AssembledPair`
@@ -39,6 +46,7 @@ import numpy as np
 
 from pipeline.contact.source import ContactPoints
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import tip_contact
 from pipeline.validation import InputError, check_choice, check_range
 
 _MAX_MOD = 1e-3  # m: modifications above 1 mm are input mistakes (units), not designs
@@ -147,19 +155,22 @@ def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarr
     return amount * np.clip(x / length, 0.0, None) ** power
 
 
-def initial_separations(pair: GearPair, points: ContactPoints,
-                        mods: FlankModifications) -> np.ndarray:
+def initial_separations(pair: GearPair, points: ContactPoints, mods: FlankModifications,
+                        zone: tuple[float, float] | None = None) -> np.ndarray:
     """Initial gaps ``eps`` (m, shape (n,)) of the candidate points (module docstring).
 
-    Points outside the path of contact ``[s_start, s_end]`` get ``+inf`` (out of mesh).
+    Points beyond the path of contact are tip corners (module docstring): their rigid
+    corner gap is added; points outside ``[s_lo, s_hi]`` (``zone``, the path itself when
+    None) get ``+inf`` (out of mesh).
     """
     mods.check_fits(pair)
     s, z = points.s, points.z
     power = 1 if mods.relief_shape == "linear" else 2
-    eps = _relief(s - (pair.s_end - mods.relief_length_pinion), mods.tip_relief_pinion,
+    on_path = np.clip(s, pair.s_start, pair.s_end)  # a corner has its tip's relief
+    eps = _relief(on_path - (pair.s_end - mods.relief_length_pinion), mods.tip_relief_pinion,
                   mods.relief_length_pinion, power)
-    eps = eps + _relief((pair.s_start + mods.relief_length_gear) - s, mods.tip_relief_gear,
-                        mods.relief_length_gear, power)
+    eps = eps + _relief((pair.s_start + mods.relief_length_gear) - on_path,
+                        mods.tip_relief_gear, mods.relief_length_gear, power)
     b = pair.face_width
     eps = eps + mods.crowning * (2.0 * z / b - 1.0) ** 2 + mods.slope_deviation * (z / b - 0.5)
     if mods.pitch_errors:
@@ -168,5 +179,9 @@ def initial_separations(pair: GearPair, points: ContactPoints,
         ok = (k >= 0) & (k < table.size)
         eps = eps + np.where(ok, table[np.clip(k, 0, table.size - 1)], 0.0)
     tol = 1e-12 * max(abs(pair.s_end), 1.0)
-    inside = (s >= pair.s_start - tol) & (s <= pair.s_end + tol)
+    lo, hi = (pair.s_start, pair.s_end) if zone is None else zone
+    beyond = (s < pair.s_start - tol) | (s > pair.s_end + tol)
+    if beyond.any():
+        eps = eps + np.where(beyond, tip_contact(pair, s).gap, 0.0)
+    inside = (s >= lo - tol) & (s <= hi + tol)
     return np.where(inside, eps, np.inf)

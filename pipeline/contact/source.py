@@ -46,11 +46,13 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Protocol, runtime_checkable
 
 import numpy as np
 
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at, tip_zone
 from pipeline.stiffness.friction import friction_direction
 from pipeline.stiffness.mesh import (
     FrictionModel,
@@ -68,8 +70,11 @@ class ContactPoints:
 
     Attributes
     ----------
-    s : (n,) roll coordinate on the transverse line of action, m (inside
-        ``[s_start, s_end]``; points outside are out of mesh and never loaded).
+    s : (n,) roll coordinate on the transverse line of action where the tooth pair's
+        (extended) involutes cross it, m: inside ``[s_start, s_end]`` the contact is on
+        the line of action; in the tip zone beyond either end
+        (:func:`candidate_zone`) it is a tip corner against the mate's flank
+        (:mod:`pipeline.geometry.tip_contact`).
     z : (n,) face position from the pinion's reference face, m, in ``[0, b]``.
     pair : (n,) int, tooth-pair index ``k`` (see :meth:`GearPair.pair_indices`).
     width : (n,) face width each point stands for (slice width), m, > 0.
@@ -154,10 +159,26 @@ def slice_grid(pair: GearPair, slices: int | None, position: float
     return s, z, k, dz
 
 
+TIP_GAP = 200e-6
+"""Largest rigid tip-corner gap of a candidate point beyond the path of contact, m: far
+more than any elastic approach the contact solve accepts (it refuses an approach that
+would close it, :func:`pipeline.contact.ltca.loaded_mesh_cycle`)."""
+
+
+@lru_cache(maxsize=64)
+def candidate_zone(pair: GearPair) -> tuple[float, float]:
+    """Roll coordinates ``(s_lo, s_hi)``, m, of the candidate points: the path of contact
+    widened at each end to where a tip corner's rigid gap reaches :data:`TIP_GAP`
+    (:func:`pipeline.geometry.tip_contact.tip_zone`)."""
+    return tip_zone(pair, TIP_GAP)
+
+
 def slice_points(pair: GearPair, slices: int | None, position: float) -> ContactPoints:
-    """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
+    """Slice contact points of every tooth pair that can touch: on the path of contact and
+    in the tip zones beyond it (:func:`candidate_zone`), ordered by pair, then by z."""
     s, z, k, dz = slice_grid(pair, slices, position)
-    inside = (s >= pair.s_start) & (s <= pair.s_end)
+    lo, hi = candidate_zone(pair)
+    inside = (s >= lo) & (s <= hi)
     kk, jj = np.nonzero(inside)
     return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
 
@@ -219,16 +240,19 @@ class SliceCompliance:
         """
         pair = self.pair
         s, _, _, dz = self._grid(position)
+        lo, hi = candidate_zone(pair)
+        cand = (s >= lo) & (s <= hi)
         inside = (s >= pair.s_start) & (s <= pair.s_end)
-        sc = np.where(inside, s, pair.s_pitch)[None]  # (1, K, N)
+        sc = np.where(cand, s, pair.s_pitch)[None]  # (1, K, N)
         lam = friction_direction(sc, pair.s_pitch, self.operating.driver)
+        # friction acts on the line of action only (a tip corner: none)
         mu = friction_coefficients(pair, sc, inside[None], self.friction, self.operating, dz)
-        r1, r2 = pair.contact_radii(sc)
+        r1, r2 = contact_radii_at(pair, sc)
         c1 = tooth_compliance(self.model.pinion, r1, mu, lam)
         c2 = tooth_compliance(self.model.gear, r2, mu, lam)
         corr = self.foundation_correction if np.any(inside, axis=1).sum() > 1 else 1.0
         per_width = c1.tooth + c2.tooth + (c1.foundation + c2.foundation) / corr
-        return per_width[0][inside] / dz
+        return per_width[0][cand] / dz
 
     def matrix(self, position: float) -> np.ndarray:
         """``G`` (m/N), (n, n): diagonal slice compliance, optionally slice-coupled."""
