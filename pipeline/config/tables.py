@@ -147,6 +147,7 @@ CONTACT = (
     Key("slice_coupling", N),
     Key("load_map_profile_points", I),
     Key("render", B),
+    Key("tip_contact", B, help="teeth may touch beyond the path of contact at a tip corner"),
 )
 MODIFICATIONS = (
     Key("tip_relief_pinion_um", N),

@@ -84,6 +84,7 @@ def analyse_contact(
     load = line_of_action_load(source.pair, operation)
     cycle = loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
                               options.positions, driver=operation.driver,
+                              tip_contact=options.tip_contact,
                               show_progress=show_progress)
     warn_physics(cycle)
     return cycle

@@ -37,7 +37,6 @@ from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_zone
 from pipeline.geometry.pair import GearPair
-from pipeline.geometry.tip_contact import tip_contact
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance, load_geometry
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -119,6 +118,7 @@ def loaded_mesh_cycle(
     positions: int | ArrayLike = 60,
     *,
     driver: str = "pinion",
+    tip_contact: bool = True,
     tol: float = 1e-10,
     max_iter: int = 100,
     show_progress: bool = False,
@@ -136,6 +136,8 @@ def loaded_mesh_cycle(
         roll coordinates s0 (m) themselves.
     driver : "pinion" or "gear", the gear that turns under ``load`` (sets the lever
         factors of tip-corner contact, module docstring).
+    tip_contact : let tooth pairs touch at a tip corner beyond the path of contact; False
+        keeps every point off the path out of mesh.
     tol, max_iter : passed to :func:`~pipeline.contact.complementarity.solve_contact`.
     show_progress : progress bar on stderr.
 
@@ -166,7 +168,8 @@ def loaded_mesh_cycle(
             raise InputError(f"{label}: tooth-pair indices {np.setdiff1d(pts.pair, k_all)} of "
                              f"the candidate points are not among pair.pair_indices() {k_all}")
         G = np.asarray(source.matrix(float(s0[i])), dtype=float)
-        eps = initial_separations(pair, pts, mods, candidate_zone(pair))
+        eps = initial_separations(pair, pts, mods,
+                                  candidate_zone(pair) if tip_contact else None)
         hertz = None
         c_lin = None
         if local == "weber":

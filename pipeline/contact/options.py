@@ -54,6 +54,9 @@ class ContactOptions:
     modifications : flank modifications and errors (m).
     load_map_profile_points : grid points along the path for the load map, 2 .. 2000.
     render : write the pyvista PNG of the load map.
+    tip_contact : teeth may also touch beyond the path of contact, at a tip corner
+        (:mod:`pipeline.geometry.tip_contact`); False confines contact to the nominal
+        path (the slice method's assumption, and a control).
     """
 
     compliance: str = "analytical"
@@ -64,6 +67,7 @@ class ContactOptions:
     modifications: FlankModifications = field(default_factory=FlankModifications)
     load_map_profile_points: int = 80
     render: bool = True
+    tip_contact: bool = True
 
     def __post_init__(self) -> None:
         check_choice("contact.compliance", self.compliance, COMPLIANCES)
