@@ -71,11 +71,12 @@ from numpy.typing import ArrayLike
 from pipeline.contact.complementarity import mesh_stiffnesses, solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
-from pipeline.contact.hertz import HertzLineContact
+from pipeline.contact.hertz import HertzLineContact, LeverScaled
 from pipeline.contact.ltca import LOCAL_MODELS, mesh_positions, weber_model
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.source import ComplianceSource
+from pipeline.contact.source import ComplianceSource, candidate_zone
+from pipeline.geometry.tip_contact import tip_contact as tip_contact_geometry
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -123,8 +124,10 @@ class HerringboneOptions:
                              "held sun (sun_axial = \"held\"); a free sun has no axial support")
 
 
-def _stack_hertz(h: HertzLineContact) -> HertzLineContact:
+def _stack_hertz(h: HertzLineContact | LeverScaled) -> HertzLineContact | LeverScaled:
     """The same local contact model on the points of both halves (2n,)."""
+    if isinstance(h, LeverScaled):
+        return LeverScaled(_stack_hertz(h.model), np.concatenate([h.lever, h.lever]))
     return HertzLineContact(*(np.concatenate([a, a]) for a in (
         h.slice_width, h.radius_1, h.radius_2, h.depth_1, h.depth_2)),
         h.material_1, h.material_2)
@@ -140,6 +143,7 @@ def herringbone_mesh_cycle(
     modifications: FlankModifications | None = None,
     local: str = "weber",
     positions: int | ArrayLike = 60,
+    tip_contact: bool = True,
     tol: float = 1e-10,
     max_iter: int = 100,
     show_progress: bool = False,
@@ -156,9 +160,9 @@ def herringbone_mesh_cycle(
     groove : the sun halves' relative compliance (rigid, a torsion spring, or the FE).
     n_planets : N, planets loading the sun (1-64).
     options : torque entry and axial holding (default :class:`HerringboneOptions`).
-    modifications, local, positions, tol, max_iter, show_progress : as for
+    modifications, local, positions, tip_contact, tol, max_iter, show_progress : as for
         :func:`~pipeline.contact.loaded_mesh_cycle` (flank modifications apply to both
-        halves alike).
+        halves alike; the sun turns).
 
     Returns
     -------
@@ -192,10 +196,15 @@ def herringbone_mesh_cycle(
         if n == 0:
             raise InputError(f"{label}: the compliance source gives no candidate points")
         G = np.asarray(source.matrix(float(s0[i])), dtype=float)
-        eps = initial_separations(pair, pts, mods)
+        eps = initial_separations(pair, pts, mods, candidate_zone(pair) if tip_contact else None)
         hertz = weber_model(pair, pts) if local == "weber" else None
         if local == "linear":
             G = G + np.diag(c_hertz / pts.width)
+        # tip corners: loads and approaches along the line of action (ltca module docstring)
+        a = tip_contact_geometry(pair, pts.s).lever("pinion")
+        G, eps = G / np.outer(a, a), eps / a
+        if hertz is not None and np.any(a != 1.0):
+            hertz = LeverScaled(hertz, a)
         if opts.sun_axial == "free":
             sol = solve_contact(G, eps, 0.5 * load, hertz, tol=tol, max_iter=max_iter,
                                 label=label)

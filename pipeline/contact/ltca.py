@@ -37,6 +37,7 @@ from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_zone
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import tip_contact as tip_contact_geometry
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance, load_geometry
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -177,7 +178,7 @@ def loaded_mesh_cycle(
         elif local == "linear":
             c_lin = c_hertz / pts.width
             G = G + np.diag(c_lin)
-        a = tip_contact(pair, pts.s).lever(driver)
+        a = tip_contact_geometry(pair, pts.s).lever(driver)
         if hertz is not None and np.any(a != 1.0):
             hertz = LeverScaled(hertz, a)
         keys = _keys(pts)
