@@ -114,7 +114,7 @@ def run(full: bool = False, out: Path | None = None) -> dict:
             rows["friction [-]"].append(mu)
             rows["contact ratio [-]"].append(pair.transverse_contact_ratio)
             rows["dte peak-to-peak [m]"].append(r.peak_to_peak_dte()[0])
-            rows["dte mean [m]"].append(r.dte[0].mean())
+            rows["dte mean [m]"].append(r.dte[0, r.steady_slice()].mean())
             rows["rms mesh force [N]"].append(r.rms_mesh_force()[0])
             for o in (1, 2, 3):
                 rows[f"dte harmonic {o} [m]"].append(hr.dte_amplitude[0, o])
