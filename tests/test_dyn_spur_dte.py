@@ -26,8 +26,8 @@ balance with H = 25 harmonics: 23.832 um. The rungs below it:
   entry and exit of a tooth pair: 23.827 um at 360 positions, 23.883 um as the positions
   grow (the workflow's value is 0.23 % low on this account)
   (:func:`test_dte_converges_in_harmonics`, :func:`test_dte_converges_in_positions`).
-* published reference: none. The paper (seed 001) gives its DTE as figures described in
-  words only, with no value for any case. Its three statements about the DTE (at
+* published reference: none. The assembly-error paper describes its DTE figures in words
+  only, with no value for any case. Its three statements about the DTE (at
   condition 1, mu = 0.05 gives the smallest DTE; at mu = 0.05, condition 2 the largest and
   condition 3 a smaller one; at condition 3, friction lowers the DTE) are not reproduced
   by this model, whose DTE peak-to-peak rises with the friction and with the assembly
