@@ -30,7 +30,7 @@ them) lives in ``pipeline/cli/``; the stages do not import it. Shared by all:
 ``io`` (atomic files), ``output_folder`` (a result folder written as a unit),
 ``provenance`` (``run.json``), ``signals`` (periodic signals, Fourier series),
 ``operation`` (the operating point), ``validation`` (input checks), ``progress``,
-``child_processes``.
+``parallel`` (the process pool).
 
 Everything inside the package is in SI units (m, N, Pa, rad, s); conversion to mm, deg,
 N m and rpm happens only at the edges (``config``, reports, command output). Frozen
