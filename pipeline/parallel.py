@@ -38,9 +38,8 @@ ever. How it learns of the death:
 Either way the parent may have died between the fork and the call; the child checks its
 parent pid right after arming and ends at once if the parent is no longer the one given.
 
-Checked by ``tests/test_child_processes.py``: each parent killed with kill -9, its pool
-workers were gone in 0.004-0.02 s and a study's LocalCluster workers in 0.6-1.8 s
-(measured).
+Checked by ``tests/test_child_processes.py``: each parent killed with kill -9, its children
+were gone in 0.004-0.02 s and a study's LocalCluster workers in 0.6-1.8 s (measured).
 """
 
 from __future__ import annotations

@@ -97,13 +97,20 @@ def test_a_failing_figure_is_named_and_the_others_are_written(tmp_path):
     assert not list(tmp_path.glob(".*"))  # no temporary files left behind
 
 
+def _alive(process: psutil.Process) -> bool:
+    try:
+        return process.status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
 def _children() -> list[psutil.Process]:
     """The live child processes of this one (the drawer, or a pool's workers)."""
-    return [c for c in psutil.Process().children() if c.status() != psutil.STATUS_ZOMBIE]
+    return [c for c in psutil.Process().children() if _alive(c)]
 
 
 def _gone(processes: list[psutil.Process]) -> bool:
-    return not any(p.is_running() and p.status() != psutil.STATUS_ZOMBIE for p in processes)
+    return not any(_alive(p) for p in processes)
 
 
 @pytest.mark.parametrize("workers", [1, 2])
@@ -130,7 +137,10 @@ def test_the_drawer_or_its_pool_draws_them_not_this_process(tmp_path, workers):
         figures.save(tmp_path / "b.png", draw_and_note_pid, tmp_path / "b.txt", "b")
     for note in ("a.txt", "b.txt"):
         pid, parent = map(int, (tmp_path / note).read_text().split())
-        assert (pid, parent) == (drawer, os.getpid()) if workers == 1 else parent == drawer
+        if workers == 1:
+            assert (pid, parent) == (drawer, os.getpid())
+        else:
+            assert parent == drawer
 
 
 def test_drawings_that_do_not_pickle_are_drawn_here(tmp_path):

@@ -14,12 +14,13 @@ is a pool of one process that imports matplotlib (about 0.5 s) and warms its fon
 so a run whose figures are not all cached does not wait for that import.
 :meth:`~FigureQueue.draw_all` then submits all the drawings to it as one job, which
 forks the drawing pool from the warmed-up drawer (:func:`draw_jobs`): every drawing
-process starts with matplotlib and the drawing modules imported once. A pool forked from
-this process instead, warmed up job by job, imports them in each worker: measured on 2
-cores (warm ``gearpipe run`` of the demo with the damping ratio changed, six runs each,
-interleaved with the drawer): 2.44-2.68 s against 2.07-2.35 s, 0.37 s more CPU; warming
-up every worker at the start made the unchanged warm run 18 % slower (1.40-1.68 s
-against 1.20-1.47 s) and the changed one still 11 %.
+process starts with matplotlib and the drawing modules imported once. Why not one pool
+forked from this process at the start: each of its workers imports them itself.
+Measured on 2 cores (warm ``gearpipe run`` of the demo with the damping ratio changed,
+runs interleaved), with one worker warmed up: 13 % slower than the drawer, 0.37 s more
+CPU; with every worker warmed up: 11 % slower, and the unchanged warm run 18 % slower
+(two imports compete with the computing process). With the drawer forking the pool, the
+runs took as long as with the hand-written drawer it replaced (median ratios 0.93-1.05).
 
 The figures come out the same wherever they are drawn. A drawing that does not pickle
 (a local function) is drawn in the process that holds it; so are the drawings a broken
