@@ -101,12 +101,13 @@ class _Pool(ProcessPoolExecutor):
     ``/proc/self/status`` is cleared after it, while ``signal.getsignal`` still says
     ignored). When a worker dies, the executor closes its end of the work queue and
     flushes the work not yet taken into it: with the default action that write into a
-    pipe nobody reads ends this process (seen as exit status -13 of a run one of whose
-    figure workers was killed) instead of failing the pending work with
-    ``BrokenProcessPool``.
+    pipe nobody reads ends this process (exit status -13, ``tests/test_child_processes.py``)
+    instead of failing the pending work with ``BrokenProcessPool``.
     """
 
-    def submit(self, fn, /, *args, **kwargs):  # noqa: D102 - as ProcessPoolExecutor's
+    def submit(self, fn, /, *args, **kwargs):
+        """As :meth:`ProcessPoolExecutor.submit`, SIGPIPE ignored first (main thread only:
+        Python sets signal actions there)."""
         if threading.current_thread() is threading.main_thread() and hasattr(signal,
                                                                               "SIGPIPE"):
             signal.signal(signal.SIGPIPE, signal.SIG_IGN)
