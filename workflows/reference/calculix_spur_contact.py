@@ -1,0 +1,1039 @@
+"""Independent FE contact reference for a spur pair: CalculiX, plane strain, surface contact.
+
+A reference model that is *not* part of the product: it checks gearpipe's loaded tooth
+contact (``[contact] compliance = "fe2d"``) against a finite-element contact analysis that
+shares nothing with it but the tooth profile and the boundary conditions.
+
+Model
+-----
+* **Geometry.** Both whole gears in their transverse plane, outlines from the exact tooth
+  profile (:func:`pipeline.geometry.profile.tooth_profile`: involute, trochoidal fillet,
+  root and tip circles, a sharp tip corner), placed at the pair's operating centre distance
+  (zero backlash for the demo pair). Pinion centre at the origin, gear centre at
+  ``(0, a_w)`` (the frame of :class:`pipeline.geometry.TransverseLayout`).
+* **Mesh** (its own, through the project's Gmsh fence :func:`pipeline.fem.gmsh_session`):
+  6-node triangles, element size ``size_contact`` on the whole outline of the ``fine``
+  teeth of each gear (the five or six teeth that can touch at any position), ``size_tooth``
+  on the other teeth, growing by ``growth`` (m per m of distance) into the body up to
+  ``size_body``. Every tooth of both gears is in the model.
+* **Elements.** CalculiX CPE6 (plane strain, quadratic; expanded internally into one layer
+  of C3D15 wedges with the out-of-plane displacement tied), thickness = the face width b,
+  so reaction forces are those of the whole face width. Linear elastic, E and nu of the
+  gears' materials, small displacements (no NLGEOM: the rotations are ~3e-4 rad).
+* **Contact.** Surface-to-surface penalty contact, frictionless, linear pressure-overclosure
+  with slope ``penalty`` (Pa/m). Slave surface: the driven flank (root middle over fillet and
+  involute to the tip corner) and the tip land of every fine gear tooth; master: the same of
+  every fine pinion tooth. So every flank that can touch does, including each tip corner
+  against the mate's flank or fillet beyond the nominal path of contact. The control run
+  (``contact="nominal"``) keeps only the involute between the radii of the nominal path
+  (pinion: r(s_start) .. r_a1 less the tip corner; gear: r(s_end) .. r_a2 less the corner).
+* **Boundary conditions** (as the project's 2D FE source, ``pipeline.fem.sector2d``: the
+  bore circle clamped): the gear's bore nodes fixed; the pinion's bore nodes follow a rigid
+  rotation about the pinion centre, ``u = theta x (x, y)``, prescribed (displacement control:
+  the bore is a rigid hub whose rotation is the reference degree of freedom; the torque is
+  the moment of the bore reaction forces about the centre). Several static steps with
+  rotations bracketing each requested torque.
+* **Outputs per position.** The bore reactions give torque T(theta). Loaded transmission
+  error at torque T: ``TE = r_b1 theta(T)`` (m along the line of action; the unloaded
+  rotation is 0 because the gears are placed in rigid flank contact), from a quadratic
+  through the three steps nearest T. Mesh stiffness ``k = dP/dTE`` with ``P = T / r_b1``:
+  the derivative of that quadratic at T (the load levels are 5 % apart). Tooth pair loads:
+  the reaction (internal) forces of the gear's contact-surface nodes summed per gear tooth,
+  as their moment about the gear centre over r_b2 (an equivalent load along the line of
+  action: the pair loads sum to P). Where each pair touches: the load-weighted radius range
+  of its loaded nodes on both gears; a pair touching outside the nominal path (beyond
+  ``s_start`` or ``s_end``, at a tip corner) is flagged.
+
+Mesh positions are gearpipe's: the roll coordinate ``s0`` of the leading tooth pair
+(:meth:`pipeline.geometry.GearPair.mesh_cycle`), and tooth pair ``k`` is at ``s0 + k p_b``.
+
+Convergence and provenance: see ``workflows/reference/README.md`` and the provenance block
+of ``demo_pair_reference.json`` (mesh sizes, penalty, CalculiX version, wall time, the
+command that wrote it). Run ``python workflows/reference/calculix_spur_contact.py --help``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import time
+from dataclasses import asdict, dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.geometry import GearPair, GearSpec
+from pipeline.geometry.profile import tooth_profile
+
+HERE = Path(__file__).resolve().parent
+DATA = HERE / "demo_pair_reference.json"
+CONTACT_KINDS = ("full", "nominal")
+
+
+# ---------------------------------------------------------------------------------------
+# settings and meshes
+# ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ReferenceSettings:
+    """Mesh, contact and load-step settings of the reference model.
+
+    Attributes
+    ----------
+    size_contact : element size on the contact-side flank and tip land of the teeth that
+        can touch, m.
+    size_fine : element size on the rest of the outline of those teeth, m.
+    size_tooth : element size on the outline of the other teeth, m.
+    size_body : largest element size in the body, m.
+    growth : growth of the element size with the distance from the outline (m per m).
+    penalty : slope of the linear pressure-overclosure law, Pa/m.
+    profile_points : involute points of the tooth profile polyline (fillet gets as many).
+    step : half the relative spacing of the two load steps around each estimated rotation
+        (-); the stiffness is the secant between them.
+    """
+
+    size_contact: float = 0.1e-3
+    size_fine: float = 0.5e-3
+    size_tooth: float = 1.5e-3
+    size_body: float = 5.0e-3
+    growth: float = 0.6
+    penalty: float = 1.0e17
+    profile_points: int = 80
+    step: float = 0.02
+
+    def __post_init__(self) -> None:
+        for name in ("size_contact", "size_fine", "size_tooth", "size_body", "growth", "penalty",
+                     "step"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"reference.{name} = {getattr(self, name)!r} must be > 0")
+        if not (self.size_contact <= self.size_fine <= self.size_tooth <= self.size_body):
+            raise ValueError("reference sizes must satisfy size_contact <= size_fine <= "
+                             "size_tooth <= size_body (m)")
+
+
+@dataclass(frozen=True, eq=False)
+class GearMesh:
+    """A whole-gear 6-node triangle mesh in the gear's own frame (tooth 0 on +y).
+
+    Attributes
+    ----------
+    nodes : (n, 2) node coordinates, m.
+    tri : (m, 6) node indices (corner nodes, then mid-edge nodes of edges 1-2, 2-3, 3-1).
+    bore : (nb,) indices of the nodes on the bore circle.
+    faces : (k, 3) element index, CalculiX face number (1..3) and tooth index of the
+        outline edges of the fine teeth on the contact side (right flank and tip land).
+    face_radius : (k, 2) smallest and largest radius of each of those edges, m.
+    face_kind : (k,) 0 fillet / root, 1 involute, 2 tip land.
+    fine : tooth indices meshed at ``size_contact`` (tooth j centred at pi/2 + 2 pi j / z).
+    """
+
+    nodes: np.ndarray
+    tri: np.ndarray
+    bore: np.ndarray
+    faces: np.ndarray
+    face_radius: np.ndarray
+    face_kind: np.ndarray
+    fine: tuple[int, ...]
+
+
+def _rotate(xy: np.ndarray, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return xy @ np.array([[c, s], [-s, c]])
+
+
+def _tooth_pieces(gear: GearSpec, points: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Right flank (root middle -> tip corner), tip land (right -> left corner) and left flank
+    (tip corner -> root middle) of the tooth on +y, each (n, 2) in m, counter-clockwise."""
+    prof = tooth_profile(gear, points)
+    right = np.column_stack([prof.x, prof.y])
+    ra = float(np.hypot(*right[-1]))
+    half = math.atan2(right[-1, 0], right[-1, 1])
+    t = np.linspace(half, -half, 17)
+    tip = np.column_stack([ra * np.sin(t), ra * np.cos(t)])
+    left = right[::-1] * np.array([-1.0, 1.0])
+    return right, tip, left
+
+
+def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings) -> GearMesh:
+    """Mesh the whole gear (every tooth, bore circle) in Gmsh; module docstring, "Mesh"."""
+    from pipeline.fem.gmsh_session import gmsh_session, size_from_fields
+
+    z = gear.teeth
+    right, tip, left = _tooth_pieces(gear, settings.profile_points)
+    fine_set = {j % z for j in fine}
+    with gmsh_session() as gmsh:
+        geo = gmsh.model.geo
+        first = prev = None
+        loop, contact_curves, fine_curves, other_curves, side = [], [], [], [], {}
+        for j in range(z):
+            ang = 2.0 * math.pi * j / z
+            for name, piece in (("right", right), ("tip", tip), ("left", left)):
+                pts = _rotate(piece, ang)
+                if prev is None:
+                    first = prev = geo.addPoint(*pts[0], 0.0)
+                closing = j == z - 1 and name == "left"
+                tags = [prev] + [geo.addPoint(x, y, 0.0) for x, y in pts[1:-1]]
+                tags.append(first if closing else geo.addPoint(*pts[-1], 0.0))
+                c = geo.addSpline(tags)
+                prev = tags[-1]
+                loop.append(c)
+                side[c] = (j, name)
+                if j not in fine_set:
+                    other_curves.append(c)
+                elif name == "left":
+                    fine_curves.append(c)
+                else:
+                    contact_curves.append(c)
+        r_in = gear.bore_radius
+        centre = geo.addPoint(0.0, 0.0, 0.0)
+        circ = [geo.addPoint(r_in * math.cos(a), r_in * math.sin(a), 0.0)
+                for a in (0.0, 2 * math.pi / 3, 4 * math.pi / 3)]
+        arcs = [geo.addCircleArc(circ[i], centre, circ[(i + 1) % 3]) for i in range(3)]
+        geo.addPlaneSurface([geo.addCurveLoop(loop), geo.addCurveLoop(arcs)])
+        geo.synchronize()
+        fld = gmsh.model.mesh.field
+        fields = []
+        for curves, size, sampling in ((contact_curves, settings.size_contact, 1500),
+                                       (fine_curves, settings.size_fine, 300),
+                                       (other_curves, settings.size_tooth, 40)):
+            dist = fld.add("Distance")
+            fld.setNumbers(dist, "CurvesList", curves)
+            fld.setNumber(dist, "Sampling", sampling)
+            thr = fld.add("Threshold")
+            fld.setNumber(thr, "InField", dist)
+            fld.setNumber(thr, "SizeMin", size)
+            fld.setNumber(thr, "SizeMax", settings.size_body)
+            fld.setNumber(thr, "DistMin", 0.5 * size)
+            fld.setNumber(thr, "DistMax", 0.5 * size + (settings.size_body - size)
+                          / settings.growth)
+            fields.append(thr)
+        size_from_fields(gmsh, fields)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)
+        gmsh.option.setNumber("Mesh.LcIntegrationPrecision", 1e-5)
+        gmsh.model.mesh.generate(2)
+        gmsh.model.mesh.setOrder(2)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+        lookup[tags.astype(np.int64)] = np.arange(tags.size)
+        xy = coords.reshape(-1, 3)[:, :2]
+        _, conn = gmsh.model.mesh.getElementsByType(9)
+        tri = lookup[conn.astype(np.int64)].reshape(-1, 6)
+        edge_blocks = []
+        for c, (j, name) in side.items():
+            if j not in fine_set or name == "left":
+                continue
+            _, en = gmsh.model.mesh.getElementsByType(8, c)
+            e = lookup[en.astype(np.int64)].reshape(-1, 3)
+            edge_blocks.append((j, name, e))
+        bore_edges = []
+        for c in arcs:
+            _, en = gmsh.model.mesh.getElementsByType(8, c)
+            bore_edges.append(lookup[en.astype(np.int64)].reshape(-1, 3))
+    used = np.unique(tri)
+    renum = -np.ones(xy.shape[0], dtype=np.int64)
+    renum[used] = np.arange(used.size)
+    nodes = xy[used].copy()
+    tri = renum[tri]
+    bore = np.unique(renum[np.vstack(bore_edges)])
+    # orient every triangle counter-clockwise (CalculiX needs positive Jacobians)
+    p = nodes[tri[:, :3]]
+    area = ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+            - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
+    flip = area < 0
+    tri[flip] = tri[flip][:, [0, 2, 1, 5, 4, 3]]
+    faces, radius, kind = _outline_faces(gear, nodes, tri, edge_blocks, renum)
+    return GearMesh(nodes, tri, bore, faces, radius, kind, tuple(sorted(fine_set)))
+
+
+def _outline_faces(gear, nodes, tri, edge_blocks, renum):
+    """Element faces (element, CalculiX face number, tooth) of the contact-side outline."""
+    corner_key = {}
+    for e_idx, t in enumerate(tri):
+        for f, (a, b) in enumerate(((t[0], t[1]), (t[1], t[2]), (t[2], t[0])), start=1):
+            corner_key[(min(a, b), max(a, b))] = (e_idx, f)
+    prof = tooth_profile(gear, 60)
+    r_form = prof.form_radius
+    faces, radius, kind = [], [], []
+    for j, name, e in edge_blocks:
+        e = renum[e]
+        for a, b, _m in e:
+            e_idx, f = corner_key[(min(a, b), max(a, b))]
+            r = np.hypot(*nodes[[a, b]].T)
+            faces.append((e_idx, f, j))
+            radius.append((r.min(), r.max()))
+            kind.append(2 if name == "tip" else (1 if r.min() >= r_form * (1 - 1e-9) else 0))
+    return np.array(faces), np.array(radius), np.array(kind)
+
+
+# ---------------------------------------------------------------------------------------
+# placement of the pair at a mesh position
+# ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Placement:
+    """Rigid placement of both gears at one mesh position.
+
+    Attributes
+    ----------
+    s0 : roll coordinate of the leading tooth pair, m.
+    pinion_angle : counter-clockwise rotation of the pinion's own frame, rad.
+    gear_angle : counter-clockwise rotation of the gear's own frame (about its centre), rad.
+    pinion_tooth, gear_tooth : dicts tooth pair index k -> tooth index of each gear.
+    """
+
+    s0: float
+    pinion_angle: float
+    gear_angle: float
+    pinion_tooth: dict
+    gear_tooth: dict
+
+
+def _roll_of_pinion_tooth0(pair: GearPair) -> float:
+    """Roll coordinate (m) where tooth 0's right flank crosses the line of action, unrotated.
+
+    The right flank's involute leaves the base circle at the clockwise angle psi_b from +y
+    (half the tooth's angular thickness there) and unwinds clockwise; the line of action
+    touches the base circle at T1, at the counter-clockwise angle alpha_wt from +y, so the
+    flank meets it at ``s = r_b1 (psi_b + alpha_wt)``.
+    """
+    p = pair.pinion
+    return p.base_radius * (p.half_tooth_angle(p.base_radius) + pair.operating_pressure_angle)
+
+
+def placement(pair: GearPair, s0: float) -> Placement:
+    """Rotations that put tooth pair k at roll ``s0 + k p_b`` (pinion tooth 0 within half a
+    pitch of the centre line). The gear starts with a tooth space on -y (pinion tooth 0 in
+    it, flanks touching on both sides at zero backlash) and turns by the ratio."""
+    pb, rb1 = pair.base_pitch, pair.pinion.base_radius
+    s_ref = _roll_of_pinion_tooth0(pair)
+    k0 = round((s_ref - s0) / pb)
+    delta = (s0 + k0 * pb - s_ref) / rb1  # clockwise rotation of the pinion, rad
+    z1, z2 = pair.pinion.teeth, pair.gear.teeth
+    gear0 = -math.pi - math.pi / z2
+    # the gear tooth whose right flank meets pinion tooth 0's right flank
+    mate0 = _mate_of_tooth0(pair, gear0)
+    pinion_tooth = {k: k0 - k for k in range(k0 - 2, k0 + 3)}
+    gear_tooth = {k: mate0 - (k0 - k) for k in pinion_tooth}
+    return Placement(s0, -delta, gear0 + delta * z1 / z2, pinion_tooth, gear_tooth)
+
+
+def _mate_of_tooth0(pair: GearPair, gear0: float) -> int:
+    """Gear tooth index whose right-flank pitch point is nearest pinion tooth 0's."""
+    a = pair.operating_centre_distance
+    rp = tooth_profile(pair.pinion, 40)
+    rg = tooth_profile(pair.gear, 40)
+    p_mid = np.array([rp.x[-20], rp.y[-20]])
+    best, arg = math.inf, 0
+    for j in range(pair.gear.teeth):
+        q = _rotate(np.array([[rg.x[-20], rg.y[-20]]]), gear0 + 2 * math.pi * j / pair.gear.teeth)
+        d = float(np.hypot(*(q[0] + np.array([0.0, a]) - p_mid)))
+        if d < best:
+            best, arg = d, j
+    return arg
+
+
+def fine_teeth(pair: GearPair) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """Teeth of pinion and gear meshed fine: pairs k0-2 .. k0+2 of every placement."""
+    p0 = placement(pair, pair.s_start)
+    pin, gea = set(), set()
+    for s0 in np.linspace(pair.s_start, pair.s_start + pair.base_pitch, 9):
+        pl = placement(pair, float(s0))
+        pin |= set(pl.pinion_tooth.values())
+        gea |= set(pl.gear_tooth.values())
+    del p0
+    z1, z2 = pair.pinion.teeth, pair.gear.teeth
+    return tuple(sorted({j % z1 for j in pin})), tuple(sorted({j % z2 for j in gea}))
+
+
+# ---------------------------------------------------------------------------------------
+# CalculiX input deck
+# ---------------------------------------------------------------------------------------
+def _contact_faces(pair: GearPair, mesh: GearMesh, gear: GearSpec, contact: str,
+                   teeth: set[int]) -> np.ndarray:
+    """Rows of ``mesh.faces`` in the contact surface of ``gear`` (module docstring)."""
+    keep = np.isin(mesh.faces[:, 2], sorted(teeth))
+    if contact == "nominal":
+        # only the involute between the radii of the nominal path, tip corner excluded
+        r1, r2 = pair.contact_radii(np.array([pair.s_start, pair.s_end]))
+        r_lo = float(r1[0]) if gear is pair.pinion else float(r2[1])
+        r_hi = gear.tip_radius_ - 0.02 * gear.module
+        keep &= (mesh.face_kind == 1) & (mesh.face_radius[:, 0] >= r_lo * (1 - 1e-9)) & (
+            mesh.face_radius[:, 1] <= r_hi)
+    return np.flatnonzero(keep)
+
+
+def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], place: Placement,
+              rotations: np.ndarray, settings: ReferenceSettings, contact: str = "full"
+              ) -> dict:
+    """Write the CalculiX deck of one mesh position; returns the node-set bookkeeping.
+
+    ``rotations`` (n,) are the pinion rotations (rad, clockwise = driving) of the n static
+    steps, in increasing order.
+    """
+    if contact not in CONTACT_KINDS:
+        raise ValueError(f"contact = {contact!r} must be one of {CONTACT_KINDS}")
+    pm, gm = meshes
+    a = pair.operating_centre_distance
+    xy1 = _rotate(pm.nodes, place.pinion_angle)
+    xy2 = _rotate(gm.nodes, place.gear_angle) + np.array([0.0, a])
+    n1, e1 = len(xy1), len(pm.tri)
+    lines = ["** gearpipe reference: spur pair, plane strain, surface-to-surface contact",
+             "*NODE, NSET=NALL"]
+    xy = np.vstack([xy1, xy2])
+    lines += [f"{i + 1}, {x:.12e}, {y:.12e}" for i, (x, y) in enumerate(xy)]
+    for name, tri, off in (("EPINION", pm.tri, 0), ("EGEAR", gm.tri, n1)):
+        lines.append(f"*ELEMENT, TYPE=CPE6, ELSET={name}")
+        first = 1 if off == 0 else e1 + 1
+        lines += [f"{first + i}, " + ", ".join(str(v + 1 + off) for v in t)
+                  for i, t in enumerate(tri)]
+
+    def nset(name: str, ids: np.ndarray) -> None:
+        lines.append(f"*NSET, NSET={name}")
+        ids = np.asarray(ids) + 1
+        lines.extend(", ".join(str(v) for v in ids[i:i + 12]) for i in range(0, ids.size, 12))
+
+    nset("PBORE", pm.bore)
+    nset("GBORE", gm.bore + n1)
+    surf_nodes = {}
+    for label, mesh, gear, teeth, off, eoff in (
+            ("P", pm, pair.pinion, set(place.pinion_tooth.values()), 0, 0),
+            ("G", gm, pair.gear, set(place.gear_tooth.values()), n1, e1)):
+        teeth = {t % gear.teeth for t in teeth}
+        rows = _contact_faces(pair, mesh, gear, contact, teeth)
+        lines.append(f"*SURFACE, NAME=S{label}, TYPE=ELEMENT")
+        lines += [f"{mesh.faces[r, 0] + 1 + eoff}, S{mesh.faces[r, 1]}" for r in rows]
+        # nodes of the contact-side outline of every fine tooth, per tooth (loads, locations)
+        for j in sorted(teeth):
+            rows_j = np.flatnonzero(mesh.faces[:, 2] == j)
+            el = mesh.tri[mesh.faces[rows_j, 0]]
+            f = mesh.faces[rows_j, 1] - 1
+            loc = np.array([[0, 1, 3], [1, 2, 4], [2, 0, 5]])[f]
+            ids = np.unique(np.take_along_axis(el, loc, axis=1)) + off
+            surf_nodes[f"{label}{j}"] = ids
+            nset(f"N{label}{j}", ids)
+    for k, mat in (("PINION", pair.pinion.material), ("GEAR", pair.gear.material)):
+        lines += [f"*MATERIAL, NAME=M{k}", "*ELASTIC",
+                  f"{mat.youngs_modulus:.6e}, {mat.poisson_ratio:.6f}",
+                  f"*SOLID SECTION, ELSET=E{k}, MATERIAL=M{k}", f"{pair.face_width:.6e}"]
+    lines += ["*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+              f"{settings.penalty:.6e}",
+              "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE", "SG, SP",
+              "*BOUNDARY", "GBORE, 1, 2"]
+    bore_xy = xy1[pm.bore]
+    for theta in rotations:
+        # clockwise rigid rotation of the bore by theta (small): u = -theta (-y, x)
+        u = theta * np.column_stack([bore_xy[:, 1], -bore_xy[:, 0]])
+        lines += ["*STEP, INC=200", "*STATIC, DIRECT", "1., 1.", "*BOUNDARY"]
+        for node, (ux, uy) in zip(pm.bore + 1, u, strict=True):
+            lines += [f"{node}, 1, 1, {ux:.12e}", f"{node}, 2, 2, {uy:.12e}"]
+        lines += ["*NODE PRINT, NSET=PBORE, FREQUENCY=1000", "RF"]
+        lines += ["*NODE FILE, FREQUENCY=1000", "U",
+                  "*CONTACT FILE, FREQUENCY=1000", "CSTR", "*END STEP"]
+    path.write_text("\n".join(lines) + "\n")
+    gear_ids = np.unique(np.concatenate([v for k, v in surf_nodes.items() if k.startswith("G")]))
+    return {"pinion_nodes": n1, "surface_nodes": surf_nodes, "xy": xy,
+            "surface_nodes_gear": gear_ids - n1}
+
+
+def ccx_version(ccx: str = "ccx") -> str:
+    """``ccx -v`` text ("Version 2.20"), or raises FileNotFoundError without CalculiX."""
+    exe = shutil.which(ccx)
+    if exe is None:
+        raise FileNotFoundError(f"CalculiX executable {ccx!r} not found on PATH")
+    out = subprocess.run([exe, "-v"], capture_output=True, text=True, timeout=60).stdout
+    m = re.search(r"Version\s+([\w.]+)", out)
+    return m.group(1) if m else out.strip()
+
+
+def run_ccx(deck: Path, ccx: str = "ccx", threads: int = 1) -> float:
+    """Run CalculiX on ``deck`` (``job.inp`` -> ``job.dat``, ``job.frd``); wall time, s."""
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), CCX_NPROC_EQUATION_SOLVER=str(threads))
+    t0 = time.perf_counter()
+    proc = subprocess.run([ccx, "-i", deck.stem], cwd=deck.parent, capture_output=True,
+                          text=True, env=env)
+    wall = time.perf_counter() - t0
+    if proc.returncode != 0 or "*ERROR" in proc.stdout:
+        tail = "\n".join(proc.stdout.splitlines()[-25:])
+        raise RuntimeError(f"CalculiX failed on {deck} (exit {proc.returncode}):\n{tail}")
+    return wall
+
+
+def parse_dat(path: Path) -> list[dict[str, dict[int, np.ndarray]]]:
+    """Forces of every ``*NODE PRINT`` block in a CalculiX ``.dat`` file, per step end.
+
+    Returns one dict per output time: set name -> {node id: (fx, fy, fz)} in N.
+    """
+    out: list[dict[str, dict[int, np.ndarray]]] = []
+    current = None
+    block = None
+    header = re.compile(r"forces \(fx,fy,fz\) for set (\S+) and time\s+(\S+)")
+    for line in path.read_text().splitlines():
+        m = header.search(line)
+        if m:
+            t = float(m.group(2))
+            if current is None or current["__time"] != t or m.group(1) in current:
+                current = {"__time": t}
+                out.append(current)
+            block = current.setdefault(m.group(1), {})
+            continue
+        parts = line.split()
+        if block is not None and len(parts) == 4:
+            try:
+                block[int(parts[0])] = np.array([float(v) for v in parts[1:]])
+            except ValueError:
+                block = None
+        elif parts:
+            block = None
+    for d in out:
+        d.pop("__time")
+    return out
+
+
+def parse_frd_contact(path: Path) -> list[dict[int, tuple[float, float]]]:
+    """Contact output (``*CONTACT FILE`` CSTR) of a CalculiX ``.frd`` file, per output time.
+
+    Returns one dict per block: node id -> (COPEN in m, CPRESS in Pa) for the nodes with a
+    non-zero entry (slave nodes in contact).
+    """
+    out = []
+    lines = path.read_text().splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith(" -4  CONTACT"):
+            block = {}
+            i += 1
+            while not lines[i].startswith(" -3"):
+                ln = lines[i]
+                if ln.startswith(" -1"):
+                    vals = [float(ln[13 + 12 * k:25 + 12 * k]) for k in range(6)]
+                    if vals[3] != 0.0:
+                        block[int(ln[3:13])] = (vals[0], vals[3])
+                i += 1
+            out.append(block)
+        i += 1
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# one mesh position
+# ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class PositionResult:
+    """Reference results at one mesh position and its load steps.
+
+    Attributes
+    ----------
+    s0 : roll coordinate of the leading tooth pair, m.
+    displacement : (n,) imposed pinion rotation of each step as arc on the base circle, m.
+    torque : (n,) driving torque of each step (moment of the bore reactions), N m.
+    pairs : (K,) tooth pair indices k (pair k at roll s0 + k p_b).
+    pair_load : (n, K) equivalent load of each pair along the line of action (its moment
+        about the gear centre over r_b2), N.
+    pressure_load : (n,) sum of pair_load over the step's P = T / r_b1 (-): the closure of
+        the internal-force split (1 if the gear's contact forces balance the pinion torque).
+    radius_min, radius_max : (n, K) smallest / largest gear radius of the pair's loaded
+        nodes (NaN if unloaded), m.
+    wall : CalculiX wall time, s.
+    """
+
+    s0: float
+    displacement: np.ndarray
+    torque: np.ndarray
+    pairs: np.ndarray
+    pair_load: np.ndarray
+    pressure_load: np.ndarray
+    radius_min: np.ndarray
+    radius_max: np.ndarray
+    wall: float
+
+
+def parse_frd_displacements(path: Path, n_nodes: int) -> list[np.ndarray]:
+    """Nodal displacements (``*NODE FILE`` U) of a CalculiX ``.frd`` file, per output time:
+    arrays (n_nodes, 2) in m, rows in node-id order (id 1 first)."""
+    out = []
+    lines = path.read_text().splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith(" -4  DISP"):
+            u = np.zeros((n_nodes, 2))
+            i += 1
+            while not lines[i].startswith(" -3"):
+                ln = lines[i]
+                if ln.startswith(" -1"):
+                    nid = int(ln[3:13])
+                    if nid <= n_nodes:
+                        u[nid - 1] = float(ln[13:25]), float(ln[25:37])
+                i += 1
+            out.append(u)
+        i += 1
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class InternalForces:
+    """Internal nodal forces ``f = K u`` of one gear's mesh (plane strain, thickness b).
+
+    The contact forces on a tooth are minus the internal forces summed over its contact
+    surface nodes (every other free node is in equilibrium with no load). ``K`` is
+    assembled here with scikit-fem's P2 elasticity form on the CalculiX mesh; it is only
+    used to split the load between tooth pairs and to find where they touch.
+    """
+
+    stiffness: object
+    dof: np.ndarray  # (n_nodes, 2) dof index of each node's x, y displacement
+
+    @classmethod
+    def build(cls, mesh: GearMesh, nodes_xy: np.ndarray, gear: GearSpec, width: float
+              ) -> InternalForces:
+        from scipy.spatial import cKDTree
+        from skfem import Basis, ElementTriP2, ElementVector, MeshTri2
+        from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+        m = MeshTri2(nodes_xy.T.copy(), mesh.tri.T.copy())
+        basis = Basis(m, ElementVector(ElementTriP2()))
+        lam, mu = lame_parameters(gear.material.youngs_modulus, gear.material.poisson_ratio)
+        K = width * linear_elasticity(lam, mu).assemble(basis).tocsr()
+        locs = basis.doflocs.T
+        tree = cKDTree(locs)
+        dof = np.zeros((len(nodes_xy), 2), dtype=np.int64)
+        _, idx = tree.query(nodes_xy, k=2)
+        for c in range(2):
+            # the two dofs at a node: x first in scikit-fem's vector element
+            dof[:, c] = np.sort(idx, axis=1)[:, c]
+        return cls(K, dof)
+
+    def forces(self, u: np.ndarray) -> np.ndarray:
+        """(n_nodes, 2) internal forces in N for nodal displacements u (n_nodes, 2) in m."""
+        x = np.zeros(self.stiffness.shape[0])
+        x[self.dof[:, 0]] = u[:, 0]
+        x[self.dof[:, 1]] = u[:, 1]
+        f = self.stiffness @ x
+        return np.column_stack([f[self.dof[:, 0]], f[self.dof[:, 1]]])
+
+
+def solve_position(pair: GearPair, meshes: tuple[GearMesh, GearMesh], s0: float,
+                   displacements: np.ndarray, settings: ReferenceSettings, *,
+                   contact: str = "full", ccx: str = "ccx", threads: int = 1,
+                   workdir: Path | None = None) -> PositionResult:
+    """Run CalculiX at mesh position ``s0`` (m) for the pinion rotations ``displacements``
+    (m of arc on the pinion base circle, increasing) and read the results."""
+    place = placement(pair, s0)
+    rb1, rb2 = pair.pinion.base_radius, pair.gear.base_radius
+    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        deck = Path(tmp) / "gears.inp"
+        info = write_inp(deck, pair, meshes, place, np.asarray(displacements) / rb1, settings,
+                         contact)
+        wall = run_ccx(deck, ccx, threads)
+        forces = parse_dat(deck.with_suffix(".dat"))
+        disp = parse_frd_displacements(deck.with_suffix(".frd"), len(info["xy"]))
+    n = len(displacements)
+    if len(forces) != n or len(disp) != n:
+        raise RuntimeError(f"CalculiX wrote {len(forces)} force and {len(disp)} displacement "
+                           f"blocks for {n} steps at s0 = {s0 * 1e3:.6g} mm")
+    xy = info["xy"]
+    pm, gm = meshes
+    n1 = info["pinion_nodes"]
+    torque = np.empty(n)
+    for i, f in enumerate(forces):
+        ids = np.array(list(f["PBORE"]))
+        F = np.array(list(f["PBORE"].values()))
+        p = xy[ids - 1]
+        # the driving torque is minus the moment of the bore reactions (clockwise drive)
+        torque[i] = float(np.sum(p[:, 0] * F[:, 1] - p[:, 1] * F[:, 0]))
+    torque = -torque
+    ks = np.array(sorted(place.gear_tooth))
+    centre = np.array([0.0, pair.operating_centre_distance])
+    gear_xy = xy[n1:]
+    internal = InternalForces.build(gm, gear_xy, pair.gear, pair.face_width)
+    pair_load = np.zeros((n, ks.size))
+    rmin = np.full((n, ks.size), np.nan)
+    rmax = np.full((n, ks.size), np.nan)
+    for i in range(n):
+        f = -internal.forces(disp[i][n1:])  # contact forces on the gear's nodes, N
+        fmax = np.abs(f[info["surface_nodes_gear"]]).max()
+        for c, k in enumerate(ks):
+            ids = info["surface_nodes"][f"G{place.gear_tooth[k] % pair.gear.teeth}"] - n1
+            r = gear_xy[ids] - centre
+            # the load on the driven gear turns it counter-clockwise; f = -K u is the
+            # force the gear's nodes exert on the pinion side, so the sign flips once more
+            pair_load[i, c] = -float(np.sum(r[:, 0] * f[ids, 1] - r[:, 1] * f[ids, 0])) / rb2
+            loaded = np.hypot(*f[ids].T) > 1e-3 * fmax
+            if loaded.any():
+                rad = np.hypot(*r[loaded].T)
+                rmin[i, c], rmax[i, c] = rad.min(), rad.max()
+    closure = pair_load.sum(axis=1) / (torque / rb1)
+    return PositionResult(float(s0), np.asarray(displacements, float), torque, ks, pair_load,
+                          closure, rmin, rmax, wall)
+
+
+# ---------------------------------------------------------------------------------------
+# a mesh cycle at given torques
+# ---------------------------------------------------------------------------------------
+def _at_torque(res: PositionResult, pair: GearPair, torque: float, lo: int, hi: int) -> dict:
+    """TE, stiffness, pair loads at ``torque`` (N m) from the steps ``lo`` and ``hi``
+    (linear inter-/extrapolation; the stiffness is their secant)."""
+    rb1 = pair.pinion.base_radius
+    d, t = res.displacement, res.torque
+    w = (torque - t[lo]) / (t[hi] - t[lo])
+    te = d[lo] + w * (d[hi] - d[lo])
+    k = (t[hi] - t[lo]) / rb1 / (d[hi] - d[lo])
+    loads = res.pair_load[lo] + w * (res.pair_load[hi] - res.pair_load[lo])
+    near = lo if abs(w) < abs(1 - w) else hi
+    s_k = res.s0 + res.pairs * pair.base_pitch
+    loaded = loads > 1e-3 * torque / rb1
+    beyond = loaded & ((s_k < pair.s_start - 1e-12) | (s_k > pair.s_end + 1e-12))
+    return {"transmission_error_m": float(te), "mesh_stiffness_N_per_m": float(k),
+            "pair_load_N": loads.tolist(), "pair_loaded": loaded.tolist(),
+            "pair_beyond_path": beyond.tolist(),
+            "gear_contact_radius_min_m": np.where(loaded, res.radius_min[near], np.nan).tolist(),
+            "gear_contact_radius_max_m": np.where(loaded, res.radius_max[near], np.nan).tolist(),
+            "bracket_torque_Nm": [float(t[lo]), float(t[hi])],
+            "load_split_closure": float(res.pressure_load[near])}
+
+
+def reference_cycle(pair: GearPair, positions: np.ndarray, torques: tuple[float, ...],
+                    settings: ReferenceSettings, estimate: np.ndarray, *,
+                    contact: str = "full", ccx: str = "ccx", threads: int = 1,
+                    log: Path | None = None) -> list[dict]:
+    """Reference results at each roll coordinate of ``positions`` (m) and torque (N m).
+
+    ``estimate`` (n_positions, n_torques) is a first guess of the loaded TE (m); the load
+    steps are placed at ``(1 -+ step)`` times it, corrected position by position by the
+    ratio found at the previous one. Each finished position is appended to ``log`` (JSON
+    lines) when given. Returns one dict per position (keys of :func:`_at_torque` per torque
+    under ``"torques"``, the raw steps, the wall time).
+    """
+    fp, fg = fine_teeth(pair)
+    meshes = (gear_mesh(pair.pinion, fp, settings), gear_mesh(pair.gear, fg, settings))
+    ratio = np.ones(len(torques))
+    out = []
+    for i, s0 in enumerate(positions):
+        guess = np.asarray(estimate[i]) * ratio
+        steps = np.sort(np.concatenate([guess * (1 - settings.step), guess * (1 + settings.step)]))
+        res = solve_position(pair, meshes, float(s0), steps, settings, contact=contact, ccx=ccx,
+                             threads=threads)
+        entry = {"s0_m": float(s0), "wall_s": res.wall, "pairs": res.pairs.tolist(),
+                 "step_displacement_m": res.displacement.tolist(),
+                 "step_torque_Nm": res.torque.tolist(), "torques": []}
+        for j, T in enumerate(torques):
+            order = np.argsort(np.abs(res.torque - T))
+            lo, hi = sorted(order[:2].tolist())
+            entry["torques"].append(_at_torque(res, pair, T, lo, hi))
+            ratio[j] = entry["torques"][-1]["transmission_error_m"] / estimate[i][j]
+        out.append(entry)
+        if log is not None:
+            with open(log, "a") as fh:
+                fh.write(json.dumps(entry) + "\n")
+    return out, {"pinion_nodes": len(meshes[0].nodes), "gear_nodes": len(meshes[1].nodes),
+                 "pinion_elements": len(meshes[0].tri), "gear_elements": len(meshes[1].tri),
+                 "fine_teeth_pinion": list(fp), "fine_teeth_gear": list(fg)}
+
+
+# ---------------------------------------------------------------------------------------
+# gearpipe's loaded contact at the same positions, and the comparison
+# ---------------------------------------------------------------------------------------
+def demo_pair_text() -> str:
+    """The demo pair (``workflows/default_case.py``) with the FE-enriched loaded contact,
+    frictionless (the reference is frictionless)."""
+    from workflows.default_case import DEMO_PAIR
+
+    return 'name = "reference"\n' + DEMO_PAIR + '[contact]\ncompliance = "fe2d"\n'
+
+
+def gearpipe_cycle(text: str, positions: np.ndarray, torques: tuple[float, ...]) -> dict:
+    """gearpipe's loaded contact (the gearbox ``text``'s ``[contact]`` and ``[fe]``) at the
+    roll coordinates ``positions`` (m) and driving torques (N m).
+
+    Returns ``transmission_error_m`` and ``mesh_stiffness_N_per_m`` (tangent) of shape
+    (n_torques, n_positions), ``pair_index`` (K,) and ``pair_load_N`` (n_torques,
+    n_positions, K).
+    """
+    from pipeline.config.gearbox import gearbox_from_text
+    from pipeline.contact.compliance import compliance_source
+    from pipeline.contact.ltca import loaded_mesh_cycle
+
+    box = gearbox_from_text(text, name="reference")
+    src = compliance_source(box.pair, box.operation, box.contact, box.stiffness, box.fe_source)
+    te, k, loads = [], [], []
+    for T in torques:
+        cyc = loaded_mesh_cycle(src, T / box.pair.pinion.base_radius, box.contact.modifications,
+                                box.contact.local_contact, positions=np.asarray(positions))
+        te.append(cyc.transmission_error)
+        k.append(cyc.mesh_stiffness)
+        loads.append(cyc.pair_loads)
+    return {"transmission_error_m": np.array(te), "mesh_stiffness_N_per_m": np.array(k),
+            "pair_index": np.asarray(cyc.pair_index), "pair_load_N": np.array(loads)}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Reference against gearpipe at every position and torque.
+
+    Attributes
+    ----------
+    s0 : (m,) roll coordinates, m.
+    torque : (t,) driving torques, N m.
+    zone : (m,) number of tooth pairs on the nominal path of contact (1 or 2).
+    te_reference, te_gearpipe : (t, m) loaded transmission error, m.
+    k_reference, k_gearpipe : (t, m) mesh stiffness, N/m.
+    te_difference, k_difference : (t, m) gearpipe / reference - 1 (-).
+    beyond_path : (t, m) True where the reference has a pair loaded outside the nominal
+        path of contact.
+    """
+
+    s0: np.ndarray
+    torque: np.ndarray
+    zone: np.ndarray
+    te_reference: np.ndarray
+    te_gearpipe: np.ndarray
+    k_reference: np.ndarray
+    k_gearpipe: np.ndarray
+    te_difference: np.ndarray
+    k_difference: np.ndarray
+    beyond_path: np.ndarray
+
+    def rows(self) -> list[str]:
+        """A text table: one line per torque and position (um, N/um, %)."""
+        out = ["torque [N m]  s0 [mm]  pairs  TE ref [um]  TE gp [um]  dTE [%]  "
+               "k ref [N/um]  k gp [N/um]  dk [%]  beyond path"]
+        for t, T in enumerate(self.torque):
+            for i, s in enumerate(self.s0):
+                out.append(
+                    f"{T:11.1f}  {s * 1e3:7.3f}  {self.zone[i]:5d}  "
+                    f"{self.te_reference[t, i] * 1e6:11.3f}  "
+                    f"{self.te_gearpipe[t, i] * 1e6:10.3f}  "
+                    f"{self.te_difference[t, i] * 100:7.2f}  "
+                    f"{self.k_reference[t, i] * 1e-6:12.2f}  "
+                    f"{self.k_gearpipe[t, i] * 1e-6:11.2f}  "
+                    f"{self.k_difference[t, i] * 100:6.2f}"
+                    f"  {'yes' if self.beyond_path[t, i] else 'no'}")
+        return out
+
+
+def load_reference(path: Path = DATA) -> dict:
+    """The committed reference data (JSON, SI units; keys name their units)."""
+    return json.loads(Path(path).read_text())
+
+
+def compare(reference: dict, gearpipe: dict, pair: GearPair, run: str = "full") -> Comparison:
+    """Comparison table of a reference run (``"full"`` or ``"nominal"`` contact) of
+    :func:`load_reference` and :func:`gearpipe_cycle` at the same positions and torques."""
+    s0 = np.array(reference["positions_m"])
+    torques = np.array(reference["torques_Nm"])
+    runs = reference["runs"][run]
+    te = np.array([[p["torques"][t]["transmission_error_m"] for p in runs]
+                   for t in range(torques.size)])
+    k = np.array([[p["torques"][t]["mesh_stiffness_N_per_m"] for p in runs]
+                  for t in range(torques.size)])
+    beyond = np.array([[any(p["torques"][t]["pair_beyond_path"]) for p in runs]
+                       for t in range(torques.size)])
+    _, on_path = pair.pair_positions(s0)
+    te_g = np.asarray(gearpipe["transmission_error_m"])
+    k_g = np.asarray(gearpipe["mesh_stiffness_N_per_m"])
+    if te_g.shape != te.shape:
+        raise ValueError(f"gearpipe results have shape {te_g.shape}, the reference {te.shape}")
+    return Comparison(s0, torques, on_path.sum(axis=1), te, te_g, k, k_g, te_g / te - 1.0,
+                      k_g / k - 1.0, beyond)
+
+
+# ---------------------------------------------------------------------------------------
+# command line
+# ---------------------------------------------------------------------------------------
+TORQUES = (100.0, 340.0)
+POSITIONS = 24
+
+
+def _demo_pair() -> GearPair:
+    from pipeline.config.gearbox import gearbox_from_text
+
+    return gearbox_from_text(demo_pair_text(), name="reference").pair
+
+
+def _settings(args) -> ReferenceSettings:
+    return ReferenceSettings(size_contact=args.size_contact * 1e-3, penalty=args.penalty)
+
+
+def _finite(x):
+    """NaN -> None, recursively (strict JSON)."""
+    if isinstance(x, float):
+        return None if math.isnan(x) else x
+    if isinstance(x, list):
+        return [_finite(v) for v in x]
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    return x
+
+
+def _mesh_info(pair: GearPair, settings: ReferenceSettings) -> dict:
+    fp, fg = fine_teeth(pair)
+    pm, gm = gear_mesh(pair.pinion, fp, settings), gear_mesh(pair.gear, fg, settings)
+    return {"pinion_nodes": len(pm.nodes), "gear_nodes": len(gm.nodes),
+            "pinion_elements": len(pm.tri), "gear_elements": len(gm.tri),
+            "fine_teeth_pinion": list(fp), "fine_teeth_gear": list(fg)}
+
+
+def _cmd_assemble(args) -> int:
+    """Merge the JSON-lines logs of the runs into the committed reference file."""
+    import gmsh
+
+    import pipeline
+
+    pair = _demo_pair()
+    settings = ReferenceSettings()
+    s0 = pair.mesh_cycle(args.positions)
+    runs = {}
+    for name, log in (("full", args.full), ("nominal", args.nominal)):
+        entries = sorted(_read_log(log), key=lambda e: e["s0_m"])
+        got = np.array([e["s0_m"] for e in entries])
+        if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
+            raise SystemExit(f"{log}: positions do not cover the {args.positions}-position "
+                             "mesh cycle")
+        runs[name] = entries
+    convergence = []
+    for spec in args.convergence or []:
+        size_mm, penalty, log = spec.split(":", 2)
+        for e in _read_log(Path(log)):
+            e.update(size_contact_m=float(size_mm) * 1e-3, penalty_Pa_per_m=float(penalty))
+            convergence.append(e)
+    wall = sum(e["wall_s"] for r in runs.values() for e in r)
+    doc = {
+        "description": "CalculiX plane-strain contact reference of the demo pair "
+                       "(workflows/reference/calculix_spur_contact.py); SI units",
+        "provenance": {
+            "calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
+            "gearpipe_version": pipeline.__version__,
+            "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "command": "python workflows/reference/calculix_spur_contact.py run --contact "
+                       "{full,nominal} --log LOG; ... assemble (workflows/reference/README.md)",
+            "settings": asdict(settings), "mesh": _mesh_info(pair, settings),
+            "elements": "CPE6 (plane strain, quadratic), thickness = face width",
+            "contact": "surface to surface, frictionless, linear penalty",
+            "ccx_wall_time_s": wall,
+        },
+        "pair": {"teeth": [pair.pinion.teeth, pair.gear.teeth], "module_m": pair.pinion.module,
+                 "face_width_m": pair.face_width, **pair.summary()},
+        "torques_Nm": list(TORQUES),
+        "positions_m": s0.tolist(),
+        "runs": runs,
+        "convergence": convergence,
+    }
+    args.out.write_text(json.dumps(_finite(doc), indent=1) + "\n")
+    print(f"wrote {args.out} ({wall:.0f} s of CalculiX)")
+    return 0
+
+
+def _cmd_run(args) -> int:
+    pair = _demo_pair()
+    s0 = pair.mesh_cycle(args.positions)
+    idx = np.array(args.indices if args.indices else range(args.positions), dtype=int)
+    gp = gearpipe_cycle(demo_pair_text(), s0[idx], tuple(args.torques))
+    t0 = time.perf_counter()
+    reference_cycle(pair, s0[idx], tuple(args.torques), _settings(args),
+                    gp["transmission_error_m"].T, contact=args.contact, ccx=args.ccx,
+                    threads=args.threads, log=args.log)
+    print(f"wall {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def _read_log(path: Path) -> list[dict]:
+    return [json.loads(line) for line in Path(path).read_text().splitlines() if line.strip()]
+
+
+def plot_comparison(full: Comparison, nominal: Comparison | None = None, pair=None, axes=None):
+    """TE (um) and mesh stiffness (N/um) against the roll coordinate s0 (mm) of both models
+    at every torque; the nominal-contact control dotted. Returns the two axes."""
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(2, 1, figsize=(8.0, 7.0), sharex=True, layout="constrained")
+    colours = ("tab:blue", "tab:red", "tab:green")
+    x = full.s0 * 1e3
+    for t, T in enumerate(full.torque):
+        c = colours[t % len(colours)]
+        for ax, ref, gp, scale in ((axes[0], full.te_reference, full.te_gearpipe, 1e6),
+                                   (axes[1], full.k_reference, full.k_gearpipe, 1e-6)):
+            ax.plot(x, ref[t] * scale, "o-", color=c, ms=4,
+                    label=f"CalculiX, all flanks, {T:g} N m")
+            ax.plot(x, gp[t] * scale, "s--", color=c, ms=3, mfc="none",
+                    label=f"gearpipe fe2d, {T:g} N m")
+            if nominal is not None:
+                ref_n = nominal.te_reference if ax is axes[0] else nominal.k_reference
+                ax.plot(x, ref_n[t] * scale, ":", color=c, lw=1.5,
+                        label=f"CalculiX, nominal path only, {T:g} N m")
+    if pair is not None:
+        b = (pair.s_end - pair.base_pitch) * 1e3
+        for ax in axes:
+            ax.axvline(b, color="0.5", lw=0.8)
+            ax.text(b, 1.0, " single contact ->", transform=ax.get_xaxis_transform(),
+                    va="bottom", ha="left", fontsize=8, color="0.3")
+    axes[0].set_ylabel("loaded transmission error [um]")
+    axes[1].set_ylabel("mesh stiffness [N/um]")
+    axes[1].set_xlabel("roll coordinate of the leading pair s0 [mm]")
+    axes[0].legend(fontsize=7, ncol=2, loc="upper left")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    return axes
+
+
+def _cmd_compare(args) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    pair = _demo_pair()
+    ref = load_reference(args.data)
+    s0 = np.array(ref["positions_m"])
+    gp = gearpipe_cycle(demo_pair_text(), s0, tuple(ref["torques_Nm"]))
+    full = compare(ref, gp, pair, "full")
+    nominal = compare(ref, gp, pair, "nominal")
+    for name, c in (("all flanks", full), ("nominal path only", nominal)):
+        print(f"== CalculiX ({name}) against gearpipe fe2d")
+        print("\n".join(c.rows()))
+    if args.figure is not None:
+        plot_comparison(full, nominal, pair)
+        plt.savefig(args.figure, dpi=130)
+        print(f"wrote {args.figure}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="run CalculiX at mesh positions, append to a JSON-lines log")
+    run.add_argument("--contact", choices=CONTACT_KINDS, default="full")
+    run.add_argument("--positions", type=int, default=POSITIONS,
+                     help="equally spaced positions over one mesh cycle")
+    run.add_argument("--indices", type=int, nargs="*", help="only these position indices")
+    run.add_argument("--torques", type=float, nargs="+", default=list(TORQUES),
+                     help="driving torques, N m")
+    run.add_argument("--size-contact", type=float, default=0.1,
+                     help="element size on the contact flanks, mm")
+    run.add_argument("--penalty", type=float, default=ReferenceSettings.penalty,
+                     help="contact penalty, Pa/m")
+    run.add_argument("--threads", type=int, default=1)
+    run.add_argument("--ccx", default="ccx")
+    run.add_argument("--log", type=Path, required=True)
+    run.set_defaults(func=_cmd_run)
+    asm = sub.add_parser("assemble", help="merge run logs into the reference JSON")
+    asm.add_argument("--full", type=Path, required=True)
+    asm.add_argument("--nominal", type=Path, required=True)
+    asm.add_argument("--convergence", nargs="*", help="SIZE_MM:PENALTY:LOG of each study run")
+    asm.add_argument("--positions", type=int, default=POSITIONS)
+    asm.add_argument("--out", type=Path, default=DATA)
+    asm.set_defaults(func=_cmd_assemble)
+    cmp_ = sub.add_parser("compare", help="gearpipe against the reference: table and figure")
+    cmp_.add_argument("--data", type=Path, default=DATA)
+    cmp_.add_argument("--figure", type=Path, default=None, help="PNG to write")
+    cmp_.set_defaults(func=_cmd_compare)
+    args = ap.parse_args(argv)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
