@@ -12,10 +12,12 @@ Model
   (zero backlash for the demo pair). Pinion centre at the origin, gear centre at
   ``(0, a_w)`` (the frame of :class:`pipeline.geometry.TransverseLayout`).
 * **Mesh** (its own, through the project's Gmsh fence :func:`pipeline.fem.gmsh_session`):
-  6-node triangles, element size ``size_contact`` on the whole outline of the ``fine``
-  teeth of each gear (the five or six teeth that can touch at any position), ``size_tooth``
-  on the other teeth, growing by ``growth`` (m per m of distance) into the body up to
-  ``size_body``. Every tooth of both gears is in the model.
+  6-node triangles, element size ``size_contact`` on the contact-side flank and tip land of
+  the ``fine`` teeth of each gear (five per gear: every tooth that can touch at any
+  position, with a pitch to spare), ``size_fine`` on the rest of their outline,
+  ``size_tooth`` on the other teeth, growing by ``growth`` (m per m of distance) into the
+  body up to ``size_body``. Whole gears: every tooth of both gears and the whole rim down
+  to the bore are in the model, so nothing depends on where a sector is cut.
 * **Elements.** CalculiX CPE6 (plane strain, quadratic; expanded internally into one layer
   of C3D15 wedges with the out-of-plane displacement tied), thickness = the face width b,
   so reaction forces are those of the whole face width. Linear elastic, E and nu of the
@@ -24,32 +26,37 @@ Model
   with slope ``penalty`` (Pa/m). Slave surface: the driven flank (root middle over fillet and
   involute to the tip corner) and the tip land of every fine gear tooth; master: the same of
   every fine pinion tooth. So every flank that can touch does, including each tip corner
-  against the mate's flank or fillet beyond the nominal path of contact. The control run
-  (``contact="nominal"``) keeps only the involute between the radii of the nominal path
-  (pinion: r(s_start) .. r_a1 less the tip corner; gear: r(s_end) .. r_a2 less the corner).
+  against the mate's flank or fillet beyond the nominal path of contact. The coast flanks
+  (which touch too at zero backlash, unloaded) are left out: the driving rotation opens them.
+  The control run (``contact="nominal"``) keeps only the involute between the radii of the
+  nominal path, less the last ``0.02 m_n`` of radius below each tip (pinion: r(s_start) ..
+  r_a1 - 0.02 m_n; gear: r(s_end) .. r_a2 - 0.02 m_n), so neither tip corner can touch;
+  it also loses the last ~0.14 mm of roll at each end of the path.
 * **Boundary conditions** (as the project's 2D FE source, ``pipeline.fem.sector2d``: the
-  bore circle clamped): the gear's bore nodes fixed; the pinion's bore nodes follow a rigid
-  rotation about the pinion centre, ``u = theta x (x, y)``, prescribed (displacement control:
-  the bore is a rigid hub whose rotation is the reference degree of freedom; the torque is
-  the moment of the bore reaction forces about the centre). Several static steps with
-  rotations bracketing each requested torque.
-* **Outputs per position.** The bore reactions give torque T(theta). Loaded transmission
-  error at torque T: ``TE = r_b1 theta(T)`` (m along the line of action; the unloaded
-  rotation is 0 because the gears are placed in rigid flank contact), from a quadratic
-  through the three steps nearest T. Mesh stiffness ``k = dP/dTE`` with ``P = T / r_b1``:
-  the derivative of that quadratic at T (the load levels are 5 % apart). Tooth pair loads:
-  the reaction (internal) forces of the gear's contact-surface nodes summed per gear tooth,
-  as their moment about the gear centre over r_b2 (an equivalent load along the line of
-  action: the pair loads sum to P). Where each pair touches: the load-weighted radius range
-  of its loaded nodes on both gears; a pair touching outside the nominal path (beyond
-  ``s_start`` or ``s_end``, at a tip corner) is flagged.
+  bore circle clamped): the gear's bore nodes fixed; the pinion's bore nodes prescribed to
+  the rigid rotation ``u = theta (y, -x)`` (clockwise, driving) about the pinion centre.
+  This is a rigid hub coupled kinematically to the centre, whose rotation theta is the
+  reference degree of freedom under displacement control; the driving torque is minus the
+  moment of the bore reactions about the centre. The pinion turns clockwise, its right
+  flanks (in its own frame, tooth on +y) drive the gear's right flanks.
+* **Load steps.** Four static steps per position: rotations ``(1 -+ step)`` times an
+  estimate of the loaded TE at each torque (gearpipe's, scaled by the ratio found at the
+  previous position), so each torque is bracketed by two load levels 4 % apart.
+* **Outputs per position and torque T.** Loaded transmission error ``TE = r_b1 theta(T)``
+  (m along the line of action; the unloaded rotation is 0: the gears are placed in rigid
+  flank contact), linear in the two bracketing steps. Mesh stiffness ``k = dP/dTE``,
+  ``P = T / r_b1``: the secant of those two steps. Tooth pair loads: the contact forces on
+  each gear tooth, ``-K u`` summed over its contact-side nodes (``K`` of the same mesh,
+  :class:`InternalForces`; every other free node carries no load), as their moment about
+  the gear centre over r_b2, an equivalent load along the line of action (they add up to P
+  within 0.1 %: ``load_split_closure``). Where a pair touches: the radius range of its
+  loaded gear nodes; a loaded pair whose nominal roll ``s0 + k p_b`` lies outside
+  ``[s_start, s_end]`` touches beyond the path, at a tip corner (``pair_beyond_path``).
 
 Mesh positions are gearpipe's: the roll coordinate ``s0`` of the leading tooth pair
 (:meth:`pipeline.geometry.GearPair.mesh_cycle`), and tooth pair ``k`` is at ``s0 + k p_b``.
 
-Convergence and provenance: see ``workflows/reference/README.md`` and the provenance block
-of ``demo_pair_reference.json`` (mesh sizes, penalty, CalculiX version, wall time, the
-command that wrote it). Run ``python workflows/reference/calculix_spur_contact.py --help``.
+CONVERGENCE_PLACEHOLDER
 """
 
 from __future__ import annotations
@@ -855,7 +862,10 @@ def _demo_pair() -> GearPair:
 
 
 def _settings(args) -> ReferenceSettings:
-    return ReferenceSettings(size_contact=args.size_contact * 1e-3, penalty=args.penalty)
+    base = ReferenceSettings()
+    return ReferenceSettings(size_contact=args.size_contact * 1e-3,
+                             size_fine=args.size_fine * 1e-3 if args.size_fine else base.size_fine,
+                             growth=args.growth or base.growth, penalty=args.penalty)
 
 
 def _finite(x):
@@ -896,9 +906,11 @@ def _cmd_assemble(args) -> int:
         runs[name] = entries
     convergence = []
     for spec in args.convergence or []:
-        size_mm, penalty, log = spec.split(":", 2)
+        values, log = spec.split(":", 1)
+        size, fine, growth, penalty = (float(v) for v in values.split(","))
         for e in _read_log(Path(log)):
-            e.update(size_contact_m=float(size_mm) * 1e-3, penalty_Pa_per_m=float(penalty))
+            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3, growth=growth,
+                     penalty_Pa_per_m=penalty)
             convergence.append(e)
     wall = sum(e["wall_s"] for r in runs.values() for e in r)
     doc = {
@@ -944,39 +956,64 @@ def _read_log(path: Path) -> list[dict]:
     return [json.loads(line) for line in Path(path).read_text().splitlines() if line.strip()]
 
 
-def plot_comparison(full: Comparison, nominal: Comparison | None = None, pair=None, axes=None):
-    """TE (um) and mesh stiffness (N/um) against the roll coordinate s0 (mm) of both models
-    at every torque; the nominal-contact control dotted. Returns the two axes."""
+def convergence_rows(reference: dict) -> list[str]:
+    """Text rows of the convergence runs against the committed (production) mesh at the same
+    position: TE and stiffness at each torque and their change (%)."""
+    prod = {round(e["s0_m"], 12): e for e in reference["runs"]["full"]}
+    out = ["s0 [mm]  size_contact [mm]  size_fine [mm]  growth  penalty [Pa/m]  "
+           + "  ".join(f"TE {T:g} [um] (d %)  k {T:g} [N/um] (d %)"
+                       for T in reference["torques_Nm"])]
+    for e in sorted(reference["convergence"], key=lambda e: (e["s0_m"], -e["size_contact_m"])):
+        base = prod[round(e["s0_m"], 12)]
+        cells = []
+        for t in range(len(reference["torques_Nm"])):
+            r, b = e["torques"][t], base["torques"][t]
+            te, k = r["transmission_error_m"], r["mesh_stiffness_N_per_m"]
+            d_te = (te / b["transmission_error_m"] - 1) * 100
+            d_k = (k / b["mesh_stiffness_N_per_m"] - 1) * 100
+            cells.append(f"{te * 1e6:8.3f} ({d_te:+6.2f})  {k * 1e-6:7.2f} ({d_k:+6.2f})")
+        out.append(f"{e['s0_m'] * 1e3:7.3f}  {e['size_contact_m'] * 1e3:17.3f}  "
+                   f"{e['size_fine_m'] * 1e3:14.3f}  {e['growth']:6.2f}  "
+                   f"{e['penalty_Pa_per_m']:14.3g}  " + "  ".join(cells))
+    return out
+
+
+def plot_comparison(full: Comparison, nominal: Comparison | None = None, pair=None,
+                    axes=None):
+    """TE (um, top row) and mesh stiffness (N/um, bottom row) against the roll coordinate
+    s0 (mm), one column per torque: CalculiX with all flanks, gearpipe, and the
+    nominal-path control. ``axes``: (2, n_torques) array or None. Returns the axes."""
     import matplotlib.pyplot as plt
 
+    n = full.torque.size
     if axes is None:
-        _, axes = plt.subplots(2, 1, figsize=(8.0, 7.0), sharex=True, layout="constrained")
-    colours = ("tab:blue", "tab:red", "tab:green")
+        _, axes = plt.subplots(2, n, figsize=(5.0 * n, 6.5), sharex=True, squeeze=False,
+                               layout="constrained")
     x = full.s0 * 1e3
     for t, T in enumerate(full.torque):
-        c = colours[t % len(colours)]
-        for ax, ref, gp, scale in ((axes[0], full.te_reference, full.te_gearpipe, 1e6),
-                                   (axes[1], full.k_reference, full.k_gearpipe, 1e-6)):
-            ax.plot(x, ref[t] * scale, "o-", color=c, ms=4,
-                    label=f"CalculiX, all flanks, {T:g} N m")
-            ax.plot(x, gp[t] * scale, "s--", color=c, ms=3, mfc="none",
-                    label=f"gearpipe fe2d, {T:g} N m")
+        for row, scale, unit in ((0, 1e6, "loaded transmission error [um]"),
+                                 (1, 1e-6, "mesh stiffness [N/um]")):
+            ax = axes[row, t]
+            pick = (lambda c: c.te_reference, lambda c: c.te_gearpipe) if row == 0 else (
+                lambda c: c.k_reference, lambda c: c.k_gearpipe)
+            ax.plot(x, pick[0](full)[t] * scale, "o-", color="tab:blue", ms=4,
+                    label="CalculiX, all flanks")
             if nominal is not None:
-                ref_n = nominal.te_reference if ax is axes[0] else nominal.k_reference
-                ax.plot(x, ref_n[t] * scale, ":", color=c, lw=1.5,
-                        label=f"CalculiX, nominal path only, {T:g} N m")
-    if pair is not None:
-        b = (pair.s_end - pair.base_pitch) * 1e3
-        for ax in axes:
-            ax.axvline(b, color="0.5", lw=0.8)
-            ax.text(b, 1.0, " single contact ->", transform=ax.get_xaxis_transform(),
-                    va="bottom", ha="left", fontsize=8, color="0.3")
-    axes[0].set_ylabel("loaded transmission error [um]")
-    axes[1].set_ylabel("mesh stiffness [N/um]")
-    axes[1].set_xlabel("roll coordinate of the leading pair s0 [mm]")
-    axes[0].legend(fontsize=7, ncol=2, loc="upper left")
-    for ax in axes:
-        ax.grid(alpha=0.3)
+                ax.plot(x, pick[0](nominal)[t] * scale, "^:", color="tab:green", ms=4,
+                        label="CalculiX, nominal path only")
+            ax.plot(x, pick[1](full)[t] * scale, "s--", color="tab:red", ms=4, mfc="none",
+                    label="gearpipe fe2d")
+            if pair is not None:
+                ax.axvspan((pair.s_end - pair.base_pitch) * 1e3,
+                           (pair.s_start + pair.base_pitch) * 1e3, color="0.9",
+                           label="one pair on the nominal path")
+            ax.set_ylabel(unit)
+            ax.grid(alpha=0.3)
+            if row == 0:
+                ax.set_title(f"{T:g} N m")
+            else:
+                ax.set_xlabel("roll coordinate of the leading pair s0 [mm]")
+    axes[0, 0].legend(fontsize=8, loc="upper left")
     return axes
 
 
@@ -995,6 +1032,23 @@ def _cmd_compare(args) -> int:
     for name, c in (("all flanks", full), ("nominal path only", nominal)):
         print(f"== CalculiX ({name}) against gearpipe fe2d")
         print("\n".join(c.rows()))
+        for t, T in enumerate(c.torque):
+            for label, te, k in (("CalculiX", c.te_reference[t], c.k_reference[t]),
+                                 ("gearpipe", c.te_gearpipe[t], c.k_gearpipe[t])):
+                print(f"{T:g} N m {label}: k mean {k.mean() * 1e-6:.2f} min "
+                      f"{k.min() * 1e-6:.2f} max {k.max() * 1e-6:.2f} N/um, fluctuation "
+                      f"(max - min) / mean {(k.max() - k.min()) / k.mean() * 100:.1f} %, TE "
+                      f"mean {te.mean() * 1e6:.3f} um, peak to peak "
+                      f"{(te.max() - te.min()) * 1e6:.3f} um")
+    rb1 = pair.pinion.base_radius
+    for t, T in enumerate(ref["torques_Nm"]):
+        share = [sum(ld for ld, b in zip(e["torques"][t]["pair_load_N"],
+                                          e["torques"][t]["pair_beyond_path"], strict=True)
+                     if b) / (T / rb1) for e in ref["runs"]["full"]]
+        print(f"{T:g} N m: load beyond the nominal path, share of P per position [%]: "
+              + " ".join(f"{v * 100:.1f}" for v in share))
+    print("== mesh convergence: change against the committed mesh at the same position [%]")
+    print("\n".join(convergence_rows(ref)))
     if args.figure is not None:
         plot_comparison(full, nominal, pair)
         plt.savefig(args.figure, dpi=130)
@@ -1014,6 +1068,9 @@ def main(argv: list[str] | None = None) -> int:
                      help="driving torques, N m")
     run.add_argument("--size-contact", type=float, default=0.1,
                      help="element size on the contact flanks, mm")
+    run.add_argument("--size-fine", type=float, default=None,
+                     help="element size on the rest of the contacting teeth, mm")
+    run.add_argument("--growth", type=float, default=None, help="element size growth (-)")
     run.add_argument("--penalty", type=float, default=ReferenceSettings.penalty,
                      help="contact penalty, Pa/m")
     run.add_argument("--threads", type=int, default=1)
@@ -1023,7 +1080,8 @@ def main(argv: list[str] | None = None) -> int:
     asm = sub.add_parser("assemble", help="merge run logs into the reference JSON")
     asm.add_argument("--full", type=Path, required=True)
     asm.add_argument("--nominal", type=Path, required=True)
-    asm.add_argument("--convergence", nargs="*", help="SIZE_MM:PENALTY:LOG of each study run")
+    asm.add_argument("--convergence", nargs="*",
+                     help="SIZE_CONTACT_MM,SIZE_FINE_MM,GROWTH,PENALTY:LOG of each study run")
     asm.add_argument("--positions", type=int, default=POSITIONS)
     asm.add_argument("--out", type=Path, default=DATA)
     asm.set_defaults(func=_cmd_assemble)
