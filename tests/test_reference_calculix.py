@@ -75,6 +75,19 @@ def test_placement_puts_pair_k_at_its_roll_coordinate(pair, frac):
     assert checked >= 1
 
 
+@pytest.mark.parametrize(("frac", "on_path"), [(0.3, 2), (0.9, 1)])
+def test_nominal_control_gives_surfaces_to_pairs_on_the_path_only(pair, frac, on_path):
+    """The control run: two pairs on the path in double contact (eps_alpha = 1.755, so
+    s0 < s_start + 0.755 p_b), one in single contact; the full model gives every pair of
+    the placement a surface."""
+    place = ref.placement(pair, pair.s_start + frac * pair.base_pitch)
+    nominal = ref.contact_pairs(pair, place, "nominal")
+    assert len(nominal) == on_path
+    assert ref.contact_pairs(pair, place, "full") == sorted(place.pinion_tooth)
+    for k in nominal:
+        assert pair.s_start <= place.s0 + k * pair.base_pitch <= pair.s_end
+
+
 def test_rigid_rotation_and_uniform_strain_forces(pair):
     """K u of the load split (whole pinion mesh): zero for a rigid rotation (to 1e-9 of the
     forces of a unit strain); for the uniform strain eps_xx = 1e-4 the forces balance

@@ -28,10 +28,9 @@ Model
   every fine pinion tooth. So every flank that can touch does, including each tip corner
   against the mate's flank or fillet beyond the nominal path of contact. The coast flanks
   (which touch too at zero backlash, unloaded) are left out: the driving rotation opens them.
-  The control run (``contact="nominal"``) keeps only the involute between the radii of the
-  nominal path, less the last ``0.02 m_n`` of radius below each tip (pinion: r(s_start) ..
-  r_a1 - 0.02 m_n; gear: r(s_end) .. r_a2 - 0.02 m_n), so neither tip corner can touch;
-  it also loses the last ~0.14 mm of roll at each end of the path.
+  The control run (``contact="nominal"``) gives contact surfaces only to the tooth pairs
+  whose nominal roll ``s0 + k p_b`` lies on the path of contact ``[s_start, s_end]``
+  (whole flanks): a pair beyond either end cannot touch, as in gearpipe's loaded contact.
 * **Boundary conditions** (as the project's 2D FE source, ``pipeline.fem.sector2d``: the
   bore circle clamped): the gear's bore nodes fixed; the pinion's bore nodes prescribed to
   the rigid rotation ``u = theta (y, -x)`` (clockwise, driving) about the pinion centre.
@@ -68,6 +67,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 from dataclasses import asdict, dataclass
@@ -360,18 +360,23 @@ def fine_teeth(pair: GearPair) -> tuple[tuple[int, ...], tuple[int, ...]]:
 # ---------------------------------------------------------------------------------------
 # CalculiX input deck
 # ---------------------------------------------------------------------------------------
-def _contact_faces(pair: GearPair, mesh: GearMesh, gear: GearSpec, contact: str,
-                   teeth: set[int]) -> np.ndarray:
-    """Rows of ``mesh.faces`` in the contact surface of ``gear`` (module docstring)."""
-    keep = np.isin(mesh.faces[:, 2], sorted(teeth))
-    if contact == "nominal":
-        # only the involute between the radii of the nominal path, tip corner excluded
-        r1, r2 = pair.contact_radii(np.array([pair.s_start, pair.s_end]))
-        r_lo = float(r1[0]) if gear is pair.pinion else float(r2[1])
-        r_hi = gear.tip_radius_ - 0.02 * gear.module
-        keep &= (mesh.face_kind == 1) & (mesh.face_radius[:, 0] >= r_lo * (1 - 1e-9)) & (
-            mesh.face_radius[:, 1] <= r_hi)
-    return np.flatnonzero(keep)
+def _contact_faces(mesh: GearMesh, teeth: set[int]) -> np.ndarray:
+    """Rows of ``mesh.faces`` of the contact-side outline of ``teeth``."""
+    return np.flatnonzero(np.isin(mesh.faces[:, 2], sorted(teeth)))
+
+
+def contact_pairs(pair: GearPair, place: Placement, contact: str) -> list[int]:
+    """Tooth pairs k given contact surfaces: every pair of the placement (``"full"``), or
+    those whose roll ``s0 + k p_b`` lies on the nominal path ``[s_start, s_end]``
+    (``"nominal"``: a pair beyond either end cannot touch, as in gearpipe)."""
+    if contact not in CONTACT_KINDS:
+        raise ValueError(f"contact = {contact!r} must be one of {CONTACT_KINDS}")
+    ks = sorted(place.pinion_tooth)
+    if contact == "full":
+        return ks
+    s = place.s0 + np.array(ks) * pair.base_pitch
+    on = (s >= pair.s_start - 1e-12) & (s <= pair.s_end + 1e-12)
+    return [k for k, o in zip(ks, on, strict=True) if o]
 
 
 def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], place: Placement,
@@ -382,9 +387,8 @@ def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], pla
     ``rotations`` (n,) are the pinion rotations (rad, clockwise = driving) of the n static
     steps, in increasing order.
     """
-    if contact not in CONTACT_KINDS:
-        raise ValueError(f"contact = {contact!r} must be one of {CONTACT_KINDS}")
     pm, gm = meshes
+    touching = contact_pairs(pair, place, contact)
     a = pair.operating_centre_distance
     xy1 = _rotate(pm.nodes, place.pinion_angle)
     xy2 = _rotate(gm.nodes, place.gear_angle) + np.array([0.0, a])
@@ -411,7 +415,8 @@ def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], pla
             ("P", pm, pair.pinion, set(place.pinion_tooth.values()), 0, 0),
             ("G", gm, pair.gear, set(place.gear_tooth.values()), n1, e1)):
         teeth = {t % gear.teeth for t in teeth}
-        rows = _contact_faces(pair, mesh, gear, contact, teeth)
+        table = place.pinion_tooth if label == "P" else place.gear_tooth
+        rows = _contact_faces(mesh, {table[k] % gear.teeth for k in touching})
         lines.append(f"*SURFACE, NAME=S{label}, TYPE=ELEMENT")
         lines += [f"{mesh.faces[r, 0] + 1 + eoff}, S{mesh.faces[r, 1]}" for r in rows]
         # nodes of the contact-side outline of every fine tooth, per tooth (loads, locations)
@@ -681,6 +686,22 @@ def solve_position(pair: GearPair, meshes: tuple[GearMesh, GearMesh], s0: float,
 # ---------------------------------------------------------------------------------------
 # a mesh cycle at given torques
 # ---------------------------------------------------------------------------------------
+LOADED_SHARE = 3e-3
+"""A tooth pair is loaded when it carries more than this share of P: the load split by
+``K u`` has a noise of about +-2 N (0.1 % of P at 100 N m) on the teeth out of contact."""
+
+
+def pair_flags(pair: GearPair, s0: float, pairs, loads, torque: float
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """(loaded, beyond): tooth pairs carrying more than ``LOADED_SHARE`` of P, and those of
+    them whose nominal roll ``s0 + k p_b`` (m) lies outside ``[s_start, s_end]``."""
+    loads = np.asarray(loads, dtype=float)
+    s_k = s0 + np.asarray(pairs) * pair.base_pitch
+    loaded = loads > LOADED_SHARE * torque / pair.pinion.base_radius
+    beyond = loaded & ((s_k < pair.s_start - 1e-12) | (s_k > pair.s_end + 1e-12))
+    return loaded, beyond
+
+
 def _at_torque(res: PositionResult, pair: GearPair, torque: float, lo: int, hi: int) -> dict:
     """TE, stiffness, pair loads at ``torque`` (N m) from the steps ``lo`` and ``hi``
     (linear inter-/extrapolation; the stiffness is their secant)."""
@@ -691,9 +712,7 @@ def _at_torque(res: PositionResult, pair: GearPair, torque: float, lo: int, hi: 
     k = (t[hi] - t[lo]) / rb1 / (d[hi] - d[lo])
     loads = res.pair_load[lo] + w * (res.pair_load[hi] - res.pair_load[lo])
     near = lo if abs(w) < abs(1 - w) else hi
-    s_k = res.s0 + res.pairs * pair.base_pitch
-    loaded = loads > 1e-3 * torque / rb1
-    beyond = loaded & ((s_k < pair.s_start - 1e-12) | (s_k > pair.s_end + 1e-12))
+    loaded, beyond = pair_flags(pair, res.s0, res.pairs, loads, torque)
     return {"transmission_error_m": float(te), "mesh_stiffness_N_per_m": float(k),
             "pair_load_N": loads.tolist(), "pair_loaded": loaded.tolist(),
             "pair_beyond_path": beyond.tolist(),
@@ -703,28 +722,67 @@ def _at_torque(res: PositionResult, pair: GearPair, torque: float, lo: int, hi: 
             "load_split_closure": float(res.pressure_load[near])}
 
 
+MAX_ATTEMPTS = 4
+BRACKET = 0.02  # a torque may lie this share of itself outside its two load steps
+
+
+def _bracketed(step_torque: np.ndarray, torque: float) -> bool:
+    """True when the two steps nearest ``torque`` (N m) enclose it, up to ``BRACKET``."""
+    lo, hi = np.sort(step_torque[np.argsort(np.abs(step_torque - torque))[:2]])
+    return lo - BRACKET * torque <= torque <= hi + BRACKET * torque
+
+
+def _aim(d: np.ndarray, t: np.ndarray, torque: float) -> float:
+    """Rotation (arc on the base circle, m) expected to give ``torque`` (N m): linear
+    through the two steps seen that enclose it most tightly, or the two nearest."""
+    order = np.argsort(t)
+    d, t = d[order], t[order]
+    k = int(np.searchsorted(t, torque))
+    i, j = (k - 1, k) if 0 < k < t.size else ((0, 1) if k == 0 else (t.size - 2, t.size - 1))
+    return float(d[i] + (torque - t[i]) * (d[j] - d[i]) / (t[j] - t[i]))
+
+
 def reference_cycle(pair: GearPair, positions: np.ndarray, torques: tuple[float, ...],
                     settings: ReferenceSettings, estimate: np.ndarray, *,
                     contact: str = "full", ccx: str = "ccx", threads: int = 1,
-                    log: Path | None = None) -> list[dict]:
+                    log: Path | None = None) -> tuple[list[dict], dict]:
     """Reference results at each roll coordinate of ``positions`` (m) and torque (N m).
 
     ``estimate`` (n_positions, n_torques) is a first guess of the loaded TE (m); the load
     steps are placed at ``(1 -+ step)`` times it, corrected position by position by the
-    ratio found at the previous one. Each finished position is appended to ``log`` (JSON
-    lines) when given. Returns one dict per position (keys of :func:`_at_torque` per torque
-    under ``"torques"``, the raw steps, the wall time).
+    ratio found at the previous one. A torque that its two nearest steps miss by more than
+    ``BRACKET`` of itself is aimed at again (:func:`_aim`) and the position rerun. Each
+    finished position is appended to ``log`` (JSON lines) when given. Returns one dict
+    per position (keys of :func:`_at_torque` per torque under ``"torques"``, the raw steps,
+    the wall time, the attempts) and the mesh sizes.
     """
     fp, fg = fine_teeth(pair)
     meshes = (gear_mesh(pair.pinion, fp, settings), gear_mesh(pair.gear, fg, settings))
     ratio = np.ones(len(torques))
     out = []
     for i, s0 in enumerate(positions):
-        guess = np.asarray(estimate[i]) * ratio
-        steps = np.sort(np.concatenate([guess * (1 - settings.step), guess * (1 + settings.step)]))
-        res = solve_position(pair, meshes, float(s0), steps, settings, contact=contact, ccx=ccx,
-                             threads=threads)
-        entry = {"s0_m": float(s0), "wall_s": res.wall, "pairs": res.pairs.tolist(),
+        guess = np.asarray(estimate[i], dtype=float) * ratio
+        seen_d, seen_t, wall = [], [], 0.0
+        for attempts in range(1, MAX_ATTEMPTS + 1):  # noqa: B007 (read after the loop)
+            steps = np.sort(np.concatenate([guess * (1 - settings.step),
+                                            guess * (1 + settings.step)]))
+            res = solve_position(pair, meshes, float(s0), steps, settings, contact=contact,
+                                 ccx=ccx, threads=threads)
+            wall += res.wall
+            seen_d += res.displacement.tolist()
+            seen_t += res.torque.tolist()
+            missed = [j for j, T in enumerate(torques) if not _bracketed(res.torque, T)]
+            if not missed:
+                break
+            # a contact that opens or closes between the estimate and the torque makes
+            # T(theta) kinked: aim again from every step seen so far
+            for j in missed:
+                guess[j] = _aim(np.array(seen_d), np.array(seen_t), torques[j])
+        else:
+            raise RuntimeError(f"s0 = {s0 * 1e3:.6g} mm: no load steps bracket the torques "
+                               f"{torques} N m after {MAX_ATTEMPTS} attempts")
+        entry = {"s0_m": float(s0), "wall_s": wall, "attempts": attempts,
+                 "pairs": res.pairs.tolist(),
                  "step_displacement_m": res.displacement.tolist(),
                  "step_torque_Nm": res.torque.tolist(), "torques": []}
         for j, T in enumerate(torques):
@@ -853,6 +911,19 @@ def compare(reference: dict, gearpipe: dict, pair: GearPair, run: str = "full") 
 # ---------------------------------------------------------------------------------------
 TORQUES = (100.0, 340.0)
 POSITIONS = 24
+REGENERATE = (
+    "run --contact full --log full.jsonl",
+    "run --contact nominal --indices 0 2 4 6 8 10 12 14 16 18 20 22 --log nominal_0.jsonl",
+    "run --contact nominal --indices 1 3 5 7 9 11 13 15 17 19 21 23 --log nominal_1.jsonl",
+    "run --size-contact 0.2 --indices 9 18 21 --log conv_0.2.jsonl",
+    "run --size-contact 0.05 --indices 9 18 21 --log conv_0.05.jsonl",
+    "run --size-contact 0.1 --size-fine 0.25 --growth 0.3 --indices 9 21 --log conv_tooth.jsonl",
+    "run --size-contact 0.1 --penalty 4e17 --indices 21 --log conv_pen.jsonl",
+    "assemble --full full.jsonl --nominal nominal_0.jsonl nominal_1.jsonl --convergence "
+    "0.2,0.5,0.6,1e17:conv_0.2.jsonl 0.05,0.5,0.6,1e17:conv_0.05.jsonl "
+    "0.1,0.25,0.3,1e17:conv_tooth.jsonl 0.1,0.5,0.6,4e17:conv_pen.jsonl",
+)
+"""The commands that wrote the committed reference (each ``run`` appends to its log)."""
 
 
 def _demo_pair() -> GearPair:
@@ -887,6 +958,13 @@ def _mesh_info(pair: GearPair, settings: ReferenceSettings) -> dict:
             "fine_teeth_pinion": list(fp), "fine_teeth_gear": list(fg)}
 
 
+def _reflag(pair: GearPair, entry: dict) -> None:
+    """Loaded / beyond-path flags of a log entry from its pair loads (:func:`pair_flags`)."""
+    for T, res in zip(TORQUES, entry["torques"], strict=True):
+        loaded, beyond = pair_flags(pair, entry["s0_m"], entry["pairs"], res["pair_load_N"], T)
+        res["pair_loaded"], res["pair_beyond_path"] = loaded.tolist(), beyond.tolist()
+
+
 def _cmd_assemble(args) -> int:
     """Merge the JSON-lines logs of the runs into the committed reference file."""
     import gmsh
@@ -897,12 +975,14 @@ def _cmd_assemble(args) -> int:
     settings = ReferenceSettings()
     s0 = pair.mesh_cycle(args.positions)
     runs = {}
-    for name, log in (("full", args.full), ("nominal", args.nominal)):
-        entries = sorted(_read_log(log), key=lambda e: e["s0_m"])
+    for name, logs in (("full", args.full), ("nominal", args.nominal)):
+        entries = sorted((e for log in logs for e in _read_log(log)), key=lambda e: e["s0_m"])
         got = np.array([e["s0_m"] for e in entries])
         if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
-            raise SystemExit(f"{log}: positions do not cover the {args.positions}-position "
+            raise SystemExit(f"{logs}: positions do not cover the {args.positions}-position "
                              "mesh cycle")
+        for e in entries:
+            _reflag(pair, e)
         runs[name] = entries
     convergence = []
     for spec in args.convergence or []:
@@ -911,6 +991,7 @@ def _cmd_assemble(args) -> int:
         for e in _read_log(Path(log)):
             e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3, growth=growth,
                      penalty_Pa_per_m=penalty)
+            _reflag(pair, e)
             convergence.append(e)
     wall = sum(e["wall_s"] for r in runs.values() for e in r)
     doc = {
@@ -920,8 +1001,10 @@ def _cmd_assemble(args) -> int:
             "calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
             "gearpipe_version": pipeline.__version__,
             "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
-            "command": "python workflows/reference/calculix_spur_contact.py run --contact "
-                       "{full,nominal} --log LOG; ... assemble (workflows/reference/README.md)",
+            "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
+                                 *args.argv]),
+            "run_commands": [f"python workflows/reference/calculix_spur_contact.py {c}"
+                             for c in REGENERATE],
             "settings": asdict(settings), "mesh": _mesh_info(pair, settings),
             "elements": "CPE6 (plane strain, quadratic), thickness = face width",
             "contact": "surface to surface, frictionless, linear penalty",
@@ -1078,8 +1161,8 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("--log", type=Path, required=True)
     run.set_defaults(func=_cmd_run)
     asm = sub.add_parser("assemble", help="merge run logs into the reference JSON")
-    asm.add_argument("--full", type=Path, required=True)
-    asm.add_argument("--nominal", type=Path, required=True)
+    asm.add_argument("--full", type=Path, nargs="+", required=True)
+    asm.add_argument("--nominal", type=Path, nargs="+", required=True)
     asm.add_argument("--convergence", nargs="*",
                      help="SIZE_CONTACT_MM,SIZE_FINE_MM,GROWTH,PENALTY:LOG of each study run")
     asm.add_argument("--positions", type=int, default=POSITIONS)
@@ -1090,6 +1173,7 @@ def main(argv: list[str] | None = None) -> int:
     cmp_.add_argument("--figure", type=Path, default=None, help="PNG to write")
     cmp_.set_defaults(func=_cmd_compare)
     args = ap.parse_args(argv)
+    args.argv = list(argv) if argv is not None else sys.argv[1:]
     return args.func(args)
 
 
