@@ -55,7 +55,61 @@ Model
 Mesh positions are gearpipe's: the roll coordinate ``s0`` of the leading tooth pair
 (:meth:`pipeline.geometry.GearPair.mesh_cycle`), and tooth pair ``k`` is at ``s0 + k p_b``.
 
-CONVERGENCE_PLACEHOLDER
+Convergence (demo pair, ``size_contact`` 0.2 / 0.1 / 0.05 mm, the rest of the mesh fixed;
+``convergence_rows``; positions 9, 18, 21 of 24: double contact near the pitch point, the
+last double-contact position with the leaving pair 0.04 mm before the end of the path, and
+single contact with the leaving pair's tip corner touching at 340 N m):
+
+====  ======  ==========================  ==========================  ================
+pos.  torque  TE (um) 0.2 / 0.1 / 0.05 mm   k (N/um) 0.2 / 0.1 / 0.05   0.1 -> 0.05 mm
+====  ======  ==========================  ==========================  ================
+9     100     4.795 / 4.829 / 4.835       297.1 / 299.7 / 299.3       +0.12 %, -0.13 %
+9     340     15.997 / 16.017 / 16.022    307.2 / 307.4 / 307.4       +0.03 %, -0.01 %
+18    100     4.955 / 4.995 / 4.999       286.4 / 288.8 / 288.8       +0.07 %, 0.00 %
+18    340     16.522 / 16.532 / 16.539    297.9 / 296.6 / 296.6       +0.04 %, +0.02 %
+21    100     6.432 / 6.441 / 6.441       228.4 / 227.6 / 227.2       0.00 %, -0.16 %
+21    340     20.719 / 20.773 / 20.773    267.0 / 264.2 / 273.7       0.00 %, see below
+====  ======  ==========================  ==========================  ================
+
+The change from 0.2 to 0.1 mm is 4-8 times the change from 0.1 to 0.05 mm in TE (the
+contact zone, 0.14 mm wide at 100 N m, is resolved from 0.1 mm on), so the committed 0.1 mm
+mesh is within about 0.15 % of the converged TE and stiffness wherever the stiffness is a
+derivative. Where a tip corner is just closing (position 21 at 340 N m: the leaving pair
+carries 2.5 % of the load 1.07 mm past the end of the path) T(theta) has a kink and the
+secant stiffness over the 4 % load interval depends on where the interval falls:
+262-274 N/um over the runs, whose intervals differ. At the same four rotations
+(``convergence_same_steps``) the 0.05 mm mesh gives torques within 0.06 % of the 0.1 mm
+one (TE within 0.01 %), and the secant stiffness there 1.0 % higher: near a closing
+corner the stiffness is converged to about 1 %, elsewhere to 0.15 %. The rest of the
+mesh: ``size_fine`` 0.25 mm and growth 0.3 (24k instead of 16.6k nodes per gear) change TE
+by +0.06 to +0.08 % and k by -0.05 to -0.23 % (positions 9 and 21, both torques).
+Penalty 4e17 instead of 1e17 Pa/m (the overclosure, 5-8 nm at 340 N m, is 0.04 % of the
+TE): TE -0.02 % at both torques, k +0.12 % (100 N m) and -0.66 % (340 N m, the closing
+corner; position 21). The committed data use 0.1 mm, 1e17 Pa/m.
+
+Against gearpipe's FE-enriched loaded contact (``compare``, 24 positions, frictionless,
+Weber local contact; the numbers are gearpipe / CalculiX - 1): in double contact away from
+the transitions TE within 0.02-0.23 % and stiffness within 0.02-0.8 % at both torques; at
+the start of the path (position 0) and 0.04 mm before its end (position 18) TE -0.9 to
+-1.3 %, stiffness +0.9 to +1.5 %. In the nominal single-contact zone (positions 19-23)
+the nominal-path control agrees within 0.24 % (TE) and 0.43 % (stiffness), but the model
+with every flank does not: at 340 N m a tip corner touches beyond the path at all five
+positions, carrying 33, 21, 2.5, 20 and 32 % of the load, so gearpipe's stiffness is 10-20 %
+lower and its TE 1-22 % higher; at 100 N m only at the first and last single-contact
+positions (27 and 24 % of the load; stiffness -18 / -20 %). Over the cycle at 340 N m the
+mean stiffness is 300.4 against 291.2 N/um, the minimum 264.3 against 236.6, the stiffness
+fluctuation (max - min) / mean 14 % against 25 %, the TE peak to peak 4.76 against 5.07 um.
+
+Cost (the shared 2-core machine, one CalculiX thread per run, two runs side by side):
+16.6k nodes per gear (0.1 mm), 25-35 contact iterations per position over its four load
+steps, 60-170 s per position (up to 350 s where the steps had to be re-aimed); 5900 s of
+CalculiX for the 2 x 24 committed positions and 1700 s for the convergence runs, about
+65 min of wall time with two to four runs side by side.
+
+Regenerate: the commands of :data:`REGENERATE` (``run`` appends to a JSON-lines log,
+``assemble`` writes ``demo_pair_reference.json`` with its provenance: CalculiX and Gmsh
+versions, settings, mesh sizes, date, commands, wall time), then ``compare`` prints the
+table against gearpipe and writes the figure.
 """
 
 from __future__ import annotations
@@ -976,7 +1030,9 @@ def _cmd_assemble(args) -> int:
     s0 = pair.mesh_cycle(args.positions)
     runs = {}
     for name, logs in (("full", args.full), ("nominal", args.nominal)):
-        entries = sorted((e for log in logs for e in _read_log(log)), key=lambda e: e["s0_m"])
+        # a later log replaces an earlier one's entry at the same position
+        by_s0 = {round(e["s0_m"], 12): e for log in logs for e in _read_log(log)}
+        entries = [by_s0[k] for k in sorted(by_s0)]
         got = np.array([e["s0_m"] for e in entries])
         if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
             raise SystemExit(f"{logs}: positions do not cover the {args.positions}-position "
@@ -1009,6 +1065,8 @@ def _cmd_assemble(args) -> int:
             "elements": "CPE6 (plane strain, quadratic), thickness = face width",
             "contact": "surface to surface, frictionless, linear penalty",
             "ccx_wall_time_s": wall,
+            "note": args.note,
+            "ccx_wall_time_convergence_s": sum(e["wall_s"] for e in convergence),
         },
         "pair": {"teeth": [pair.pinion.teeth, pair.gear.teeth], "module_m": pair.pinion.module,
                  "face_width_m": pair.face_width, **pair.summary()},
@@ -1161,6 +1219,7 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("--log", type=Path, required=True)
     run.set_defaults(func=_cmd_run)
     asm = sub.add_parser("assemble", help="merge run logs into the reference JSON")
+    asm.add_argument("--note", default="", help="free text stored in the provenance")
     asm.add_argument("--full", type=Path, nargs="+", required=True)
     asm.add_argument("--nominal", type=Path, nargs="+", required=True)
     asm.add_argument("--convergence", nargs="*",
