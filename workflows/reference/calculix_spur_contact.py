@@ -312,8 +312,10 @@ def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings
     return GearMesh(nodes, tri, bore, faces, radius, kind, tuple(sorted(fine_set)))
 
 
-def _outline_faces(gear, nodes, tri, edge_blocks, renum):
-    """Element faces (element, CalculiX face number, tooth) of the contact-side outline."""
+def _outline_faces(gear: GearSpec, nodes: np.ndarray, tri: np.ndarray, edge_blocks: list,
+                   renum: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Element faces (element, CalculiX face number, tooth), their radius range (m) and kind
+    of the contact-side outline edges ``edge_blocks`` ((tooth, piece name, Gmsh edges))."""
     corner_key = {}
     for e_idx, t in enumerate(tri):
         for f, (a, b) in enumerate(((t[0], t[1]), (t[1], t[2]), (t[2], t[0])), start=1):
@@ -370,6 +372,10 @@ def placement(pair: GearPair, s0: float) -> Placement:
     """Rotations that put tooth pair k at roll ``s0 + k p_b`` (pinion tooth 0 within half a
     pitch of the centre line). The gear starts with a tooth space on -y (pinion tooth 0 in
     it, flanks touching on both sides at zero backlash) and turns by the ratio."""
+    if pair.gear.internal or pair.pinion.is_helical:
+        raise ValueError("the CalculiX reference models external spur pairs only "
+                         f"(gear.internal = {pair.gear.internal}, helix angle "
+                         f"{math.degrees(pair.pinion.helix_angle):.6g} deg)")
     pb, rb1 = pair.base_pitch, pair.pinion.base_radius
     s_ref = _roll_of_pinion_tooth0(pair)
     k0 = round((s_ref - s0) / pb)
@@ -400,13 +406,11 @@ def _mate_of_tooth0(pair: GearPair, gear0: float) -> int:
 
 def fine_teeth(pair: GearPair) -> tuple[tuple[int, ...], tuple[int, ...]]:
     """Teeth of pinion and gear meshed fine: pairs k0-2 .. k0+2 of every placement."""
-    p0 = placement(pair, pair.s_start)
     pin, gea = set(), set()
     for s0 in np.linspace(pair.s_start, pair.s_start + pair.base_pitch, 9):
         pl = placement(pair, float(s0))
         pin |= set(pl.pinion_tooth.values())
         gea |= set(pl.gear_tooth.values())
-    del p0
     z1, z2 = pair.pinion.teeth, pair.gear.teeth
     return tuple(sorted({j % z1 for j in pin})), tuple(sorted({j % z2 for j in gea}))
 
@@ -498,8 +502,7 @@ def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], pla
         for node, (ux, uy) in zip(pm.bore + 1, u, strict=True):
             lines += [f"{node}, 1, 1, {ux:.12e}", f"{node}, 2, 2, {uy:.12e}"]
         lines += ["*NODE PRINT, NSET=PBORE, FREQUENCY=1000", "RF"]
-        lines += ["*NODE FILE, FREQUENCY=1000", "U",
-                  "*CONTACT FILE, FREQUENCY=1000", "CSTR", "*END STEP"]
+        lines += ["*NODE FILE, FREQUENCY=1000", "U", "*END STEP"]
     path.write_text("\n".join(lines) + "\n")
     gear_ids = np.unique(np.concatenate([v for k, v in surf_nodes.items() if k.startswith("G")]))
     return {"pinion_nodes": n1, "surface_nodes": surf_nodes, "xy": xy,
@@ -557,31 +560,6 @@ def parse_dat(path: Path) -> list[dict[str, dict[int, np.ndarray]]]:
             block = None
     for d in out:
         d.pop("__time")
-    return out
-
-
-def parse_frd_contact(path: Path) -> list[dict[int, tuple[float, float]]]:
-    """Contact output (``*CONTACT FILE`` CSTR) of a CalculiX ``.frd`` file, per output time.
-
-    Returns one dict per block: node id -> (COPEN in m, CPRESS in Pa) for the nodes with a
-    non-zero entry (slave nodes in contact).
-    """
-    out = []
-    lines = path.read_text().splitlines()
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith(" -4  CONTACT"):
-            block = {}
-            i += 1
-            while not lines[i].startswith(" -3"):
-                ln = lines[i]
-                if ln.startswith(" -1"):
-                    vals = [float(ln[13 + 12 * k:25 + 12 * k]) for k in range(6)]
-                    if vals[3] != 0.0:
-                        block[int(ln[3:13])] = (vals[0], vals[3])
-                i += 1
-            out.append(block)
-        i += 1
     return out
 
 
