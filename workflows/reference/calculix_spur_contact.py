@@ -71,21 +71,24 @@ pos.  torque  TE (um) 0.2 / 0.1 / 0.05 mm   k (N/um) 0.2 / 0.1 / 0.05   0.1 -> 0
 21    340     20.719 / 20.773 / 20.773    267.0 / 264.2 / 273.7       0.00 %, see below
 ====  ======  ==========================  ==========================  ================
 
-The change from 0.2 to 0.1 mm is 4-8 times the change from 0.1 to 0.05 mm in TE (the
+The change from 0.2 to 0.1 mm is 4-10 times the change from 0.1 to 0.05 mm in TE (the
 contact zone, 0.14 mm wide at 100 N m, is resolved from 0.1 mm on), so the committed 0.1 mm
 mesh is within about 0.15 % of the converged TE and stiffness wherever the stiffness is a
 derivative. Where a tip corner is just closing (position 21 at 340 N m: the leaving pair
 carries 2.5 % of the load 1.07 mm past the end of the path) T(theta) has a kink and the
 secant stiffness over the 4 % load interval depends on where the interval falls:
 262-274 N/um over the runs, whose intervals differ. At the same four rotations
-(``convergence_same_steps``) the 0.05 mm mesh gives torques within 0.06 % of the 0.1 mm
-one (TE within 0.01 %), and the secant stiffness there 1.0 % higher: near a closing
-corner the stiffness is converged to about 1 %, elsewhere to 0.15 %. The rest of the
-mesh: ``size_fine`` 0.25 mm and growth 0.3 (24k instead of 16.6k nodes per gear) change TE
-by +0.06 to +0.08 % and k by -0.05 to -0.23 % (positions 9 and 21, both torques).
-Penalty 4e17 instead of 1e17 Pa/m (the overclosure, 5-8 nm at 340 N m, is 0.04 % of the
-TE): TE -0.02 % at both torques, k +0.12 % (100 N m) and -0.66 % (340 N m, the closing
-corner; position 21). The committed data use 0.1 mm, 1e17 Pa/m.
+(``convergence_same_steps``) the 0.2 / 0.05 mm meshes give torques +0.14 to +0.23 % /
+-0.06 to +0.01 % off the 0.1 mm one (TE within 0.01 % at 0.05 mm), and the secant
+stiffness there -1.2 / +1.0 % at 340 N m, +0.36 / -0.14 % at 100 N m: near a closing
+corner the stiffness is converged to about 1 %, elsewhere to 0.15 %. The rest of the mesh
+(positions 9 and 21, both torques): ``size_fine`` 0.25 mm and growth 0.3 (24k instead of
+16.6k nodes per gear) change TE by +0.06 to +0.08 % and k by -0.05 to -0.23 %; a finer far
+field (``size_tooth`` 0.75 mm, ``size_body`` 2.5 mm, growth 0.3: 38k nodes per gear) TE by
++0.06 to +0.08 % and k by -0.04 to -0.22 %. Penalty 4e17 instead of 1e17 Pa/m (the
+overclosure, 5-8 nm at 340 N m, is 0.04 % of the TE): TE -0.02 % at both torques, k
++0.12 % (100 N m) and -0.66 % (340 N m, the closing corner; position 21). The committed
+data use 0.1 mm and 1e17 Pa/m.
 
 Against gearpipe's FE-enriched loaded contact (``compare``, 24 positions, frictionless,
 Weber local contact; the numbers are gearpipe / CalculiX - 1): in double contact away from
@@ -103,7 +106,7 @@ fluctuation (max - min) / mean 14 % against 25 %, the TE peak to peak 4.76 again
 Cost (the shared 2-core machine, one CalculiX thread per run, two runs side by side):
 16.6k nodes per gear (0.1 mm), 25-35 contact iterations per position over its four load
 steps, 60-170 s per position (up to 350 s where the steps had to be re-aimed); 5900 s of
-CalculiX for the 2 x 24 committed positions and 1700 s for the convergence runs, about
+CalculiX for the 2 x 24 committed positions and 2100 s for the convergence runs, about
 65 min of wall time with two to four runs side by side.
 
 Regenerate: the commands of :data:`REGENERATE` (``run`` appends to a JSON-lines log,
@@ -951,9 +954,13 @@ REGENERATE = (
     "run --size-contact 0.05 --indices 9 18 21 --log conv_0.05.jsonl",
     "run --size-contact 0.1 --size-fine 0.25 --growth 0.3 --indices 9 21 --log conv_tooth.jsonl",
     "run --size-contact 0.1 --penalty 4e17 --indices 21 --log conv_pen.jsonl",
+    "run --size-contact 0.1 --size-tooth 0.75 --size-body 2.5 --growth 0.3 --indices 9 21 "
+    "--log conv_far.jsonl",
+    "same-steps --log full.jsonl --index 21 --size-contact 0.05 --out samestep.json",
     "assemble --full full.jsonl --nominal nominal_0.jsonl nominal_1.jsonl --convergence "
-    "0.2,0.5,0.6,1e17:conv_0.2.jsonl 0.05,0.5,0.6,1e17:conv_0.05.jsonl "
-    "0.1,0.25,0.3,1e17:conv_tooth.jsonl 0.1,0.5,0.6,4e17:conv_pen.jsonl",
+    "0.2,0.5,1.5,5,0.6,1e17:conv_0.2.jsonl 0.05,0.5,1.5,5,0.6,1e17:conv_0.05.jsonl "
+    "0.1,0.25,1.5,5,0.3,1e17:conv_tooth.jsonl 0.1,0.5,1.5,5,0.6,4e17:conv_pen.jsonl "
+    "0.1,0.5,0.75,2.5,0.3,1e17:conv_far.jsonl --same-steps samestep.json",
 )
 """The commands that wrote the committed reference (each ``run`` appends to its log)."""
 
@@ -966,8 +973,13 @@ def _demo_pair() -> GearPair:
 
 def _settings(args) -> ReferenceSettings:
     base = ReferenceSettings()
+    def mm(value, default):
+        return value * 1e-3 if value else default
+
     return ReferenceSettings(size_contact=args.size_contact * 1e-3,
-                             size_fine=args.size_fine * 1e-3 if args.size_fine else base.size_fine,
+                             size_fine=mm(args.size_fine, base.size_fine),
+                             size_tooth=mm(args.size_tooth, base.size_tooth),
+                             size_body=mm(args.size_body, base.size_body),
                              growth=args.growth or base.growth, penalty=args.penalty)
 
 
@@ -1021,9 +1033,10 @@ def _cmd_assemble(args) -> int:
     convergence = []
     for spec in args.convergence or []:
         values, log = spec.split(":", 1)
-        size, fine, growth, penalty = (float(v) for v in values.split(","))
+        size, fine, tooth, body, growth, penalty = (float(v) for v in values.split(","))
         for e in _read_log(Path(log)):
-            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3, growth=growth,
+            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3,
+                     size_tooth_m=tooth * 1e-3, size_body_m=body * 1e-3, growth=growth,
                      penalty_Pa_per_m=penalty)
             _reflag(pair, e)
             convergence.append(e)
@@ -1052,6 +1065,7 @@ def _cmd_assemble(args) -> int:
         "positions_m": s0.tolist(),
         "runs": runs,
         "convergence": convergence,
+        "convergence_same_steps": [json.loads(Path(f).read_text()) for f in args.same_steps],
     }
     args.out.write_text(json.dumps(_finite(doc), indent=1) + "\n")
     print(f"wrote {args.out} ({wall:.0f} s of CalculiX)")
@@ -1071,6 +1085,25 @@ def _cmd_run(args) -> int:
     return 0
 
 
+def _cmd_same_steps(args) -> int:
+    """Rerun the load steps of a logged position on another mesh (torques at the same
+    rotations: a convergence check free of the secant interval)."""
+    pair = _demo_pair()
+    s0 = float(pair.mesh_cycle(args.positions)[args.index])
+    entry = next(e for e in _read_log(args.log) if abs(e["s0_m"] - s0) < 1e-12)
+    settings = _settings(args)
+    fp, fg = fine_teeth(pair)
+    meshes = (gear_mesh(pair.pinion, fp, settings), gear_mesh(pair.gear, fg, settings))
+    res = solve_position(pair, meshes, s0, np.array(entry["step_displacement_m"]), settings,
+                         ccx=args.ccx, threads=args.threads)
+    out = {"s0_m": s0, "size_contact_m": settings.size_contact,
+           "step_displacement_m": entry["step_displacement_m"],
+           "torque_committed_mesh_Nm": entry["step_torque_Nm"],
+           "torque_this_mesh_Nm": res.torque.tolist(), "wall_s": res.wall}
+    args.out.write_text(json.dumps(out) + "\n")
+    return 0
+
+
 def _read_log(path: Path) -> list[dict]:
     return [json.loads(line) for line in Path(path).read_text().splitlines() if line.strip()]
 
@@ -1079,7 +1112,7 @@ def convergence_rows(reference: dict) -> list[str]:
     """Text rows of the convergence runs against the committed (production) mesh at the same
     position: TE and stiffness at each torque and their change (%)."""
     prod = {round(e["s0_m"], 12): e for e in reference["runs"]["full"]}
-    out = ["s0 [mm]  size_contact [mm]  size_fine [mm]  growth  penalty [Pa/m]  "
+    out = ["s0 [mm]  size_contact / fine / tooth / body [mm]  growth  penalty [Pa/m]  "
            + "  ".join(f"TE {T:g} [um] (d %)  k {T:g} [N/um] (d %)"
                        for T in reference["torques_Nm"])]
     for e in sorted(reference["convergence"], key=lambda e: (e["s0_m"], -e["size_contact_m"])):
@@ -1091,8 +1124,9 @@ def convergence_rows(reference: dict) -> list[str]:
             d_te = (te / b["transmission_error_m"] - 1) * 100
             d_k = (k / b["mesh_stiffness_N_per_m"] - 1) * 100
             cells.append(f"{te * 1e6:8.3f} ({d_te:+6.2f})  {k * 1e-6:7.2f} ({d_k:+6.2f})")
-        out.append(f"{e['s0_m'] * 1e3:7.3f}  {e['size_contact_m'] * 1e3:17.3f}  "
-                   f"{e['size_fine_m'] * 1e3:14.3f}  {e['growth']:6.2f}  "
+        sizes = " / ".join(f"{e[k] * 1e3:g}" for k in ("size_contact_m", "size_fine_m",
+                                                        "size_tooth_m", "size_body_m"))
+        out.append(f"{e['s0_m'] * 1e3:7.3f}  {sizes:>35}  {e['growth']:6.2f}  "
                    f"{e['penalty_Pa_per_m']:14.3g}  " + "  ".join(cells))
     return out
 
@@ -1189,6 +1223,10 @@ def main(argv: list[str] | None = None) -> int:
                      help="element size on the contact flanks, mm")
     run.add_argument("--size-fine", type=float, default=None,
                      help="element size on the rest of the contacting teeth, mm")
+    run.add_argument("--size-tooth", type=float, default=None,
+                     help="element size on the other teeth, mm")
+    run.add_argument("--size-body", type=float, default=None,
+                     help="largest element size in the body, mm")
     run.add_argument("--growth", type=float, default=None, help="element size growth (-)")
     run.add_argument("--penalty", type=float, default=ReferenceSettings.penalty,
                      help="contact penalty, Pa/m")
@@ -1196,12 +1234,25 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("--ccx", default="ccx")
     run.add_argument("--log", type=Path, required=True)
     run.set_defaults(func=_cmd_run)
+    same = sub.add_parser("same-steps", help="rerun a logged position's steps on another mesh")
+    same.add_argument("--log", type=Path, required=True)
+    same.add_argument("--index", type=int, required=True, help="position index in the cycle")
+    same.add_argument("--positions", type=int, default=POSITIONS)
+    same.add_argument("--size-contact", type=float, required=True, help="mm")
+    same.add_argument("--out", type=Path, required=True)
+    same.add_argument("--ccx", default="ccx")
+    same.add_argument("--threads", type=int, default=1)
+    same.set_defaults(func=_cmd_same_steps, size_fine=None, size_tooth=None, size_body=None,
+                      growth=None, penalty=ReferenceSettings.penalty)
     asm = sub.add_parser("assemble", help="merge run logs into the reference JSON")
     asm.add_argument("--note", default="", help="free text stored in the provenance")
     asm.add_argument("--full", type=Path, nargs="+", required=True)
     asm.add_argument("--nominal", type=Path, nargs="+", required=True)
     asm.add_argument("--convergence", nargs="*",
-                     help="SIZE_CONTACT_MM,SIZE_FINE_MM,GROWTH,PENALTY:LOG of each study run")
+                     help="SIZE_CONTACT,SIZE_FINE,SIZE_TOOTH,SIZE_BODY (mm),GROWTH,"
+                          "PENALTY (Pa/m):LOG of each study run")
+    asm.add_argument("--same-steps", nargs="*", default=[],
+                     help="JSON files of committed load steps rerun on another mesh")
     asm.add_argument("--positions", type=int, default=POSITIONS)
     asm.add_argument("--out", type=Path, default=DATA)
     asm.set_defaults(func=_cmd_assemble)
