@@ -103,11 +103,11 @@ positions (27 and 24 % of the load; stiffness -18 / -20 %). Over the cycle at 34
 mean stiffness is 300.4 against 291.2 N/um, the minimum 264.3 against 236.6, the stiffness
 fluctuation (max - min) / mean 14 % against 25 %, the TE peak to peak 4.76 against 5.07 um.
 
-Cost (the shared 2-core machine, one CalculiX thread per run, two runs side by side):
-16.6k nodes per gear (0.1 mm), 25-35 contact iterations per position over its four load
-steps, 60-170 s per position (up to 350 s where the steps had to be re-aimed); 5900 s of
-CalculiX for the 2 x 24 committed positions and 2100 s for the convergence runs, about
-65 min of wall time with two to four runs side by side.
+Cost (the shared 2-core machine, one CalculiX thread per run, two to four runs side by
+side): 16.6k nodes per gear (0.1 mm); CalculiX needed 23 contact iterations for the first
+load step and 8 for the next (measured at one position); 60-170 s per position, up to 350 s
+where the steps had to be re-aimed; 5900 s of CalculiX for the 2 x 24 committed positions
+and 2100 s for the convergence runs, about 65 min of wall time.
 
 Regenerate: the commands of :data:`REGENERATE` (``run`` appends to a JSON-lines log,
 ``assemble`` writes ``demo_pair_reference.json`` with its provenance: CalculiX and Gmsh
