@@ -31,7 +31,7 @@ passed to every step that caches, entries keyed by inputs and producing code),
 ``output_folder`` (a result folder written as a unit),
 ``provenance`` (``run.json``), ``signals`` (periodic signals, Fourier series),
 ``operation`` (the operating point), ``validation`` (input checks), ``progress``,
-``child_processes``.
+``parallel`` (the process pool).
 
 Everything inside the package is in SI units (m, N, Pa, rad, s); conversion to mm, deg,
 N m and rpm happens only at the edges (``config``, reports, command output). Frozen

@@ -1,20 +1,22 @@
 """No child process outlives its parent, kill -9 of the parent included.
 
-``pipeline.child_processes.die_with_parent`` is checked on its own (a parent killed with
+``pipeline.parallel.die_with_parent`` is checked on its own (a parent killed with
 SIGKILL, a parent already gone before the child arms it), by Linux's parent-death signal
 and by the portable watcher thread. Then each place that has children is killed while they
 run, first in a small script whose children sleep for 60 s (the sweep's pool; the drawing
-children of a process, of the drawer, and of a killed drawer), then as ``gearpipe`` runs:
-``gearpipe run`` during the speed sweep (the pool workers and the early-started figure
-drawer), ``gearpipe run`` while the drawer and its forked children draw, the drawer itself
-while its children draw (slow: the run then draws the figures itself and must succeed),
-and ``gearpipe study`` with its two LocalCluster workers. Every child must be gone within
-:data:`GONE_WITHIN`. Without ``die_with_parent``, every case but the study and the slow
-one fails: the pool workers and the drawer of a run killed in its sweep were still there
-5 s later (they wait for ever), the drawing children of a run killed while drawing 5.6 s
-later. Processes forked by a run carry the run's command line, so a search for the test's
-output folder in every command line finds them all, grandchildren included, once the
-parent is gone.
+pool of a process, of the drawer, and of a killed drawer; a drawing pool one of whose
+workers is killed, and any pool after ``gmsh.initialize()``, which sets SIGPIPE back to
+its default action), then as ``gearpipe`` runs: ``gearpipe run`` during the speed sweep
+(the pool workers and the early-started figure drawer), ``gearpipe run`` while the
+drawer's pool draws, the drawer itself while its pool draws (slow: the run then draws
+the figures itself and must succeed), and ``gearpipe study`` with its two LocalCluster
+workers. Every child must be gone within :data:`GONE_WITHIN`. Without
+``die_with_parent`` (measured with the hand-written pipes the pools replaced), every
+case but the study and the slow one fails: the pool workers and the drawer of a run
+killed in its sweep were still there 5 s later (they wait for ever), the drawing
+children of a run killed while drawing 5.6 s later. Processes forked by a run carry the
+run's command line, so a search for the test's output folder in every command line
+finds them all, grandchildren included, once the parent is gone.
 """
 from __future__ import annotations
 
@@ -106,7 +108,7 @@ def _run(tmp_path: Path) -> tuple[subprocess.Popen, str]:
 # Forks a child that arms die_with_parent and sleeps; prints the child's pid; sleeps.
 MIDDLE = r"""
 import os, sys, time
-import pipeline.child_processes as cp
+import pipeline.parallel as cp
 if sys.argv[1] == "watcher":
     cp._arm_parent_death_signal = lambda: False  # the portable path, as elsewhere than Linux
 else:  # the signal alone: no watcher to fall back on
@@ -162,12 +164,14 @@ def test_a_child_whose_parent_is_already_gone_ends_at_once(path):
 # A sweep whose two pool workers sleep for 60 s.
 POOL = r"""
 import time
-from pipeline.dynamics.sweep import local_executor, map_chunks
-map_chunks(time.sleep, [60.0, 60.0], local_executor(2))
+from pipeline.dynamics.sweep import map_chunks
+from pipeline.parallel import process_pool
+map_chunks(time.sleep, [60.0, 60.0], process_pool(2))
 """
 
-# Three figures that take 60 s each, drawn here and in two forked children, or by the
-# early-started drawer (it pickles __main__.slow by name; the forked drawer has it).
+# Three figures that take 60 s each, drawn by a pool of three forked here, or by the
+# early-started drawer and the pool of three it forks (the pools pickle __main__.slow by
+# name; the forked workers have it).
 FIGURES = r"""
 import sys, time
 from pipeline.viz.figure_queue import FigureQueue
@@ -213,12 +217,12 @@ def test_sweep_pool_workers_end_with_their_parent(tmp_path):
 
 @pytest.mark.parametrize("where", ["here", "drawer"])
 def test_drawing_children_end_with_their_parent(tmp_path, where):
-    """Killed while drawing: here, its two drawing children end; with the drawer, the
-    drawer and its two children end."""
+    """Killed while drawing: here, its pool's three workers end; with the drawer, the
+    drawer and its pool's three workers end."""
     proc, watched = _script(FIGURES, where, cwd=tmp_path), []
     try:
         parent = psutil.Process(proc.pid)
-        drawers = 3 if where == "drawer" else 2  # the processes that draw besides this one
+        drawers = 4 if where == "drawer" else 3  # the processes it has, grandchildren included
         drawing = lambda: len([c for c in parent.children(recursive=True) if _alive(c)]) == drawers  # noqa: E731, E501
         assert _wait(drawing, 60), "no drawing children seen"
         watched = _kill_and_watch(parent)
@@ -234,12 +238,75 @@ def test_drawing_children_end_with_a_killed_drawer(tmp_path):
     proc, watched = _script(FIGURES, "drawer", cwd=tmp_path), []
     try:
         parent = psutil.Process(proc.pid)
-        with_children = lambda: [d for d in _forked_children(parent) if len(_forked_children(d)) == 2]  # noqa: E731, E501
+        with_children = lambda: [d for d in _forked_children(parent) if len(_forked_children(d)) == 3]  # noqa: E731, E501
         assert _wait(lambda: bool(with_children()), 60), "no drawing children seen"
         watched = _kill_and_watch(with_children()[0])
-        assert len(watched) == 2
+        assert len(watched) == 3
         assert _wait(lambda: not any(_alive(c) for c in watched), GONE_WITHIN), watched
         assert _alive(parent)  # the process that started the drawer goes on (drawing itself)
+    finally:
+        proc.kill()
+        proc.wait(timeout=10)
+        _kill_all(watched)
+
+
+def test_a_killed_pool_worker_takes_the_others_with_it(tmp_path):
+    """One of the three drawing workers killed: the pool ends the other two, and the
+    process that started it goes on (drawing the figures itself)."""
+    proc, watched = _script(FIGURES, "here", cwd=tmp_path), []
+    try:
+        parent = psutil.Process(proc.pid)
+        assert _wait(lambda: len(_forked_children(parent)) == 3, 60), "no pool workers seen"
+        watched = _forked_children(parent)
+        watched[0].kill()
+        assert _wait(lambda: not any(_alive(c) for c in watched), GONE_WITHIN), watched
+        assert _alive(parent)
+    finally:
+        proc.kill()
+        proc.wait(timeout=10)
+        _kill_all(watched)
+
+
+# Two workers, each given a 60 s sleep with more waiting, after gmsh.initialize() has set
+# SIGPIPE back to its default action; each piece of work carries 1 MB, so that the one
+# queued next is still being written into the work queue's pipe (64 kB) when a worker
+# dies. Prints what the pending work came to.
+BROKEN = r"""
+import time
+import gmsh
+from concurrent.futures import wait
+from pipeline.parallel import process_pool
+
+def hold(seconds, payload):
+    time.sleep(seconds)
+
+gmsh.initialize()
+pool = process_pool(2)
+futures = [pool.submit(hold, 60.0, bytes(1_000_000)) for _ in range(8)]
+print("submitted", flush=True)
+wait(futures)
+print(sorted({type(f.exception()).__name__ for f in futures}), flush=True)
+pool.shutdown()
+"""
+
+
+def test_a_killed_pool_worker_breaks_the_pool_not_its_parent(tmp_path):
+    """One worker killed while work is pending, with SIGPIPE at the default action that
+    gmsh.initialize() leaves: the pending work fails with BrokenProcessPool, the other
+    worker ends, and the parent goes on (without the pool's guard it died of SIGPIPE,
+    exit status -13, as the executor wrote the queued work into a pipe nobody reads)."""
+    proc = subprocess.Popen([sys.executable, "-c", BROKEN], env=ENV, cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    watched: list[psutil.Process] = []
+    try:
+        assert proc.stdout.readline() == "submitted\n"
+        parent = psutil.Process(proc.pid)
+        assert _wait(lambda: len(_forked_children(parent)) == 2, 60), "no pool workers seen"
+        watched = _forked_children(parent)
+        watched[0].kill()
+        assert _wait(lambda: not any(_alive(c) for c in watched), GONE_WITHIN), watched
+        assert proc.wait(timeout=30) == 0
+        assert proc.stdout.read() == "['BrokenProcessPool']\n"
     finally:
         proc.kill()
         proc.wait(timeout=10)

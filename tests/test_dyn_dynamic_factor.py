@@ -90,7 +90,8 @@ def _demo(positions: int):
 
 
 def test_dynamic_factor_converges_in_harmonics_and_contact_positions(monkeypatch):
-    """Demo pair, analytical compliance, 2340 rpm (regression of the measured table):
+    """Demo pair, analytical compliance, 2340 rpm (regression of the measured table; an
+    independent time integration gives 2.37041 at 360 positions, tests/test_dyn_spur_dte.py):
 
     ==========  ===  ==================  ==================
     positions   H    max elastic / mean  max total / mean

@@ -1,8 +1,9 @@
 """Frequency sweeps of the dynamic mesh force, and the dynamic load factors.
 
 One map-style function, :func:`map_chunks`, runs independent work items locally
-(a forked process pool whose workers use one BLAS thread each) or on any
-``concurrent.futures.Executor`` (a Dask cluster's ``Client.get_executor()``).
+(:func:`pipeline.parallel.process_pool`: forked workers with one BLAS thread each,
+ending with this process) or on any ``concurrent.futures.Executor`` (a Dask cluster's
+``Client.get_executor()``).
 
 Sweep methods (all return the same :class:`SweepResult`):
 
@@ -17,63 +18,22 @@ Sweep methods (all return the same :class:`SweepResult`):
 
 from __future__ import annotations
 
-import multiprocessing
 import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import Executor
 from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
 
-from pipeline.child_processes import die_with_parent
 from pipeline.dynamics.hb_sweep import plan_sweep, sweep_point
 from pipeline.dynamics.integrate import build_propagator, integrate, steady_state
 from pipeline.dynamics.reduction import reduce_rigid_body_modes
 from pipeline.dynamics.results import Response
 from pipeline.dynamics.system import LinearPeriodicSystem
+from pipeline.parallel import one_blas_thread, process_pool
 from pipeline.progress import progress
 from pipeline.validation import InputError, check_choice, check_int_range
-
-
-def _start_worker(parent_pid: int) -> None:
-    """Worker initializer: end with the parent (``pipeline.child_processes``), and one
-    BLAS thread per process (the pool already uses every core)."""
-    from threadpoolctl import threadpool_limits
-
-    die_with_parent(parent_pid)
-    threadpool_limits(limits=1)
-
-
-def _one_blas_thread():
-    """Context: one BLAS thread in this process for serial sweeps.
-
-    The matrices here are small (<= a few hundred rows); a multi-threaded BLAS gains
-    nothing on them and, on cores shared with other jobs, its spinning threads made a
-    serial 3-point sweep of the 6-DOF pair 19x slower (15.4 s against 0.82 s, measured).
-    """
-    from threadpoolctl import threadpool_limits
-
-    return threadpool_limits(limits=1)
-
-
-def local_executor(workers: int | None = None) -> Executor:
-    """A process pool (forked workers, one BLAS thread each, ending with this process).
-
-    The workers are forked by the thread that submits the first work; they end when it
-    ends (Linux's parent-death signal, ``pipeline.child_processes``), so that thread must
-    wait for the results, as :func:`map_chunks` does.
-
-    Parameters
-    ----------
-    workers : number of processes (default: CPU count).
-    """
-    return ProcessPoolExecutor(
-        max_workers=workers or os.cpu_count(),
-        mp_context=multiprocessing.get_context("fork"),
-        initializer=_start_worker,
-        initargs=(os.getpid(),),
-    )
 
 
 def map_chunks(
@@ -89,8 +49,9 @@ def map_chunks(
     ----------
     func : picklable function of one item (a module-level function or ``partial``).
     items : the work items.
-    executor : ``"local"`` (a fresh process pool, closed afterwards), ``None`` (serial,
-        in this process) or any ``concurrent.futures.Executor`` (e.g. Dask's).
+    executor : ``"local"`` (a fresh :func:`~pipeline.parallel.process_pool`, shut down
+        afterwards), ``None`` (serial, in this process, one BLAS thread) or any
+        ``concurrent.futures.Executor`` (e.g. Dask's).
     chunks : number of chunks (default: 4 per worker).
     show_progress : progress bar on stderr.
 
@@ -100,10 +61,10 @@ def map_chunks(
     """
     items = list(items)
     if executor is None or len(items) <= 1:
-        with _one_blas_thread():
+        with one_blas_thread():
             return [func(i) for i in progress(items, "sweep", enabled=show_progress)]
     own = executor == "local"
-    ex = local_executor() if own else executor
+    ex = process_pool() if own else executor
     try:
         nw = getattr(ex, "_max_workers", os.cpu_count() or 1)
         nchunk = min(len(items), chunks or 4 * nw)
@@ -248,7 +209,7 @@ def mesh_force_sweep(
     else:
         stats = []
         x = None
-        with _one_blas_thread():
+        with one_blas_thread():
             for fi in progress(f, "sweep", enabled=show_progress):
                 s = red.with_mesh_frequency(fi)
                 prop = build_propagator(s, segments)

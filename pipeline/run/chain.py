@@ -29,9 +29,9 @@ Cached by content hash (``meshes/`` of a checkout; ``--cache-dir`` moves it,
 loaded contact cycles (installed pair, operating point, contact options, friction, FE
 settings, formats) and figures (drawing code, every plotted array); a rerun that changes
 only a dynamics option reads the contact cycle back and redraws only the dynamics figures.
-Figures not in the cache are drawn side by side in forked processes by a drawer that
-``gearpipe run`` forks as it starts, so matplotlib (0.5 s to import) loads while the stages
-compute (:mod:`pipeline.viz.figure_queue`). The run imports matplotlib only to draw, and
+Figures not in the cache are drawn side by side in a process pool forked from a drawer
+that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads while the
+stages compute (:mod:`pipeline.viz.figure_queue`). The run imports matplotlib only to draw, and
 reading a gearbox file or cached FE tables imports no scikit-fem.
 
 Measured (``workflows/benchmarks/bench_run.py``: the demo's pair with FE 2D contact and the

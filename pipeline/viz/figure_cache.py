@@ -23,15 +23,21 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from pipeline.cache.entries import code_digest
 from pipeline.cache.folder import CacheWarning
 from pipeline.io import atomic_write, content_hash
 from pipeline.viz.saving import save
 
-if TYPE_CHECKING:
-    from pipeline.viz.figure_queue import FigureQueue
+
+class FigureSink(Protocol):
+    """Where a figure not in the cache can be deferred instead of drawn at once (a
+    :class:`pipeline.viz.figure_queue.FigureQueue`)."""
+
+    def add(self, path: str | Path, job: Callable[[], Path]) -> Path:
+        """Take ``job`` (draws and writes ``path``); returns ``path``."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -48,7 +54,7 @@ class FigureCache:
 
     folder: Path | None = None
     dpi: int = 130
-    queue: FigureQueue | None = field(default=None, compare=False)
+    queue: FigureSink | None = field(default=None, compare=False)
 
     def save(self, path: str | Path, draw: Callable[..., Any], *args: Any, **kwargs: Any
              ) -> Path:

@@ -36,7 +36,7 @@ CONFIG = ROOT / "workflows" / "configs" / "wind_turbine_sun_groove.toml"
 
 
 def _case(parent_pid: int, args: tuple[str, float, str, str], queue) -> None:
-    from pipeline.child_processes import die_with_parent
+    from pipeline.parallel import die_with_parent
 
     die_with_parent(parent_pid)  # a killed benchmark leaves no FE case running
     teeth_model, h, coupling, solver = args

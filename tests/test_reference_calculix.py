@@ -1,0 +1,189 @@
+"""The independent CalculiX contact reference of the demo pair (workflows/reference/).
+
+Ladder:
+* exact geometry: at every placement the right flanks of the pinion and gear teeth of pair
+  k cross the line of action at roll ``s0 + k p_b`` (involute: the polar angle of the
+  point at radius R(s) is the flank's half tooth angle), the gears touch without overlap;
+* the load split: a rigid rotation of a gear mesh gives zero internal forces (the K used
+  to split the load has exactly the rigid-body null space), and a uniform strain gives the
+  boundary tractions of Hooke's law;
+* the committed data load and are self-consistent: positions are one mesh cycle of the
+  pair, both torques and both contact kinds are there with their provenance, the load
+  steps bracket each torque, the pair loads add up to P, the TE grows with the load;
+* slow, with CalculiX installed: two positions of the coarse convergence mesh rerun with
+  the committed load steps reproduce the committed torques.
+"""
+
+from __future__ import annotations
+
+import math
+import shutil
+
+import numpy as np
+import pytest
+
+from workflows.reference import calculix_spur_contact as ref
+
+
+@pytest.fixture(scope="module")
+def reference():
+    return ref.load_reference()
+
+
+@pytest.fixture(scope="module")
+def pair():
+    return ref._demo_pair()
+
+
+def _flank_angle_error(gear, xy_rot: np.ndarray, point: np.ndarray) -> float:
+    """Polar-angle distance (rad) of ``point`` from the right flank of a tooth whose
+    centre line, in the global frame, points along ``xy_rot`` (unit vector)."""
+    r = float(np.hypot(*point))
+    centre = math.atan2(xy_rot[1], xy_rot[0])
+    angle = math.atan2(point[1], point[0])
+    # the right flank lies clockwise of the centre line by the half tooth angle
+    return (centre - angle) - gear.half_tooth_angle(r)
+
+
+@pytest.mark.parametrize("frac", [0.0, 0.3, 0.77, 0.95])
+def test_placement_puts_pair_k_at_its_roll_coordinate(pair, frac):
+    """Pinion tooth of pair k: its right flank passes through T1 + (s0 + k p_b) u exactly
+    (to 1e-9 rad), for the pairs on the path of contact."""
+    from pipeline.geometry import TransverseLayout
+
+    lay = TransverseLayout(pair)
+    s0 = pair.s_start + frac * pair.base_pitch
+    place = ref.placement(pair, s0)
+    z1, z2 = pair.pinion.teeth, pair.gear.teeth
+    a = pair.operating_centre_distance
+    checked = 0
+    for k, j in place.pinion_tooth.items():
+        s = s0 + k * pair.base_pitch
+        if not pair.s_start <= s <= pair.s_end:
+            continue
+        x = lay.point(s)
+        ang1 = math.pi / 2 + 2 * math.pi * j / z1 + place.pinion_angle
+        err1 = _flank_angle_error(pair.pinion, np.array([math.cos(ang1), math.sin(ang1)]), x)
+        assert abs(err1) < 1e-9
+        # the gear tooth of the same pair, seen from the gear centre, in the gear's frame
+        jg = place.gear_tooth[k]
+        ang2 = math.pi / 2 + 2 * math.pi * jg / z2 + place.gear_angle
+        x2 = x - np.array([0.0, a])
+        err2 = _flank_angle_error(pair.gear, np.array([math.cos(ang2), math.sin(ang2)]), x2)
+        assert abs(err2) < 1e-9
+        checked += 1
+    assert checked >= 1
+
+
+@pytest.mark.parametrize(("frac", "on_path"), [(0.3, 2), (0.9, 1)])
+def test_nominal_control_gives_surfaces_to_pairs_on_the_path_only(pair, frac, on_path):
+    """The control run: two pairs on the path in double contact (eps_alpha = 1.755, so
+    s0 < s_start + 0.755 p_b), one in single contact; the full model gives every pair of
+    the placement a surface."""
+    place = ref.placement(pair, pair.s_start + frac * pair.base_pitch)
+    nominal = ref.contact_pairs(pair, place, "nominal")
+    assert len(nominal) == on_path
+    assert ref.contact_pairs(pair, place, "full") == sorted(place.pinion_tooth)
+    for k in nominal:
+        assert pair.s_start <= place.s0 + k * pair.base_pitch <= pair.s_end
+
+
+def test_rigid_rotation_and_uniform_strain_forces(pair):
+    """K u of the load split (whole pinion mesh): zero for a rigid rotation (to 1e-9 of the
+    forces of a unit strain); for the uniform strain eps_xx = 1e-4 the forces balance
+    (their sum is zero) and those on the bore nodes with x > 0 add up to the traction of
+    Hooke's plane-strain stress sigma_xx = (lambda + 2 mu) eps_xx on the right half of the
+    bore: -sigma_xx 2 r_in b (exact: int cos(phi) r dphi over the half circle = 2 r)."""
+    settings = ref.ReferenceSettings(size_contact=0.4e-3, size_fine=0.8e-3, size_tooth=2e-3,
+                                     size_body=6e-3, growth=0.8)
+    mesh = ref.gear_mesh(pair.pinion, (0,), settings)
+    forces = ref.InternalForces.build(mesh, mesh.nodes, pair.pinion, pair.face_width)
+    x, y = mesh.nodes.T
+    theta = 1e-4
+    rigid = forces.forces(theta * np.column_stack([-y, x]))
+    strain = forces.forces(1e-4 * np.column_stack([x, np.zeros_like(x)]))
+    assert np.abs(rigid).max() < 1e-9 * np.abs(strain).max()
+    E, nu = pair.pinion.material.youngs_modulus, pair.pinion.material.poisson_ratio
+    lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+    bore = mesh.bore[x[mesh.bore] > 0]
+    expected = -(lam + 2 * mu) * 1e-4 * 2 * pair.pinion.bore_radius * pair.face_width
+    # the bore's right half: the outward normal of the body there points to -x
+    assert strain[bore, 0].sum() == pytest.approx(expected, rel=2e-3)
+    assert abs(strain[:, 0].sum()) < 1e-8 * abs(expected)
+
+
+def test_committed_reference_is_complete(pair, reference):
+    """Positions are the pair's 24-position mesh cycle, both torques (100, 340 N m), both
+    contact kinds, every provenance field; the runs are of this pair."""
+    prov = reference["provenance"]
+    for key in ("calculix_version", "gmsh_version", "date_utc", "command", "settings",
+                "mesh", "elements", "contact", "ccx_wall_time_s"):
+        assert prov[key], key
+    s0 = np.array(reference["positions_m"])
+    assert s0.size >= 21 and pair.is_mesh_cycle(s0)
+    assert reference["torques_Nm"] == [100.0, 340.0]
+    assert reference["pair"]["teeth"] == [50, 50]
+    assert reference["pair"]["base_pitch_m"] == pytest.approx(pair.base_pitch, rel=1e-12)
+    for run in ("full", "nominal"):
+        entries = reference["runs"][run]
+        assert np.allclose([e["s0_m"] for e in entries], s0, rtol=0, atol=1e-12)
+        for e in entries:
+            assert len(e["torques"]) == 2
+            assert len(e["step_torque_Nm"]) == len(e["step_displacement_m"]) == 4
+
+
+@pytest.mark.parametrize("run", ["full", "nominal"])
+def test_committed_reference_is_consistent(pair, reference, run):
+    """Each torque lies within 10 % of its two load steps; TE(T) and k are the line
+    through them; the pair loads add up to P = T / r_b1 within 0.5 %; TE grows with the
+    load and k lies between 150 and 450 N/um (the gearpipe range 227-308 N/um, +-50 %)."""
+    rb1 = pair.pinion.base_radius
+    for e in reference["runs"][run]:
+        d, t = np.array(e["step_displacement_m"]), np.array(e["step_torque_Nm"])
+        assert np.all(np.diff(d) > 0) and np.all(np.diff(t) > 0)
+        for T, res in zip(reference["torques_Nm"], e["torques"], strict=True):
+            lo, hi = res["bracket_torque_Nm"]
+            assert 0.9 * T < lo < hi < 1.1 * T
+            i, j = int(np.flatnonzero(t == lo)[0]), int(np.flatnonzero(t == hi)[0])
+            k = (t[j] - t[i]) / rb1 / (d[j] - d[i])
+            assert res["mesh_stiffness_N_per_m"] == pytest.approx(k, rel=1e-12)
+            te = d[i] + (T - t[i]) / (t[j] - t[i]) * (d[j] - d[i])
+            assert res["transmission_error_m"] == pytest.approx(te, rel=1e-12)
+            assert sum(res["pair_load_N"]) == pytest.approx(T / rb1, rel=5e-3)
+            assert 150e6 < res["mesh_stiffness_N_per_m"] < 450e6
+        assert e["torques"][1]["transmission_error_m"] > e["torques"][0]["transmission_error_m"]
+
+
+def test_comparison_table_of_identical_results_is_zero(pair, reference):
+    """compare(): gearpipe results equal to the reference give zero differences; the
+    zones are the pair's (2 pairs on the path, then 1 from s0 = s_end - p_b)."""
+    s0 = np.array(reference["positions_m"])
+    full = reference["runs"]["full"]
+    same = {"transmission_error_m": np.array([[e["torques"][t]["transmission_error_m"]
+                                               for e in full] for t in range(2)]),
+            "mesh_stiffness_N_per_m": np.array([[e["torques"][t]["mesh_stiffness_N_per_m"]
+                                                 for e in full] for t in range(2)])}
+    c = ref.compare(reference, same, pair, "full")
+    assert np.all(c.te_difference == 0.0) and np.all(c.k_difference == 0.0)
+    single = s0 > pair.s_end - pair.base_pitch
+    assert np.array_equal(c.zone, np.where(single, 1, 2))
+    assert len(c.rows()) == 1 + 2 * s0.size
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("ccx") is None,
+                    reason="CalculiX (ccx) is not installed: apt-get install calculix-ccx")
+def test_calculix_rerun_matches_committed_coarse_data(pair, reference, tmp_path):
+    """Two positions of the coarse convergence mesh (0.2 mm), rerun with the committed load
+    steps: the torques equal the committed ones to 1e-6 (same mesh, same deck)."""
+    coarse = [e for e in reference["convergence"]
+              if e["size_contact_m"] == pytest.approx(0.2e-3)
+              and e["penalty_Pa_per_m"] == ref.ReferenceSettings.penalty][:2]
+    assert len(coarse) == 2
+    settings = ref.ReferenceSettings(size_contact=0.2e-3)
+    fp, fg = ref.fine_teeth(pair)
+    meshes = (ref.gear_mesh(pair.pinion, fp, settings), ref.gear_mesh(pair.gear, fg, settings))
+    for e in coarse:
+        res = ref.solve_position(pair, meshes, e["s0_m"], np.array(e["step_displacement_m"]),
+                                 settings, workdir=tmp_path)
+        np.testing.assert_allclose(res.torque, e["step_torque_Nm"], rtol=1e-6)
