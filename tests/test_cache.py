@@ -234,13 +234,9 @@ FIGURE_DAMAGE = [
 ]
 
 
-@pytest.mark.parametrize(("case", "damage"), FIGURE_DAMAGE, ids=[d[0] for d in FIGURE_DAMAGE])
-def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
+def _counted_line(drawn: list):
+    """A drawing of a line that appends to ``drawn`` each time it draws."""
     import matplotlib.pyplot as plt
-
-    from pipeline.viz.figure_cache import FigureCache, without_key
-
-    drawn: list = []
 
     def draw(y):
         drawn.append(1)
@@ -248,6 +244,15 @@ def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
         ax.plot(y)
         return fig
 
+    return draw
+
+
+@pytest.mark.parametrize(("case", "damage"), FIGURE_DAMAGE, ids=[d[0] for d in FIGURE_DAMAGE])
+def test_damaged_cached_figure_is_redrawn(tmp_path, case, damage):
+    from pipeline.viz.figure_cache import FigureCache, without_key
+
+    drawn: list = []
+    draw = _counted_line(drawn)
     figures = FigureCache(tmp_path / "figures", dpi=40)
     first = figures.save(tmp_path / "a.png", draw, np.arange(3.0))
     (cached,) = (tmp_path / "figures").iterdir()
@@ -265,18 +270,10 @@ def test_a_cached_figure_moved_onto_another_name_is_redrawn(tmp_path):
     """Two figures of different data; the second's cached PNG copied over the first's (a
     swap on disk): the first is redrawn with one warning, never replaced by the other
     (each cached PNG carries its key in a tEXt chunk)."""
-    import matplotlib.pyplot as plt
-
     from pipeline.viz.figure_cache import FigureCache, stored_key, without_key
 
     drawn: list = []
-
-    def draw(y):
-        drawn.append(1)
-        fig, ax = plt.subplots()
-        ax.plot(y)
-        return fig
-
+    draw = _counted_line(drawn)
     figures = FigureCache(tmp_path / "figures", dpi=40)
     a = figures.save(tmp_path / "a.png", draw, np.arange(3.0)).read_bytes()
     b = figures.save(tmp_path / "b.png", draw, np.arange(4.0)).read_bytes()
@@ -356,6 +353,10 @@ def test_one_cache_object_reaches_every_step(tmp_path):
     assert Cache.for_command(tmp_path / "c") == Cache(tmp_path / "c")
     assert Cache().root == default_cache_dir() and Cache().subfolder("figures") is not None
     assert Cache.off().subfolder("figures") is None
+    from pipeline.viz.figure_cache import FigureCache
+
+    assert FigureCache.within(Cache.off()) == FigureCache()
+    assert FigureCache.within(Cache(tmp_path / "c")).folder == tmp_path / "c" / "figures"
 
     box = gearbox_from_text(DEMO_PAIR + '[contact]\npositions = 8\n'
                             '[dynamics]\nexcitation = "contact"\n')

@@ -96,3 +96,20 @@ def test_groove_command_reports_bad_input(tmp_path, capsys):
     # the value in the file's unit (mm); this test used to expect the SI value 0.3 m,
     # which is the behaviour the gearbox-description issue asks to change
     assert "groove.bottom_diameter" in err and "300 mm" in err
+
+
+def test_fe_command_on_a_3d_fe_file_says_what_it_uses(tmp_path, capsys):
+    """A file whose [fe] describes the 3D model: gearpipe fe runs its 2D sectors with the 2D
+    defaults and its options, and says so in one warning line (the [fe] keys are the 3D
+    source's, not ignored silently)."""
+    cfg = tmp_path / "fe3d.toml"
+    assert "[contact]" not in SPUR_CONFIG.read_text()
+    cfg.write_text(SPUR_CONFIG.read_text()
+                   + '\n[contact]\ncompliance = "fe3d"\n[fe]\nface_points = 5\n')
+    args = ["fe", str(cfg), "--out", str(tmp_path / "o"), "--teeth", "3", "--points", "8",
+            "--refinement", "1", "--json"]
+    assert cli(args) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "warning" in ln]
+    assert err == ['gearpipe fe: warning: [fe] describes the 3D model ([contact] compliance = '
+                   '"fe3d"): gearpipe fe analyses 2D sectors with the 2D defaults and its own '
+                   'options'], err

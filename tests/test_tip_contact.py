@@ -161,6 +161,9 @@ def test_tip_zone_ends_where_the_gap_reaches_the_limit():
     assert lo < p.s_start and hi > p.s_end
     assert tip_contact(p, [lo, hi]).gap == pytest.approx([50e-6, 50e-6], rel=1e-6)
     assert hi - p.s_end == pytest.approx(p.s_start - lo, rel=1e-9)  # a symmetric pair
+    # a limit no corner reaches within a base pitch: capped at one pitch at each end
+    assert tip_zone(p, 1.0) == pytest.approx((p.s_start - p.base_pitch,
+                                              p.s_end + p.base_pitch), rel=1e-15)
     r = RING
     lo, hi = tip_zone(r, 50e-6)
     assert lo == r.s_start

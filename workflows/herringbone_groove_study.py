@@ -114,7 +114,7 @@ from pipeline.provenance import write_run_record
 from pipeline.run.chain import RunOptions, mesh_cases, static_stages
 from pipeline.run.dynamics import mesh_excitation
 from pipeline.run.herringbone import TORQUE_SIDE, cached_groove, cached_herringbone_cycle
-from pipeline.viz.figure_cache import NO_CACHE, FigureCache
+from pipeline.viz.figure_cache import FigureCache
 
 CONFIG = Path(__file__).parent / "configs" / "wind_turbine_herringbone_planetary.toml"
 PAPER_KJ = (5.2e7, 4.9e7, 4.6e7, 4.3e7, 4.0e7)  # N m^2, K_1..K_5 (sec. 3.1)
@@ -195,8 +195,7 @@ def run(full: bool = False, out: Path | None = None, cache: Cache = DEFAULT_CACH
     peaks, the step timing (s) and the files written."""
     target = workflow_dir(__file__, out)  # refused now, not after the study
     log = Steps("herringbone groove study", enabled=show_progress, every_step=True)
-    folder = cache.subfolder("figures")
-    figures = NO_CACHE if folder is None else FigureCache(folder)
+    figures = FigureCache.within(cache)
     with log.step("gearbox file"):
         box = load_gearbox(CONFIG)
     positions = 60 if full else 30

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +38,7 @@ from pipeline.fem.settings import PLANE_KINDS, SECTOR_TEETH, FE2DSettings, FE3DS
 from pipeline.io import atomic_write, write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.progress import progress
-from pipeline.validation import InputError
+from pipeline.validation import InputError, InputWarning
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -99,6 +100,10 @@ def options(box_fe: FE2DSettings | FE3DSettings, args: argparse.Namespace) -> FE
 def run(args: argparse.Namespace) -> int:
     box = load(args)
     pair = box.require_pair()
+    if isinstance(box.fe, FE3DSettings) and "fe" in box.tables:
+        warnings.warn('[fe] describes the 3D model ([contact] compliance = "fe3d"): gearpipe fe '
+                      "analyses 2D sectors with the 2D defaults and its own options",
+                      InputWarning, stacklevel=1)
     opts = options(box.fe, args)
     target = output_dir(args, "fe")
     cache = command_cache(args)

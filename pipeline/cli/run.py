@@ -41,8 +41,7 @@ from pipeline.viz.figure_queue import parallel_figures
 
 def figure_cache(options: RunOptions) -> FigureCache:
     """Figures cached beside the FE tables and contact cycles (none with ``--no-cache``)."""
-    folder = options.cache.subfolder("figures")
-    return NO_CACHE if folder is None else FigureCache(folder)
+    return FigureCache.within(options.cache)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -231,24 +231,24 @@ def tip_zone(pair: GearPair, max_gap: float) -> tuple[float, float]:
     corner can still be reached under load. The gap grows monotonically (about with the
     square of the roll past the path), so each end is found by bisection to 1e-9 m; it is
     capped where the contact point leaves the mate's involute (its form circle, where the
-    fillet begins)."""
+    fillet begins) and at one base pitch (the one more tooth pair
+    :meth:`GearPair.pair_indices` holds at each end)."""
+    pitch = pair.base_pitch
+
     def reach(sign: int, start: float) -> float:
-        step = 1e-4 * pair.base_pitch
-        lo, hi = 0.0, step
-        while hi < pair.base_pitch:
-            tc = tip_contact(pair, [start + sign * hi])
-            if not np.isfinite(tc.gap[0]) or tc.gap[0] > max_gap or not _on_flank(pair, tc):
-                break
-            lo, hi = hi, 2.0 * hi
-        else:
-            return pair.base_pitch
+        def touches(d: float) -> bool:
+            tc = tip_contact(pair, [start + sign * d])
+            return bool(np.isfinite(tc.gap[0]) and tc.gap[0] <= max_gap
+                        and _on_flank(pair, tc))
+
+        lo, hi = 0.0, 1e-4 * pitch
+        while touches(hi):  # doubling until past the end, or the cap reached
+            if hi == pitch:
+                return pitch
+            lo, hi = hi, min(2.0 * hi, pitch)
         while hi - lo > 1e-9:
             mid = 0.5 * (lo + hi)
-            tc = tip_contact(pair, [start + sign * mid])
-            if tc.gap[0] <= max_gap and _on_flank(pair, tc):
-                lo = mid
-            else:
-                hi = mid
+            lo, hi = (mid, hi) if touches(mid) else (lo, mid)
         return lo
 
     return pair.s_start - reach(-1, pair.s_start), pair.s_end + reach(1, pair.s_end)

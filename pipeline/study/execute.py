@@ -61,6 +61,7 @@ import pyarrow as pa
 
 from pipeline.cache.folder import Cache
 from pipeline.output_folder import OutputError, check_target
+from pipeline.parallel import one_blas_thread
 from pipeline.progress import progress
 from pipeline.study.evaluate import build_fe_tables, evaluate_point, fe_geometry_key
 from pipeline.study.kpis import KPI, select_kpis
@@ -154,10 +155,8 @@ def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[di
     A point the pipeline refuses (an :class:`InputError` such as a contact that does not
     converge) gets NaN KPIs and its message in ``error``; the study goes on.
     """
-    from threadpoolctl import threadpool_limits
-
     rows = []
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         for index, doc in batch:
             try:
                 row = evaluate_point(doc, fe, kpis=job.kpis, speed_range_rpm=job.speed_range_rpm,
@@ -173,9 +172,7 @@ def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[di
 
 
 def _fe_batch(doc: dict, job: _Job) -> Any:
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         return build_fe_tables(doc, cache=job.cache)
 
 

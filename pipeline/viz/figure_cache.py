@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any, Protocol
 
 from pipeline.cache.entries import code_digest
-from pipeline.cache.folder import CacheWarning
+from pipeline.cache.folder import Cache, CacheWarning
 from pipeline.io import atomic_write, content_hash
 from pipeline.viz.saving import save
 
@@ -55,6 +55,13 @@ class FigureCache:
     folder: Path | None = None
     dpi: int = 130
     queue: FigureSink | None = field(default=None, compare=False)
+
+    @classmethod
+    def within(cls, cache: Cache) -> FigureCache:
+        """Figures kept in the ``figures`` folder of ``cache`` (beside the meshes, FE tables
+        and contact cycles); every figure drawn when the cache is off."""
+        folder = cache.subfolder("figures")
+        return cls() if folder is None else cls(folder)
 
     def save(self, path: str | Path, draw: Callable[..., Any], *args: Any, **kwargs: Any
              ) -> Path:
