@@ -175,3 +175,37 @@ def test_tip_zone_ends_where_the_gap_reaches_the_limit():
     assert r1.shape == s.shape == r2.shape
     np.testing.assert_allclose(np.array(p.contact_radii(s[0])), [r1[0], r2[0]], rtol=1e-15)
     assert r1[1, 0] == p.pinion.tip_radius_ and r2[1, 1] == p.gear.tip_radius_
+
+
+@pytest.mark.parametrize("pair", [EXTERNAL, RING], ids=["external", "ring"])
+def test_curvature_radii_at_a_corner_are_the_edge_and_the_mates_involute(pair):
+    """On the path the flanks' own radii (rho1 = s, rho2 = T1T2 - s, negative for the
+    ring's concave flank); past the end the pinion's edge radius against the gear's
+    involute at the contact point, before the start the gear's edge (convex, for a ring
+    too) against the pinion's involute: each involute's radius of curvature is its
+    distance to the base tangent point, ``sqrt(R^2 - r_b^2)`` at the contact radius R,
+    checked here against the radius of the circle through three nearby points of the
+    independent involute construction (to 1e-6)."""
+    from pipeline.geometry.tip_contact import contact_radii_at, curvature_radii_at
+
+    s = np.array([pair.s_pitch, pair.s_end + 5e-4, pair.s_start - 5e-4])
+    rho1, rho2 = curvature_radii_at(pair, s)
+    on1, on2 = pair.curvature_radii(s[0])
+    assert (rho1[0], rho2[0]) == (on1, on2)
+    assert rho1[1] == 0.05 * pair.pinion.module and rho2[2] == 0.05 * pair.gear.module
+    r1, r2 = contact_radii_at(pair, s)
+
+    def circle_radius(who: str, s_cross: float, radius: float) -> float:
+        gear = pair.pinion if who == "pinion" else pair.gear
+        t0 = math.sqrt(radius**2 - gear.base_radius**2) / gear.base_radius
+        xy, _ = _flank(pair, who, s_cross, t0 + np.array([-1e-4, 0.0, 1e-4]))
+        a, b, c = xy.T
+        ab, bc, ca = (np.hypot(*(u - v)) for u, v in ((a, b), (b, c), (c, a)))
+        area = 0.5 * abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
+        return ab * bc * ca / (4.0 * area)
+
+    gear_flank = circle_radius("gear", s[1], r2[1])
+    assert abs(rho2[1]) == pytest.approx(gear_flank, rel=1e-6)
+    assert (rho2[1] < 0) == pair.gear.internal
+    assert rho1[2] == pytest.approx(circle_radius("pinion", s[2], r1[2]), rel=1e-6)
+

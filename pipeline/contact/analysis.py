@@ -39,8 +39,9 @@ def analytical_compliance(
     ----------
     pair : the *actual* pair (after assembly errors, see ``Gearbox.actual_pair``).
     operation : driver, torque (N m) and speed (rad/s): friction direction and EHL load.
-    contact : slices and slice coupling (defaults if ``None``); a spur pair gets one slice
-        unless its modifications vary along the face (``ContactOptions.face_slices``).
+    contact : slices, slice coupling and tip contact (defaults if ``None``); a spur pair
+        gets one slice unless its modifications vary along the face
+        (``ContactOptions.face_slices``).
     stiffness : friction model and foundation correction (defaults if ``None``).
     tooth_model : "exact" (involute + trochoidal fillet) or "classical" (involute clamped
         at the base circle, Yang et al. 2026 eqs. 11-13).
@@ -55,7 +56,8 @@ def analytical_compliance(
                           hertz_compliance(pair.pinion, pair.gear))
     model = model or PairModel.build(pair)
     return SliceCompliance(model, contact.face_slices(pair), stiffness.friction_model, operation,
-                           stiffness.foundation_correction, contact.slice_coupling)
+                           stiffness.foundation_correction, contact.slice_coupling,
+                           contact.tip_contact)
 
 
 def line_of_action_load(pair: GearPair, operation: OperatingPoint) -> float:
@@ -84,7 +86,6 @@ def analyse_contact(
     load = line_of_action_load(source.pair, operation)
     cycle = loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
                               options.positions, driver=operation.driver,
-                              tip_contact=options.tip_contact,
                               show_progress=show_progress)
     warn_physics(cycle)
     return cycle

@@ -88,17 +88,18 @@ def compliance_source(
         return slices
     settings = dataclasses.replace(settings, slices=slices.slices)
     if prebuilt is not None:
-        base = dataclasses.replace(prebuilt, pair=pair, settings=settings)
+        base = dataclasses.replace(prebuilt, pair=pair, settings=settings,
+                                   tip_contact=contact.tip_contact)
     elif contact.compliance == "fe2d":
         from pipeline.contact.fe2d_source import FE2DCompliance
 
-        base = FE2DCompliance.build(pair, settings, cache=cache,
-                                    show_progress=show_progress)
+        base = FE2DCompliance.build(pair, settings, cache=cache, show_progress=show_progress,
+                                    tip_contact=contact.tip_contact)
     else:
         from pipeline.contact.fe3d_source import FE3DCompliance
 
-        base = FE3DCompliance.build(pair, settings, cache=cache,
-                                    show_progress=show_progress)
+        base = FE3DCompliance.build(pair, settings, cache=cache, show_progress=show_progress,
+                                    tip_contact=contact.tip_contact)
     if slices.friction.mu == 0.0 and slices.friction.kind == "constant":
         return base
     return FrictionCorrected(base, slices)

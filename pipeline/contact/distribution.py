@@ -29,7 +29,10 @@ loads of every candidate point at every mesh position) into:
   section of the flanks: unit load ``p`` (N/m along the contact line), effective radius
   ``R_n = R_t / cos(beta_b)``, contact modulus ``E*``; the same pressure acts on both flanks,
   at the pinion radius ``r_1(s)`` and the gear radius ``r_2(s)``. Its maximum and where
-  (roll coordinate, face position, both radii, mesh position).
+  (roll coordinate, face position, both radii, mesh position). A tip corner touching beyond
+  the path of contact presses with its local corner radius
+  (:func:`pipeline.geometry.tip_contact.curvature_radii_at`) and its normal force
+  (:attr:`LoadedMeshCycle.point_pressure`).
 * **Loaded static transmission error** (m, and as a pinion angle in rad), its
   peak-to-peak, and the amplitudes of mesh orders 1..10 (single-sided, from the DFT of the
   equally spaced positions; orders at or above half the number of positions are NaN).
@@ -61,9 +64,9 @@ from typing import Any
 import numpy as np
 
 from pipeline.contact.analysis import line_of_action_load
-from pipeline.contact.hertz import contact_modulus, effective_radius, hertz_max_pressure
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError
 
@@ -236,23 +239,10 @@ def _peak(values: np.ndarray, cycle: LoadedMeshCycle, pair: GearPair) -> PeakLoc
     i = int(np.argmax(values))
     pos = int(cycle.point_position[i])
     s = float(cycle.point_s[i])
-    r1, r2 = pair.contact_radii(s)
+    r1, r2 = contact_radii_at(pair, s)
     return PeakLocation(float(values[i]), pos, float(cycle.pinion_angle[pos]), s,
                         float(cycle.point_z[i]), float(r1), float(r2),
                         int(cycle.point_pair[i]))
-
-
-def hertz_pressures(cycle: LoadedMeshCycle, pair: GearPair) -> np.ndarray:
-    """Hertz maximum pressure (Pa) of every candidate point of ``cycle``, shape (n_total,):
-    unit load along the contact line ``p = F / width`` (N/m), normal-section effective radius
-    ``R_t / cos(beta_b)`` (module docstring)."""
-    s = np.clip(cycle.point_s, pair.s_start, pair.s_end)
-    rho1, rho2 = pair.curvature_radii(s)
-    cos_bb = math.cos(pair.pinion.base_helix_angle)
-    radius = effective_radius(rho1, rho2) / cos_bb
-    e_star = contact_modulus(pair.pinion.material, pair.gear.material)
-    p = np.maximum(cycle.point_unit_load, 0.0)
-    return np.where(p > 0.0, hertz_max_pressure(p, np.maximum(radius, 1e-300), e_star), 0.0)
 
 
 def _line_loads(cycle: LoadedMeshCycle) -> tuple[np.ndarray, np.ndarray]:
@@ -316,7 +306,7 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
     cycle_mean = w.mean(axis=0)
     k_hb = float(cycle_mean.max() / cycle_mean.mean())
     kha = _transverse_factor(cycle, pair)
-    hertz = hertz_pressures(cycle, pair)
+    hertz = cycle.point_pressure
     iz = np.searchsorted(z, np.round(cycle.point_z, 12))
     line_at_point = w[cycle.point_position, iz]
     te = cycle.transmission_error

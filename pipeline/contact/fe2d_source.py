@@ -121,6 +121,8 @@ class FE2DCompliance:
         ``seconds`` (wall time), ``dof``, ``free_dof``, ``solver`` and ``timings`` (s:
         mesh, assembly, loads, factor, solve, nearfield, total, of the build that made the
         table); ``seconds`` of the whole build.
+    tip_contact : candidate points (and tabulated teeth) beyond the path of contact too
+        (:func:`pipeline.contact.source.candidate_range`).
     """
 
     pair: GearPair
@@ -128,18 +130,20 @@ class FE2DCompliance:
     pinion_table: InfluenceMatrix | None = None
     gear_table: InfluenceMatrix | None = None
     info: dict = field(default_factory=dict, compare=False)
+    tip_contact: bool = True
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE2DSettings | None = None, *,
-              cache: Cache = DEFAULT_CACHE,
-              show_progress: bool = False) -> FE2DCompliance:
+              cache: Cache = DEFAULT_CACHE, show_progress: bool = False,
+              tip_contact: bool = True) -> FE2DCompliance:
         """Tables of both gears from the cache, or meshed and solved (one factorisation
-        each), read from and written to ``cache``."""
+        each), read from and written to ``cache``; the teeth of every tooth pair that can
+        touch (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``)."""
         t0 = time.perf_counter()
         settings = settings or FE2DSettings()
         if pair.pinion.herringbone:
             raise InputError("fe source: analyse one helical half of a herringbone pair")
-        k = pair.pair_indices()
+        k = pair.pair_indices(tip_contact)
         mid = min(sector_teeth(pair.pinion, settings), sector_teeth(pair.gear, settings)) // 2
         if np.abs(k).max() > mid:
             raise InputError(f"fe.teeth = {settings.teeth} does not cover tooth pairs "
@@ -151,11 +155,11 @@ class FE2DCompliance:
             tables[name], info[name] = gear_table(gear, settings, teeth, cache=cache)
             info[name]["timings"] = dict(tables[name].timings)
         info["seconds"] = time.perf_counter() - t0
-        return cls(pair, settings, tables["pinion"], tables["gear"], info)
+        return cls(pair, settings, tables["pinion"], tables["gear"], info, tip_contact)
 
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
-        return slice_points(self.pair, self.settings.slices, position)
+        return slice_points(self.pair, self.settings.slices, position, self.tip_contact)
 
     def matrix(self, position: float) -> np.ndarray:
         """``G`` (m/N), (n, n): pinion + gear structural compliance, same-section coupling."""

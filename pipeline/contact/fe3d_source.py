@@ -105,7 +105,7 @@ import numpy as np
 
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact.fe3d_table import FlankTable3D, flank_table
-from pipeline.contact.source import ContactPoints, slice_points
+from pipeline.contact.source import ContactPoints, candidate_range, slice_points
 from pipeline.fem.loft3d import helix_sign
 from pipeline.fem.settings import FE3DSettings
 from pipeline.geometry.pair import GearPair
@@ -113,16 +113,19 @@ from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.validation import InputError
 
 
-def touching_pairs(pair: GearPair) -> np.ndarray:
-    """Tooth-pair indices ``k`` that are in contact somewhere on the face at some mesh position.
+def touching_pairs(pair: GearPair, tip_contact: bool = True) -> np.ndarray:
+    """Tooth-pair indices ``k`` that can touch somewhere on the face at some mesh position.
 
     Pair ``k`` touches at ``s_start + u + k p_bt + z tan(beta_b)`` for ``u`` in
-    ``[0, p_bt)``, ``z`` in ``[0, b]``; it is in mesh when that reaches ``[s_start, s_end]``.
+    ``[0, p_bt)``, ``z`` in ``[0, b]``; it can touch when that reaches the candidate range
+    (:func:`pipeline.contact.source.candidate_range`: the path of contact, with
+    ``tip_contact`` widened by the tip zones).
     """
-    k = pair.pair_indices()
+    k = pair.pair_indices(tip_contact)
+    lo, hi = candidate_range(pair, tip_contact)
     reach = pair.face_width * math.tan(pair.pinion.base_helix_angle)
     p = pair.base_pitch
-    keep = (k * p <= pair.path_length) & ((k + 1) * p + reach > 0)
+    keep = (pair.s_start + k * p <= hi) & (pair.s_start + (k + 1) * p + reach > lo)
     return k[keep]
 
 
@@ -135,17 +138,20 @@ class FE3DCompliance:
     pair : the gear pair (external, not herringbone).
     settings : FE settings.
     pinion_table, gear_table : structural tables of both gears (m/N).
+    tip_contact : candidate points (and tabulated teeth) beyond the path of contact too
+        (:func:`pipeline.contact.source.candidate_range`).
     """
 
     pair: GearPair
     settings: FE3DSettings = field(default_factory=FE3DSettings)
     pinion_table: FlankTable3D | None = None
     gear_table: FlankTable3D | None = None
+    tip_contact: bool = True
 
     @classmethod
     def build(cls, pair: GearPair, settings: FE3DSettings | None = None, *,
-              cache: Cache = DEFAULT_CACHE,
-              show_progress: bool = False) -> FE3DCompliance:
+              cache: Cache = DEFAULT_CACHE, show_progress: bool = False,
+              tip_contact: bool = True) -> FE3DCompliance:
         """Mesh and solve (or read from ``cache``) both gears' tables, once.
 
         ``show_progress`` reports every step longer than a second (mesh, assembly,
@@ -155,16 +161,17 @@ class FE3DCompliance:
         settings = settings or FE3DSettings()
         if pair.pinion.herringbone or pair.gear.herringbone:
             raise InputError("fe3d source: analyse one helical half of a herringbone pair")
-        cls.check_pair(pair, settings)
-        k = touching_pairs(pair)
-        teeth = cls._model_teeth(pair, settings)
+        cls.check_pair(pair, settings, tip_contact=tip_contact)
+        k = touching_pairs(pair, tip_contact)
+        teeth = cls._model_teeth(pair, settings, tip_contact)
         tables = [flank_table(g, n, np.sort(n // 2 + sign * k), settings, cache,
                               show_progress)
                   for g, n, sign in ((pair.pinion, teeth[0], -1), (pair.gear, teeth[1], 1))]
-        return cls(pair, settings, *tables)
+        return cls(pair, settings, *tables, tip_contact)
 
     @classmethod
-    def check_pair(cls, pair: GearPair, settings: FE3DSettings, mesh: str = "") -> None:
+    def check_pair(cls, pair: GearPair, settings: FE3DSettings, mesh: str = "",
+                   tip_contact: bool = True) -> None:
         """Refuse a pair the 3D models cannot hold (an internal gear; a sector with fewer
         teeth than the tooth pairs in contact need), before any meshing; ``mesh`` names the
         mesh in the message."""
@@ -172,8 +179,8 @@ class FE3DCompliance:
         if pair.gear.internal:
             raise InputError(f'contact.compliance = "fe3d": the 3D models are of external gears '
                              f"only; the {pair.gear.name}{of} is internal: use \"fe2d\"")
-        k = touching_pairs(pair)
-        teeth = cls._model_teeth(pair, settings)
+        k = touching_pairs(pair, tip_contact)
+        teeth = cls._model_teeth(pair, settings, tip_contact)
         if settings.body == "sector" and (np.abs(k).max() > teeth[0] // 2
                                           or teeth[0] - 1 - teeth[0] // 2 < np.abs(k).max()):
             need = 2 * int(np.abs(k).max()) + 1
@@ -184,22 +191,23 @@ class FE3DCompliance:
                 note=f"the tooth pairs in contact{of}")
 
     @staticmethod
-    def _model_teeth(pair: GearPair, settings: FE3DSettings) -> tuple[int, int]:
+    def _model_teeth(pair: GearPair, settings: FE3DSettings, tip_contact: bool = True
+                     ) -> tuple[int, int]:
         """Teeth of the pinion's and the gear's 3D models."""
         if settings.body == "whole":
             return pair.pinion.teeth, pair.gear.teeth
         n = (settings.teeth if settings.teeth is not None
-             else 2 * int(np.abs(touching_pairs(pair)).max()) + 1)
+             else 2 * int(np.abs(touching_pairs(pair, tip_contact)).max()) + 1)
         return n, n
 
     @property
     def model_teeth(self) -> tuple[int, int]:
         """Teeth of the pinion's and the gear's 3D models (z1, z2 for whole gears)."""
-        return self._model_teeth(self.pair, self.settings)
+        return self._model_teeth(self.pair, self.settings, self.tip_contact)
 
     def points(self, position: float) -> ContactPoints:
         """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
-        return slice_points(self.pair, self.settings.slices, position)
+        return slice_points(self.pair, self.settings.slices, position, self.tip_contact)
 
     def weights(self, position: float) -> tuple[np.ndarray, np.ndarray]:
         """Interpolation matrices ``(W1, W2)``, (n, N1) and (n, N2), of the candidate points
@@ -260,6 +268,7 @@ class FE3DCompliance:
         """Model teeth, settings and the FE figures of both tables (DOFs, solver, timing
         breakdown in s, cache use)."""
         return {"body": self.settings.body, "model_teeth": self.model_teeth,
-                "tooth_pairs": touching_pairs(self.pair), "settings": asdict(self.settings),
+                "tooth_pairs": touching_pairs(self.pair, self.tip_contact),
+                "settings": asdict(self.settings),
                 "pinion": {"teeth": self.pinion_table.teeth, **self.pinion_table.info},
                 "gear": {"teeth": self.gear_table.teeth, **self.gear_table.info}}

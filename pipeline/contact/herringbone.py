@@ -72,11 +72,10 @@ from pipeline.contact.complementarity import mesh_stiffnesses, solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
 from pipeline.contact.hertz import HertzLineContact, LeverScaled
-from pipeline.contact.ltca import LOCAL_MODELS, mesh_positions, weber_model
+from pipeline.contact.ltca import LOCAL_MODELS, along_line_of_action, mesh_positions, weber_model
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.source import ComplianceSource, candidate_zone
-from pipeline.geometry.tip_contact import tip_contact as tip_contact_geometry
+from pipeline.contact.source import ComplianceSource, candidate_range
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -143,7 +142,6 @@ def herringbone_mesh_cycle(
     modifications: FlankModifications | None = None,
     local: str = "weber",
     positions: int | ArrayLike = 60,
-    tip_contact: bool = True,
     tol: float = 1e-10,
     max_iter: int = 100,
     show_progress: bool = False,
@@ -160,7 +158,7 @@ def herringbone_mesh_cycle(
     groove : the sun halves' relative compliance (rigid, a torsion spring, or the FE).
     n_planets : N, planets loading the sun (1-64).
     options : torque entry and axial holding (default :class:`HerringboneOptions`).
-    modifications, local, positions, tip_contact, tol, max_iter, show_progress : as for
+    modifications, local, positions, tol, max_iter, show_progress : as for
         :func:`~pipeline.contact.loaded_mesh_cycle` (flank modifications apply to both
         halves alike; the sun turns).
 
@@ -187,7 +185,7 @@ def herringbone_mesh_cycle(
     ka = float(opts.axial_support_stiffness)
     c_hertz = hertz_compliance(pair.pinion, pair.gear)
     m = s0.size
-    halves = {side: CycleRecorder(pair, m) for side in ("left", "right")}
+    halves = {side: CycleRecorder(pair, m, source.tip_contact) for side in ("left", "right")}
     per = {n: np.zeros(m) for n in ("PL", "PR", "x", "k", "twist", "torque", "axial", "z")}
     for i in progress(range(m), "herringbone contact", total=m, enabled=show_progress):
         label = f"mesh position {i} (s0 = {s0[i] * 1e3:.6g} mm)"
@@ -196,15 +194,11 @@ def herringbone_mesh_cycle(
         if n == 0:
             raise InputError(f"{label}: the compliance source gives no candidate points")
         G = np.asarray(source.matrix(float(s0[i])), dtype=float)
-        eps = initial_separations(pair, pts, mods, candidate_zone(pair) if tip_contact else None)
+        eps = initial_separations(pair, pts, mods, candidate_range(pair, source.tip_contact))
         hertz = weber_model(pair, pts) if local == "weber" else None
         if local == "linear":
             G = G + np.diag(c_hertz / pts.width)
-        # tip corners: loads and approaches along the line of action (ltca module docstring)
-        a = tip_contact_geometry(pair, pts.s).lever("pinion")
-        G, eps = G / np.outer(a, a), eps / a
-        if hertz is not None and np.any(a != 1.0):
-            hertz = LeverScaled(hertz, a)
+        G, eps, hertz, lever = along_line_of_action(pair, pts, G, eps, hertz)  # the sun turns
         if opts.sun_axial == "free":
             sol = solve_contact(G, eps, 0.5 * load, hertz, tol=tol, max_iter=max_iter,
                                 label=label)
@@ -248,10 +242,11 @@ def herringbone_mesh_cycle(
         per["twist"][i], per["torque"][i], per["axial"][i], per["z"][i] = (
             d[0], N * g[0], d[1], z)
         for side, p, xh in (("left", pL, x_half[0]), ("right", pR, x_half[1])):
-            u = (c_hertz / pts.width * p if local == "linear"
-                 else hertz.approach(p) if hertz is not None else np.zeros_like(p))
             k = mesh_stiffnesses(G, p, xh, eps, None if local == "linear" else hertz)
-            halves[side].add(i, pts, p, eps, u, xh, k, (res, tol_i, newton))
+            # gaps and local approaches along each point's own normal (ltca)
+            u = (c_hertz / pts.width * p / lever if local == "linear"
+                 else hertz.approach(p) * lever if hertz is not None else np.zeros_like(p))
+            halves[side].add(i, pts, p, eps * lever, u, xh, k, (res, tol_i, newton), lever)
     return HerringboneCycle(
         left=halves["left"].cycle(s0, float(per["PL"].mean()), local),
         right=halves["right"].cycle(s0, float(per["PR"].mean()), local),

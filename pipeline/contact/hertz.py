@@ -54,6 +54,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pipeline.geometry.gear import Material
+from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import curvature_radii_at
 from pipeline.validation import InputError
 
 
@@ -306,3 +308,16 @@ class LeverScaled:
 
     def max_valid_load(self) -> np.ndarray:
         return np.asarray(self.model.max_valid_load()) * self.lever
+
+
+def contact_pressures(pair: GearPair, s: ArrayLike, unit_load: ArrayLike) -> np.ndarray:
+    """Hertz maximum pressure (Pa) at contact points of ``pair`` crossing the line of action
+    at ``s`` (m) under normal unit loads ``unit_load`` along the contact line (N/m; same
+    shape): the flanks' curvatures on the path, a tip corner's edge rounding against the
+    mate's flank beyond it (:func:`~pipeline.geometry.tip_contact.curvature_radii_at`), in
+    the normal section (effective radius ``R_t / cos(beta_b)``); 0 where unloaded."""
+    rho1, rho2 = curvature_radii_at(pair, s)
+    radius = effective_radius(rho1, rho2) / math.cos(pair.pinion.base_helix_angle)
+    e_star = contact_modulus(pair.pinion.material, pair.gear.material)
+    p = np.maximum(np.asarray(unit_load, dtype=float), 0.0)
+    return np.where(p > 0.0, hertz_max_pressure(p, np.maximum(radius, 1e-300), e_star), 0.0)

@@ -31,6 +31,7 @@ from pipeline.contact.results import LoadedMeshCycle
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.involute import inv
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.io import atomic_write
 from pipeline.validation import InputError, check_choice, check_int_range
 
@@ -44,11 +45,14 @@ class FlankLoadMap:
 
     Attributes
     ----------
-    s : (n_s,) roll coordinates from ``s_start`` to ``s_end``, m.
+    s : (n_s,) roll coordinates from ``s_start`` to ``s_end``, m, widened to the tip-corner
+        contacts beyond either end when the cycle has any.
     z : (n_z,) face positions from 0 to b, m.
     unit_load : (n_s, n_z) load per unit length of contact line, N/m, over the cycle.
-    pinion_radius : (n_s,) radius of the contact point on the pinion, m.
-    gear_radius : (n_s,) radius of the contact point on the gear, m.
+    pinion_radius : (n_s,) radius of the contact point on the pinion, m (its tip radius
+        where the pinion's tip corner touches, past the end of the path).
+    gear_radius : (n_s,) radius of the contact point on the gear, m (its tip radius
+        before the start of the path).
     """
 
     s: np.ndarray
@@ -56,22 +60,35 @@ class FlankLoadMap:
     unit_load: np.ndarray
     pinion_radius: np.ndarray
     gear_radius: np.ndarray
+    s_start: float = -np.inf
+    s_end: float = np.inf
 
     def radius(self, member: str) -> np.ndarray:
         """Contact radius (n_s,) on ``member`` ("pinion" or "gear"), m."""
         check_choice("load map member", member, MEMBERS)
         return self.pinion_radius if member == "pinion" else self.gear_radius
 
+    def tip_corner_load(self, member: str) -> np.ndarray:
+        """(n_z,) largest unit load on ``member``'s tip corner over the cycle, N/m (the grid
+        rows where it touches beyond the path of contact; 0 where it never does)."""
+        check_choice("load map member", member, MEMBERS)
+        tip = (self.s > self.s_end) if member == "pinion" else (self.s < self.s_start)
+        return self.unit_load[tip].max(axis=0) if tip.any() else np.zeros(self.z.size)
+
 
 def flank_load_map(cycle: LoadedMeshCycle, pair: GearPair,
                    profile_points: int = 80) -> FlankLoadMap:
     """Grid the point unit loads of a mesh cycle over the plane of action (module docstring).
 
-    ``profile_points`` (>= 2) grid points along the path; the face grid is the
-    distinct face positions of the candidate points plus the two faces (nearest value).
+    ``profile_points`` (>= 2) grid points along the path and the loaded tip-corner contacts
+    beyond it; the face grid is the distinct face positions of the candidate points plus
+    the two faces (nearest value).
     """
     check_int_range("contact.load_map_profile_points", profile_points, 2, 100_000)
-    s_grid = np.linspace(pair.s_start, pair.s_end, profile_points)
+    loaded = cycle.point_s[cycle.point_load > 0]
+    lo = min(pair.s_start, float(loaded.min())) if loaded.size else pair.s_start
+    hi = max(pair.s_end, float(loaded.max())) if loaded.size else pair.s_end
+    s_grid = np.linspace(lo, hi, profile_points)
     zq = np.round(cycle.point_z, 9)
     z_in = np.unique(zq)
     cols = []
@@ -87,8 +104,8 @@ def flank_load_map(cycle: LoadedMeshCycle, pair: GearPair,
         z, p = np.concatenate([[0.0], z]), np.concatenate([p[:, :1], p], axis=1)
     if z[-1] < b:
         z, p = np.concatenate([z, [b]]), np.concatenate([p, p[:, -1:]], axis=1)
-    r1, r2 = pair.contact_radii(s_grid)
-    return FlankLoadMap(s_grid, z, p, np.asarray(r1), np.asarray(r2))
+    r1, r2 = contact_radii_at(pair, s_grid)
+    return FlankLoadMap(s_grid, z, p, np.asarray(r1), np.asarray(r2), pair.s_start, pair.s_end)
 
 
 def _involute_flank(gear: GearSpec, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -21,6 +21,27 @@ Local contact models (``local``):
   LTCA mesh stiffness then equals the analytical slice stiffness exactly (every
   slice is loaded and ``k = 1^T G^-1 1 = sum_i 1 / G_ii``).
 * ``"none"`` - structural compliance only.
+
+Beyond the path of contact (``tip_contact`` of the source, ``[contact] tip_contact``,
+default on) tooth pairs can still touch at a tip corner: the leaving pair's pinion corner
+past the end of the path, the approaching pair's gear corner before its start
+(:mod:`pipeline.geometry.tip_contact`: the rigid gap in closed form, the contact point on
+the mate's flank, off the line of action). Candidate points reach into those tip zones
+(:func:`pipeline.contact.source.candidate_zone`, out to a rigid gap of 200 um), their
+gap is the corner's plus the corner gear's full tip relief, and their compliance comes
+from every source at the actual contact radii (the corner's tip radius, the mate's
+flank radius). A corner's force ``F_n`` acts along the mate's flank normal, whose
+distance from the turning gear's centre is ``a r_b`` (lever factor ``a <= 1``), so it
+carries ``Ft = a F_n`` of the line-of-action load and a rigid turn closes its gap ``a``
+times as fast: :func:`along_line_of_action` poses the problem in ``Ft`` (``G / (a
+a^T)``, ``eps / a``, the local model through ``a``), which leaves the solver and its
+convexity unchanged. The local contact of a corner is Hertz of a local corner radius
+0.05 m_n against the mate's involute at the contact point, with Weber's depths at the
+actual radii (a sharp corner's approach is unbounded: :mod:`pipeline.geometry.tip_contact`
+states the model and its effect). Friction is left out there.
+
+Checked against the independent CalculiX contact model of the demo pair
+(``workflows/reference/calculix_spur_contact.py``, ``tests/test_reference_calculix.py``).
 """
 
 from __future__ import annotations
@@ -35,8 +56,9 @@ from pipeline.contact.hertz import HertzLineContact, LeverScaled
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_zone
+from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_range
 from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import contact_radii_at, curvature_radii_at
 from pipeline.geometry.tip_contact import tip_contact as tip_contact_geometry
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance, load_geometry
@@ -51,22 +73,38 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
     ``h_k`` is the distance from the contact point along the load line (the
     line of action) to the centreline of tooth ``k``: ``h_c / cos(load angle)``
     with the half thickness ``h_c`` at the load point (the ``k_1, k_2`` of Yang et al. 2026).
+    Beyond the path of contact the point is a tip corner: Hertz of its edge rounding
+    against the mate's flank (:func:`~pipeline.geometry.tip_contact.curvature_radii_at`),
+    with the depths at the actual contact radii.
     """
-    s = np.clip(points.s, pair.s_start, pair.s_end)
-    rho1, rho2 = pair.curvature_radii(s)
-    r1, r2 = pair.contact_radii(s)
+    rho1, rho2 = curvature_radii_at(pair, points.s)
+    r1, r2 = contact_radii_at(pair, points.s)
     depths = []
     for gear, r in ((pair.pinion, r1), (pair.gear, r2)):
         angle, h_c, _ = load_geometry(gear, r)
         depths.append(np.abs(h_c / np.cos(angle)))
-    radius_1, radius_2 = rho1, rho2
-    if pair.gear.internal:
-        # Convex pinion flank in the concave ring flank: the Hertz half-width and pressure
-        # depend on the radii only through R = rho1 |rho2| / (|rho2| - rho1) (> rho1), and
-        # HertzLineContact takes two convex radii; two equal radii 2R have that R.
-        radius_1 = radius_2 = 2.0 * rho1 * np.abs(rho2) / (np.abs(rho2) - rho1)
-    return HertzLineContact(points.width, radius_1, radius_2, depths[0], depths[1],
+    # The Hertz half-width and pressure depend on the radii only through
+    # R = rho1 rho2 / (rho1 + rho2) (a concave ring flank: rho2 < 0, R > rho1), and
+    # HertzLineContact takes two convex radii; two equal radii 2R have that R.
+    radius = 2.0 * rho1 * rho2 / (rho1 + rho2)
+    return HertzLineContact(points.width, radius, radius, depths[0], depths[1],
                             pair.pinion.material, pair.gear.material)
+
+
+def along_line_of_action(pair: GearPair, points: ContactPoints, G: np.ndarray, eps: np.ndarray,
+                         hertz, driver: str = "pinion"):
+    """The contact problem in loads and approaches along the line of action: a tip corner's
+    force ``F`` acts off it, with lever factor ``a`` (:mod:`pipeline.geometry.tip_contact`;
+    1 on the path), so its line-of-action load is ``Ft = a F``, its gap closes by ``a``
+    per unit of approach, and ``G / (a a^T)``, ``eps / a`` and the local model seen
+    through ``a`` (:class:`~pipeline.contact.hertz.LeverScaled`) pose the old problem in
+    ``Ft``. Returns ``(G, eps, hertz, a)``."""
+    a = tip_contact_geometry(pair, points.s).lever(driver)
+    if np.all(a == 1.0):
+        return G, eps, hertz, a
+    if hertz is not None:
+        hertz = LeverScaled(hertz, a)
+    return G / np.outer(a, a), eps / a, hertz, a
 
 
 def _check_tip_zone(eps: np.ndarray, sol, label: str) -> None:
@@ -119,7 +157,6 @@ def loaded_mesh_cycle(
     positions: int | ArrayLike = 60,
     *,
     driver: str = "pinion",
-    tip_contact: bool = True,
     tol: float = 1e-10,
     max_iter: int = 100,
     show_progress: bool = False,
@@ -136,9 +173,8 @@ def loaded_mesh_cycle(
     positions : number of equally spaced positions over one mesh cycle (>= 1), or the
         roll coordinates s0 (m) themselves.
     driver : "pinion" or "gear", the gear that turns under ``load`` (sets the lever
-        factors of tip-corner contact, module docstring).
-    tip_contact : let tooth pairs touch at a tip corner beyond the path of contact; False
-        keeps every point off the path out of mesh.
+        factors of tip-corner contact, module docstring). Whether teeth may touch beyond
+        the path of contact is the source's ``tip_contact``.
     tol, max_iter : passed to :func:`~pipeline.contact.complementarity.solve_contact`.
     show_progress : progress bar on stderr.
 
@@ -155,10 +191,10 @@ def loaded_mesh_cycle(
     mods = modifications or FlankModifications()
     pair = source.pair
     s0 = mesh_positions(pair, positions)
-    k_all = pair.pair_indices()
+    k_all = pair.pair_indices(source.tip_contact)
     c_hertz = hertz_compliance(pair.pinion, pair.gear)  # m^2/N, per unit width
     m = s0.size
-    record = CycleRecorder(pair, m)
+    record = CycleRecorder(pair, m, source.tip_contact)
     prev_keys = prev_loads = None
     for i in progress(range(m), "contact", total=m, enabled=show_progress):
         label = f"mesh position {i} (s0 = {s0[i] * 1e3:.6g} mm)"
@@ -169,8 +205,7 @@ def loaded_mesh_cycle(
             raise InputError(f"{label}: tooth-pair indices {np.setdiff1d(pts.pair, k_all)} of "
                              f"the candidate points are not among pair.pair_indices() {k_all}")
         G = np.asarray(source.matrix(float(s0[i])), dtype=float)
-        eps = initial_separations(pair, pts, mods,
-                                  candidate_zone(pair) if tip_contact else None)
+        eps = initial_separations(pair, pts, mods, candidate_range(pair, source.tip_contact))
         hertz = None
         c_lin = None
         if local == "weber":
@@ -178,18 +213,17 @@ def loaded_mesh_cycle(
         elif local == "linear":
             c_lin = c_hertz / pts.width
             G = G + np.diag(c_lin)
-        a = tip_contact_geometry(pair, pts.s).lever(driver)
-        if hertz is not None and np.any(a != 1.0):
-            hertz = LeverScaled(hertz, a)
+        Gt, eps_t, hertz, lever = along_line_of_action(pair, pts, G, eps, hertz, driver)
         keys = _keys(pts)
-        sol = solve_contact(G / np.outer(a, a), eps / a, load, hertz, tol=tol,
-                            max_iter=max_iter, start=_warm_start(prev_keys, prev_loads, keys),
-                            label=label)
-        _check_tip_zone(eps / a, sol, label)
+        sol = solve_contact(Gt, eps_t, load, hertz, tol=tol, max_iter=max_iter,
+                            start=_warm_start(prev_keys, prev_loads, keys), label=label)
+        _check_tip_zone(eps_t, sol, label)
         prev_keys, prev_loads = keys, sol.loads
-        u = sol.contact_deformation if c_lin is None else c_lin * sol.loads
+        # the local approach along each point's own normal: a tip corner's is a times
+        # the one along the line of action
+        u = sol.contact_deformation * lever if c_lin is None else c_lin * sol.loads / lever
         record.add(i, pts, sol.loads, eps, u, sol.approach,
                    (sol.mesh_stiffness_tangent, sol.mesh_stiffness_secant,
                     sol.mesh_stiffness_pointwise),
-                   (sol.residual, sol.tolerance, sol.newton_iterations))
+                   (sol.residual, sol.tolerance, sol.newton_iterations), lever)
     return record.cycle(s0, load, local)

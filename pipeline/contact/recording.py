@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pipeline.contact.hertz import contact_pressures
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.source import ContactPoints
 from pipeline.geometry.pair import GearPair
@@ -26,11 +27,13 @@ class CycleRecorder:
     ----------
     pair : the pair; its :meth:`GearPair.pair_indices` order the tooth-pair loads.
     positions : number m of positions of the cycle.
+    tip_contact : the candidate points reach beyond the path of contact (the tooth pairs
+        :meth:`GearPair.pair_indices` lists with ``beyond``).
     """
 
-    def __init__(self, pair: GearPair, positions: int) -> None:
+    def __init__(self, pair: GearPair, positions: int, tip_contact: bool = True) -> None:
         self.pair = pair
-        self.pair_index = pair.pair_indices()
+        self.pair_index = pair.pair_indices(tip_contact)
         self.per_position = {name: np.zeros(positions) for name in _PER_POSITION}
         self.pair_loads = np.zeros((positions, self.pair_index.size))
         self.rows: list[tuple] = []
@@ -38,17 +41,23 @@ class CycleRecorder:
     def add(self, i: int, points: ContactPoints, loads: np.ndarray, separations: np.ndarray,
             deformation: np.ndarray, approach: float,
             stiffnesses: tuple[float, float, float],
-            stats: tuple[float, float, int]) -> None:
-        """Position ``i``: candidate points, their loads (N), initial separations and local
-        contact deformations (m), the approach x (m), the (tangent, secant, pointwise) mesh
-        stiffnesses (N/m) and the solver's (residual m, tolerance m, Newton iterations)."""
-        unit = loads / points.width
+            stats: tuple[float, float, int], lever: np.ndarray | None = None) -> None:
+        """Position ``i``: candidate points, their loads along the line of action (N),
+        initial separations and local contact deformations (m), the approach x (m), the
+        (tangent, secant, pointwise) mesh stiffnesses (N/m), the solver's (residual m,
+        tolerance m, Newton iterations) and the points' lever factors ``a`` (a tip
+        corner's normal force is ``load / a``; default 1)."""
+        pair = self.pair
+        lever = np.ones(len(points)) if lever is None else np.asarray(lever, dtype=float)
+        unit = loads / lever / points.width
+        corner = np.where(points.s > pair.s_end, 1, np.where(points.s < pair.s_start, 2, 0))
         values = (approach, *stiffnesses, *stats, float(unit.max()))
         for name, v in zip(_PER_POSITION, values, strict=True):
             self.per_position[name][i] = v
         np.add.at(self.pair_loads[i], np.searchsorted(self.pair_index, points.pair), loads)
         self.rows.append((np.full(len(points), i), points.s, points.z, points.pair,
-                          points.width, loads, unit, separations, deformation))
+                          points.width, loads, unit, separations, deformation, lever, corner,
+                          contact_pressures(pair, points.s, unit)))
 
     def cycle(self, s0: np.ndarray, load: float, local: str) -> LoadedMeshCycle:
         """The recorded cycle at positions ``s0`` (m) under the load ``load`` (N)."""
@@ -63,5 +72,7 @@ class CycleRecorder:
             point_position=cols[0].astype(int), point_s=cols[1], point_z=cols[2],
             point_pair=cols[3].astype(int), point_width=cols[4], point_load=cols[5],
             point_unit_load=cols[6], point_separation=cols[7],
-            point_contact_deformation=cols[8], load=float(load), local_contact=local,
+            point_contact_deformation=cols[8], point_lever=cols[9],
+            point_corner=cols[10].astype(int), point_pressure=cols[11], load=float(load),
+            local_contact=local,
         )

@@ -193,10 +193,16 @@ class LoadedMeshCycle:
     point_s, point_z : roll coordinate and face position, m.
     point_pair : tooth-pair index k.
     point_width : face width the point stands for, m.
-    point_load : load F (transverse, along the line of action), N.
-    point_unit_load : p = F / width, load per unit length of contact line, N/m.
+    point_load : load F (transverse, along the line of action), N: a tip corner's normal
+        force ``F_n`` times its lever factor (:mod:`pipeline.geometry.tip_contact`).
+    point_unit_load : p = F_n / width, normal load per unit length of contact line, N/m.
     point_separation : initial separation eps, m.
     point_contact_deformation : local contact approach u_c(F), m.
+    point_lever : lever factor ``a = F / F_n`` (-), 1 on the path of contact.
+    point_corner : 0 on the path of contact; beyond it the tip corner that touches:
+        1 the pinion's (past the end of the path), 2 the gear's (before its start).
+    point_pressure : Hertz maximum pressure, Pa (a tip corner: of its edge rounding,
+        :func:`pipeline.contact.hertz.contact_pressures`).
 
     Scalars: ``load`` P (N), ``pair_index`` (K,), ``local_contact`` (model name).
     """
@@ -222,6 +228,9 @@ class LoadedMeshCycle:
     point_unit_load: np.ndarray
     point_separation: np.ndarray
     point_contact_deformation: np.ndarray
+    point_lever: np.ndarray
+    point_corner: np.ndarray
+    point_pressure: np.ndarray
     load: float
     local_contact: str
 
@@ -233,6 +242,11 @@ class LoadedMeshCycle:
 
     def __len__(self) -> int:
         return int(self.s0.size)
+
+    @property
+    def point_normal_load(self) -> np.ndarray:
+        """Normal contact force of every point, N: ``point_load / point_lever``."""
+        return self.point_load / self.point_lever
 
     @property
     def load_share(self) -> np.ndarray:
@@ -250,16 +264,51 @@ class LoadedMeshCycle:
         """One line per condition the numbers are valid for but a design should not be in:
         a loaded contact ratio of 1 within the sampling (at most two of the positions have
         two pairs loaded, e.g. the hand-over instant), as with tip reliefs too long or
-        too deep for the load."""
+        too deep for the load; teeth touching at a tip corner beyond the path of contact
+        (edge loading: its largest normal force and Hertz pressure)."""
+        out = []
+        tip = self.tip_contact_peak()
+        if tip is not None:
+            out.append(
+                f"tip contact beyond the path of contact at {tip['positions']} of "
+                f"{len(self)} positions: the {tip['corner']}'s tip corner carries up to "
+                f"{tip['normal_load_N']:.4g} N ({tip['share']:.1%} of the load) at mesh "
+                f"position {tip['position']}, Hertz pressure of its edge "
+                f"{tip['pressure_Pa'] * 1e-6:.4g} MPa; a tip relief longer and deeper than "
+                "the deflection keeps the teeth apart there")
         ratio, m = self.loaded_contact_ratio, len(self)
         if ratio > 1.0 + 2.0 / m:
-            return []
+            return out
         single = float(np.mean((self.pair_loads > 0).sum(axis=1) <= 1))
         te = self.transmission_error
-        return [f"loaded contact ratio {ratio:.3f}: one tooth pair carries the whole load over "
-                f"{single:.0%} of the mesh cycle, so the load jumps between pairs "
-                f"(transmission error {(te.max() - te.min()) * 1e6:.3g} um peak to peak); "
-                f"check the tip relief and the flank modifications"]
+        return out + [
+            f"loaded contact ratio {ratio:.3f}: one tooth pair carries the whole load over "
+            f"{single:.0%} of the mesh cycle, so the load jumps between pairs "
+            f"(transmission error {(te.max() - te.min()) * 1e6:.3g} um peak to peak); "
+            f"check the tip relief and the flank modifications"]
+
+    def tip_contact_peak(self) -> dict | None:
+        """The largest tip-corner contact of the cycle, or None when no tip corner carries
+        load: ``normal_load_N`` (the corner's normal force summed over its tooth pair's
+        points at that position, N), ``share`` (its line-of-action load over the
+        position's load, -), ``pressure_Pa`` (the largest Hertz pressure of any corner
+        point of the cycle), ``position`` (index), ``corner`` ("pinion" or "gear") and
+        ``positions`` (how many positions have a loaded corner)."""
+        tip = (self.point_corner > 0) & (self.point_load > 0)
+        if not tip.any():
+            return None
+        key = self.point_position[tip] * (1 << 20) + (self.point_pair[tip] - self.point_pair.min())
+        groups, inv = np.unique(key, return_inverse=True)
+        normal = np.bincount(inv, weights=self.point_normal_load[tip])
+        line = np.bincount(inv, weights=self.point_load[tip])
+        g = int(np.argmax(normal))
+        first = np.flatnonzero(inv == g)[0]
+        pos = int(self.point_position[tip][first])
+        total = float(self.point_load[self.point_position == pos].sum())
+        return {"normal_load_N": float(normal[g]), "share": float(line[g]) / total,
+                "pressure_Pa": float(self.point_pressure[tip].max()), "position": pos,
+                "corner": "pinion" if self.point_corner[tip][first] == 1 else "gear",
+                "positions": int(np.unique(self.point_position[tip]).size)}
 
     def summary(self) -> dict[str, float]:
         """Mean/max/min of the mesh stiffness and transmission error, the loaded contact
@@ -306,6 +355,9 @@ class LoadedMeshCycle:
             "unit_load [N/m]": self.point_unit_load,
             "initial_separation [m]": self.point_separation,
             "contact_deformation [m]": self.point_contact_deformation,
+            "normal_load [N]": self.point_normal_load,
+            "tip_corner [0 path, 1 pinion, 2 gear]": self.point_corner,
+            "hertz_pressure [Pa]": self.point_pressure,
         }
 
 

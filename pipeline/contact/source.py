@@ -111,6 +111,8 @@ class ComplianceSource(Protocol):
     ----------
     pair : the (actual) gear pair; fixes the path of contact, curvature radii
         and the mesh cycle.
+    tip_contact : whether the candidate points reach beyond the path of contact into
+        the tip zones (:func:`candidate_range`), where teeth touch at a tip corner.
 
     Methods
     -------
@@ -123,6 +125,7 @@ class ComplianceSource(Protocol):
     """
 
     pair: GearPair
+    tip_contact: bool
 
     def points(self, position: float) -> ContactPoints: ...
 
@@ -142,18 +145,18 @@ def slice_count(pair: GearPair, slices: int | None) -> int:
     return DEFAULT_SLICES if pair.pinion.is_helical else 1
 
 
-def slice_grid(pair: GearPair, slices: int | None, position: float
+def slice_grid(pair: GearPair, slices: int | None, position: float, tip_contact: bool = True
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
     """Slice contact grid at mesh ``position`` (m of roll of the leading pair).
 
     Returns roll coordinates (K, N) in m, slice centres z (N,) in m, tooth pair
-    indices (K,) and the slice width in m, for ``slices`` slices across the face
-    (:func:`slice_count`).
+    indices (K,) (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``) and the
+    slice width in m, for ``slices`` slices across the face (:func:`slice_count`).
     """
     n = slice_count(pair, slices)
     dz = pair.face_width / n
     z = (np.arange(n) + 0.5) * dz
-    k = pair.pair_indices()
+    k = pair.pair_indices(tip_contact)
     s = (float(position) + k * pair.base_pitch)[:, None] + z[None, :] * math.tan(
         pair.pinion.base_helix_angle)
     return s, z, k, dz
@@ -173,11 +176,19 @@ def candidate_zone(pair: GearPair) -> tuple[float, float]:
     return tip_zone(pair, TIP_GAP)
 
 
-def slice_points(pair: GearPair, slices: int | None, position: float) -> ContactPoints:
-    """Slice contact points of every tooth pair that can touch: on the path of contact and
-    in the tip zones beyond it (:func:`candidate_zone`), ordered by pair, then by z."""
-    s, z, k, dz = slice_grid(pair, slices, position)
-    lo, hi = candidate_zone(pair)
+def candidate_range(pair: GearPair, tip_contact: bool) -> tuple[float, float]:
+    """Roll coordinates ``(s_lo, s_hi)``, m, of the candidate points: the path of contact,
+    widened by the tip zones (:func:`candidate_zone`) when teeth may touch beyond it."""
+    return candidate_zone(pair) if tip_contact else (pair.s_start, pair.s_end)
+
+
+def slice_points(pair: GearPair, slices: int | None, position: float,
+                 tip_contact: bool = True) -> ContactPoints:
+    """Slice contact points of every tooth pair that can touch, ordered by pair, then by z:
+    on the path of contact and, with ``tip_contact``, in the tip zones beyond it
+    (:func:`candidate_range`)."""
+    s, z, k, dz = slice_grid(pair, slices, position, tip_contact)
+    lo, hi = candidate_range(pair, tip_contact)
     inside = (s >= lo) & (s <= hi)
     kk, jj = np.nonzero(inside)
     return ContactPoints(s=s[kk, jj], z=z[jj], pair=k[kk], width=np.full(kk.size, dz))
@@ -202,6 +213,8 @@ class SliceCompliance:
         pair is in contact, as in :func:`pipeline.stiffness.mesh.stiffness_at`.
     coupling : kappa in [0, 0.25), coupling of neighbouring slices (module docstring);
         0 is Yang et al. (2026)'s independent slices.
+    tip_contact : candidate points beyond the path of contact too (tip corners,
+        :func:`candidate_range`); False keeps them on the path.
     """
 
     model: PairModel
@@ -210,6 +223,7 @@ class SliceCompliance:
     operating: OperatingPoint = field(default_factory=OperatingPoint)
     foundation_correction: float = 1.0
     coupling: float = 0.0
+    tip_contact: bool = True
 
     def __post_init__(self) -> None:
         if self.slices is not None:
@@ -226,11 +240,11 @@ class SliceCompliance:
 
     def _grid(self, position: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """Roll coordinates (K, N), face positions (N,), pair indices (K,), slice width (m)."""
-        return slice_grid(self.pair, self.slices, position)
+        return slice_grid(self.pair, self.slices, position, self.tip_contact)
 
     def points(self, position: float) -> ContactPoints:
-        """Slice contact points of all tooth pairs in contact, ordered by pair, then by z."""
-        return slice_points(self.pair, self.slices, position)
+        """Candidate slice points (:func:`slice_points`), ordered by pair, then by z."""
+        return slice_points(self.pair, self.slices, position, self.tip_contact)
 
     def diagonal(self, position: float) -> np.ndarray:
         """Independent-slice compliance of the candidate points, m/N, shape (n,).
@@ -240,7 +254,7 @@ class SliceCompliance:
         """
         pair = self.pair
         s, _, _, dz = self._grid(position)
-        lo, hi = candidate_zone(pair)
+        lo, hi = candidate_range(pair, self.tip_contact)
         cand = (s >= lo) & (s <= hi)
         inside = (s >= pair.s_start) & (s <= pair.s_end)
         sc = np.where(cand, s, pair.s_pitch)[None]  # (1, K, N)
@@ -308,6 +322,10 @@ class FrictionCorrected:
     @property
     def pair(self) -> GearPair:
         return self.base.pair
+
+    @property
+    def tip_contact(self) -> bool:
+        return self.base.tip_contact
 
     def points(self, position: float) -> ContactPoints:
         return self.base.points(position)

@@ -281,17 +281,18 @@ class GearPair:
         return pinion_speed * rho1, pinion_speed / self.gear_ratio * np.abs(rho2)
 
     # ---- contacts over the mesh cycle ----------------------------------------------------
-    def pair_indices(self) -> np.ndarray:
+    def pair_indices(self, beyond: bool = True) -> np.ndarray:
         """Indices k of the tooth pairs ``s0 + k p_bt`` that can touch somewhere on the face.
 
         For helical gears pairs behind the leading one (k < 0) reach the path of
         contact through the far end of the face, where ``s = s0 + k p_bt + b tan(beta_b)``.
-        One more pair behind them can touch before the path, at the gear's tip corner
-        (:mod:`pipeline.geometry.tip_contact`); the last index, ``max_pairs - 1``, is
-        the pair that can touch past the path's end at the pinion's tip corner.
+        With ``beyond`` (teeth touching beyond the path of contact,
+        :mod:`pipeline.geometry.tip_contact`) one more pair behind them can touch before
+        the path, at the gear's tip corner; the last index, ``max_pairs - 1``, can touch
+        past the path's end at the pinion's tip corner.
         """
         reach = self.face_width * math.tan(self.pinion.base_helix_angle)
-        return np.arange(-int(math.ceil(reach / self.base_pitch)) - 1, self.max_pairs)
+        return np.arange(-int(math.ceil(reach / self.base_pitch)) - int(beyond), self.max_pairs)
 
     def pair_positions(self, s0: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Transverse (z = 0) roll coordinates of every tooth pair that may be in contact.

@@ -139,7 +139,6 @@ def cached_herringbone_cycle(
                                       n_planets, options=herringbone,
                                       modifications=contact.modifications,
                                       local=contact.local_contact, positions=contact.positions,
-                                      tip_contact=contact.tip_contact,
                                       show_progress=show_progress)
 
     cycle, _, hit = cached_file("herringbone", inputs, build, herringbone_arrays,

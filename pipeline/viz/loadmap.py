@@ -158,9 +158,28 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     if ax is None:
         ax = new_figure((7.5, 4.8), "constrained").subplots()
     p = load_map.unit_load * 1e-3
-    mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius * 1e3, p,
-                         shading="gouraud", cmap="viridis", vmin=0.0, vmax=float(p.max()))
+    flank = load_map.s <= load_map.s_end  # past it the pinion touches with its tip corner
+    vmax = float(p.max())
+    mesh = ax.pcolormesh(load_map.z * 1e3, load_map.pinion_radius[flank] * 1e3, p[flank],
+                         shading="gouraud", cmap="viridis", vmin=0.0, vmax=vmax)
     ax.figure.colorbar(mesh, ax=ax, label="unit load p [N/mm]")
+    tip = load_map.tip_corner_load("pinion") * 1e-3
+    if tip.max() > 0.0:
+        r = load_map.pinion_radius[flank]
+        ra, h = float(load_map.pinion_radius.max()) * 1e3, 0.04 * float(np.ptp(r)) * 1e3
+        ax.pcolormesh(load_map.z * 1e3, [ra, ra + h], np.vstack([tip, tip]),
+                      shading="gouraud", cmap="viridis", vmin=0.0, vmax=vmax)
+        ax.axhline(ra, color="w", lw=0.8)
+        ax.text(0.01, ra + h, f"tip corner, beyond the path of contact: up to "
+                f"{tip.max():.0f} N/mm", transform=ax.get_yaxis_transform(), va="bottom",
+                fontsize=8)
+        ax.set_ylim(top=ra + 3.0 * h)
+    if load_map.s[0] < load_map.s_start:  # the gear's tip corner on the pinion's flank
+        r0 = float(np.interp(load_map.s_start, load_map.s, load_map.pinion_radius)) * 1e3
+        ax.axhline(r0, color="w", lw=0.8, ls="--")
+        ax.text(0.01, r0, "start of the path of contact; below it the gear's tip corner "
+                "touches", transform=ax.get_yaxis_transform(), va="bottom", fontsize=8,
+                color="w")
     ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("pinion contact radius [mm]")
     ax.set_title(title or "unit load over the pinion flank, envelope over the mesh cycle",

@@ -139,6 +139,7 @@ from pipeline.geometry.profile import tooth_profile
 HERE = Path(__file__).resolve().parent
 DATA = HERE / "demo_pair_reference.json"
 CONTACT_KINDS = ("full", "nominal")
+SLAVES = ("corner", "gear", "pinion")
 
 
 # ---------------------------------------------------------------------------------------
@@ -160,6 +161,10 @@ class ReferenceSettings:
     profile_points : involute points of the tooth profile polyline (fillet gets as many).
     step : half the relative spacing of the two load steps around each estimated rotation
         (-); the stiffness is the secant between them.
+    slave : which tooth of each pair carries CalculiX's slave surface (the other the
+        master): ``"corner"`` the tooth whose tip corner touches beyond the path of
+        contact (the pinion's past its end), else the gear's; ``"gear"`` or ``"pinion"``
+        always that gear's (module docstring: a master corner is under-resolved).
     """
 
     size_contact: float = 0.1e-3
@@ -170,8 +175,11 @@ class ReferenceSettings:
     penalty: float = 1.0e17
     profile_points: int = 80
     step: float = 0.02
+    slave: str = "corner"
 
     def __post_init__(self) -> None:
+        if self.slave not in SLAVES:
+            raise ValueError(f"reference.slave = {self.slave!r} must be one of {SLAVES}")
         for name in ("size_contact", "size_fine", "size_tooth", "size_body", "growth", "penalty",
                      "step"):
             if not getattr(self, name) > 0:
@@ -440,6 +448,11 @@ def contact_pairs(pair: GearPair, place: Placement, contact: str) -> list[int]:
     return [k for k, o in zip(ks, on, strict=True) if o]
 
 
+def _surface_tag(k: int) -> str:
+    """Surface-name suffix of tooth pair ``k`` (CalculiX names take no minus sign)."""
+    return f"M{-k}" if k < 0 else f"K{k}"
+
+
 def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], place: Placement,
               rotations: np.ndarray, settings: ReferenceSettings, contact: str = "full"
               ) -> dict:
@@ -477,9 +490,10 @@ def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], pla
             ("G", gm, pair.gear, set(place.gear_tooth.values()), n1, e1)):
         teeth = {t % gear.teeth for t in teeth}
         table = place.pinion_tooth if label == "P" else place.gear_tooth
-        rows = _contact_faces(mesh, {table[k] % gear.teeth for k in touching})
-        lines.append(f"*SURFACE, NAME=S{label}, TYPE=ELEMENT")
-        lines += [f"{mesh.faces[r, 0] + 1 + eoff}, S{mesh.faces[r, 1]}" for r in rows]
+        for k in touching:  # one surface per tooth of a pair that may touch
+            rows = _contact_faces(mesh, {table[k] % gear.teeth})
+            lines.append(f"*SURFACE, NAME=S{label}{_surface_tag(k)}, TYPE=ELEMENT")
+            lines += [f"{mesh.faces[r, 0] + 1 + eoff}, S{mesh.faces[r, 1]}" for r in rows]
         # nodes of the contact-side outline of every fine tooth, per tooth (loads, locations)
         for j in sorted(teeth):
             rows_j = np.flatnonzero(mesh.faces[:, 2] == j)
@@ -494,9 +508,14 @@ def write_inp(path: Path, pair: GearPair, meshes: tuple[GearMesh, GearMesh], pla
                   f"{mat.youngs_modulus:.6e}, {mat.poisson_ratio:.6f}",
                   f"*SOLID SECTION, ELSET=E{k}, MATERIAL=M{k}", f"{pair.face_width:.6e}"]
     lines += ["*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-              f"{settings.penalty:.6e}",
-              "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE", "SG, SP",
-              "*BOUNDARY", "GBORE, 1, 2"]
+              f"{settings.penalty:.6e}"]
+    for k in touching:  # the teeth of one pair touch only each other
+        tag = _surface_tag(k)
+        pinion_slave = settings.slave == "pinion" or (
+            settings.slave == "corner" and place.s0 + k * pair.base_pitch > pair.s_end)
+        lines += ["*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
+                  f"SP{tag}, SG{tag}" if pinion_slave else f"SG{tag}, SP{tag}"]
+    lines += ["*BOUNDARY", "GBORE, 1, 2"]
     bore_xy = xy1[pm.bore]
     for theta in rotations:
         # clockwise rigid rotation of the bore by theta (small): u = -theta (-y, x)
@@ -980,7 +999,8 @@ def _settings(args) -> ReferenceSettings:
                              size_fine=mm(args.size_fine, base.size_fine),
                              size_tooth=mm(args.size_tooth, base.size_tooth),
                              size_body=mm(args.size_body, base.size_body),
-                             growth=args.growth or base.growth, penalty=args.penalty)
+                             growth=args.growth or base.growth, penalty=args.penalty,
+                             slave=getattr(args, "slave", base.slave))
 
 
 def _finite(x):
@@ -1230,6 +1250,8 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("--growth", type=float, default=None, help="element size growth (-)")
     run.add_argument("--penalty", type=float, default=ReferenceSettings.penalty,
                      help="contact penalty, Pa/m")
+    run.add_argument("--slave", choices=SLAVES, default=ReferenceSettings.slave,
+                     help="which tooth of a pair carries the slave surface")
     run.add_argument("--threads", type=int, default=1)
     run.add_argument("--ccx", default="ccx")
     run.add_argument("--log", type=Path, required=True)
