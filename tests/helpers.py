@@ -31,17 +31,19 @@ def load_workflow(name: str):
 @dataclass(frozen=True)
 class UniformSlices:
     """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
-    width per tooth pair (N/m^2): uniform mesh stiffness across the face."""
+    width per tooth pair (N/m^2): uniform mesh stiffness across the face, on the nominal
+    path of contact only (``tip_contact`` False)."""
 
     pair: GearPair
     slices: int
     c0: float
+    tip_contact: bool = False
 
     def points(self, position: float) -> ContactPoints:
         b = self.pair.face_width
         dz = b / self.slices
         z = (np.arange(self.slices) + 0.5) * dz
-        k = self.pair.pair_indices()
+        k = self.pair.pair_indices(beyond=False)
         s = position + k * self.pair.base_pitch
         kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
         return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),

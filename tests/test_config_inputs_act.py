@@ -213,13 +213,23 @@ def test_typed_groove_acts_without_the_fe_groove_in_the_dynamics():
 
 def test_pitch_errors_of_pairs_that_never_mesh_are_one_warning(tmp_path, capsys):
     """z 50/50, m 3 mm, 20 deg: epsilon_alpha = (2 sqrt(78^2 - r_b^2) - 150 sin(20 deg)) /
-    (3 pi cos(20 deg)) = 1.7547 (ISO 21771 (2007), 5.4; r_b = 75 cos(20 deg) mm), so tooth
-    pairs k = 0 and 1 mesh in a mesh cycle (k p_bt < g_alpha) and the entries for k = 2, 3
-    change nothing."""
+    (3 pi cos(20 deg)) = 1.7547 (ISO 21771 (2007), 5.4; r_b = 75 cos(20 deg) mm), so on the
+    nominal path tooth pairs k = 0 and 1 mesh in a mesh cycle (k p_bt < g_alpha) and the
+    entries for k = 2, 3 change nothing; with tip contact pair 2 touches at the pinion's tip
+    corner past the end of the path (the tip zone reaches 2.233 base pitches past the start
+    of the path), and only the entry for k = 3 changes nothing."""
+    nominal = _edit(SPUR, r"^\[dynamics\]", "[contact]\npitch_errors_um = [0.0, 3.0, 2.0, -1.0]"
+                    "\ntip_contact = false\n[dynamics]")
+    with pytest.warns(InputWarning) as record:
+        gearbox_from_text(nominal)
+    assert [str(r.message) for r in record] == [
+        "contact.pitch_errors_um[2:] = [2, -1] um change nothing: only tooth pairs k = 0 to 1 "
+        "mesh in the analysed mesh cycle (pair k meshes when k < transverse contact ratio "
+        "1.755)"]
     text = _edit(SPUR, r"^\[dynamics\]", _pitch([0.0, 3.0, 2.0, -1.0]))
-    message = ("contact.pitch_errors_um[2:] = [2, -1] um change nothing: only tooth pairs "
-               "k = 0 to 1 mesh in the analysed mesh cycle (pair k meshes when k < transverse "
-               "contact ratio 1.755)")
+    message = ("contact.pitch_errors_um[3:] = [-1] um change nothing: only tooth pairs "
+               "k = 0 to 2 mesh in the analysed mesh cycle (pair k touches when k < 2.233, the "
+               "path of contact and the tip zone past its end in base pitches)")
     with pytest.warns(InputWarning) as record:
         box = gearbox_from_text(text)
     assert [str(r.message) for r in record] == [message]
@@ -231,15 +241,23 @@ def test_pitch_errors_of_pairs_that_never_mesh_are_one_warning(tmp_path, capsys)
     assert err == [f"gearpipe geometry: warning: {message}"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        gearbox_from_text(_edit(SPUR, r"^\[dynamics\]", _pitch([0.0, 3.0])))  # all used
+        gearbox_from_text(_edit(SPUR, r"^\[dynamics\]", _pitch([0.0, 3.0, 2.0])))  # all used
 
 
 def test_planetary_pitch_errors_are_checked_on_each_mesh():
     """[contact] applies to both meshes of a planetary set: epsilon_alpha 1.6352 / 1.8897
-    (both: pairs k = 0, 1), so the third entry is unused on each, one line per mesh; more
-    entries than the planet's 20 teeth are refused."""
+    (both: pairs k = 0, 1), so on the nominal path the third entry is unused on each, one line
+    per mesh; with tip contact the ring mesh's pair 2 touches at the planet's tip corner (its
+    tip zone reaches 2.8 base pitches), the sun mesh's does not (1.874); more entries than
+    the planet's 20 teeth are refused."""
     with pytest.warns(InputWarning) as record:
         gearbox_from_text(PLANETARY)
+    assert [str(r.message) for r in record] == [
+        "contact.pitch_errors_um[2:] = [-2] um change nothing: only tooth pairs k = 0 to 1 "
+        "mesh in the analysed mesh cycle of the sun_planet mesh (pair k touches when k < "
+        "1.874, the path of contact and the tip zone past its end in base pitches)"]
+    with pytest.warns(InputWarning) as record:
+        gearbox_from_text(PLANETARY.replace("[contact]\n", "[contact]\ntip_contact = false\n"))
     assert [str(r.message) for r in record] == [
         f"contact.pitch_errors_um[2:] = [-2] um change nothing: only tooth pairs k = 0 to 1 "
         f"mesh in the analysed mesh cycle of the {name} mesh (pair k meshes when k < "
@@ -277,10 +295,13 @@ def test_an_accepted_pitch_error_shifts_the_loaded_te_by_the_model_amount(local)
       ``x = e_0 + c_0 F_0 = e_1 + c_1 F_1``, ``F_0 + F_1 = P`` give
       ``dx = e_1 c_0 / (c_0 + c_1)`` for e_1 = 2 um on pair 1 (to 1e-18 m).
     * An entry for pair 2, which never meshes (epsilon_alpha = 1.755), changes nothing.
+
+    Contact confined to the nominal path (``tip_contact = false``): with tip contact the
+    corners share the load in single contact (:func:`test_pitch_error_of_a_corner_pair`).
     """
     from pipeline.stiffness.tooth import hertz_compliance
 
-    key = f'local_contact = "{local}"'
+    key = f'local_contact = "{local}"\ntip_contact = false'
     base, src = _te(key)
     on0, _ = _te(f"{key}\npitch_errors_um = [2.0]")
     on1, _ = _te(f"{key}\npitch_errors_um = [0.0, 2.0]")
@@ -310,15 +331,18 @@ def test_an_accepted_pitch_error_shifts_the_loaded_te_by_the_model_amount(local)
     assert np.all((shift[~single] > 0.4 * e) & (shift[~single] < 0.6 * e))
 
 
-@pytest.mark.parametrize(("config", "pairs"), [("spur_pair_assembly_errors", 2),
-                                               ("traction_helical_pair", 3),
-                                               ("planet_ring_pair", 2)])
-def test_the_pairs_that_mesh_are_those_the_contact_solve_sees(config, pairs):
+@pytest.mark.parametrize(("config", "pairs", "tip_pairs", "tip_loaded"), [
+    ("spur_pair_assembly_errors", 2, 3, 2), ("traction_helical_pair", 3, 3, 3),
+    ("planet_ring_pair", 2, 3, 3)])
+def test_the_pairs_that_mesh_are_those_the_contact_solve_sees(config, pairs, tip_pairs,
+                                                              tip_loaded):
     """Which entries can act, seen from the solver: over 60 positions of the cycle the tooth
-    pairs k >= 0 with candidate points on the path of contact are exactly k = 0 ..
-    meshing_pairs - 1 = ceil(epsilon_alpha) - 1, for a spur pair (epsilon_alpha 1.755), a
+    pairs k >= 0 with candidate points that can touch are exactly k = 0 .. meshing_pairs - 1:
+    on the nominal path ceil(epsilon_alpha) - 1, for a spur pair (epsilon_alpha 1.755), a
     helical pair (2.052, where pair k = -1 also meshes through the far face end and has no
-    entry) and an internal pair (1.938)."""
+    entry) and an internal pair (1.938); with tip contact also the pair whose tip corner
+    can touch past the end of the path (k = 2: loaded on the ring pair; on the spur pair it
+    stays 40 um or more from its mate at 340 N m, a candidate that carries nothing)."""
     import dataclasses
 
     from pipeline.config import load_gearbox
@@ -326,15 +350,18 @@ def test_the_pairs_that_mesh_are_those_the_contact_solve_sees(config, pairs):
 
     box = load_gearbox(CONFIGS / f"{config}.toml")
     pair = box.actual_pair
-    opts = dataclasses.replace(box.contact, positions=60)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        cycle = analyse_contact(analytical_compliance(pair, box.operation, opts, box.stiffness),
-                                box.operation, opts)
-    on_path = set(cycle.point_pair[np.isfinite(cycle.point_separation)].tolist())
-    assert meshing_pairs(pair) == pairs == int(np.ceil(pair.transverse_contact_ratio))
-    assert {k for k in on_path if k >= 0} == set(range(pairs))
-    assert set(cycle.point_pair[cycle.point_load > 0].tolist()) == on_path
+    assert pairs == int(np.ceil(pair.transverse_contact_ratio))
+    for tip, n, m in ((False, pairs, pairs), (True, tip_pairs, tip_loaded)):
+        opts = dataclasses.replace(box.contact, positions=60, tip_contact=tip)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            cycle = analyse_contact(analytical_compliance(pair, box.operation, opts,
+                                                          box.stiffness), box.operation, opts)
+        can_touch = set(cycle.point_pair[np.isfinite(cycle.point_separation)].tolist())
+        assert meshing_pairs(pair, tip) == n
+        assert {k for k in can_touch if k >= 0} == set(range(n))
+        loaded = {k for k in cycle.point_pair[cycle.point_load > 0].tolist() if k >= 0}
+        assert loaded == set(range(m))
 
 
 def test_a_density_beside_both_mass_and_inertia_is_one_warning(tmp_path, capsys):
@@ -353,3 +380,18 @@ def test_a_density_beside_both_mass_and_inertia_is_one_warning(tmp_path, capsys)
     assert cli(["modes", str(cfg), "--out", str(tmp_path / "out")]) == 0
     err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
     assert err == [f"gearpipe modes: warning: {message}"]
+
+
+def test_pitch_error_of_a_corner_pair():
+    """With tip contact pair 1 goes on touching at the pinion's tip corner after it has left
+    the path (the single-contact part of the nominal cycle), so its pitch error acts there
+    too: 2 um on it raises the loaded TE at those positions by less than the error (the
+    corner shares the load), where on the nominal path it changed nothing."""
+    base, src = _te("")
+    on1, _ = _te("pitch_errors_um = [0.0, 2.0]")
+    past = base.s0 + src.pair.base_pitch > src.pair.s_end  # pair 1 past the end of the path
+    k1 = list(base.pair_index).index(1)
+    corner = past & (base.pair_loads[:, k1] > 0)
+    assert corner.sum() >= 2
+    shift = on1.transmission_error - base.transmission_error
+    assert np.all((shift[corner] > 0) & (shift[corner] < 2e-6))

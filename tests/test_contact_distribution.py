@@ -110,10 +110,11 @@ def test_transverse_factor_single_and_equal_sharing(pair):
 
 
 def test_hertz_pressure_at_pitch_point_matches_iso_6336_2(pair):
-    """Single contact at the pitch point: p_H = Z_H Z_E sqrt(F_t / (d_1 b) (u + 1) / u)."""
+    """Single contact at the pitch point: p_H = Z_H Z_E sqrt(F_t / (d_1 b) (u + 1) / u)
+    (ISO's nominal contact: on the path only, so no tip corner shares the load)."""
     torque = 300.0
     op = OperatingPoint(torque=torque, speed=100.0)
-    src = analytical_compliance(pair, op, ContactOptions())
+    src = analytical_compliance(pair, op, ContactOptions(tip_contact=False))
     k = int((pair.s_pitch - pair.s_start) // pair.base_pitch)  # this pair on the pitch point
     s0 = pair.s_pitch - k * pair.base_pitch
     assert pair.s_start <= s0 < pair.s_start + pair.base_pitch
@@ -142,12 +143,13 @@ def test_spur_pair_with_crowning_is_sliced(pair):
     the face into ``slices`` (one slice would hide it), and with linear local contact the line
     load is P/b + k (g_mean - g(z)) / b, g(z) = C_b (2 z / b - 1)^2: on N (even) slices
     K_Hbeta(s0) = 1 + k(s0) C_b ((1 - 1/N^2) / 3 - 1/N^2) / P, k the mesh stiffness of the
-    stiffness stage at s0. Without modifications the same options give one slice."""
+    stiffness stage at s0 (contact on the nominal path, as that stage). Without modifications
+    the same options give one slice."""
     from pipeline.stiffness.mesh import stiffness_at
 
     op = OperatingPoint(torque=300.0, speed=100.0)
     c_b, n = 8e-6, 20
-    opts = ContactOptions(positions=12, slices=n, local_contact="linear",
+    opts = ContactOptions(positions=12, slices=n, local_contact="linear", tip_contact=False,
                           modifications=FlankModifications(crowning=c_b))
     src = analytical_compliance(pair, op, opts)
     assert src.slices == n and opts.face_slices(pair) == n

@@ -50,10 +50,10 @@ def test_ltca_reproduces_the_slice_method(case, mu, spur_model, helical_model):
     pipeline.stiffness.mesh.stiffness_at exactly (1e-12), tangent and secant, with and
     without friction (mu = 0.1, Yang et al. 2026, eqs. 19-23 sign convention)."""
     model = spur_model if case == "spur" else helical_model
-    src = SliceCompliance(model, slices=30, friction=FrictionModel(mu=mu))
+    src = SliceCompliance(model, slices=30, friction=FrictionModel(mu=mu), tip_contact=False)
     assert isinstance(src, ComplianceSource)
     P = spur_load(model.pair) if case == "spur" else 6031.0 / model.pair.pinion.base_radius
-    cyc = loaded_mesh_cycle(src, P, local="linear", positions=24, tip_contact=False)
+    cyc = loaded_mesh_cycle(src, P, local="linear", positions=24)
     ref = stiffness_at(model, cyc.s0, slices=30, friction=FrictionModel(mu=mu)).total
     assert np.abs(cyc.mesh_stiffness / ref - 1).max() < 1e-12
     assert np.abs(cyc.mesh_stiffness_secant / ref - 1).max() < 1e-12
@@ -67,9 +67,9 @@ def test_weber_local_contact_lowers_stiffness_about_ten_percent(helical_model):
     the gear) without changing its shape. Checked on the nominal path (as the slice
     method): mean ratio in [0.85, 0.95] and the ratio varies by < 3 % over the cycle."""
     pair = helical_model.pair
-    src = SliceCompliance(helical_model, slices=30)
+    src = SliceCompliance(helical_model, slices=30, tip_contact=False)
     P = 20233.0 / pair.gear.base_radius
-    weber = loaded_mesh_cycle(src, P, local="weber", positions=24, tip_contact=False)
+    weber = loaded_mesh_cycle(src, P, local="weber", positions=24)
     ref = stiffness_at(helical_model, weber.s0, slices=30).total
     ratio = weber.mesh_stiffness / ref
     assert 0.85 <= ratio.mean() <= 0.95
@@ -85,12 +85,12 @@ def test_tip_relief_lowers_entry_stiffness_and_tip_load(spur_model):
     tangent and secant stiffness drop (first two of 40 positions); the load at the pinion
     tip (last 5 % of the path) falls below the unmodified case; the total load stays P."""
     pair = spur_model.pair
-    src = SliceCompliance(spur_model)
+    src = SliceCompliance(spur_model, tip_contact=False)
     P = spur_load(pair)
     L = 0.3 * pair.path_length
     mods = FlankModifications(30e-6, L, 30e-6, L)
-    plain = loaded_mesh_cycle(src, P, local="weber", positions=40, tip_contact=False)
-    relief = loaded_mesh_cycle(src, P, mods, local="weber", positions=40, tip_contact=False)
+    plain = loaded_mesh_cycle(src, P, local="weber", positions=40)
+    relief = loaded_mesh_cycle(src, P, mods, local="weber", positions=40)
     entry = slice(0, 2)  # the first 5 % of the cycle
     assert np.all(relief.mesh_stiffness[entry] < 0.9 * plain.mesh_stiffness[entry])
     assert np.all(relief.mesh_stiffness_secant[entry] < plain.mesh_stiffness_secant[entry])
@@ -132,8 +132,8 @@ def test_slice_coupling_structure(helical_model):
     pair = helical_model.pair
     P = 6031.0 / pair.pinion.base_radius
     s0 = pair.mesh_cycle(8)
-    free = SliceCompliance(helical_model, slices=30)
-    coupled = SliceCompliance(helical_model, slices=30, coupling=0.2)
+    free = SliceCompliance(helical_model, slices=30, tip_contact=False)
+    coupled = SliceCompliance(helical_model, slices=30, coupling=0.2, tip_contact=False)
     pos = float(s0[3])
     G, d, pts = coupled.matrix(pos), free.diagonal(pos), coupled.points(pos)
     assert np.array_equal(G, G.T)
@@ -142,8 +142,8 @@ def test_slice_coupling_structure(helical_model):
     off = np.diag(G, 1)
     assert off[same] == pytest.approx(0.2 * np.sqrt(d[1:] * d[:-1])[same], rel=1e-14)
     assert np.all(off[~same] == 0.0)
-    a = loaded_mesh_cycle(free, P, local="linear", positions=s0, tip_contact=False)
-    c = loaded_mesh_cycle(coupled, P, local="linear", positions=s0, tip_contact=False)
+    a = loaded_mesh_cycle(free, P, local="linear", positions=s0)
+    c = loaded_mesh_cycle(coupled, P, local="linear", positions=s0)
     assert np.abs(c.mesh_stiffness / a.mesh_stiffness - 1).max() < 1e-4
 
 

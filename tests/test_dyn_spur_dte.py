@@ -228,19 +228,25 @@ def test_dte_agrees_with_an_independent_time_integration(base_case, reference):
     assert wf == pytest.approx(reference, rel=3e-4)
 
 
-@pytest.mark.parametrize("excitation, dte_ptp, dte_mean", [
-    ("analytical", 24.9963e-6, 13.8636e-6), ("contact", 34.9903e-6, 15.9698e-6)])
-def test_gearbox_file_dte_agrees_with_an_independent_time_integration(workflow, excitation,
-                                                                       dte_ptp, dte_mean):
+@pytest.mark.parametrize("excitation, dte_ptp, dte_mean, tol_fine, tol_pinned", [
+    ("analytical", 24.9963e-6, 13.8636e-6, 1e-6, 2.4e-4 * (25 / 40) ** 2),
+    ("contact", 8.33545e-6, 13.6973e-6, 4e-6, 1.2e-4)])
+def test_gearbox_file_dte_agrees_with_an_independent_time_integration(
+        workflow, excitation, dte_ptp, dte_mean, tol_fine, tol_pinned):
     """The same pair read from the gearbox file (bodies derived from the 21 mm bore, 2.543 kg,
     7.72e-3 kg m^2), excited by the analytical k(t) or by the loaded contact (tangent k(t)
-    and static transmission error e(t), 360 positions): the values test_dyn_contact_excitation
-    pins at H = 40 (24.996 and 34.988 um peak-to-peak, 13.864 and 15.970 um mean).
+    and static transmission error e(t), 360 positions, the tip corners touching beyond the
+    path): the values test_dyn_contact_excitation pins at H = 40 (24.996 and 8.335 um
+    peak-to-peak, 13.864 and 13.697 um mean).
 
-    The independent solution (with e(t) for the contact): 24.9963 / 34.9903 um peak-to-peak,
-    13.8636 / 15.9698 um mean. The harmonic balance at H = 200 agrees within 1e-6 (measured
-    5e-8); at H = 40 on 512 phases, as that test runs, within 1e-4: the error bound of
-    H = 25 (2.4e-4) carried to H = 40 at the guaranteed second order (measured 6e-6 and 6e-5).
+    The independent solution (with e(t) for the contact): 24.9963 / 8.33545 um peak-to-peak,
+    13.8636 / 13.6973 um mean. Analytical: the harmonic balance at H = 200 agrees within 1e-6
+    (measured 5e-8); at H = 40 on 512 phases, as that test runs, within 1e-4: the error bound
+    of H = 25 (2.4e-4) carried to H = 40 at the guaranteed second order (measured 6e-6 and
+    6e-5). Contact: the corners closing put kinks into k(t) and e(t), and the series
+    converges more slowly: on 5760 phases -1.4e-4, -7.1e-5, +1.5e-5, -7.5e-6, +3.6e-6 at
+    H = 25, 40, 80, 160, 200 (order about 1.5), -9.8e-5 at H = 40 on 512 phases; asserted
+    within 4e-6 (H = 200) and 1.2e-4 (H = 40).
     """
     from pipeline.config import gearbox_from_text
     from pipeline.run.runner import gearbox_dynamic_model
@@ -256,9 +262,9 @@ def test_gearbox_file_dte_agrees_with_an_independent_time_integration(workflow, 
     assert dte.mean() == pytest.approx(dte_mean, rel=1e-5)
     system = model.assembly().assemble()
     fine = harmonic_balance(system, 200, samples=5760).response
-    assert fine.peak_to_peak_dte()[0] == pytest.approx(np.ptp(dte), rel=1e-6)
+    assert fine.peak_to_peak_dte()[0] == pytest.approx(np.ptp(dte), rel=tol_fine)
     pinned = harmonic_balance(system, 40).response.peak_to_peak_dte()[0]
-    assert pinned == pytest.approx(np.ptp(dte), rel=2.4e-4 * (25 / 40) ** 2)
+    assert pinned == pytest.approx(np.ptp(dte), rel=tol_pinned)
 
 
 @pytest.mark.parametrize("condition, mu, dte_ptp", [(1, 0.1, 24.1216e-6), (3, 0.1, 26.9971e-6)])
@@ -287,9 +293,11 @@ def test_workflow_friction_cases_agree_with_an_independent_time_integration(
 def test_demo_dynamic_factor_agrees_with_an_independent_time_integration():
     """The demo gearbox (analytical compliance, 360 positions, friction, loaded-contact
     transmission error): the dynamic factor max k (delta - e) / mean k (delta - e) that
-    test_dyn_dynamic_factor pins at H = 40 (2.3699).
+    test_dyn_dynamic_factor pins at H = 40 (1.26935; 2.3699 with contact confined to the
+    nominal path: with the tip corners touching the stiffness no longer jumps where a pair
+    enters).
 
-    Independent solution 2.37041. The maximum sits where a tooth pair enters and k jumps,
+    Independent solution 1.26934. The maximum sits where a tooth pair enters and k jumps,
     where the series converges at its guaranteed second order only, not at the faster rate
     of the DTE's smooth extremes: the harmonic balance at H = 200 on the same 5760 phases
     lies within 2.4e-4 (25 / 200)^2 = 3.8e-6 (measured 1.7e-6); at H = 40, as pinned,
@@ -308,7 +316,7 @@ def test_demo_dynamic_factor_agrees_with_an_independent_time_integration():
     tau = np.arange(dte.size) / dte.size
     elastic = model.mesh_stiffness(tau) * (dte - model.transmission_error(tau))
     ref = elastic.max() / elastic.mean()
-    assert ref == pytest.approx(2.37041, rel=1e-5)
+    assert ref == pytest.approx(1.26934, rel=1e-5)
     system = model.assembly().assemble()
     fine = harmonic_balance(system, 200, samples=dte.size).response.dynamic_factor()[0]
     assert fine == pytest.approx(ref, rel=2.4e-4 * (25 / 200) ** 2)

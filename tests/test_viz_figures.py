@@ -33,6 +33,11 @@ def test_stiffness_curves_are_drawn_in_N_per_um():
     assert fig.axes[0].lines[0].get_ydata() == pytest.approx(2.0 * np.ones(5))
 
 
+NO_TIP = dict(point_corner=np.zeros(0, int), point_position=np.zeros(0, int),
+              point_pair=np.zeros(0, int), point_load=np.zeros(0), load=1.0)
+"""Point arrays of a cycle without tip contact (the contact-cycle figure reads them)."""
+
+
 def test_contact_cycle_stiffness_in_N_per_um():
     from pipeline.viz.contact import plot_contact_cycle
 
@@ -40,7 +45,7 @@ def test_contact_cycle_stiffness_in_N_per_um():
     cyc = SimpleNamespace(pinion_angle=np.linspace(0, 0.1, n), mesh_stiffness=np.full(n, 3e8),
                           mesh_stiffness_secant=np.full(n, 2.9e8),
                           transmission_error=np.full(n, 1e-6), pair_index=(0,),
-                          pair_loads=np.ones((n, 1)), load_share=np.ones((n, 1)))
+                          pair_loads=np.ones((n, 1)), load_share=np.ones((n, 1)), **NO_TIP)
     fig = plot_contact_cycle(cyc, np.full(n, 3.1e8), "t")
     ax = fig.axes[0]
     assert ax.get_ylabel() == "mesh stiffness [N/um]"
@@ -85,7 +90,8 @@ def test_contact_cycle_legend_names_pairs_and_methods_for_a_reader():
     cyc = SimpleNamespace(pinion_angle=np.linspace(0, 0.1, n), mesh_stiffness=np.full(n, 3e8),
                           mesh_stiffness_secant=np.full(n, 2.9e8),
                           transmission_error=np.full(n, 1e-6), pair_index=(-1, 0, 1, 2),
-                          pair_loads=loads, load_share=loads * np.array([1.0, 2.0, 3.0, 4.0]))
+                          pair_loads=loads, load_share=loads * np.array([1.0, 2.0, 3.0, 4.0]),
+                          **NO_TIP)
     fig = plot_contact_cycle(cyc, np.full(n, 3.1e8), "t")
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert labels == ["LTCA tangent dP/dx", "LTCA secant P/x",

@@ -61,7 +61,11 @@ from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
 from pipeline.contact.options import ContactOptions
-from pipeline.contact.separations import FlankModifications, meshing_pairs
+from pipeline.contact.separations import (
+    FlankModifications,
+    meshing_pairs,
+    reach_in_pitches,
+)
 from pipeline.dynamics.options import (
     PairDynamicsOptions,
     PlanetaryDynamicsOptions,
@@ -671,15 +675,19 @@ def _check_pitch_errors(box: Gearbox) -> None:
                 f"more than the {fewer.teeth} teeth of the {fewer.name}{where}: entry k offsets "
                 f"tooth pair k of the mesh cycle, and pairs k and k + {fewer.teeth} would share "
                 f"a tooth (allowed: at most {fewer.teeth} entries)")
+    tip = box.contact.tip_contact
     for name, pair in meshes:
-        n = meshing_pairs(pair)
+        n = meshing_pairs(pair, tip)
         if len(errors) > n:
             pairs = "tooth pair k = 0 meshes" if n == 1 else f"tooth pairs k = 0 to {n - 1} mesh"
             where = f" of the {name} mesh" if len(meshes) > 1 else ""
+            reach = (f"pair k touches when k < {reach_in_pitches(pair):.4g}, the path of "
+                     "contact and the tip zone past its end in base pitches" if tip else
+                     f"pair k meshes when k < transverse contact ratio "
+                     f"{pair.transverse_contact_ratio:.4g}")
             warnings.warn(
                 f"{key}[{n}:] = {_list_text(errors[n:], PITCH_ERRORS_KEY)} change nothing: "
-                f"only {pairs} in the analysed mesh cycle{where} (pair k meshes when k < "
-                f"transverse contact ratio {pair.transverse_contact_ratio:.4g})",
+                f"only {pairs} in the analysed mesh cycle{where} ({reach})",
                 InputWarning, stacklevel=3)
 
 

@@ -356,7 +356,7 @@ class LoadedMeshCycle:
             "initial_separation [m]": self.point_separation,
             "contact_deformation [m]": self.point_contact_deformation,
             "normal_load [N]": self.point_normal_load,
-            "tip_corner [0 path, 1 pinion, 2 gear]": self.point_corner,
+            "tip_corner [-]": self.point_corner,
             "hertz_pressure [Pa]": self.point_pressure,
         }
 

@@ -21,7 +21,7 @@ Contributions add up:
   is the pair about to leave), ``k = 1`` the one a base pitch further along ``s``;
   see :meth:`GearPair.pair_indices`); pairs without an entry get 0. Positive: the
   flank lies behind its nominal position. Only the first :func:`meshing_pairs` entries
-  can act: the later pairs never reach the path of contact during the analysed cycle.
+  can act: the later pairs never touch during the analysed cycle.
 
 Beyond the path of contact (the tip zones of
 :func:`pipeline.contact.source.candidate_zone`) a pair touches at a tip corner: its gap
@@ -133,19 +133,32 @@ class FlankModifications:
         return ", ".join(parts) or "none"
 
 
-def meshing_pairs(pair: GearPair) -> int:
-    """Number of tooth pairs k = 0, 1, ... that mesh during the analysed mesh cycle.
+def meshing_pairs(pair: GearPair, tip_contact: bool = True) -> int:
+    """Number of tooth pairs k = 0, 1, ... that can touch during the analysed mesh cycle.
 
     Over the cycle the leading pair's roll coordinate at z = 0 runs through
     ``s0 in [s_start, s_start + p_bt)``, and pair k lies at ``s0 + k p_bt + z tan(beta_b)``
     for z in [0, b], so its smallest roll coordinate is ``s_start + k p_bt``: it meets the
     path of contact ``[s_start, s_end]`` exactly when ``k p_bt < g_alpha``, i.e.
-    ``k < epsilon_alpha``, for spur and helical pairs alike. The entries of
-    ``FlankModifications.pitch_errors`` from ``k = ceil(epsilon_alpha)`` on change nothing.
-    (Pairs k < 0 of a helical pair reach the path through the far face end; they have no
-    entry and get 0.)
+    ``k < epsilon_alpha``, for spur and helical pairs alike; with ``tip_contact`` it can
+    touch at the pinion's tip corner up to the end of the tip zone ``s_hi``
+    (:func:`pipeline.contact.source.candidate_range`), i.e. when ``k p_bt < s_hi -
+    s_start`` (:func:`reach_in_pitches`). The entries of ``FlankModifications.pitch_errors``
+    from there on change nothing. (Pairs k < 0, a helical pair's through the far face end
+    and the pair touching at the gear's tip corner before the path, have no entry and get
+    0.)
     """
-    return max(1, math.ceil(pair.transverse_contact_ratio - 1e-9))
+    return max(1, math.ceil(reach_in_pitches(pair, tip_contact) - 1e-9))
+
+
+def reach_in_pitches(pair: GearPair, tip_contact: bool = True) -> float:
+    """How far a tooth pair can touch beyond the start of the path of contact, in base
+    pitches: the transverse contact ratio, or with ``tip_contact`` the path and the tip
+    zone past its end over ``p_bt``."""
+    from pipeline.contact.source import candidate_range
+
+    hi = candidate_range(pair, tip_contact)[1]
+    return (hi - pair.s_start) / pair.base_pitch
 
 
 def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarray:

@@ -185,7 +185,13 @@ def excitation_from_contact(
     e = x_s - P / k (m), K_f (N/m), KT_f1, KT_f2 (N m/m) sampled at the cycle's positions;
     for a spur pair at ``max(positions, EXCITATION_SAMPLES)`` phases with the jumps where
     tooth pairs enter and leave at their exact phases
-    (:func:`~pipeline.dynamics.mesh_input.with_resolved_jumps`).
+    (:func:`~pipeline.dynamics.mesh_input.with_resolved_jumps`) when contact is confined
+    to the path. Where tip corners touch beyond it, the signals change where the corners
+    close and open, at phases the load sets, and are kept at the cycle's positions (demo
+    pair, 2340 rpm: the dynamic factor at 60 positions is then within 0.02 % of 360 and 720
+    positions; resolving the nominal phases moved it by -0.3 %, interpolating to 360
+    phases by -0.3 %). Friction acts on the path only (no
+    friction force at a tip corner).
     """
     check_choice("stiffness", stiffness, STIFFNESS_DEFINITIONS)
     _check_cycle(cycle, pair)
@@ -203,7 +209,7 @@ def excitation_from_contact(
     mu = point_friction_coefficients(cycle, pair, operation, friction)
     lam = friction_direction(cycle.point_s, pair.s_pitch, operation.driver)
     rho1, rho2 = pair.curvature_radii(cycle.point_s)
-    force = lam * mu * cycle.point_load  # friction force of each point, N
+    force = np.where(cycle.point_corner == 0, lam * mu * cycle.point_load, 0.0)  # N
 
     def per_position(values: np.ndarray) -> np.ndarray:
         return np.bincount(cycle.point_position, weights=values, minlength=m)
@@ -211,7 +217,7 @@ def excitation_from_contact(
     kf, kt1, kt2 = friction_signals(per_position(force) * k / load,
                                     per_position(force * rho1) * k / load,
                                     per_position(force * np.abs(rho2)) * k / load, period)
-    return with_resolved_jumps(MeshExcitation(
+    excitation = MeshExcitation(
         stiffness=PeriodicSignal(k, period),
         friction_stiffness=kf,
         friction_torque_pinion=kt1,
@@ -221,4 +227,7 @@ def excitation_from_contact(
         transmission_error=PeriodicSignal(cycle.transmission_error - load / k, period),
         load=load,
         source="contact",
-    ), pair)
+    )
+    if np.any(cycle.point_load[cycle.point_corner > 0] > 0.0):
+        return excitation
+    return with_resolved_jumps(excitation, pair)

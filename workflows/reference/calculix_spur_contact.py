@@ -856,28 +856,40 @@ def reference_cycle(pair: GearPair, positions: np.ndarray, torques: tuple[float,
 # ---------------------------------------------------------------------------------------
 # gearpipe's loaded contact at the same positions, and the comparison
 # ---------------------------------------------------------------------------------------
-def demo_pair_text() -> str:
+def demo_pair_text(tip_contact: bool = True) -> str:
     """The demo pair (``workflows/default_case.py``) with the FE-enriched loaded contact,
-    frictionless (the reference is frictionless)."""
+    frictionless (the reference is frictionless); ``tip_contact`` False confines gearpipe's
+    contact to the nominal path (the control run's counterpart)."""
     from workflows.default_case import DEMO_PAIR
 
-    return 'name = "reference"\n' + DEMO_PAIR + '[contact]\ncompliance = "fe2d"\n'
+    return ('name = "reference"\n' + DEMO_PAIR + '[contact]\ncompliance = "fe2d"\n'
+            + ("" if tip_contact else "tip_contact = false\n"))
 
 
-def gearpipe_cycle(text: str, positions: np.ndarray, torques: tuple[float, ...]) -> dict:
+def _demo_source(text: str, cache):
+    from pipeline.cache.folder import DEFAULT_CACHE
+    from pipeline.config.gearbox import gearbox_from_text
+    from pipeline.contact.compliance import compliance_source
+
+    box = gearbox_from_text(text, name="reference")
+    src = compliance_source(box.pair, box.operation, box.contact, box.stiffness, box.fe_source,
+                            cache=DEFAULT_CACHE if cache is None else cache)
+    return box, src
+
+
+def gearpipe_cycle(text: str, positions: np.ndarray, torques: tuple[float, ...],
+                   cache=None) -> dict:
     """gearpipe's loaded contact (the gearbox ``text``'s ``[contact]`` and ``[fe]``) at the
-    roll coordinates ``positions`` (m) and driving torques (N m).
+    roll coordinates ``positions`` (m) and driving torques (N m); FE tables from ``cache``
+    (:class:`pipeline.cache.folder.Cache`, default the project's).
 
     Returns ``transmission_error_m`` and ``mesh_stiffness_N_per_m`` (tangent) of shape
     (n_torques, n_positions), ``pair_index`` (K,) and ``pair_load_N`` (n_torques,
     n_positions, K).
     """
-    from pipeline.config.gearbox import gearbox_from_text
-    from pipeline.contact.compliance import compliance_source
     from pipeline.contact.ltca import loaded_mesh_cycle
 
-    box = gearbox_from_text(text, name="reference")
-    src = compliance_source(box.pair, box.operation, box.contact, box.stiffness, box.fe_source)
+    box, src = _demo_source(text, cache)
     te, k, loads = [], [], []
     for T in torques:
         cyc = loaded_mesh_cycle(src, T / box.pair.pinion.base_radius, box.contact.modifications,
@@ -887,6 +899,35 @@ def gearpipe_cycle(text: str, positions: np.ndarray, torques: tuple[float, ...])
         loads.append(cyc.pair_loads)
     return {"transmission_error_m": np.array(te), "mesh_stiffness_N_per_m": np.array(k),
             "pair_index": np.asarray(cyc.pair_index), "pair_load_N": np.array(loads)}
+
+
+def gearpipe_at_reference(reference: dict, run: str = "full", cache=None) -> dict:
+    """gearpipe like for like with a reference run (``"full"``: :func:`demo_pair_text` with
+    tip contact; ``"nominal"``: without): at every position and torque T the loaded TE at
+    T, and the mesh stiffness as the secant over the two load steps that bracket T in the
+    reference (``bracket_torque_Nm``), as the reference defines it (a tangent differs
+    from that secant where a tip corner closes between the steps). Returns
+    ``transmission_error_m`` and ``mesh_stiffness_N_per_m`` of shape (n_torques,
+    n_positions)."""
+    from pipeline.contact.ltca import loaded_mesh_cycle
+
+    box, src = _demo_source(demo_pair_text(run == "full"), cache)
+    rb1 = box.pair.pinion.base_radius
+    entries = reference["runs"][run]
+    te = np.empty((len(reference["torques_Nm"]), len(entries)))
+    k = np.empty_like(te)
+
+    def loaded_te(torque: float, s0: float) -> float:
+        cyc = loaded_mesh_cycle(src, torque / rb1, box.contact.modifications,
+                                box.contact.local_contact, positions=np.array([s0]))
+        return float(cyc.transmission_error[0])
+
+    for i, e in enumerate(entries):
+        for t, T in enumerate(reference["torques_Nm"]):
+            lo, hi = e["torques"][t]["bracket_torque_Nm"]
+            te[t, i] = loaded_te(T, e["s0_m"])
+            k[t, i] = (hi - lo) / rb1 / (loaded_te(hi, e["s0_m"]) - loaded_te(lo, e["s0_m"]))
+    return {"transmission_error_m": te, "mesh_stiffness_N_per_m": k}
 
 
 @dataclass(frozen=True)
@@ -941,7 +982,7 @@ def load_reference(path: Path = DATA) -> dict:
 
 def compare(reference: dict, gearpipe: dict, pair: GearPair, run: str = "full") -> Comparison:
     """Comparison table of a reference run (``"full"`` or ``"nominal"`` contact) of
-    :func:`load_reference` and :func:`gearpipe_cycle` at the same positions and torques."""
+    :func:`load_reference` and :func:`gearpipe_at_reference` of that run."""
     s0 = np.array(reference["positions_m"])
     torques = np.array(reference["torques_Nm"])
     runs = reference["runs"][run]
@@ -1092,6 +1133,44 @@ def _cmd_assemble(args) -> int:
     return 0
 
 
+def _cmd_update(args) -> int:
+    """Replace one run of the committed reference file by new logs (a later log replaces
+    an earlier one's entry at the same position), or add convergence entries; the rest is
+    kept, and the change is recorded in ``provenance["updates"]``."""
+    pair = _demo_pair()
+    doc = load_reference(args.data)
+    s0 = np.array(doc["positions_m"])
+    entry = {"date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+             "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
+                                  *args.argv]),
+             "calculix_version": ccx_version(), "settings": asdict(ReferenceSettings()),
+             "note": args.note}
+    if args.run:
+        by_s0 = {round(e["s0_m"], 12): e for log in args.log for e in _read_log(log)}
+        entries = [by_s0[k] for k in sorted(by_s0)]
+        got = np.array([e["s0_m"] for e in entries])
+        if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
+            raise SystemExit(f"{args.log}: positions do not cover the committed mesh cycle")
+        for e in entries:
+            _reflag(pair, e)
+        doc["runs"][args.run] = entries
+        entry["run"] = args.run
+        entry["ccx_wall_time_s"] = sum(e["wall_s"] for e in entries)
+    for spec in args.convergence or []:
+        values, log = spec.split(":", 1)
+        size, fine, tooth, body, growth, penalty = (float(v) for v in values.split(","))
+        for e in _read_log(Path(log)):
+            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3,
+                     size_tooth_m=tooth * 1e-3, size_body_m=body * 1e-3, growth=growth,
+                     penalty_Pa_per_m=penalty, slave=args.slave)
+            _reflag(pair, e)
+            doc["convergence"].append(e)
+    doc["provenance"].setdefault("updates", []).append(entry)
+    args.data.write_text(json.dumps(_finite(doc), indent=1) + "\n")
+    print(f"updated {args.data}")
+    return 0
+
+
 def _cmd_run(args) -> int:
     pair = _demo_pair()
     s0 = pair.mesh_cycle(args.positions)
@@ -1130,13 +1209,17 @@ def _read_log(path: Path) -> list[dict]:
 
 def convergence_rows(reference: dict) -> list[str]:
     """Text rows of the convergence runs against the committed (production) mesh at the same
-    position: TE and stiffness at each torque and their change (%)."""
-    prod = {round(e["s0_m"], 12): e for e in reference["runs"]["full"]}
-    out = ["s0 [mm]  size_contact / fine / tooth / body [mm]  growth  penalty [Pa/m]  "
+    position and with the same slave rule (``runs["full"]``: the corner tooth;
+    ``runs["full_slave_gear"]``: the gear always): TE and stiffness at each torque and
+    their change (%)."""
+    prod = {rule: {round(e["s0_m"], 12): e for e in reference["runs"][run]}
+            for rule, run in (("corner", "full"), ("gear", "full_slave_gear"))}
+    out = ["s0 [mm]  slave   size_contact / fine / tooth / body [mm]  growth  penalty [Pa/m]  "
            + "  ".join(f"TE {T:g} [um] (d %)  k {T:g} [N/um] (d %)"
                        for T in reference["torques_Nm"])]
-    for e in sorted(reference["convergence"], key=lambda e: (e["s0_m"], -e["size_contact_m"])):
-        base = prod[round(e["s0_m"], 12)]
+    for e in sorted(reference["convergence"],
+                    key=lambda e: (e["s0_m"], e["slave"], -e["size_contact_m"])):
+        base = prod[e["slave"]][round(e["s0_m"], 12)]
         cells = []
         for t in range(len(reference["torques_Nm"])):
             r, b = e["torques"][t], base["torques"][t]
@@ -1146,7 +1229,7 @@ def convergence_rows(reference: dict) -> list[str]:
             cells.append(f"{te * 1e6:8.3f} ({d_te:+6.2f})  {k * 1e-6:7.2f} ({d_k:+6.2f})")
         sizes = " / ".join(f"{e[k] * 1e3:g}" for k in ("size_contact_m", "size_fine_m",
                                                         "size_tooth_m", "size_body_m"))
-        out.append(f"{e['s0_m'] * 1e3:7.3f}  {sizes:>35}  {e['growth']:6.2f}  "
+        out.append(f"{e['s0_m'] * 1e3:7.3f}  {e['slave']:6s}  {sizes:>35}  {e['growth']:6.2f}  "
                    f"{e['penalty_Pa_per_m']:14.3g}  " + "  ".join(cells))
     return out
 
@@ -1199,11 +1282,11 @@ def _cmd_compare(args) -> int:
     pair = _demo_pair()
     ref = load_reference(args.data)
     s0 = np.array(ref["positions_m"])
-    gp = gearpipe_cycle(demo_pair_text(), s0, tuple(ref["torques_Nm"]))
-    full = compare(ref, gp, pair, "full")
-    nominal = compare(ref, gp, pair, "nominal")
+    full = compare(ref, gearpipe_at_reference(ref, "full"), pair, "full")
+    nominal = compare(ref, gearpipe_at_reference(ref, "nominal"), pair, "nominal")
     for name, c in (("all flanks", full), ("nominal path only", nominal)):
-        print(f"== CalculiX ({name}) against gearpipe fe2d")
+        print(f"== CalculiX ({name}) against gearpipe fe2d (k: secant over the reference's "
+              "load steps)")
         print("\n".join(c.rows()))
         for t, T in enumerate(c.torque):
             for label, te, k in (("CalculiX", c.te_reference[t], c.k_reference[t]),
@@ -1278,6 +1361,17 @@ def main(argv: list[str] | None = None) -> int:
     asm.add_argument("--positions", type=int, default=POSITIONS)
     asm.add_argument("--out", type=Path, default=DATA)
     asm.set_defaults(func=_cmd_assemble)
+    upd = sub.add_parser("update", help="replace a run or add convergence entries in the "
+                         "reference JSON, recording the change")
+    upd.add_argument("--run", choices=CONTACT_KINDS, default=None)
+    upd.add_argument("--log", type=Path, nargs="*", default=[])
+    upd.add_argument("--convergence", nargs="*", default=[],
+                     help="size,fine,tooth,body,growth,penalty:LOG (sizes in mm)")
+    upd.add_argument("--slave", choices=SLAVES, default=ReferenceSettings.slave,
+                     help="the slave rule of the convergence logs")
+    upd.add_argument("--note", default="")
+    upd.add_argument("--data", type=Path, default=DATA)
+    upd.set_defaults(func=_cmd_update)
     cmp_ = sub.add_parser("compare", help="gearpipe against the reference: table and figure")
     cmp_.add_argument("--data", type=Path, default=DATA)
     cmp_.add_argument("--figure", type=Path, default=None, help="PNG to write")
