@@ -143,7 +143,8 @@ def test_an_unusable_cache_folder_is_one_warning_and_the_run_goes_on(tmp_path, c
     (tmp_path / "blocker").write_text("a file where a folder should be")
     out = tmp_path / "out"
     assert cli(["run", str(SPUR), "--out", str(out), "--cache-dir", str(cache(tmp_path))]) == 0
-    err = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
+    err = [line for line in capsys.readouterr().err.splitlines()
+           if "warning" in line and "cache" in line]
     assert len(err) == 1 and err[0].startswith("gearpipe run: warning: cache folder "), err
     assert "running without the cache" in err[0]
     assert (out / "contact_cycle.csv").is_file() and (out / "report.html").is_file()

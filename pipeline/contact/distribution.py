@@ -29,10 +29,11 @@ loads of every candidate point at every mesh position) into:
   section of the flanks: unit load ``p`` (N/m along the contact line), effective radius
   ``R_n = R_t / cos(beta_b)``, contact modulus ``E*``; the same pressure acts on both flanks,
   at the pinion radius ``r_1(s)`` and the gear radius ``r_2(s)``. Its maximum and where
-  (roll coordinate, face position, both radii, mesh position). A tip corner touching beyond
-  the path of contact presses with its local corner radius
+  (roll coordinate, face position, both radii, mesh position), on the path of contact. A
+  tip corner touching beyond the path presses with its local corner radius
   (:func:`pipeline.geometry.tip_contact.curvature_radii_at`) and its normal force
-  (:attr:`LoadedMeshCycle.point_pressure`).
+  (:attr:`LoadedMeshCycle.point_pressure`): its largest pressure is given apart, as edge
+  loading (GPa for the 0.15 mm corner of an m 3 mm tooth), not as the flank's p_H.
 * **Loaded static transmission error** (m, and as a pinion angle in rad), its
   peak-to-peak, and the amplitudes of mesh orders 1..10 (single-sided, from the DFT of the
   equally spaced positions; orders at or above half the number of positions are NaN).
@@ -121,7 +122,9 @@ class LoadDistribution:
     k_halpha_position : (m,) the same ratio at each position (-).
     hertz_pressure : (n_total,) Hertz maximum pressure p_H of every candidate point of the
         cycle (the order of ``cycle.point_*``), Pa; 0 where unloaded.
-    hertz_max : largest p_H and where (Pa).
+    hertz_max : largest p_H on the flanks, on the path of contact, and where (Pa).
+    tip_corner_max : largest p_H where a tip corner touches beyond the path (edge loading,
+        Hertz of the corner's local radius), and where; None when no corner carries load.
     line_load_max : largest line load w and where (N/m).
     pinion_angle : (m,) pinion rotation from the first position, rad.
     transmission_error : (m,) loaded static TE along the line of action, m.
@@ -148,6 +151,7 @@ class LoadDistribution:
     k_halpha_position: np.ndarray
     hertz_pressure: np.ndarray
     hertz_max: PeakLocation
+    tip_corner_max: PeakLocation | None
     line_load_max: PeakLocation
     pinion_angle: np.ndarray
     transmission_error: np.ndarray
@@ -184,6 +188,8 @@ class LoadDistribution:
             "max_hertz_pressure_pinion_diameter_m": 2.0 * h.pinion_radius,
             "max_hertz_pressure_gear_diameter_m": 2.0 * h.gear_radius,
             "max_hertz_pressure_pinion_angle_rad": h.pinion_angle,
+            "max_tip_corner_pressure_Pa": (0.0 if self.tip_corner_max is None
+                                           else self.tip_corner_max.value),
             "transmission_error_peak_to_peak_m": self.te_peak_to_peak,
             "transmission_error_peak_to_peak_rad": self.te_peak_to_peak_angle,
             "max_load_share": float(self.load_share.max()),
@@ -307,6 +313,7 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
     k_hb = float(cycle_mean.max() / cycle_mean.mean())
     kha = _transverse_factor(cycle, pair)
     hertz = cycle.point_pressure
+    corner = cycle.point_corner > 0
     iz = np.searchsorted(z, np.round(cycle.point_z, 12))
     line_at_point = w[cycle.point_position, iz]
     te = cycle.transmission_error
@@ -316,7 +323,10 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
         cycle_mean=cycle_mean, k_hbeta=k_hb,
         k_hbeta_position=w.max(axis=1) / (p_t / b),
         k_halpha=float(kha.max()), k_halpha_position=kha, hertz_pressure=hertz,
-        hertz_max=_peak(hertz, cycle, pair), line_load_max=_peak(line_at_point, cycle, pair),
+        hertz_max=_peak(np.where(corner, 0.0, hertz), cycle, pair),
+        tip_corner_max=(_peak(np.where(corner, hertz, 0.0), cycle, pair)
+                        if np.any(corner & (hertz > 0.0)) else None),
+        line_load_max=_peak(line_at_point, cycle, pair),
         pinion_angle=cycle.pinion_angle, transmission_error=te,
         te_peak_to_peak=float(np.ptp(te)), te_peak_to_peak_angle=float(np.ptp(te) / rb1),
         te_orders=mesh_order_amplitudes(te), pair_index=np.array(cycle.pair_index),

@@ -315,10 +315,27 @@ def load_distribution_section(dist: LoadDistribution, pair: GearPair,
 
 
 def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) -> Section:
-    """Hertz pressure, its maximum and where."""
-    h = dist.hertz_max
+    """Hertz pressure, its maximum and where; a tip corner's apart (edge loading)."""
+    h, c = dist.hertz_max, dist.tip_corner_max
+    corner = () if c is None else (
+        quantity("max_tip_corner_pressure", "largest Hertz pressure at a tip corner beyond "
+                 "the path of contact (edge loading)", "MPa", c.value * MPA),
+        quantity("tip_corner_pinion_angle", "when: pinion angle in the cycle", "deg",
+                 math.degrees(c.pinion_angle)),
+        quantity("tip_corner_tooth_pair", "which tooth pair", "-",
+                 dist.pair_number(c.tooth_pair)),
+    )
+    notes = ("Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load "
+             "along the contact line, normal-section radii of curvature, plane-strain moduli "
+             "of both gears; the envelope over the mesh cycle is drawn on each flank.",)
+    if c is not None:
+        notes += ("Teeth touch beyond the path of contact at a tip corner; its pressure is "
+                  "that of a 0.05 m_n corner radius against the mate's flank, an edge load "
+                  "a tip relief longer and deeper than the deflection removes. The largest "
+                  "p_H above is the flanks', on the path of contact.",)
     return Section("contact_pressure", "Contact pressure", (
-        quantity("max_hertz_pressure", "largest Hertz pressure p_H", "MPa", h.value * MPA),
+        quantity("max_hertz_pressure", "largest Hertz pressure p_H on the flanks", "MPa",
+                 h.value * MPA),
         quantity("pinion_diameter", "where: pinion diameter", "mm", 2 * h.pinion_radius * MM),
         quantity("gear_diameter", "where: gear diameter", "mm", 2 * h.gear_radius * MM),
         quantity("face_position", "where: face position b_z", "mm", h.z * MM),
@@ -327,10 +344,8 @@ def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) 
            math.degrees(h.pinion_angle)),
         quantity("tooth_pair", "which tooth pair (numbered as they take load in the cycle)",
                  "-", dist.pair_number(h.tooth_pair)),
-    ), figures=tuple(figures), notes=(
-        "Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load along "
-        "the contact line, normal-section radii of curvature, plane-strain moduli of both "
-        "gears; the envelope over the mesh cycle is drawn on each flank.",))
+        *corner,
+    ), figures=tuple(figures), notes=notes)
 
 
 def figures_section(key: str, title: str, figures: Sequence[Figure],

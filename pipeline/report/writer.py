@@ -154,7 +154,9 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
 
         r_fig = fig("report_root_stress.png", "Largest principal stress along the fillets",
                     viz.plot_root_stress, root_stress.curves(), title)
-        sections.append(root_stress_section(root_stress, [r_fig]))
+        peak = st.contact.tip_contact_peak()
+        sections.append(root_stress_section(root_stress, [r_fig],
+                                            0.0 if peak is None else peak["share"]))
     if halves is not None:
         sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, out,
                                              prefix, fig))
