@@ -16,8 +16,9 @@ and Yang et al. (2026)-like helical pair, three mesh stiffness curves are comput
 All three confine contact to the nominal path of contact (``[contact] tip_contact = false``),
 the slice method's assumption: the sources are compared, not the contact beyond the path
 (``workflows/reference/calculix_spur_contact.py`` checks that). The FE-enriched and the
-optimised slice curves differ only in the structural compliance, so their difference is the error of the analytical tooth + foundation
-model; the analytical curve additionally differs in the local contact model.
+optimised slice curves differ only in the structural compliance, so their difference is
+the error of the analytical tooth + foundation model; the analytical curve additionally
+differs in the local contact model.
 
 Findings (the assembly-error paper, whole gears, plane strain, refinement 0.5, 12 positions; the
 refinement 1.0 mean differs by 0.6 %): the FE-enriched mean is 26 % below the

@@ -41,9 +41,10 @@ grinding or deburring), and an FE model blunts a sharp one at its element size. 
 contact gives the corner the local radius ``rho_c = 0.05 m_n`` (0.15 mm for m_n 3 mm) in
 Hertz's line contact against the mate's involute (:func:`curvature_radii_at`); the rigid
 gap stays the sharp corner's. How much it matters (demo pair against the CalculiX
-reference, 340 N m, where a corner carries 20-33 % of the load): rho_c 0.05 / 0.1 / 0.2 /
-1 mm move the loaded TE by +0.6 / +0.3 / -0.0 / -0.8 % of the reference's (module docstring
-of ``workflows/reference/calculix_spur_contact.py``). A tip that is rounded by design is
+reference, which blunts the corner at its 0.1 mm elements, at the positions where a corner
+carries 2-33 % of the load, 100 and 340 N m): the loaded TE lies within +0.58 / +0.28 /
+0.16 / 0.16 / -0.82 % of the reference's for rho_c 0.05 / 0.1 / 0.15 / 0.2 / 1 mm (module
+docstring of ``workflows/reference/calculix_spur_contact.py``). A tip that is rounded by design is
 another geometry: its involute ends at the rounding's tangent point, below the corner,
 which shortens the path of contact, and beyond it the rounding's circle touches the mate
 with a gap that grows faster than the sharp corner's (demo pair, rounding 0.15 mm:

@@ -113,7 +113,9 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
 def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
                        n_s: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Largest p_H over the cycle on an (s, z) grid of the plane of action (Pa); z runs from
-    0 to the face width b (:func:`to_face_ends`)."""
+    0 to the face width b (:func:`to_face_ends`). Points on the path of contact only: a tip
+    corner beyond it presses on the mate's flank below its active profile, edge loading
+    the figure states apart."""
     s_grid = np.linspace(pair.s_start, pair.s_end, n_s)
     zq = np.round(cycle.point_z, 12)
     z = np.unique(zq)
@@ -121,7 +123,7 @@ def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: Gea
     idx = np.clip(np.round((cycle.point_s - pair.s_start) / (pair.s_end - pair.s_start)
                            * (n_s - 1)).astype(int), 0, n_s - 1)
     iz = np.searchsorted(z, zq)
-    np.maximum.at(env, (idx, iz), dist.hertz_pressure)
+    np.maximum.at(env, (idx, iz), np.where(cycle.point_corner > 0, 0.0, dist.hertz_pressure))
     # positions sample the path at the cycle spacing: carry the largest value between samples
     filled = env.copy()
     for j in range(z.size):
@@ -192,7 +194,10 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
     axes[0].set_ylabel("face position b_z [mm]")
     fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
-    fig.suptitle(title, fontsize=9)
+    c = dist.tip_corner_max
+    fig.suptitle(title if c is None else (
+        f"{title}\ntip corners beyond the path of contact, not drawn: up to "
+        f"{c.value * 1e-6:.0f} MPa (edge loading)"), fontsize=9)
     return fig
 
 
