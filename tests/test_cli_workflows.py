@@ -146,18 +146,19 @@ def test_validate_stiffness_helical(tmp_path):
 @pytest.mark.slow
 def test_excitation_comparison_workflow(tmp_path):
     """Coarse run without the 3D case (about 30 s). What the workflow's docstring states:
-    the loaded contact's static TE raises the DTE above k(t) alone; the FE whole gears are
-    softer in double contact, so their mean stiffness, TE and DTE fall below the analytical
-    LTCA's."""
+    with the tip corners sharing the load of single contact the loaded contact excites the
+    pair far less than the nominal path's k(t) alone (DTE 8.3 against 25.0 um); the FE whole
+    gears are softer in double contact, so their mean stiffness falls below the analytical
+    LTCA's, and their TE and DTE (the contrast with the corners' share) rise above it."""
     out = tmp_path / "out"  # a result folder holds nothing else, the cache beside it
     s = load_workflow("excitation_comparison").main(
         ["--no-3d", "--out", str(out), "--cache-dir", str(tmp_path / "cache")])
     k, ltca, fe = s["analytical k(t)"], s["analytical LTCA"], s["FE 2D LTCA"]
     dte = "DTE_peak_to_peak_2340rpm [m]"
-    assert ltca[dte] > 1.2 * k[dte]
+    assert k[dte] > 2.5 * ltca[dte]
     assert fe["mesh_stiffness_mean [N/m]"] < 0.9 * ltca["mesh_stiffness_mean [N/m]"]
-    assert fe["static_TE_peak_to_peak [m]"] < ltca["static_TE_peak_to_peak [m]"]
-    assert fe[dte] < ltca[dte]
+    assert fe["static_TE_peak_to_peak [m]"] > ltca["static_TE_peak_to_peak [m]"]
+    assert fe[dte] > 1.2 * ltca[dte]
     assert (out / "summary.csv").read_text().splitlines()[1].startswith("analytical k(t)")
 
 
@@ -165,8 +166,8 @@ def test_excitation_comparison_workflow(tmp_path):
 def test_excitation_fe3d_between_plane_limits(tmp_path):
     """The 3D whole-gear excitation of the 20 mm wide spur pair (free end faces) lies
     between the 2D plane-stress and plane-strain limits in mean loaded mesh stiffness
-    (measured 271.1 < 276.9 < 281.9 N/um), and its DTE at 2340 rpm is within 5 % of the
-    2D plane-strain one (measured 2 %) - what the workflow's docstring states. About 60 s cold."""
+    (measured 284.0 < 289.2 < 294.9 N/um, with tip contact), and its DTE at 2340 rpm is
+    within 5 % of the 2D plane-strain one (measured 1.3 %) - what the workflow's docstring states. About 60 s cold."""
     import numpy as np
 
     from pipeline.run import RunOptions, run_pipeline

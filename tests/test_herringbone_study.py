@@ -42,7 +42,7 @@ def test_study_grooves_and_directions(study):
     assert c["K5"].left.max_unit_load.max() < c["K1"].left.max_unit_load.max()
     assert c["K5"].right.max_unit_load.max() > c["K1"].right.max_unit_load.max()
     series = [c[f"K{j}"].series_mesh_stiffness("left").max() for j in (1, 5)]
-    assert series[1] / series[0] - 1 == pytest.approx(-0.1175, abs=0.01)
+    assert series[1] / series[0] - 1 == pytest.approx(-0.1206, abs=0.01)
     # torque entering at the left swaps the sides (mirror image), up to the FE groove's small
     # twist-stretch coupling (C_tz / sqrt(C_tt C_zz) ~ 2e-6, which changes sign in the mirror)
     np.testing.assert_allclose(c["K1 torque left"].load_right, c["K1"].load_left, rtol=1e-5)
@@ -68,7 +68,8 @@ def test_run_excites_the_sun_meshes_from_the_herringbone_contact(tmp_path):
     hb = res.meshes["sun_planet"].herringbone
     assert hb.groove.equivalent_Kj == pytest.approx(5.98e7, rel=0.01)
     s = res.summary()["meshes"]["sun_planet"]["herringbone_contact"]
-    assert s["left"]["load_share_mean"] == pytest.approx(0.401, abs=0.005)
+    # 40.1 % on the nominal path; the sun's tip corners touching beyond it: 39.6 %
+    assert s["left"]["load_share_mean"] == pytest.approx(0.396, abs=0.005)
     model, _ = dynamic_model(box, res.meshes)
     assert isinstance(model.k_sun_mesh, tuple) and model.sun_load_side == "R"
     assert model.phase_lr == 0.0 and np.shape(model.groove) == (12, 12)

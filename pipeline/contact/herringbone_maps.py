@@ -42,9 +42,13 @@ def half_load_maps(cycle: HerringboneCycle, pair: GearPair, profile_points: int 
 
 
 def loaded_range(load_map: FlankLoadMap) -> tuple[float, float]:
-    """(min, max) unit load over the loaded part of the flank, N/m ((0, 0) if unloaded):
-    the "minimum / maximum load area" values of Xu et al. (2020), Fig. 8."""
-    p = load_map.unit_load[load_map.unit_load > 0.0]
+    """(min, max) unit load over the loaded part of the flank on the path of contact, N/m
+    ((0, 0) if unloaded): the "minimum / maximum load area" values of Xu et al. (2020),
+    Fig. 8 (tip corners touching beyond the path are left out: their load thins out to
+    nothing where their gap opens)."""
+    on = (load_map.s >= load_map.s_start) & (load_map.s <= load_map.s_end)
+    flank = load_map.unit_load[on]
+    p = flank[flank > 0.0]
     return (float(p.min()), float(p.max())) if p.size else (0.0, 0.0)
 
 

@@ -85,10 +85,11 @@ al. (2026); the harmonic balance at 1e-3 of the first natural frequency converge
 first order in 1/H (3 % of the TE's peak-to-peak at H = 160 next to a tooth pair entering
 or leaving, < 0.05 % elsewhere). With the linear local contact and perfect flanks the
 excitation equals the analytical one exactly. Measured on the pair of the assembly-error
-paper at 2340 rpm: DTE 25.0 um peak-to-peak with the analytical k(t), 35.0 um with the
-loaded contact (Weber local approach, 360 positions), 20.9 um with the whole-gear FE 2D
-contact (60 positions); ``workflows/excitation_comparison.py`` compares the excitations
-over a speed range.
+paper at 2340 rpm: DTE 25.0 um peak-to-peak with the analytical k(t) (the nominal path's);
+with the loaded contact, whose tip corners touch beyond the path, 8.3 um (analytical
+slices, Weber local approach, 360 positions) and 11.2 um (whole-gear FE 2D, 40 positions);
+confined to the nominal path the loaded contact gave 35.0 um;
+``workflows/excitation_comparison.py`` compares the excitations over a speed range.
 """
 
 from __future__ import annotations

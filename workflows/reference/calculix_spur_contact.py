@@ -1091,6 +1091,35 @@ def _reflag(pair: GearPair, entry: dict) -> None:
         res["pair_loaded"], res["pair_beyond_path"] = loaded.tolist(), beyond.tolist()
 
 
+def _run_entries(pair: GearPair, logs, s0: np.ndarray) -> list[dict]:
+    """The entries of one run from its JSON-lines ``logs`` (a later log replaces an earlier
+    one's entry at the same position), checked to cover the positions ``s0`` (m)."""
+    by_s0 = {round(e["s0_m"], 12): e for log in logs for e in _read_log(log)}
+    entries = [by_s0[k] for k in sorted(by_s0)]
+    got = np.array([e["s0_m"] for e in entries])
+    if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
+        raise SystemExit(f"{logs}: positions do not cover the {s0.size}-position mesh cycle")
+    for e in entries:
+        _reflag(pair, e)
+    return entries
+
+
+def _convergence_entries(pair: GearPair, specs, slave: str = "gear") -> list[dict]:
+    """Convergence entries from ``size,fine,tooth,body,growth,penalty:LOG`` specs (sizes in
+    mm), labelled with their mesh settings and slave rule."""
+    out = []
+    for spec in specs or []:
+        values, log = spec.split(":", 1)
+        size, fine, tooth, body, growth, penalty = (float(v) for v in values.split(","))
+        for e in _read_log(Path(log)):
+            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3,
+                     size_tooth_m=tooth * 1e-3, size_body_m=body * 1e-3, growth=growth,
+                     penalty_Pa_per_m=penalty, slave=slave)
+            _reflag(pair, e)
+            out.append(e)
+    return out
+
+
 def _cmd_assemble(args) -> int:
     """Merge the JSON-lines logs of the runs into the committed reference file."""
     import gmsh
@@ -1100,28 +1129,9 @@ def _cmd_assemble(args) -> int:
     pair = _demo_pair()
     settings = ReferenceSettings()
     s0 = pair.mesh_cycle(args.positions)
-    runs = {}
-    for name, logs in (("full", args.full), ("nominal", args.nominal)):
-        # a later log replaces an earlier one's entry at the same position
-        by_s0 = {round(e["s0_m"], 12): e for log in logs for e in _read_log(log)}
-        entries = [by_s0[k] for k in sorted(by_s0)]
-        got = np.array([e["s0_m"] for e in entries])
-        if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
-            raise SystemExit(f"{logs}: positions do not cover the {args.positions}-position "
-                             "mesh cycle")
-        for e in entries:
-            _reflag(pair, e)
-        runs[name] = entries
-    convergence = []
-    for spec in args.convergence or []:
-        values, log = spec.split(":", 1)
-        size, fine, tooth, body, growth, penalty = (float(v) for v in values.split(","))
-        for e in _read_log(Path(log)):
-            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3,
-                     size_tooth_m=tooth * 1e-3, size_body_m=body * 1e-3, growth=growth,
-                     penalty_Pa_per_m=penalty)
-            _reflag(pair, e)
-            convergence.append(e)
+    runs = {name: _run_entries(pair, logs, s0)
+            for name, logs in (("full", args.full), ("nominal", args.nominal))}
+    convergence = _convergence_entries(pair, args.convergence, ReferenceSettings().slave)
     wall = sum(e["wall_s"] for r in runs.values() for e in r)
     doc = {
         "description": "CalculiX plane-strain contact reference of the demo pair "
@@ -1167,25 +1177,11 @@ def _cmd_update(args) -> int:
              "calculix_version": ccx_version(), "settings": asdict(ReferenceSettings()),
              "note": args.note}
     if args.run:
-        by_s0 = {round(e["s0_m"], 12): e for log in args.log for e in _read_log(log)}
-        entries = [by_s0[k] for k in sorted(by_s0)]
-        got = np.array([e["s0_m"] for e in entries])
-        if got.shape != s0.shape or not np.allclose(got, s0, rtol=0, atol=1e-12):
-            raise SystemExit(f"{args.log}: positions do not cover the committed mesh cycle")
-        for e in entries:
-            _reflag(pair, e)
+        entries = _run_entries(pair, args.log, s0)
         doc["runs"][args.run] = entries
         entry["run"] = args.run
         entry["ccx_wall_time_s"] = sum(e["wall_s"] for e in entries)
-    for spec in args.convergence or []:
-        values, log = spec.split(":", 1)
-        size, fine, tooth, body, growth, penalty = (float(v) for v in values.split(","))
-        for e in _read_log(Path(log)):
-            e.update(size_contact_m=size * 1e-3, size_fine_m=fine * 1e-3,
-                     size_tooth_m=tooth * 1e-3, size_body_m=body * 1e-3, growth=growth,
-                     penalty_Pa_per_m=penalty, slave=args.slave)
-            _reflag(pair, e)
-            doc["convergence"].append(e)
+    doc["convergence"] += _convergence_entries(pair, args.convergence, args.slave)
     doc["provenance"].setdefault("updates", []).append(entry)
     args.data.write_text(json.dumps(_finite(doc), indent=1) + "\n")
     print(f"updated {args.data}")
