@@ -10,7 +10,10 @@
   disk by content hash). At any mesh position the compliance between candidate
   points is interpolated (linearly in the arc coordinate, per pair of teeth) from
   those tables and summed over the two gears; contact radii outside the tabulated
-  range (the last ``0.11 m_n`` of arc below the tips) are extrapolated linearly.
+  range (the last ``0.11 m_n`` of arc below the tips) are extrapolated linearly, among
+  them a tip corner touching beyond the path of contact, which loads its tooth at the tip
+  radius (against CalculiX the loaded TE there agrees within 0.2 %,
+  ``workflows/reference/calculix_spur_contact.py``).
 * Candidate points are the slices of :class:`pipeline.contact.source.SliceCompliance`
   (``settings.slices`` across the face; one per tooth pair for a spur pair without lead
   modifications when built by ``compliance_source``). Two points are coupled when they lie in the
