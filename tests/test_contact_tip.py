@@ -205,3 +205,28 @@ def test_ring_pair_planet_corner_touches_and_relief_removes_it():
     off, on = run(False, mods), run(True, mods)
     assert not (on.point_load[on.point_corner > 0] > 0).any()
     np.testing.assert_allclose(on.transmission_error, off.transmission_error, rtol=1e-9)
+
+
+def test_3d_load_map_draws_the_tip_corner(tmp_path):
+    """The pyvista load map: each flank whose tip corner touches beyond the path gets a tube
+    along its tip edge (a mesh more than the tooth and the flank) and says so in its
+    caption, with the corner's largest unit load."""
+    from pipeline.contact.loadmap import flank_load_map
+    from pipeline.viz import save
+    from pipeline.viz.loadmap import render_load_map
+
+    lm = flank_load_map(_cycle(True), PAIR)
+    plotter = render_load_map(PAIR, lm, "t", window_width=600)
+    texts = [a.GetInput() for r in plotter.renderers for a in r.actors.values()
+             if hasattr(a, "GetInput") and isinstance(a.GetInput(), str)]
+    tip = [x for x in texts if "tip corner touches beyond the path" in x]
+    assert len(tip) == 2
+    peak = lm.tip_corner_load("pinion").max() * 1e-3
+    assert f"up to {peak:.0f} N/mm" in tip[0]
+    assert all(len(r.actors) >= 3 for r in plotter.renderers)
+    save(plotter, tmp_path / "map.png")
+    off = render_load_map(PAIR, flank_load_map(_cycle(False), PAIR), "t", window_width=600)
+    texts = [a.GetInput() for r in off.renderers for a in r.actors.values()
+             if hasattr(a, "GetInput") and isinstance(a.GetInput(), str)]
+    assert not any("tip corner" in x for x in texts)
+    off.close()

@@ -17,6 +17,7 @@ import numpy as np
 
 from pipeline.contact.loadmap import (
     FlankLoadMap,
+    flank_surface,
     load_map_grid,
     mapped_members,
     tooth_body_grid,
@@ -70,6 +71,28 @@ def _rulers(plotter, pair: GearPair, gear, z: np.ndarray, radius: np.ndarray,
                              justification_vertical="center")
 
 
+def _tip_corner_edge(plotter, pair: GearPair, load_map: FlankLoadMap, member: str,
+                     clim: tuple[float, float]) -> str:
+    """Where ``member``'s tip corner touches beyond the path of contact (its flank rows
+    there all lie on the tip edge, a strip of no width): a tube along the tip edge coloured
+    by the corner's largest unit load over the face, on the flank's colour scale; returns
+    the caption's note ("" when the corner never touches)."""
+    import pyvista as pv
+
+    load = load_map.tip_corner_load(member) * 1e-3
+    if not np.any(load > 0.0):
+        return ""
+    gear = pair.pinion if member == "pinion" else pair.gear
+    r = load_map.radius(member)
+    row = int(np.argmax(r)) if not gear.internal else int(np.argmin(r))
+    edge = flank_surface(pair, load_map, member)[row] * 1e3  # (n_z, 3), mm
+    line = pv.lines_from_points(edge)
+    line["unit_load_N_per_mm"] = load
+    plotter.add_mesh(line.tube(radius=0.06 * gear.module * 1e3), scalars="unit_load_N_per_mm",
+                     cmap="viridis", clim=clim, show_scalar_bar=False)
+    return f"; its tip corner touches beyond the path (the tube): up to {load.max():.0f} N/mm"
+
+
 def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
                     window_width: int = 1400, clim: tuple[float, float] | None = None):
     """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth and, for an
@@ -117,6 +140,7 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
             plotter.add_mesh(body, color="lightgrey", smooth_shading=True)
             plotter.add_mesh(flank, scalars="unit_load_N_per_mm", cmap="viridis",
                              clim=clim, show_scalar_bar=False)
+            tip = _tip_corner_edge(plotter, pair, load_map, member, clim)
             _rulers(plotter, pair, gear, load_map.z, load_map.radius(member),
                     body.bounds[0] - 1.0)
             name = "" if gear.name == member else f" ({gear.name})"
@@ -130,7 +154,7 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
             cam.focal_point = tuple(np.add(cam.focal_point, [0.0, grow, 0.0]))
             cam.position = tuple(np.add(cam.position, [0.0, grow, 0.0]))
             top = weights[i] - (title_h if i == 0 else 0)
-            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}",
+            plotter.add_text(f"{member} flank{name}, z = {gear.teeth}{note}{tip}",
                              position=(8, top - caption_h + 4), font_size=10)
             if i == 0 and title_h:
                 plotter.add_text(title, position="upper_edge", font_size=9)
