@@ -167,7 +167,8 @@ def test_excitation_fe3d_between_plane_limits(tmp_path):
     """The 3D whole-gear excitation of the 20 mm wide spur pair (free end faces) lies
     between the 2D plane-stress and plane-strain limits in mean loaded mesh stiffness
     (measured 284.0 < 289.2 < 294.9 N/um, with tip contact), and its DTE at 2340 rpm is
-    within 5 % of the 2D plane-strain one (measured 1.3 %) - what the workflow's docstring states. About 60 s cold."""
+    within 5 % of the 2D plane-strain one (measured 1.3 %) - what the workflow's docstring
+    states. About 60 s cold."""
     import numpy as np
 
     from pipeline.run import RunOptions, run_pipeline
