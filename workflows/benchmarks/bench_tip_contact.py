@@ -9,8 +9,8 @@ side in the same session for the ratio (the machine is shared).
 Each run is a fresh ``gearpipe run`` of the demo (``workflows/default_case.py``) with an
 empty cache, as a user sees it; the run records its step breakdown in ``summary.json``
 (its ``loaded contact (fe2d)`` step holds the FE tables and the contact cycle).
-``--repeat`` cold runs of each (default 2), the fastest reported beside the median. Prints the figures with the
-breakdown and writes ``results/benchmarks/tip_contact.json``.
+``--repeat`` cold runs of each (default 2), the fastest reported beside the median.
+Prints the figures with the breakdown and writes ``results/benchmarks/tip_contact.json``.
 
     python workflows/benchmarks/bench_tip_contact.py [--repeat N]
 """
