@@ -209,3 +209,60 @@ def test_curvature_radii_at_a_corner_are_the_edge_and_the_mates_involute(pair):
     assert (rho2[1] < 0) == pair.gear.internal
     assert rho1[2] == pytest.approx(circle_radius("pinion", s[2], r1[2]), rel=1e-6)
 
+
+
+def _rounding_centre(pair: GearPair, who: str, s: float, rho: float) -> tuple[np.ndarray, float]:
+    """Independent construction of a tip rounded by ``rho``: on the textbook involute of
+    ``who`` crossing at ``s``, the point whose inward normal (into the tooth: -x for the
+    pinion's flank, +x for the gear's, near the line of action) reaches the circle ``r_a -
+    rho`` at distance ``rho`` (brentq on the involute parameter). Returns the rounding's
+    centre and the roll length ``r_b t`` of its tangency point."""
+    from scipy.optimize import brentq
+
+    gear = pair.pinion if who == "pinion" else pair.gear
+    rb, ra = gear.base_radius, gear.tip_radius_
+    sign = -1.0 if who == "pinion" else 1.0
+
+    def centre(t: float) -> np.ndarray:
+        (p,), (dp,) = (_flank(pair, who, s, np.array([v]))[0].T for v in (t, t + 1e-7))
+        tangent = (dp - p) / np.hypot(*(dp - p))
+        n = np.array([-tangent[1], tangent[0]])
+        n = n if n[0] * sign > 0 else -n
+        return p + rho * n
+
+    origin = _flank(pair, who, s, np.array([0.0]))[1]
+    t_tip = math.sqrt(ra**2 - rb**2) / rb
+    t = brentq(lambda v: np.hypot(*(centre(v) - origin)) - (ra - rho), 0.5 * t_tip, t_tip,
+               xtol=1e-15)
+    return centre(t), rb * t
+
+
+@pytest.mark.parametrize("past", [5e-5, 3e-4, 1e-3])
+def test_rounded_tip_gap_against_an_independent_construction(past):
+    """Tips rounded by 0.3 mm (pinion) and 0.2 mm (gear) on the external pair: the path ends
+    where each rounding touches its involute (roll length of the tangency point, to 1e-10 m
+    of the independent brentq construction); beyond it the gap is the distance from the
+    rounding's centre to the mate's flank less the radius (to 1e-12 m), 0 at the rounded
+    path's end and larger than the sharp corner's (material removed)."""
+    from pipeline.geometry.tip_contact import rounded_path_ends, rounded_tip_contact
+
+    p, rounding = EXTERNAL, (0.3e-3, 0.2e-3)
+    lo, hi = rounded_path_ends(p, rounding)
+    assert p.s_start < lo < hi < p.s_end
+    q, roll = _rounding_centre(p, "pinion", hi, rounding[0])
+    assert roll == pytest.approx(hi, abs=1e-10)
+    q, roll = _rounding_centre(p, "gear", lo, rounding[1])
+    assert roll == pytest.approx(p.t1t2 - lo, abs=1e-10)
+    tc = rounded_tip_contact(p, [hi + past, lo - past, hi, lo], rounding)
+    assert list(tc.corner) == ["pinion", "gear", "", ""]
+    for i, (who, mate, rho, s) in enumerate((("pinion", "gear", rounding[0], hi + past),
+                                             ("gear", "pinion", rounding[1], lo - past))):
+        q, _ = _rounding_centre(p, who, s, rho)
+        assert tc.gap[i] == pytest.approx(_distance(q, p, mate, s) - rho, abs=1e-12)
+        assert tc.gap[i] > tip_contact(p, [s]).gap[0] or not (p.s_start <= s <= p.s_end)
+        assert _distance(tc.point[:, i], p, mate, s) < 2e-10  # on the mate's flank
+    assert np.all(tc.gap[2:] == 0.0)
+    just = rounded_tip_contact(p, [hi + 1e-9, lo - 1e-9], rounding)
+    assert np.all(just.gap < 1e-13)  # continuous at the rounded path's ends
+    with pytest.raises(ValueError, match="internal"):
+        rounded_path_ends(RING, (0.0, 1e-4))
