@@ -138,8 +138,9 @@ def test_contact_command_writes_its_outputs(tmp_path, capsys):
 
 def test_render_load_map_png(tmp_path, helical_traction_pair, helical_cycle):
     """The off-screen pyvista render: one row per flank (pinion and the external gear), the
-    colour scale of both from 0 to the largest unit load, a PNG of the requested width
-    that is not blank (the coloured flanks give many distinct colours)."""
+    colour scale of both (and of the tube along a tip edge whose corner touches beyond the
+    path) from 0 to the largest unit load, a PNG of the requested width that is not blank
+    (the coloured flanks give many distinct colours)."""
     from PIL import Image
 
     from pipeline.viz import save
@@ -152,7 +153,8 @@ def test_render_load_map_png(tmp_path, helical_traction_pair, helical_cycle):
     ranges = [tuple(a.mapper.scalar_range) for r in plotter.renderers
               for a in r.actors.values()
               if getattr(getattr(a, "mapper", None), "scalar_visibility", False)]
-    assert len(ranges) == 2 and all(r == pytest.approx((0.0, p_max)) for r in ranges)
+    tubes = sum(lm.tip_corner_load(m).max() > 0 for m in ("pinion", "gear"))
+    assert len(ranges) == 2 + tubes and all(r == pytest.approx((0.0, p_max)) for r in ranges)
     path = save(plotter, tmp_path / "map.png")
     img = np.asarray(Image.open(path).convert("RGB"))
     assert img.shape[1] == 700
