@@ -320,9 +320,9 @@ def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) 
     corner = () if c is None else (
         quantity("max_tip_corner_pressure", "largest Hertz pressure at a tip corner beyond "
                  "the path of contact (edge loading)", "MPa", c.value * MPA),
-        quantity("tip_corner_pinion_angle", "when: pinion angle in the cycle", "deg",
-                 math.degrees(c.pinion_angle)),
-        quantity("tip_corner_tooth_pair", "which tooth pair", "-",
+        quantity("tip_corner_pinion_angle", "tip corner: when, pinion angle in the cycle",
+                 "deg", math.degrees(c.pinion_angle)),
+        quantity("tip_corner_tooth_pair", "tip corner: which tooth pair", "-",
                  dist.pair_number(c.tooth_pair)),
     )
     notes = ("Hertz line contact (Johnson 1985, eq. 4.45) at every loaded point: unit load "
