@@ -230,3 +230,28 @@ def test_3d_load_map_draws_the_tip_corner(tmp_path):
              if hasattr(a, "GetInput") and isinstance(a.GetInput(), str)]
     assert not any("tip corner" in x for x in texts)
     off.close()
+
+
+def test_rounded_tips_touch_with_their_rounding():
+    """Tips rounded by 0.3 mm on both gears: the path of contact ends where the roundings
+    touch the involutes (transverse contact ratio 1.755 -> 1.663), the roundings carry load
+    beyond it, and their pressure is Hertz of the rounding against the mate's involute
+    (Johnson 1985, eq. 4.45, written out)."""
+    rho = 0.3e-3
+    pair = GearPair(spur(50, "pinion", tip_rounding=rho), spur(50, "gear", tip_rounding=rho))
+    assert pair.transverse_contact_ratio == pytest.approx(1.6629, abs=1e-4)
+    src = analytical_compliance(pair, OP, ContactOptions())
+    cyc = loaded_mesh_cycle(src, LOAD, None, "weber", 24)
+    tip = (cyc.point_corner == 1) & (cyc.point_load > 0)
+    assert tip.any()
+    i = int(np.flatnonzero(tip)[np.argmax(cyc.point_load[tip])])
+    r2 = contact_radii_at(pair, cyc.point_s[i])[1]
+    rho2 = math.sqrt(r2**2 - pair.gear.base_radius**2)
+    R = rho * rho2 / (rho + rho2)
+    E = 2.0e11 / (1.0 - 0.3**2) / 2.0
+    w = cyc.point_unit_load[i]
+    assert cyc.point_pressure[i] == pytest.approx(math.sqrt(w * E / (math.pi * R)), rel=1e-12)
+    r1 = contact_radii_at(pair, cyc.point_s[i])[0]
+    assert pair.pinion.active_tip_radius < r1 < pair.pinion.tip_radius_
+    np.testing.assert_allclose(np.bincount(cyc.point_position, weights=cyc.point_load), LOAD,
+                               rtol=1e-9)

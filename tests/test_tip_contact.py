@@ -241,28 +241,67 @@ def _rounding_centre(pair: GearPair, who: str, s: float, rho: float) -> tuple[np
 def test_rounded_tip_gap_against_an_independent_construction(past):
     """Tips rounded by 0.3 mm (pinion) and 0.2 mm (gear) on the external pair: the path ends
     where each rounding touches its involute (roll length of the tangency point, to 1e-10 m
-    of the independent brentq construction); beyond it the gap is the distance from the
-    rounding's centre to the mate's flank less the radius (to 1e-12 m), 0 at the rounded
-    path's end and larger than the sharp corner's (material removed)."""
-    from pipeline.geometry.tip_contact import rounded_path_ends, rounded_tip_contact
+    of the independent brentq construction; the active tip radius is that point's); beyond
+    it the gap is the distance from the rounding's centre to the mate's flank less the
+    radius (to 1e-12 m), 0 at the rounded path's end and larger than the sharp corner's
+    (material removed). A ring's rounding is refused by name."""
+    from pipeline.validation import InputError
 
-    p, rounding = EXTERNAL, (0.3e-3, 0.2e-3)
-    lo, hi = rounded_path_ends(p, rounding)
-    assert p.s_start < lo < hi < p.s_end
+    rounding = (0.3e-3, 0.2e-3)
+    p = GearPair(spur(50, "pinion", tip_rounding=rounding[0]),
+                 spur(50, "gear", tip_rounding=rounding[1]))
+    lo, hi = p.s_start, p.s_end
+    assert EXTERNAL.s_start < lo < hi < EXTERNAL.s_end
     q, roll = _rounding_centre(p, "pinion", hi, rounding[0])
     assert roll == pytest.approx(hi, abs=1e-10)
+    assert p.pinion.active_tip_radius == pytest.approx(math.hypot(
+        p.pinion.base_radius, roll), abs=1e-10)
     q, roll = _rounding_centre(p, "gear", lo, rounding[1])
     assert roll == pytest.approx(p.t1t2 - lo, abs=1e-10)
-    tc = rounded_tip_contact(p, [hi + past, lo - past, hi, lo], rounding)
+    tc = tip_contact(p, [hi + past, lo - past, hi, lo])
     assert list(tc.corner) == ["pinion", "gear", "", ""]
     for i, (who, mate, rho, s) in enumerate((("pinion", "gear", rounding[0], hi + past),
                                              ("gear", "pinion", rounding[1], lo - past))):
         q, _ = _rounding_centre(p, who, s, rho)
         assert tc.gap[i] == pytest.approx(_distance(q, p, mate, s) - rho, abs=1e-12)
-        assert tc.gap[i] > tip_contact(p, [s]).gap[0] or not (p.s_start <= s <= p.s_end)
+        assert tc.gap[i] > tip_contact(EXTERNAL, [s]).gap[0]
         assert _distance(tc.point[:, i], p, mate, s) < 2e-10  # on the mate's flank
     assert np.all(tc.gap[2:] == 0.0)
-    just = rounded_tip_contact(p, [hi + 1e-9, lo - 1e-9], rounding)
+    just = tip_contact(p, [hi + 1e-9, lo - 1e-9])
     assert np.all(just.gap < 1e-13)  # continuous at the rounded path's ends
-    with pytest.raises(ValueError, match="internal"):
-        rounded_path_ends(RING, (0.0, 1e-4))
+    with pytest.raises(InputError, match=r"ring\.tip_rounding = 0\.0001 m: a rounded tip of "
+                       "an internal gear"):
+        spur(72, "ring", module=2e-3, internal=True, bore_radius=0.09, tip_rounding=1e-4)
+
+
+def test_rounded_profile_arc():
+    """The rounded tip's arc in the exact profile: it leaves the involute tangentially at the
+    active tip radius (the chord directions on both sides agree to the sampling), every
+    point lies rho from one centre, it ends on the tip circle, it lies inside the sharp
+    tooth (material removed), and the path of contact ends at the tangency point."""
+    from pipeline.geometry.profile import TIP_ROUNDING, tooth_profile
+
+    rho = 0.3e-3
+    g = spur(50, "pinion", tip_rounding=rho)
+    prof = tooth_profile(g, 200)
+    arc = prof.kind == TIP_ROUNDING
+    x, y = prof.x[arc], prof.y[arc]
+    xi, yi = prof.x[~arc][-2:], prof.y[~arc][-2:]
+    # the circle through the arc's first, middle and last points (circumcentre)
+    (ax, ay), (bx, by), (cx, cy) = ((x[i], y[i]) for i in (0, x.size // 2, -1))
+    d = 2.0 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    q = np.array([((ax**2 + ay**2) * (by - cy) + (bx**2 + by**2) * (cy - ay)
+                   + (cx**2 + cy**2) * (ay - by)) / d,
+                  ((ax**2 + ay**2) * (cx - bx) + (bx**2 + by**2) * (ax - cx)
+                   + (cx**2 + cy**2) * (bx - ax)) / d])
+    assert np.abs(np.hypot(x - q[0], y - q[1]) - rho).max() < 1e-11
+    assert math.hypot(x[-1], y[-1]) == pytest.approx(g.tip_radius_, abs=1e-12)
+    assert math.hypot(xi[-1], yi[-1]) == pytest.approx(g.active_tip_radius, abs=1e-12)
+    inv_dir = np.arctan2(yi[1] - yi[0], xi[1] - xi[0])
+    arc_dir = np.arctan2(y[0] - yi[1], x[0] - xi[1])
+    assert abs(arc_dir - inv_dir) < 0.02  # rad, one sample of the arc
+    sharp = tooth_profile(spur(50, "pinion"), 200)
+    r = np.hypot(x, y)
+    assert np.all(x <= np.interp(r, np.hypot(sharp.x, sharp.y), sharp.x) + 1e-12)
+    assert GearPair(g, spur(50, "gear")).s_end == pytest.approx(
+        math.sqrt(g.active_tip_radius**2 - g.base_radius**2), rel=1e-15)

@@ -91,6 +91,8 @@ GEAR = (
     Key("herringbone", B),
     Key("groove_width_mm", N),
     Key("tip_radius_mm", N),
+    Key("tip_rounding_mm", N, help="radius of the rounded edge between flank and tip land "
+        "(0: a sharp corner)"),
     Key("name", S),
 )
 """Keys of a gear table that describe the gear itself (:class:`GearSpec`)."""

@@ -94,7 +94,7 @@ def flank_points(gear: GearSpec, teeth: int, tooth: ArrayLike, radius: ArrayLike
         raise InputError(f"flank points: {k.size} tooth indices but {r.size} radii")
     if np.any((k < 0) | (k >= teeth)):
         raise InputError(f"flank points: tooth index outside [0, {teeth - 1}]")
-    rb, ra = gear.base_radius, gear.tip_radius_
+    rb, ra = gear.base_radius, gear.active_tip_radius  # the involute's end
     lo, hi = (rb, ra) if not gear.internal else (max(rb, ra), gear.root_radius)
     if np.any((r < lo * (1 - 1e-12)) | (r > hi * (1 + 1e-12))):
         raise InputError(f"flank radius outside the involute [{lo:.6g}, {hi:.6g}] m: "
@@ -134,9 +134,10 @@ def active_radii(gear: GearSpec, n: int, lo: float | None = None, hi: float | No
     Defaults: ``lo`` the larger of the base radius and ``root + 1.1 m_n`` (external;
     internal: the tip radius), ``hi`` the tip radius (internal: ``root - 1.1 m_n``);
     the end points are kept ``margin`` (m of arc length, default 0.15 m_n, i.e.
-    1.5 load-patch half-widths) inside, so no load patch crosses the tip corner.
+    1.5 load-patch half-widths) inside, so no load patch crosses the tip corner (the end of
+    the involute: :attr:`GearSpec.active_tip_radius` with a tip rounding).
     """
-    rb, ra = gear.base_radius, gear.tip_radius_
+    rb, ra = gear.base_radius, gear.active_tip_radius
     if gear.internal:
         lo = lo if lo is not None else max(ra, rb)
         hi = hi if hi is not None else gear.root_radius - 1.1 * gear.module

@@ -151,7 +151,7 @@ def _patch_half_width(sector: SectorMesh2D | SectorMesh3D, points: FlankPoints,
         return 0.3 * gear.module if c is None else c
     c = 0.1 * gear.module if c is None else c
     rb = gear.base_radius
-    arc_tip = (gear.tip_radius_**2 - rb**2) / (2 * rb)
+    arc_tip = (gear.active_tip_radius**2 - rb**2) / (2 * rb)  # the involute's end
     room = np.abs(arc_tip - points.arc)  # internal gears: the tip is the small radius
     if np.any(room < c):
         raise InputError(f"flank point(s) closer than the patch half-width {c:.4g} m to the end "

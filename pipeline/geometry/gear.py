@@ -30,6 +30,8 @@ from pipeline.validation import (
 
 HANDS = ("right", "left", "none")
 MIN_FACE_MODULES, MAX_FACE_MODULES = 0.5, 250.0
+MAX_ROUNDING_MODULES = 0.3
+"""Largest tip rounding over m_n (an edge break; larger roundings are tip shortening)."""
 """Allowed face width range in normal modules."""
 
 
@@ -97,6 +99,10 @@ class GearSpec:
     groove_width : relief groove width between herringbone halves in m.
     tip_radius : optional tip radius in m overriding the one from h_a* and x
         (e.g. after tip shortening).
+    tip_rounding : radius of the rounded edge between the flank and the tip land, m, in
+        [0, 0.3 m_n] (0: a sharp corner; external gears only). The involute ends where the
+        rounding touches it, at :attr:`active_tip_radius`, which ends the path of contact;
+        beyond it the rounding touches the mate (:mod:`pipeline.geometry.tip_contact`).
     material : :class:`Material`.
     name : label used in reports.
     """
@@ -116,6 +122,7 @@ class GearSpec:
     herringbone: bool = False
     groove_width: float = 0.0
     tip_radius: float | None = None
+    tip_rounding: float = 0.0
     material: Material = field(default_factory=Material)
     name: str = "gear"
 
@@ -158,6 +165,11 @@ class GearSpec:
             lo, hi = (self.base_radius, self.reference_radius + 2 * self.module) if not \
                 self.internal else (self.reference_radius - 2 * self.module, self.root_radius)
             check_range(f"{p}.tip_radius", self.tip_radius, lo, hi, unit="m")
+        check_range(f"{p}.tip_rounding", self.tip_rounding, 0.0,
+                    MAX_ROUNDING_MODULES * self.module, unit="m")
+        if self.tip_rounding > 0.0 and self.internal:
+            raise InputError(f"{p}.tip_rounding = {self.tip_rounding:.6g} m: a rounded tip of "
+                             "an internal gear is not modelled; leave it 0 (a sharp corner)")
         if self.cutter_tip_radius_coef is None:
             object.__setattr__(self, "cutter_tip_radius_coef",
                                min(0.38, self.max_cutter_tip_radius_coef))
@@ -271,6 +283,19 @@ class GearSpec:
             return self.tip_radius
         h = self.module * (self.addendum_coef + self.profile_shift)
         return self.reference_radius - h if self.internal else self.reference_radius + h
+
+    @cached_property
+    def active_tip_radius(self) -> float:
+        """Radius where the involute ends, m: the tip radius, or with a tip rounding rho the
+        radius where the rounding touches the involute. The rounding's centre lies rho inside
+        the flank, on the circle ``r_a - rho`` and on the involute's normal at the tangency
+        point, so the roll length there is ``rho + sqrt((r_a - rho)^2 - r_b^2)``."""
+        rho = self.tip_rounding
+        if rho == 0.0:
+            return self.tip_radius_
+        rb = self.base_radius
+        roll = rho + math.sqrt((self.tip_radius_ - rho) ** 2 - rb * rb)
+        return math.hypot(rb, roll)
 
     @cached_property
     def root_radius(self) -> float:

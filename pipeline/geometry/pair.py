@@ -185,15 +185,17 @@ class GearPair:
 
     @cached_property
     def s_end(self) -> float:
-        """Roll coordinate where the pinion tip circle cuts the line of action, m."""
+        """Roll coordinate where the pinion's involute ends on the line of action, m: its tip
+        circle, or the tangency point of its tip rounding (``active_tip_radius``)."""
         p = self.pinion
-        return math.sqrt(p.tip_radius_**2 - p.base_radius**2)
+        return math.sqrt(p.active_tip_radius**2 - p.base_radius**2)
 
     @cached_property
     def s_start(self) -> float:
-        """Roll coordinate where the gear tip circle cuts the line of action, m."""
+        """Roll coordinate where the gear's involute ends on the line of action, m: its tip
+        circle, or the tangency point of its tip rounding (``active_tip_radius``)."""
         g = self.gear
-        rho2 = math.sqrt(g.tip_radius_**2 - g.base_radius**2)
+        rho2 = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
         return rho2 - self.t1t2 if g.internal else self.t1t2 - rho2
 
     @cached_property

@@ -39,7 +39,7 @@ from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.generation import generate, rack_flank, rack_tip
 from pipeline.validation import InputError, check_int_range
 
-FILLET, INVOLUTE = 0, 1
+FILLET, INVOLUTE, TIP_ROUNDING = 0, 1, 2
 THIN_TIP = 0.2  # tip thickness below THIN_TIP * m_n is reported as a thin tip
 
 
@@ -51,7 +51,8 @@ class ToothProfile:
     ----------
     gear : the gear.
     x, y : shape (n,), flank points in m (x >= 0), ordered root -> tip.
-    kind : shape (n,), ``FILLET`` (0: root circle and fillet) or ``INVOLUTE`` (1).
+    kind : shape (n,), ``FILLET`` (0: root circle and fillet), ``INVOLUTE`` (1) or
+        ``TIP_ROUNDING`` (2: the arc of a rounded tip, :func:`tip_rounding_arc`).
     form_radius : radius where the fillet meets the involute, m.
     undercut : True if the fillet cuts into the involute (external gears).
     tip_thickness : transverse chordal tooth thickness at the tip corner, m.
@@ -137,6 +138,26 @@ def _roll_spaced(gear: GearSpec, r0: float, r1: float, n: int) -> np.ndarray:
     return out
 
 
+def tip_rounding_arc(gear: GearSpec, points: int) -> tuple[np.ndarray, np.ndarray]:
+    """The rounded tip's arc of the right flank (x, y), m, from its tangency with the
+    involute (at :attr:`GearSpec.active_tip_radius`) to the tip circle, ``points`` points;
+    a single point, the corner, for a sharp tip. The rounding's centre lies ``rho`` inside
+    the flank on the circle ``r_a - rho``: on the involute of the same base circle whose
+    half tooth angle is ``rho / r_b`` smaller (a parallel curve ``rho`` inside)."""
+    rho, ra = gear.tip_rounding, gear.tip_radius_
+    if rho == 0.0:
+        x, y = _involute(gear, np.array([ra]))
+        return x, y
+    rq = ra - rho
+    psi_q = gear.half_tooth_angle(rq) - rho / gear.base_radius
+    q = np.array([rq * math.sin(psi_q), rq * math.cos(psi_q)])
+    tx, ty = _involute(gear, np.array([gear.active_tip_radius]))
+    start = math.atan2(ty[0] - q[1], tx[0] - q[0])
+    end = math.atan2(q[1], q[0])  # radially out of the centre: the tip circle's tangency
+    a = np.linspace(start, end, points)
+    return q[0] + rho * np.cos(a), q[1] + rho * np.sin(a)
+
+
 def _involute(gear: GearSpec, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Involute flank points (x, y) in m at radii ``r`` (m)."""
     psi = np.array([gear.half_tooth_angle(float(ri)) for ri in r])
@@ -168,11 +189,13 @@ def _external_flank(gear: GearSpec, n: int):
                          f"{r_inv0 * 1e3:.6g} mm >= tip radius {ra * 1e3:.6g} mm), leaving no "
                          f"involute flank; raise {p}.profile_shift = {gear.profile_shift:.6g} or "
                          f"lower {p}.dedendum_coef = {gear.dedendum_coef:.6g}")
-    ri = _roll_spaced(gear, r_inv0, ra, n)
+    ri = _roll_spaced(gear, r_inv0, gear.active_tip_radius, n)
     ix, iy = _involute(gear, ri)
-    x = np.r_[lx, x_f[1:], ix[1:]]
-    y = np.r_[ly, y_f[1:], iy[1:]]
-    kind = np.r_[np.zeros(len(lx) + len(x_f) - 1), np.ones(n - 1)].astype(np.int8)
+    ax, ay = tip_rounding_arc(gear, max(4, n // 6))
+    x = np.r_[lx, x_f[1:], ix[1:], ax[1:]]
+    y = np.r_[ly, y_f[1:], iy[1:], ay[1:]]
+    kind = np.r_[np.zeros(len(lx) + len(x_f) - 1), np.ones(n - 1),
+                 np.full(len(ax) - 1, TIP_ROUNDING)].astype(np.int8)
     if abs(math.hypot(lx[0], ly[0]) - rf) > 1e-9 * rf:
         raise AssertionError("root circle generation is inconsistent")
     return x, y, kind, r_inv0, bool(undercut)

@@ -38,21 +38,24 @@ Local contact of a corner. A sharp corner pressed on a flank has no finite local
 in plane strain: the contact width goes to zero with the corner's radius, and the
 half-plane's logarithmic term with it. Real corners are blunted (an edge break, the
 grinding or deburring), and an FE model blunts a sharp one at its element size. The loaded
-contact gives the corner the local radius ``rho_c = 0.05 m_n`` (0.15 mm for m_n 3 mm) in
-Hertz's line contact against the mate's involute (:func:`curvature_radii_at`); the rigid
-gap stays the sharp corner's. How much it matters (demo pair against the CalculiX
+contact gives a sharp corner the local radius ``rho_c = 0.05 m_n`` (0.15 mm for m_n 3 mm)
+in Hertz's line contact against the mate's involute (:func:`curvature_radii_at`); its
+rigid gap stays the sharp corner's. How much it matters (demo pair against the CalculiX
 reference, which blunts the corner at its 0.1 mm elements, at the positions where a corner
 carries 2-33 % of the load, 100 and 340 N m): the loaded TE lies within +0.58 / +0.28 /
 0.16 / 0.16 / -0.82 % of the reference's for rho_c 0.05 / 0.1 / 0.15 / 0.2 / 1 mm (module
-docstring of ``workflows/reference/calculix_spur_contact.py``). A tip that is rounded by design is
-another geometry: its involute ends at the rounding's tangent point, below the corner,
-which shortens the path of contact (:func:`rounded_path_ends`; demo pair, 0.15 mm: by 0.20
-mm at each end, eps_alpha 1.755 -> 1.709), and beyond it the rounding's circle touches the
-mate with a gap that grows faster than the sharp corner's (:func:`rounded_tip_contact`,
-closed form with the rounding's centre on a parallel involute; 0.86 against 0.10 um at 0.1
-mm of roll past the sharp path's end, 14.1 against 10.0 um at 1 mm). That rigid geometry is
-here and tested; the product does not use it yet: the profile, the path of contact and the
-loaded contact are the sharp-cornered ones everywhere.
+docstring of ``workflows/reference/calculix_spur_contact.py``).
+
+Rounded tips (``GearSpec.tip_rounding`` rho > 0, external gears). The tip is rounded by
+design: the involute ends where the rounding touches it
+(:attr:`~pipeline.geometry.gear.GearSpec.active_tip_radius`), which ends the path of
+contact (demo pair, 0.3 mm on both: eps_alpha 1.755 -> 1.663), the profile carries the arc
+(:func:`pipeline.geometry.profile.tip_rounding_arc`, so the FE meshes do), and beyond the
+path the rounding's circle touches the mate: :func:`tip_contact` gives its gap in closed
+form (the rounding's centre on a parallel involute; a faster-growing gap than the sharp
+corner's: 0.86 against 0.10 um at 0.1 mm of roll past the sharp path's end for 0.15 mm,
+14.1 against 10.0 um at 1 mm), and the local contact is Hertz of the rounding against the
+mate's involute (:func:`corner_radius`).
 
 Lengths in m, angles in rad. The tip corner is the end of the involute on the tip circle
 (an unrounded, unchamfered tip).
@@ -197,110 +200,55 @@ def _lever(centre: tuple[float, float], rb: float, point: np.ndarray,
 
 
 def tip_contact(pair: GearPair, s: ArrayLike) -> TipContact:
-    """Tip-corner contact geometry of tooth pairs crossing the line of action at ``s`` (m,
-    any shape, flattened): the rigid gap, the contact point and normal, the radii on both
-    gears and the lever factors (module docstring). Inside the path the contact is the
-    ordinary one on the line of action (gap 0, levers 1)."""
+    """Tip contact geometry of tooth pairs crossing the line of action at ``s`` (m, any
+    shape, flattened): the rigid gap, the contact point on the mate's flank and the normal,
+    the radii on both gears and the lever factors (module docstring). Inside the path the
+    contact is the ordinary one on the line of action (gap 0, levers 1).
+
+    A tip rounded by design (``GearSpec.tip_rounding`` rho, the path ending where it
+    touches the involute, :attr:`GearSpec.active_tip_radius`) touches with its circle,
+    centre ``Q``: the point on the circle ``r_a - rho`` of the tooth's own involute family
+    crossing ``rho`` inside its flank (the parallel involute). The gap is the closed form
+    of a sharp corner with ``Q`` for the corner, less ``rho``; the mate's normal through
+    ``Q`` is the contact normal, the rounding touches ``rho`` from ``Q`` along it (that
+    radius is the corner gear's contact radius) and ``point`` lies a gap further, on the
+    mate's flank. A sharp corner is ``rho = 0``."""
     s = np.asarray(s, dtype=float).reshape(-1)
     b1, b2 = base_circles(pair)
-    ra1, ra2 = pair.pinion.tip_radius_, pair.gear.tip_radius_
+    rho1, rho2 = pair.pinion.tip_rounding, pair.gear.tip_rounding
     after, before = s > pair.s_end, s < pair.s_start
     corner = np.where(after, "pinion", np.where(before, "gear", ""))
     point = np.array([s, np.zeros_like(s)])
     normal = np.array([np.ones_like(s), np.zeros_like(s)])
     gap = np.zeros_like(s)
-    if after.any():  # the pinion's corner against the gear's flank
-        c = _corner(b1, s[after], ra1)
-        gap[after] = s[after] - crossing(b2, c)
-        phi, _ = _tangent_angle(b2, c)
+    touch1 = touch2 = None
+    if after.any():  # the pinion's corner or rounding against the gear's flank
+        q = _corner(b1, s[after] - rho1, pair.pinion.tip_radius_ - rho1)
+        gap[after] = s[after] - crossing(b2, q) - rho1
+        phi, _ = _tangent_angle(b2, q)
         n2 = _normal(b2, phi)  # growing roll of the gear family
         # from the pinion towards the gear: along -x for the external gear's family
         # (its roll grows towards T1), +x for the ring's
         n = n2 if b2.below else -n2
-        point[:, after] = c + gap[after] * n
+        touch1 = q + rho1 * n
+        point[:, after] = touch1 + gap[after] * n
         normal[:, after] = n
-    if before.any():  # the gear's corner against the pinion's flank
-        d = _corner(b2, s[before], ra2)
-        gap[before] = crossing(b1, d) - s[before]
-        phi, _ = _tangent_angle(b1, d)
-        n = _normal(b1, phi)  # the pinion family's normal, +x on the line
-        point[:, before] = d - gap[before] * n
-        normal[:, before] = n
-    r1 = np.hypot(point[0] - b1.centre[0], point[1] - b1.centre[1])
-    r2 = np.hypot(point[0] - b2.centre[0], point[1] - b2.centre[1])
-    r1 = np.where(after, ra1, r1)
-    r2 = np.where(before, ra2, r2)
-    return TipContact(s, corner, gap, point, normal, r1, r2,
-                      _lever(b1.centre, b1.radius, point, normal),
-                      _lever(b2.centre, b2.radius, point, normal))
-
-
-def rounded_path_ends(pair: GearPair, rounding: tuple[float, float]) -> tuple[float, float]:
-    """Roll coordinates ``(s_start, s_end)``, m, of the path of contact when the tips are
-    rounded by design with radii ``rounding = (rho_1, rho_2)`` (m, 0 for a sharp tip; the
-    gear's only for an external gear): each involute ends where the rounding touches it.
-    The rounding's centre lies ``rho`` inside the flank on the circle ``r_a - rho``, and on
-    the involute's normal at the tangency point, so the roll length there is
-    ``rho + sqrt((r_a - rho)^2 - r_b^2)``."""
-    rho1, rho2 = _check_rounding(pair, rounding)
-    p, g = pair.pinion, pair.gear
-    s_end = rho1 + math.sqrt((p.tip_radius_ - rho1) ** 2 - p.base_radius**2)
-    s_start = pair.t1t2 - (rho2 + math.sqrt((g.tip_radius_ - rho2) ** 2 - g.base_radius**2))
-    return s_start, s_end
-
-
-def _check_rounding(pair: GearPair, rounding: tuple[float, float]) -> tuple[float, float]:
-    rho1, rho2 = (float(r) for r in rounding)
-    if rho1 < 0.0 or rho2 < 0.0:
-        raise ValueError(f"tip roundings {rounding} m must be >= 0")
-    if rho2 > 0.0 and pair.gear.internal:
-        raise ValueError("a rounded tip of an internal gear is not modelled")
-    return rho1, rho2
-
-
-def rounded_tip_contact(pair: GearPair, s: ArrayLike,
-                        rounding: tuple[float, float]) -> TipContact:
-    """As :func:`tip_contact` for tips rounded by design (radii ``rounding``, m; module
-    docstring): beyond the rounded path of contact (:func:`rounded_path_ends`) the
-    rounding's circle, centre ``Q``, touches the mate's flank. ``Q`` is the point at the
-    rounding's centre radius of the tooth's own involute family crossing ``rho`` inside its
-    flank (the parallel involute), so the gap is the closed form of the sharp corner with
-    ``Q`` for the corner, less ``rho``; the mate's normal through ``Q`` is the contact
-    normal, the rounding touches ``rho`` from ``Q`` along it (its radius is the corner
-    gear's contact radius) and ``point`` is the mate's flank point a gap further. On the
-    rounded path the contact is the ordinary one (gap 0, levers 1)."""
-    rho1, rho2 = _check_rounding(pair, rounding)
-    s = np.asarray(s, dtype=float).reshape(-1)
-    lo, hi = rounded_path_ends(pair, (rho1, rho2))
-    b1, b2 = base_circles(pair)
-    after, before = s > hi, s < lo
-    corner = np.where(after, "pinion", np.where(before, "gear", ""))
-    point = np.array([s, np.zeros_like(s)])
-    normal = np.array([np.ones_like(s), np.zeros_like(s)])
-    gap = np.zeros_like(s)
-    if after.any():  # the pinion's rounding against the gear's flank
-        q = _corner(b1, s[after] - rho1, pair.pinion.tip_radius_ - rho1)
-        gap[after] = s[after] - crossing(b2, q) - rho1
-        phi, _ = _tangent_angle(b2, q)
-        n2 = _normal(b2, phi)
-        n = n2 if b2.below else -n2
-        touch = q + rho1 * n
-        point[:, after] = touch + gap[after] * n
-        normal[:, after] = n
-    if before.any():  # the gear's rounding against the pinion's flank
+    if before.any():  # the gear's corner or rounding against the pinion's flank
         q = _corner(b2, s[before] + rho2, pair.gear.tip_radius_ - rho2)
         gap[before] = crossing(b1, q) - s[before] - rho2
         phi, _ = _tangent_angle(b1, q)
-        n = _normal(b1, phi)
-        touch_g = q - rho2 * n
-        point[:, before] = touch_g - gap[before] * n
+        n = _normal(b1, phi)  # the pinion family's normal, +x on the line
+        touch2 = q - rho2 * n
+        point[:, before] = touch2 - gap[before] * n
         normal[:, before] = n
     r1 = np.hypot(point[0] - b1.centre[0], point[1] - b1.centre[1])
     r2 = np.hypot(point[0] - b2.centre[0], point[1] - b2.centre[1])
-    if after.any():
-        r1[after] = np.hypot(touch[0] - b1.centre[0], touch[1] - b1.centre[1])
-    if before.any():
-        r2[before] = np.hypot(touch_g[0] - b2.centre[0], touch_g[1] - b2.centre[1])
+    if touch1 is not None:  # the corner itself lies on the tip circle
+        r1[after] = (pair.pinion.tip_radius_ if rho1 == 0.0 else
+                     np.hypot(touch1[0] - b1.centre[0], touch1[1] - b1.centre[1]))
+    if touch2 is not None:
+        r2[before] = (pair.gear.tip_radius_ if rho2 == 0.0 else
+                      np.hypot(touch2[0] - b2.centre[0], touch2[1] - b2.centre[1]))
     return TipContact(s, corner, gap, point, normal, r1, r2,
                       _lever(b1.centre, b1.radius, point, normal),
                       _lever(b2.centre, b2.radius, point, normal))
@@ -321,6 +269,12 @@ CORNER_RADIUS_MODULES = 0.05
 docstring)."""
 
 
+def corner_radius(gear) -> float:
+    """Radius of curvature a tip corner of ``gear`` touches with, m: its tip rounding, or
+    for a sharp corner :data:`CORNER_RADIUS_MODULES` times its module (module docstring)."""
+    return gear.tip_rounding if gear.tip_rounding > 0.0 else CORNER_RADIUS_MODULES * gear.module
+
+
 def curvature_radii_at(pair: GearPair, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Radii of curvature (rho1, rho2), m, of the two surfaces where tooth pairs crossing the
     line of action at ``s`` (m, any shape) touch: the involutes' on the path
@@ -338,10 +292,8 @@ def curvature_radii_at(pair: GearPair, s: ArrayLike) -> tuple[np.ndarray, np.nda
     flank2 = np.sqrt(np.maximum(r2**2 - pair.gear.base_radius**2, 0.0))
     if pair.gear.internal:
         flank2 = -flank2
-    rho1 = np.where(after, CORNER_RADIUS_MODULES * pair.pinion.module,
-                    np.where(before, flank1, rho1))
-    rho2 = np.where(before, CORNER_RADIUS_MODULES * pair.gear.module,
-                    np.where(after, flank2, rho2))
+    rho1 = np.where(after, corner_radius(pair.pinion), np.where(before, flank1, rho1))
+    rho2 = np.where(before, corner_radius(pair.gear), np.where(after, flank2, rho2))
     return rho1, rho2
 
 

@@ -881,13 +881,19 @@ def reference_cycle(pair: GearPair, positions: np.ndarray, torques: tuple[float,
 # ---------------------------------------------------------------------------------------
 # gearpipe's loaded contact at the same positions, and the comparison
 # ---------------------------------------------------------------------------------------
-def demo_pair_text(tip_contact: bool = True) -> str:
+def demo_pair_text(tip_contact: bool = True, tip_rounding_mm: float = 0.0) -> str:
     """The demo pair (``workflows/default_case.py``) with the FE-enriched loaded contact,
     frictionless (the reference is frictionless); ``tip_contact`` False confines gearpipe's
-    contact to the nominal path (the control run's counterpart)."""
+    contact to the nominal path (the control run's counterpart); ``tip_rounding_mm`` rounds
+    the tips of both gears by design (``tip_rounding_mm`` of each gear table; the reference
+    meshes the same rounded profile, :func:`pipeline.geometry.profile.tooth_profile`)."""
     from workflows.default_case import DEMO_PAIR
 
-    return ('name = "reference"\n' + DEMO_PAIR + '[contact]\ncompliance = "fe2d"\n'
+    pair = DEMO_PAIR
+    if tip_rounding_mm:
+        for table in ("[pinion]\n", "[gear]\n"):
+            pair = pair.replace(table, f"{table}tip_rounding_mm = {tip_rounding_mm!r}\n", 1)
+    return ('name = "reference"\n' + pair + '[contact]\ncompliance = "fe2d"\n'
             + ("" if tip_contact else "tip_contact = false\n"))
 
 
@@ -926,19 +932,21 @@ def gearpipe_cycle(text: str, positions: np.ndarray, torques: tuple[float, ...],
             "pair_index": np.asarray(cyc.pair_index), "pair_load_N": np.array(loads)}
 
 
-def gearpipe_at_reference(reference: dict, run: str = "full", cache=None) -> dict:
+def gearpipe_at_reference(reference: dict, run: str = "full", cache=None,
+                          entries: list[dict] | None = None, text: str | None = None) -> dict:
     """gearpipe like for like with a reference run (``"full"``: :func:`demo_pair_text` with
     tip contact; ``"nominal"``: without): at every position and torque T the loaded TE at
     T, and the mesh stiffness as the secant over the two load steps that bracket T in the
     reference (``bracket_torque_Nm``), as the reference defines it (a tangent differs
     from that secant where a tip corner closes between the steps). Returns
     ``transmission_error_m`` and ``mesh_stiffness_N_per_m`` of shape (n_torques,
-    n_positions)."""
+    n_positions). ``entries`` and ``text`` (the gearbox) replace the run's, e.g. the
+    rounded-tip run (:func:`rounded_run`)."""
     from pipeline.contact.ltca import loaded_mesh_cycle
 
-    box, src = _demo_source(demo_pair_text(run == "full"), cache)
+    box, src = _demo_source(demo_pair_text(run == "full") if text is None else text, cache)
     rb1 = box.pair.pinion.base_radius
-    entries = reference["runs"][run]
+    entries = reference["runs"][run] if entries is None else entries
     te = np.empty((len(reference["torques_Nm"]), len(entries)))
     k = np.empty_like(te)
 
@@ -1076,10 +1084,17 @@ REGENERATE = (
 """The commands that wrote the committed reference (each ``run`` appends to its log)."""
 
 
-def _demo_pair() -> GearPair:
+def _demo_pair(tip_rounding_mm: float = 0.0) -> GearPair:
     from pipeline.config.gearbox import gearbox_from_text
 
-    return gearbox_from_text(demo_pair_text(), name="reference").pair
+    return gearbox_from_text(demo_pair_text(True, tip_rounding_mm), name="reference").pair
+
+
+def rounded_run(reference: dict) -> tuple[list[dict], str]:
+    """The rounded-tip run of the reference (entries at a subset of the rounded pair's
+    mesh-cycle positions) and the gearbox text gearpipe compares it with."""
+    r = reference["rounded"]
+    return r["entries"], demo_pair_text(True, r["tip_rounding_m"] * 1e3)
 
 
 def _settings(args) -> ReferenceSettings:
@@ -1212,6 +1227,15 @@ def _cmd_update(args) -> int:
         entry["run"] = args.run
         entry["ccx_wall_time_s"] = sum(e["wall_s"] for e in entries)
     doc["convergence"] += _convergence_entries(pair, args.convergence, args.slave)
+    if args.rounded:
+        rpair = _demo_pair(args.tip_rounding)
+        entries = [e for log in args.rounded for e in _read_log(log)]
+        for e in entries:
+            _reflag(rpair, e)
+        doc["rounded"] = {"tip_rounding_m": args.tip_rounding * 1e-3,
+                          "positions_m": rpair.mesh_cycle(POSITIONS).tolist(),
+                          "entries": sorted(entries, key=lambda e: e["s0_m"])}
+        entry["rounded"] = args.tip_rounding
     doc["provenance"].setdefault("updates", []).append(entry)
     args.data.write_text(json.dumps(_finite(doc), indent=1) + "\n")
     print(f"updated {args.data}")
@@ -1219,10 +1243,10 @@ def _cmd_update(args) -> int:
 
 
 def _cmd_run(args) -> int:
-    pair = _demo_pair()
+    pair = _demo_pair(args.tip_rounding)
     s0 = pair.mesh_cycle(args.positions)
     idx = np.array(args.indices if args.indices else range(args.positions), dtype=int)
-    gp = gearpipe_cycle(demo_pair_text(), s0[idx], tuple(args.torques))
+    gp = gearpipe_cycle(demo_pair_text(True, args.tip_rounding), s0[idx], tuple(args.torques))
     t0 = time.perf_counter()
     reference_cycle(pair, s0[idx], tuple(args.torques), _settings(args),
                     gp["transmission_error_m"].T, contact=args.contact, ccx=args.ccx,
@@ -1379,6 +1403,8 @@ def main(argv: list[str] | None = None) -> int:
     run.add_argument("--growth", type=float, default=None, help="element size growth (-)")
     run.add_argument("--penalty", type=float, default=ReferenceSettings.penalty,
                      help="contact penalty, Pa/m")
+    run.add_argument("--tip-rounding", type=float, default=0.0,
+                     help="tip rounding of both gears, mm (0: sharp corners)")
     run.add_argument("--slave", choices=SLAVES, default=ReferenceSettings.slave,
                      help="which tooth of a pair carries the slave surface")
     run.add_argument("--threads", type=int, default=1)
@@ -1415,6 +1441,9 @@ def main(argv: list[str] | None = None) -> int:
                      help="size,fine,tooth,body,growth,penalty:LOG (sizes in mm)")
     upd.add_argument("--slave", choices=SLAVES, default=ReferenceSettings.slave,
                      help="the slave rule of the convergence logs")
+    upd.add_argument("--rounded", type=Path, nargs="*", default=[],
+                     help="logs of a run with rounded tips (--tip-rounding)")
+    upd.add_argument("--tip-rounding", type=float, default=0.0, help="mm")
     upd.add_argument("--note", default="")
     upd.add_argument("--data", type=Path, default=DATA)
     upd.set_defaults(func=_cmd_update)
