@@ -35,10 +35,11 @@ distance from the turning gear's centre is ``a r_b`` (lever factor ``a <= 1``), 
 carries ``Ft = a F_n`` of the line-of-action load and a rigid turn closes its gap ``a``
 times as fast: :func:`along_line_of_action` poses the problem in ``Ft`` (``G / (a
 a^T)``, ``eps / a``, the local model through ``a``), which leaves the solver and its
-convexity unchanged. The local contact of a corner is Hertz of a local corner radius
-0.05 m_n against the mate's involute at the contact point, with Weber's depths at the
-actual radii (a sharp corner's approach is unbounded: :mod:`pipeline.geometry.tip_contact`
-states the model and its effect). Friction is left out there.
+convexity unchanged. The local contact of a corner is Hertz of its tip rounding
+(``tip_rounding_mm``), or for a sharp corner of a local radius 0.05 m_n, against the mate's
+involute at the contact point, with Weber's depths at the actual radii (a sharp corner's
+approach is unbounded: :mod:`pipeline.geometry.tip_contact` states the model and its
+effect). Friction is left out there.
 
 Checked against the independent CalculiX contact model of the demo pair
 (``workflows/reference/calculix_spur_contact.py``, ``tests/test_reference_calculix.py``).

@@ -334,9 +334,10 @@ def contact_pressure_section(dist: LoadDistribution, figures: Sequence[Figure]) 
              "of both gears; the envelope over the mesh cycle is drawn on each flank.",)
     if c is not None:
         notes += ("Teeth touch beyond the path of contact at a tip corner; its pressure is "
-                  "that of a 0.05 m_n corner radius against the mate's flank, an edge load "
-                  "a tip relief longer and deeper than the deflection removes. The largest "
-                  "p_H above is the flanks', on the path of contact.",)
+                  "Hertz of the tip rounding (tip_rounding_mm; a sharp corner: a 0.05 m_n "
+                  "radius) against the mate's flank, an edge load a tip relief longer and "
+                  "deeper than the deflection removes. The largest p_H above is the flanks', "
+                  "on the path of contact.",)
     return Section("contact_pressure", "Contact pressure", (
         quantity("max_hertz_pressure", "largest Hertz pressure p_H on the flanks", "MPa",
                  h.value * MPA),
