@@ -305,3 +305,24 @@ def test_rounded_profile_arc():
     assert np.all(x <= np.interp(r, np.hypot(sharp.x, sharp.y), sharp.x) + 1e-12)
     assert GearPair(g, spur(50, "gear")).s_end == pytest.approx(
         math.sqrt(g.active_tip_radius**2 - g.base_radius**2), rel=1e-15)
+
+
+def test_profile_figure_draws_each_segment_apart():
+    """The tooth-profile panel of a rounded tip: fillet, involute and tip rounding are three
+    lines, each holding only its own points (no line joins the fillet to the tip: the
+    fillet's highest point lies at the form radius), the rounding reaches the tip circle."""
+    from pipeline.geometry.profile import tooth_profile
+    from pipeline.viz.geometry import plot_profile
+
+    g = spur(50, "pinion", tip_rounding=0.6e-3)
+    prof = tooth_profile(g)
+    ax = plot_profile(prof)
+    lines = {ln.get_label(): ln for ln in ax.lines}
+    assert {"fillet", "involute", "tip rounding"} <= set(lines)
+    fx, fy = lines["fillet"].get_data()
+    assert np.hypot(fx, fy).max() == pytest.approx(prof.form_radius * 1e3, rel=1e-9)
+    rx, ry = lines["tip rounding"].get_data()
+    assert np.hypot(rx, ry).max() == pytest.approx(g.tip_radius_ * 1e3, rel=1e-12)
+    assert np.hypot(rx, ry).min() == pytest.approx(g.active_tip_radius * 1e3, rel=1e-9)
+    sharp = plot_profile(tooth_profile(spur(50, "pinion")))
+    assert "tip rounding" not in {ln.get_label() for ln in sharp.lines}

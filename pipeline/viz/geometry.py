@@ -15,7 +15,13 @@ import numpy as np
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
-from pipeline.geometry.profile import INVOLUTE, ToothProfile, gear_outline
+from pipeline.geometry.profile import (
+    FILLET,
+    INVOLUTE,
+    TIP_ROUNDING,
+    ToothProfile,
+    gear_outline,
+)
 from pipeline.geometry.transverse import TransverseLayout
 from pipeline.viz.canvas import new_figure
 
@@ -213,10 +219,13 @@ def plot_profile(prof: ToothProfile, ax: Axes | None = None, teeth: int = 3) -> 
     g = prof.gear
     out = gear_outline(g, teeth) * 1e3
     ax.plot(out[:, 0], out[:, 1], color="0.3", lw=1.0, label="outline")
-    inv = prof.kind == INVOLUTE
-    ax.plot(prof.x[~inv] * 1e3, prof.y[~inv] * 1e3, "-", color="tab:red", lw=2.2, label="fillet")
-    ax.plot(prof.x[inv] * 1e3, prof.y[inv] * 1e3, "-", color="tab:green", lw=2.2,
-            label="involute")
+    for kind, color, label in ((FILLET, "tab:red", "fillet"), (INVOLUTE, "tab:green", "involute"),
+                               (TIP_ROUNDING, "tab:purple", "tip rounding")):
+        idx = np.flatnonzero(prof.kind == kind)
+        if idx.size:  # each segment from the point where it begins: no line joins the
+            idx = np.r_[idx[0] - 1, idx] if idx[0] > 0 else idx  # fillet to the tip
+            ax.plot(prof.x[idx] * 1e3, prof.y[idx] * 1e3, "-", color=color, lw=2.2,
+                    label=label)
     span = np.linspace(*np.arctan2(out[[-1, 0], 0], out[[-1, 0], 1]), 200)
     for r, style, name in ((g.root_radius, "--", "root"), (g.base_radius, ":", "base"),
                            (prof.form_radius, "-.", "form"), (g.tip_radius_, "-", "tip")):
