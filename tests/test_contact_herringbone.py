@@ -260,3 +260,19 @@ def test_whole_mesh_stiffness_linear(nominal, axial):
     or free."""
     hb = run(nominal, torsion(4.6e7), local="linear", sun_axial=axial)
     np.testing.assert_allclose(hb.mesh_stiffness, hb.load / hb.approach, rtol=1e-9)
+
+
+@pytest.mark.parametrize("sun_axial", ["held", "free"])
+def test_load_beyond_the_tip_zone_is_refused(case, sun_axial):
+    """A load whose elastic approach passes the 200 um tip zone of the candidate points is
+    refused naming the position, as in a single mesh: the corners beyond the zone would
+    be missing from the solution. The case's own load is far inside it."""
+    src, P, N, _ = case
+    one = herringbone_mesh_cycle(src, P, GrooveFlankCoupling.rigid(), N, positions=1,
+                                 options=HerringboneOptions(sun_axial=sun_axial))
+    approach = float(one.approach[0])
+    assert 0.0 < approach < 100e-6
+    with pytest.raises(InputError, match=r"mesh position 0 .*elastic approach .* um reaches "
+                                         r"the 200 um tip zone"):
+        herringbone_mesh_cycle(src, 300e-6 / approach * P, GrooveFlankCoupling.rigid(), N,
+                               positions=1, options=HerringboneOptions(sun_axial=sun_axial))

@@ -29,6 +29,7 @@ from pipeline.contact.separations import FlankModifications
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import contact_radii_at, tip_contact
 from pipeline.operation import OperatingPoint
+from pipeline.validation import InputError
 
 PAIR = GearPair(spur(50, "pinion"), spur(50, "gear"))
 TORQUE = 340.0
@@ -255,3 +256,16 @@ def test_rounded_tips_touch_with_their_rounding():
     assert pair.pinion.active_tip_radius < r1 < pair.pinion.tip_radius_
     np.testing.assert_allclose(np.bincount(cyc.point_position, weights=cyc.point_load), LOAD,
                                rtol=1e-9)
+
+
+def test_load_beyond_the_tip_zone_is_refused():
+    """A load whose elastic approach passes the 200 um tip zone (the corners beyond it are
+    not candidates) is refused in one line naming the position; the demo load is far
+    inside it."""
+    src = analytical_compliance(PAIR, OP, ContactOptions(tip_contact=True))
+    one = loaded_mesh_cycle(src, LOAD, None, "weber", 1)
+    approach = float(one.transmission_error[0])  # the loaded TE is the approach
+    assert 0.0 < approach < 50e-6
+    with pytest.raises(InputError, match=r"^mesh position 0 \(s0 = .* mm\): elastic approach "
+                                         r".* um reaches the 200 um tip zone"):
+        loaded_mesh_cycle(src, 300e-6 / approach * LOAD, None, "weber", 1)

@@ -72,7 +72,13 @@ from pipeline.contact.complementarity import mesh_stiffnesses, solve_contact
 from pipeline.contact.groove_flank import GrooveFlankCoupling
 from pipeline.contact.herringbone_results import LEFT_FRACTION, HerringboneCycle
 from pipeline.contact.hertz import HertzLineContact, LeverScaled
-from pipeline.contact.ltca import LOCAL_MODELS, along_line_of_action, mesh_positions, weber_model
+from pipeline.contact.ltca import (
+    LOCAL_MODELS,
+    along_line_of_action,
+    check_tip_zone,
+    mesh_positions,
+    weber_model,
+)
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, candidate_range
@@ -202,6 +208,7 @@ def herringbone_mesh_cycle(
         if opts.sun_axial == "free":
             sol = solve_contact(G, eps, 0.5 * load, hertz, tol=tol, max_iter=max_iter,
                                 label=label)
+            check_tip_zone(eps, sol.loads, sol.approach, label)
             pL = pR = sol.loads
             x_half = (sol.approach, sol.approach)
             res, tol_i, newton = sol.residual, sol.tolerance, sol.newton_iterations
@@ -219,6 +226,7 @@ def herringbone_mesh_cycle(
             eps2 = np.concatenate([eps + t * za, eps - t * za])
             sol = solve_contact(G2, eps2, load, None if hertz is None else _stack_hertz(hertz),
                                 tol=tol, max_iter=max_iter, label=label)
+            check_tip_zone(eps2, sol.loads, sol.approach, label)
             pL, pR = sol.loads[:n], sol.loads[n:]
             res, tol_i, newton = sol.residual, sol.tolerance, sol.newton_iterations
             x_half = None

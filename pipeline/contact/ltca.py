@@ -108,14 +108,15 @@ def along_line_of_action(pair: GearPair, points: ContactPoints, G: np.ndarray, e
     return G / np.outer(a, a), eps / a, hertz, a
 
 
-def _check_tip_zone(eps: np.ndarray, sol, label: str) -> None:
-    """Refuse a solution whose elastic approach (beyond the smallest separation ``eps`` of
-    a loaded point, m) would close a tip corner beyond the candidate zone
-    (:data:`~pipeline.contact.source.TIP_GAP`): its loads would be wrong."""
-    loaded = sol.loads > 0.0
+def check_tip_zone(eps: np.ndarray, loads: np.ndarray, approach: float, label: str) -> None:
+    """Refuse a solution whose elastic approach (``approach`` beyond the smallest
+    separation ``eps`` of a point carrying ``loads > 0``, m) would close a tip corner beyond
+    the candidate zone (:data:`~pipeline.contact.source.TIP_GAP`): its loads would be
+    wrong."""
+    loaded = loads > 0.0
     if not loaded.any():
         return
-    elastic = sol.approach - float(np.min(eps[loaded]))
+    elastic = approach - float(np.min(eps[loaded]))
     if elastic >= TIP_GAP:
         raise InputError(f"{label}: elastic approach {elastic * 1e6:.4g} um reaches the "
                          f"{TIP_GAP * 1e6:.4g} um tip zone of the candidate points: the load "
@@ -218,7 +219,7 @@ def loaded_mesh_cycle(
         keys = _keys(pts)
         sol = solve_contact(Gt, eps_t, load, hertz, tol=tol, max_iter=max_iter,
                             start=_warm_start(prev_keys, prev_loads, keys), label=label)
-        _check_tip_zone(eps_t, sol, label)
+        check_tip_zone(eps_t, sol.loads, sol.approach, label)
         prev_keys, prev_loads = keys, sol.loads
         # the local approach along each point's own normal: a tip corner's is a times
         # the one along the line of action

@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.contact.source import ContactPoints
+from pipeline.contact.source import ContactPoints, candidate_range
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
 from pipeline.validation import InputError, check_choice, check_range
@@ -155,8 +155,6 @@ def reach_in_pitches(pair: GearPair, tip_contact: bool = True) -> float:
     """How far a tooth pair can touch beyond the start of the path of contact, in base
     pitches: the transverse contact ratio, or with ``tip_contact`` the path and the tip
     zone past its end over ``p_bt``."""
-    from pipeline.contact.source import candidate_range
-
     hi = candidate_range(pair, tip_contact)[1]
     return (hi - pair.s_start) / pair.base_pitch
 
