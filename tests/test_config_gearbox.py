@@ -88,6 +88,16 @@ BAD_INPUTS = [
     ("fe range of the 3D source", (BASE + '[contact]\ncompliance = "fe3d"\n'
                                    '[fe]\nrefinement = 9.0\n').encode(),
      ["fe.refinement = 9", "[0.2, 4]"]),
+    ("2D patch of the 3D source", (BASE + '[contact]\ncompliance = "fe3d"\n'
+                                   '[fe]\npatch_mn = 0.05\n').encode(),
+     ["fe.patch_mn applies to [contact] compliance = 'fe2d' only", "'fe3d'"]),
+    ("2D patch out of range", (BASE + '[contact]\ncompliance = "fe2d"\n'
+                               '[fe]\npatch_mn = 0.5\n').encode(),
+     ["fe.patch_mn = 0.5", "[0.02, 0.2]"]),
+    ("2D patch finer than the mesh", (BASE + '[contact]\ncompliance = "fe2d"\n'
+                                      '[fe]\npatch_mn = 0.05\n').encode(),
+     ["fe.patch_mn = 0.05 m_n is finer than the mesh resolves at fe.refinement = 1",
+      "must be at least 0.1 / fe.refinement = 0.1 m_n"]),
 ]
 
 

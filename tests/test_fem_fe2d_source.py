@@ -249,3 +249,24 @@ def test_spur_sector_at_refinement_4(spur_pair_z50):
     c = [analyse_sector(g, FE2DSettings(teeth=3, points=10, refinement=r)).summary()[
         "fe_compliance_pitch_m2_per_N"] for r in (2.0, 4.0)]
     assert c[1] == pytest.approx(c[0], rel=3e-3)
+
+
+def test_patch_sets_the_load_and_how_close_the_grid_comes_to_the_tip(tmp_path):
+    """``FE2DSettings.patch`` (m_n) is the load patch half-width of the tables, and their
+    grid ends 1.1 patch half-widths of involute arc inside the tip (and the form circle);
+    a different patch is another cache entry. A patch below the default that the mesh does
+    not resolve (``patch < 0.1 / refinement``) is refused naming both keys."""
+    for patch, refinement in ((0.1, 0.5), (0.05, 2.0)):
+        src = FE2DCompliance.build(SMALL, FE2DSettings(points=6, refinement=refinement,
+                                                       patch=patch), cache=Cache(tmp_path))
+        for gear, table in ((SMALL.pinion, src.pinion_table), (SMALL.gear, src.gear_table)):
+            rb, m = gear.base_radius, gear.module
+            assert table.patch_half_width == pytest.approx(patch * m, rel=1e-12)
+            arc_tip = (gear.active_tip_radius**2 - rb**2) / (2 * rb)
+            assert arc_tip - table.points.arc.max() == pytest.approx(1.1 * patch * m, rel=1e-9)
+    assert len(list(tmp_path.glob("fe2dtable-*.npz"))) == 4
+    with pytest.raises(InputError, match=r"fe.patch = 0.05 m_n is finer than the mesh "
+                                         r"resolves at fe.refinement = 1"):
+        FE2DSettings(patch=0.05)
+    with pytest.raises(InputError, match="fe.patch"):
+        FE2DSettings(patch=0.3, refinement=2.0)

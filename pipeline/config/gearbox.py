@@ -393,10 +393,11 @@ def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> FE2DSettings | FE3DS
     table = doc.get("fe", {})
     values = read_table(table, T.FE, "fe")
     accepted = T.FE_MODEL_KEYS[contact.compliance]
+    written = {key.field or key.name: key.name for key in T.FE}
     for k in values:
         if k not in accepted:
             used = [c for c, keys in T.FE_MODEL_KEYS.items() if k in keys]
-            raise InputError(f"fe.{k} applies to [contact] compliance = "
+            raise InputError(f"fe.{written.get(k, k)} applies to [contact] compliance = "
                              f"{' or '.join(repr(c) for c in used)} only; this file's contact "
                              f"compliance is {contact.compliance!r}")
     three_d = contact.compliance == "fe3d"

@@ -172,13 +172,16 @@ FE = (
     Key("kind", S, choices=("plane_strain", "plane_stress"), help="2D model"),
     Key("mesh", S, choices=("graded", "uniform"),
         help="2D source: graded from the loaded teeth (default) or uniform"),
+    Key("patch_mn", N, field="patch",
+        help="2D source: load patch half-width in m_n (the flank grid ends 1.1 patch "
+             "inside the involute; below 0.1, at least 0.1 / refinement)"),
     Key("face_points", I, help="3D: tabulated points across the face width"),
     Key("ends", S, choices=("free", "sliding"), help="3D: end faces free or u_z = 0"),
     Key("solver", S, help="3D: linear solver (pipeline.fem.solvers)"),
 )
 FE_MODEL_KEYS = {
     "analytical": ("teeth", "points", "refinement", "kind"),
-    "fe2d": ("teeth", "points", "refinement", "kind", "mesh"),
+    "fe2d": ("teeth", "points", "refinement", "kind", "mesh", "patch"),
     "fe3d": ("teeth", "points", "refinement", "face_points", "ends", "solver"),
 }
 """The ``[fe]`` keys of the FE model each ``[contact] compliance`` reads (each names the

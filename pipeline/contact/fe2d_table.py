@@ -6,8 +6,8 @@ the half-plane near field, m^2/N per unit face width) on ``radii`` points of the
 flank of every tooth that a tooth pair in contact can reach, from one factorisation.
 
 Profile points are equally spaced in the arc coordinate of the involute between the
-form (or base) circle and the tip, ``0.11 m_n`` of arc inside both ends (the load patch,
-half-width ``0.1 m_n``, stays on the involute).
+form (or base) circle and the tip, ``1.1 c`` of arc inside both ends (the load patch,
+half-width ``c = settings.patch`` m_n, 0.1 by default, stays on the involute).
 
 Tables are cached on disk by a content hash of the gear, the mesh settings, the points
 and the boundary conditions (``meshes/fe2dtable-<hash>.npz``, written atomically by
@@ -60,7 +60,7 @@ def sector_settings(gear: GearSpec, settings: FE2DSettings, loaded: np.ndarray
 
 def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> FlankPoints:
     """Right-flank points: ``settings.points`` radii on each of ``teeth`` (ascending)."""
-    r = table_radii(gear, settings.points)
+    r = table_radii(gear, settings.points, settings.patch)
     return flank_points(gear, sector_teeth(gear, settings), np.repeat(teeth, r.size),
                         np.tile(r, teeth.size))
 
@@ -99,13 +99,15 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
                        "lower fe.points")
     pts = table_points(gear, settings, teeth)
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
-              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts}
+              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
+              "patch": settings.patch}
 
     def build() -> InfluenceMatrix:
         t = time.perf_counter()
         sec = sector_mesh_2d(gear, ss, cache=cache)
         t_mesh = time.perf_counter() - t
-        G = influence_matrix(sec, pts, kind=settings.kind, cuts=settings.cuts)
+        G = influence_matrix(sec, pts, settings.patch * gear.module, kind=settings.kind,
+                             cuts=settings.cuts)
         G.timings["mesh"] = t_mesh
         G.timings["total"] += t_mesh
         return G

@@ -153,12 +153,13 @@ def active_radii(gear: GearSpec, n: int, lo: float | None = None, hi: float | No
     return np.sqrt(2 * rb * arcs + rb * rb)
 
 
-def table_radii(gear: GearSpec, n: int) -> np.ndarray:
+def table_radii(gear: GearSpec, n: int, patch: float = 0.1) -> np.ndarray:
     """``n`` tabulated involute radii (m), ascending: as close to both ends of the involute
-    as the load patch (0.1 m_n) allows."""
+    as the load patch of half-width ``patch`` m_n allows (1.1 patch of arc inside)."""
     from pipeline.geometry.profile import tooth_profile
 
     form = tooth_profile(gear).form_radius
+    margin = 1.1 * patch * gear.module
     if gear.internal:
-        return active_radii(gear, n, hi=min(form, gear.root_radius), margin=0.11 * gear.module)
-    return active_radii(gear, n, lo=max(form, gear.base_radius), margin=0.11 * gear.module)
+        return active_radii(gear, n, hi=min(form, gear.root_radius), margin=margin)
+    return active_radii(gear, n, lo=max(form, gear.base_radius), margin=margin)

@@ -81,6 +81,13 @@ class FE2DSettings:
         (0.05..2).
     body_size : graded mesh: largest element size, in m_n (tooth_size..20).
     growth : graded mesh: element size growth per distance from the outline (0.05..1).
+    patch : load patch half-width c of the influence coefficients in normal modules
+        (0.02..0.2, default 0.1; :func:`pipeline.fem.influence.influence_matrix`). The
+        flank grid ends ``1.1 c`` inside both ends of the involute (a patch must lie on
+        it), so a smaller patch brings the grid closer to the tip, where a tip corner
+        loads its tooth (beyond the grid its compliance is extrapolated,
+        :mod:`pipeline.contact.fe2d_source`); a patch below the default must be resolved
+        by the mesh: ``c >= 0.1 / refinement`` m_n (1.2 flank elements).
     """
 
     teeth: int | None = None
@@ -93,6 +100,7 @@ class FE2DSettings:
     tooth_size: float = GRADED_TOOTH
     body_size: float = GRADED_BODY
     growth: float = GRADED_GROWTH
+    patch: float = 0.1
 
     def __post_init__(self) -> None:
         if self.teeth is not None:
@@ -107,6 +115,12 @@ class FE2DSettings:
         check_range("fe.tooth_size", self.tooth_size, 0.05, 2.0, unit="m_n")
         check_range("fe.body_size", self.body_size, self.tooth_size, 20.0, unit="m_n")
         check_range("fe.growth", self.growth, 0.05, 1.0)
+        check_range("fe.patch", self.patch, 0.02, 0.2, unit="m_n")
+        if self.patch < 0.1 and self.patch * self.refinement < 0.1 * (1.0 - 1e-9):
+            raise InputError(f"fe.patch = {self.patch:g} m_n is finer than the mesh resolves at "
+                             f"fe.refinement = {self.refinement:g}: a patch below 0.1 m_n must "
+                             f"be at least 0.1 / refinement = {0.1 / self.refinement:.4g} m_n "
+                             "(1.2 flank elements); raise fe.refinement or fe.patch")
 
     @property
     def sector_teeth(self) -> int:
