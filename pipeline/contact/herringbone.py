@@ -82,6 +82,7 @@ from pipeline.contact.ltca import (
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, candidate_range
+from pipeline.contact.tangency import TangencyContact
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -129,10 +130,14 @@ class HerringboneOptions:
                              "held sun (sun_axial = \"held\"); a free sun has no axial support")
 
 
-def _stack_hertz(h: HertzLineContact | LeverScaled) -> HertzLineContact | LeverScaled:
+def _stack_hertz(h: HertzLineContact | LeverScaled | TangencyContact
+                 ) -> HertzLineContact | LeverScaled | TangencyContact:
     """The same local contact model on the points of both halves (2n,)."""
     if isinstance(h, LeverScaled):
         return LeverScaled(_stack_hertz(h.model), np.concatenate([h.lever, h.lever]))
+    if isinstance(h, TangencyContact):
+        return TangencyContact(_stack_hertz(h.base), np.concatenate([h.ratio, h.ratio]),
+                               np.concatenate([h.offset, h.offset]))
     return HertzLineContact(*(np.concatenate([a, a]) for a in (
         h.slice_width, h.radius_1, h.radius_2, h.depth_1, h.depth_2)),
         h.material_1, h.material_2)

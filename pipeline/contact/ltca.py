@@ -53,13 +53,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pipeline.contact.complementarity import solve_contact
-from pipeline.contact.hertz import HertzLineContact, LeverScaled
+from pipeline.contact.hertz import HertzLineContact, LeverScaled, effective_radius
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import TIP_GAP, ComplianceSource, ContactPoints, candidate_range
+from pipeline.contact.tangency import Q_MIN, TangencyContact
 from pipeline.geometry.pair import GearPair
-from pipeline.geometry.tip_contact import contact_radii_at, curvature_radii_at
+from pipeline.geometry.tip_contact import contact_radii_at, curvature_radii_at, tangency_offset
 from pipeline.geometry.tip_contact import tip_contact as tip_contact_geometry
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance, load_geometry
@@ -68,7 +69,7 @@ from pipeline.validation import InputError, check_choice, check_int_range, check
 LOCAL_MODELS = ("weber", "linear", "none")
 
 
-def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
+def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact | TangencyContact:
     """Yang et al. (2026), eq. (24) local approach of the candidate points (n,).
 
     ``h_k`` is the distance from the contact point along the load line (the
@@ -76,7 +77,12 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
     with the half thickness ``h_c`` at the load point (the ``k_1, k_2`` of Yang et al. 2026).
     Beyond the path of contact the point is a tip corner: Hertz of its edge rounding
     against the mate's flank (:func:`~pipeline.geometry.tip_contact.curvature_radii_at`),
-    with the depths at the actual contact radii.
+    with the depths at the actual contact radii. With a tip rounded by design, the points
+    of that gear's tip half take Weber's model with the involute's radius (at the
+    tangency, for points on the rounding) and the correction of
+    :mod:`pipeline.contact.tangency` for a patch that spans the tangency: zero where the
+    involute's patch ends before it, the rounding's own Hertz where the rounding's patch
+    lies past it.
     """
     rho1, rho2 = curvature_radii_at(pair, points.s)
     r1, r2 = contact_radii_at(pair, points.s)
@@ -84,12 +90,47 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact:
     for gear, r in ((pair.pinion, r1), (pair.gear, r2)):
         angle, h_c, _ = load_geometry(gear, r)
         depths.append(np.abs(h_c / np.cos(angle)))
-    # The Hertz half-width and pressure depend on the radii only through
-    # R = rho1 rho2 / (rho1 + rho2) (a concave ring flank: rho2 < 0, R > rho1), and
-    # HertzLineContact takes two convex radii; two equal radii 2R have that R.
-    radius = 2.0 * rho1 * rho2 / (rho1 + rho2)
-    return HertzLineContact(points.width, radius, radius, depths[0], depths[1],
-                            pair.pinion.material, pair.gear.material)
+
+    def model(rho_a, rho_b) -> HertzLineContact:
+        # The Hertz half-width and pressure depend on the radii only through
+        # R = rho1 rho2 / (rho1 + rho2) (a concave ring flank: rho2 < 0, R > rho1), and
+        # HertzLineContact takes two convex radii; two equal radii 2R have that R.
+        radius = 2.0 * rho_a * rho_b / (rho_a + rho_b)
+        return HertzLineContact(points.width, radius, radius, depths[0], depths[1],
+                                pair.pinion.material, pair.gear.material)
+
+    if not (pair.pinion.tip_rounding or pair.gear.tip_rounding):
+        return model(rho1, rho2)
+    # A rounded tip near its tangency with the involute: Weber with the involute's radius
+    # there and the correction of :mod:`pipeline.contact.tangency` (the rounding's own
+    # Hertz far past the tangency, the involute's well before it: unchanged there)
+    ratio, offset = np.ones(rho1.shape), np.zeros(rho1.shape)
+    rho1_i, rho2_i = rho1.copy(), rho2.copy()
+    for k, (gear, r, tip_side) in enumerate(((pair.pinion, r1, points.s >= pair.s_pitch),
+                                             (pair.gear, r2, points.s < pair.s_pitch))):
+        if not gear.tip_rounding:
+            continue
+        e = tangency_offset(gear, r)
+        rounding = tip_side & (e > 0.0)
+        rb = gear.base_radius
+        involute = np.sqrt(np.maximum(gear.active_tip_radius**2 - rb * rb, 0.0))
+        own, mate = (rho1, rho2) if k == 0 else (rho2, rho1)
+        on_involute = np.where(rounding, involute, own)  # own: rho_r on the rounding
+        r_i = effective_radius(on_involute, mate)
+        r_r = effective_radius(gear.tip_rounding, mate)
+        near = tip_side & (e > -2.0 * gear.module)
+        q = np.minimum(r_r / r_i, 1.0)
+        if (near & (q < Q_MIN)).any():
+            name = "pinion" if k == 0 else "gear"
+            raise InputError(f"{name}.tip_rounding = {gear.tip_rounding * 1e3:.6g} mm is below "
+                             f"{Q_MIN:g} of the flanks' effective radius "
+                             f"({float(np.max(r_i[near])) * 1e3:.4g} mm) that the tangency "
+                             "contact model resolves: give a larger rounding, or 0 for a "
+                             "sharp corner")
+        ratio = np.where(near, q, ratio)
+        offset = np.where(near, e, offset)
+        (rho1_i if k == 0 else rho2_i)[rounding] = involute
+    return TangencyContact(model(rho1_i, rho2_i), ratio, offset)
 
 
 def along_line_of_action(pair: GearPair, points: ContactPoints, G: np.ndarray, eps: np.ndarray,

@@ -55,7 +55,9 @@ path the rounding's circle touches the mate: :func:`tip_contact` gives its gap i
 form (the rounding's centre on a parallel involute; a faster-growing gap than the sharp
 corner's: 0.86 against 0.10 um at 0.1 mm of roll past the sharp path's end for 0.15 mm,
 14.1 against 10.0 um at 1 mm), and the local contact is Hertz of the rounding against the
-mate's involute (:func:`corner_radius`).
+mate's involute (:func:`corner_radius`), which the loaded contact corrects where the
+contact patch spans the tangency (:func:`tangency_offset` locates the contact point
+relative to it).
 
 Lengths in m, angles in rad. The tip corner is the end of the involute on the tip circle
 (an unrounded, unchamfered tip).
@@ -295,6 +297,28 @@ def curvature_radii_at(pair: GearPair, s: ArrayLike) -> tuple[np.ndarray, np.nda
     rho1 = np.where(after, corner_radius(pair.pinion), np.where(before, flank1, rho1))
     rho2 = np.where(before, corner_radius(pair.gear), np.where(after, flank2, rho2))
     return rho1, rho2
+
+
+def tangency_offset(gear, radius: ArrayLike) -> np.ndarray:
+    """Arc distance (m) of contact points at ``radius`` (m) on ``gear``'s flank from the
+    tangency of its tip rounding with the involute: on the rounding (``radius`` above the
+    active tip radius) ``rho (gamma_T - gamma(r))`` >= 0, the arc along the rounding's
+    circle (centre on the circle ``r_a - rho``, ``cos gamma = (r^2 - r_c^2 - rho^2) /
+    (2 r_c rho)``, gamma the angle at the centre between the point and the gear's radial
+    line); on the involute the difference of the involute arc coordinates ``(r^2 -
+    r_b^2) / (2 r_b)``, < 0. NaN for a gear without a rounding."""
+    r = np.asarray(radius, dtype=float)
+    rho = gear.tip_rounding
+    if rho == 0.0:
+        return np.full(r.shape, np.nan)
+    rb, rt, rc = gear.base_radius, gear.active_tip_radius, gear.tip_radius_ - rho
+
+    def gamma(x):
+        return np.arccos(np.clip((x * x - rc * rc - rho * rho) / (2.0 * rc * rho), -1.0, 1.0))
+
+    on_arc = rho * (gamma(rt) - gamma(np.minimum(r, gear.tip_radius_)))
+    on_involute = (r * r - rt * rt) / (2.0 * rb)
+    return np.where(r > rt, on_arc, on_involute)
 
 
 def tip_zone(pair: GearPair, max_gap: float) -> tuple[float, float]:

@@ -265,17 +265,29 @@ def _rotate(xy: np.ndarray, angle: float) -> np.ndarray:
     return xy @ np.array([[c, s], [-s, c]])
 
 
-def _tooth_pieces(gear: GearSpec, points: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Right flank (root middle -> tip corner), tip land (right -> left corner) and left flank
-    (tip corner -> root middle) of the tooth on +y, each (n, 2) in m, counter-clockwise."""
+def _tooth_pieces(gear: GearSpec, points: int) -> list[tuple[str, np.ndarray]]:
+    """The outline of the tooth on +y, counter-clockwise, as named pieces, each (n, 2) in m:
+    the right flank (root middle -> tip corner), the tip land (right -> left corner) and the
+    left flank (tip corner -> root middle). A rounded tip's arcs are pieces of their own
+    (``"right_rounding"`` after the right flank's involute, ``"left_rounding"`` before the
+    left flank's), so the splines through the points do not smooth the curvature jump at
+    the tangency (one spline through both bulged 55 nm off the profile there)."""
+    from pipeline.geometry.profile import TIP_ROUNDING
+
     prof = tooth_profile(gear, points)
     right = np.column_stack([prof.x, prof.y])
     ra = float(np.hypot(*right[-1]))
     half = math.atan2(right[-1, 0], right[-1, 1])
     t = np.linspace(half, -half, 17)
     tip = np.column_stack([ra * np.sin(t), ra * np.cos(t)])
-    left = right[::-1] * np.array([-1.0, 1.0])
-    return right, tip, left
+    mirror = np.array([-1.0, 1.0])
+    arc = np.flatnonzero(np.asarray(prof.kind) == TIP_ROUNDING)
+    if arc.size == 0:
+        return [("right", right), ("tip", tip), ("left", right[::-1] * mirror)]
+    k = int(arc[0]) - 1  # the tangency point ends the involute and starts the arc
+    flank, rounding = right[:k + 1], right[k:]
+    return [("right", flank), ("right_rounding", rounding), ("tip", tip),
+            ("left_rounding", rounding[::-1] * mirror), ("left", flank[::-1] * mirror)]
 
 
 def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings) -> GearMesh:
@@ -283,7 +295,7 @@ def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings
     from pipeline.fem.gmsh_session import gmsh_session, size_from_fields
 
     z = gear.teeth
-    right, tip, left = _tooth_pieces(gear, settings.profile_points)
+    pieces = _tooth_pieces(gear, settings.profile_points)
     fine_set = {j % z for j in fine}
     with gmsh_session() as gmsh:
         geo = gmsh.model.geo
@@ -291,7 +303,7 @@ def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings
         loop, contact_curves, fine_curves, other_curves, side = [], [], [], [], {}
         for j in range(z):
             ang = 2.0 * math.pi * j / z
-            for name, piece in (("right", right), ("tip", tip), ("left", left)):
+            for name, piece in pieces:
                 pts = _rotate(piece, ang)
                 if prev is None:
                     first = prev = geo.addPoint(*pts[0], 0.0)
@@ -304,7 +316,7 @@ def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings
                 side[c] = (j, name)
                 if j not in fine_set:
                     other_curves.append(c)
-                elif name == "left":
+                elif name.startswith("left"):
                     fine_curves.append(c)
                 else:
                     contact_curves.append(c)
@@ -344,7 +356,7 @@ def gear_mesh(gear: GearSpec, fine: tuple[int, ...], settings: ReferenceSettings
         tri = lookup[conn.astype(np.int64)].reshape(-1, 6)
         edge_blocks = []
         for c, (j, name) in side.items():
-            if j not in fine_set or name == "left":
+            if j not in fine_set or name.startswith("left"):
                 continue
             _, en = gmsh.model.mesh.getElementsByType(8, c)
             e = lookup[en.astype(np.int64)].reshape(-1, 3)
