@@ -139,15 +139,16 @@ corner model's radius moves gearpipe's TE where a corner carries load (positions
 for 0.05 / 0.1 / 0.15 (the default) / 0.2 / 1 mm.
 
 Tips rounded by design (``run --tip-rounding 0.3``: both gears' tips rounded by 0.3 mm,
-``tip_rounding_mm``; the reference meshes the same rounded profile, three 0.1 mm elements
-along each arc; ``reference["rounded"]``, 8 of the rounded pair's 24 positions, eps_alpha
-1.663): gearpipe within 1 % in TE and 1.4 % in stiffness at 14 of the 16 position-load
-cases, the roundings carrying 20-44 % of the load at 5 of them; TE +4.55 % (100 N m) and
-+1.76 % (340 N m) 0.033 mm of roll past the rounded path's end, where the leaving pair's
-rounding has just taken over from the involute, and +2.49 % at the start of the path
-(100 N m): gearpipe takes Hertz of the rounding alone there, while the contact patch
-(0.1 mm wide) still spans the tangency point (``tests/test_reference_calculix.py`` states
-the 2 % target as an expected failure).
+``tip_rounding_mm``; the reference meshes the same rounded profile, each rounding as a
+curve of its own, three 0.1 mm elements along it; ``reference["rounded"]``, 8 of the
+rounded pair's 24 positions, eps_alpha 1.663): gearpipe within 0.77 % in TE and 0.90 % in
+stiffness at all 16 position-load cases, the roundings carrying 20-44 % of the load at 5
+of them. Where a contact patch spans a rounding's tangency with the involute (positions
+0 and 16) the correction of :mod:`pipeline.contact.tangency` matters: -0.01 and -0.04 %
+at 100 N m, where the rounding's Hertz alone gave -0.65 and +1.42 %. The first rounded run
+drew the involute and the arc as one spline, which bulged 55 nm off the profile at the
+tangency and made the reference 3.2 % stiffer in TE there at 100 N m (the run was redone;
+``provenance["updates"]``).
 
 Cost (the shared 2-core machine, one CalculiX thread per run, two to four runs side by
 side): 16.6k nodes per gear (0.1 mm); CalculiX needed 23 contact iterations for the first
@@ -1376,6 +1377,48 @@ def _cmd_assemble(args) -> int:
     return 0
 
 
+def _cmd_assemble_pair(args) -> int:
+    """Write the reference file of another pair (a gearbox file, ``run --gearbox``) from the
+    JSON-lines logs of its runs: the gearbox text, its provenance, the positions run."""
+    import gmsh
+
+    import pipeline
+
+    text, pair = gearbox_pair(args.gearbox)
+    settings = _settings(args)
+    entries = sorted((e for log in args.log for e in _read_log(log)), key=lambda e: e["s0_m"])
+    cycle = pair.mesh_cycle(args.positions)
+    for e in entries:
+        if not np.isclose(cycle, e["s0_m"], rtol=0, atol=1e-12).any():
+            raise SystemExit(f"{e['s0_m']} m is not a position of the {args.positions}-position "
+                             "mesh cycle")
+        for T, res in zip(args.torques, e["torques"], strict=True):
+            loaded, beyond = pair_flags(pair, e["s0_m"], e["pairs"], res["pair_load_N"], T)
+            res["pair_loaded"], res["pair_beyond_path"] = loaded.tolist(), beyond.tolist()
+    doc = {
+        "description": f"CalculiX plane-strain contact reference of {args.gearbox.name} "
+                       "(workflows/reference/calculix_spur_contact.py); SI units",
+        "provenance": {
+            "calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
+            "gearpipe_version": pipeline.__version__,
+            "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
+                                 *args.argv]),
+            "settings": asdict(settings), "mesh": _mesh_info(pair, settings),
+            "ccx_wall_time_s": sum(e["wall_s"] for e in entries), "note": args.note,
+        },
+        "gearbox": text,
+        "pair": {"teeth": [pair.pinion.teeth, pair.gear.teeth], "module_m": pair.pinion.module,
+                 "face_width_m": pair.face_width, **pair.summary()},
+        "torques_Nm": list(args.torques),
+        "positions_m": cycle.tolist(),
+        "runs": {"full": entries},
+    }
+    args.out.write_text(json.dumps(_finite(doc), indent=1) + "\n")
+    print(f"wrote {args.out}")
+    return 0
+
+
 def _cmd_update(args) -> int:
     """Replace one run of the committed reference file by new logs (a later log replaces
     an earlier one's entry at the same position), or add convergence entries; the rest is
@@ -1666,6 +1709,19 @@ def main(argv: list[str] | None = None) -> int:
     asm.add_argument("--positions", type=int, default=POSITIONS)
     asm.add_argument("--out", type=Path, default=DATA)
     asm.set_defaults(func=_cmd_assemble)
+    asp = sub.add_parser("assemble-pair", help="write another pair's reference JSON")
+    asp.add_argument("--gearbox", type=Path, required=True)
+    asp.add_argument("--log", type=Path, nargs="+", required=True)
+    asp.add_argument("--torques", type=float, nargs="+", required=True, help="N m")
+    asp.add_argument("--positions", type=int, default=POSITIONS)
+    asp.add_argument("--size-contact", type=float, default=0.1, help="mm, as run")
+    asp.add_argument("--size-fine", type=float, default=None, help="mm, as run")
+    asp.add_argument("--size-tooth", type=float, default=None, help="mm, as run")
+    asp.add_argument("--size-body", type=float, default=None, help="mm, as run")
+    asp.add_argument("--note", default="")
+    asp.add_argument("--out", type=Path, required=True)
+    asp.set_defaults(func=_cmd_assemble_pair, growth=None, penalty=ReferenceSettings.penalty,
+                     slave=ReferenceSettings.slave)
     upd = sub.add_parser("update", help="replace a run or add convergence entries in the "
                          "reference JSON, recording the change")
     upd.add_argument("--run", choices=CONTACT_KINDS, default=None)
