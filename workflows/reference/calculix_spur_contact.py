@@ -1345,11 +1345,22 @@ def _convergence_entries(pair: GearPair, specs, slave: str = "gear") -> list[dic
     return out
 
 
-def _cmd_assemble(args) -> int:
-    """Merge the JSON-lines logs of the runs into the committed reference file."""
+def _provenance(args) -> dict:
+    """What a written reference file records of how it was made: versions, date, command."""
     import gmsh
 
     import pipeline
+
+    return {"calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
+            "gearpipe_version": pipeline.__version__,
+            "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
+                                 *args.argv])}
+
+
+def _cmd_assemble(args) -> int:
+    """Merge the JSON-lines logs of the runs into the committed reference file."""
+
 
     pair = _demo_pair()
     settings = ReferenceSettings()
@@ -1362,11 +1373,7 @@ def _cmd_assemble(args) -> int:
         "description": "CalculiX plane-strain contact reference of the demo pair "
                        "(workflows/reference/calculix_spur_contact.py); SI units",
         "provenance": {
-            "calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
-            "gearpipe_version": pipeline.__version__,
-            "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
-            "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
-                                 *args.argv]),
+            **_provenance(args),
             "run_commands": [f"python workflows/reference/calculix_spur_contact.py {c}"
                              for c in REGENERATE],
             "settings": asdict(settings), "mesh": _mesh_info(pair, settings),
@@ -1392,9 +1399,7 @@ def _cmd_assemble(args) -> int:
 def _cmd_assemble_pair(args) -> int:
     """Write the reference file of another pair (a gearbox file, ``run --gearbox``) from the
     JSON-lines logs of its runs: the gearbox text, its provenance, the positions run."""
-    import gmsh
 
-    import pipeline
 
     text, pair = gearbox_pair(args.gearbox)
     settings = _settings(args)
@@ -1411,11 +1416,7 @@ def _cmd_assemble_pair(args) -> int:
         "description": f"CalculiX plane-strain contact reference of {args.gearbox.name} "
                        "(workflows/reference/calculix_spur_contact.py); SI units",
         "provenance": {
-            "calculix_version": ccx_version(), "gmsh_version": gmsh.__version__,
-            "gearpipe_version": pipeline.__version__,
-            "date_utc": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
-            "command": " ".join(["python workflows/reference/calculix_spur_contact.py",
-                                 *args.argv]),
+            **_provenance(args),
             "settings": asdict(settings), "mesh": _mesh_info(pair, settings),
             "ccx_wall_time_s": sum(e["wall_s"] for e in entries), "note": args.note,
         },
