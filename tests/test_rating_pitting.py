@@ -1,0 +1,146 @@
+"""ISO 6336-2 pitting rating (pipeline.rating.pitting) against a published worked example.
+
+Reference: ISO/TR 6336-30:2017, Annex A, example 1 (single helical, case-carburized pair:
+z 17/103, m_n 8 mm, alpha_n 20 deg, beta 15.8 deg, b 100 mm, a 500 mm, x2 = 0, tip
+diameters 159.66 / 872.35 mm, 9000 N m at 360 rpm on the pinion, 50 000 h, ISO VG 320,
+sigma_Hlim 1500 N/mm^2, R_a 1.0 um, E 206 000 N/mm^2, nu 0.3). Its printed values are
+taken as transcribed with their digits in the "Reference" table of ``example_01`` in
+``MATISO_6336.m`` of the public repository gfsReboucas/Drivetrain (the report's own pages
+were not available here); its 2022 edition prints x1 = 0.14522 and the tip diameters
+(quoted in a second public project). Each assertion states the printed value and the
+tolerance of its printed rounding; values that the report derives from rounded
+intermediates (sigma_H from K_v 1.003 and K_Hbeta 1.16) get the tolerance those
+roundings propagate.
+
+The exact ladder below it: Z_NT on each life line at the table's points and log-log
+between them; Z_L and Z_v at their limits (C_ZL at infinite viscosity, C_Zv at infinite
+speed); Z_eps and Z_B / Z_D for a spur pair against their closed forms.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from pipeline.geometry.gear import GearSpec, Material
+from pipeline.geometry.pair import GearPair
+from pipeline.rating import pitting as P
+from pipeline.validation import InputError
+
+MPA = 1e6
+
+
+@pytest.fixture(scope="module")
+def tr30_example_1() -> GearPair:
+    """ISO/TR 6336-30, Annex A, example 1 (the pinion left hand, the wheel right hand)."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=8e-3, pressure_angle=math.radians(20.0),
+                  helix_angle=math.radians(15.8), face_width=0.1, material=steel)
+    pinion = GearSpec(teeth=17, profile_shift=0.14522, hand="left", tip_radius=0.15966 / 2,
+                      name="pinion", **common)
+    wheel = GearSpec(teeth=103, profile_shift=0.0, hand="right", tip_radius=0.87235 / 2,
+                     name="wheel", bore_radius=0.2, **common)
+    return GearPair(pinion, wheel)
+
+
+def test_geometry_of_the_example(tr30_example_1):
+    """The pair closes at the example's a = 500 mm with x1 = 0.14522 (0.1 um); eps_alpha
+    and eps_beta as the example's Z_eps implies (eps_beta > 1: Z_eps = sqrt(1/eps_alpha))."""
+    pair = tr30_example_1
+    assert pair.operating_centre_distance == pytest.approx(0.5, abs=1e-7)
+    assert pair.overlap_ratio > 1.0
+    assert pair.transverse_contact_ratio == pytest.approx(1.549, abs=5e-4)
+
+
+def test_contact_stress_chain(tr30_example_1):
+    """Printed: F_t 127352.0 N, Z_H 2.39533, Z_E 189.81170 sqrt(N/mm^2), Z_eps 0.803,
+    Z_beta 1.01944, Z_B = Z_D = 1.0, sigma_H0 1206.58207 N/mm^2, sigma_H 1301.35343
+    N/mm^2 (with K_A 1.0, K_v 1.003, K_Hbeta 1.16, K_Halpha 1.0: their rounding
+    propagates 0.24 %)."""
+    k_v, k_hbeta = 1.003, 1.16
+    chain = P.contact_stress(tr30_example_1, 9000.0, 360.0, 1.0 * k_v * k_hbeta * 1.0)
+    assert chain.tangential_load == pytest.approx(127352.0, abs=0.5)
+    assert chain.zone_factor == pytest.approx(2.39533, abs=5e-6)
+    assert chain.elasticity_factor == pytest.approx(189.81170 * math.sqrt(MPA), rel=1e-7)
+    assert chain.contact_ratio_factor == pytest.approx(0.803, abs=5e-4)
+    assert chain.helix_factor == pytest.approx(1.01944, abs=5e-6)
+    assert chain.single_pair_factors == (1.0, 1.0)
+    assert chain.nominal == pytest.approx(1206.58207 * MPA, rel=2e-6)
+    rounding = 0.5 * (0.0005 / k_v + 0.005 / k_hbeta)
+    for s in chain.stress:
+        assert s == pytest.approx(1301.35343 * MPA, rel=rounding)
+    assert chain.velocity == pytest.approx(2.664, abs=5e-4)
+
+
+def test_permissible_stress_and_safety(tr30_example_1):
+    """Printed: N_L 1.080e9 / 1.783e8, Z_NT 0.91 / 0.962 (ISO 6336-2 line of hardened
+    steel without pitting, 0.85 at 10^10), Z_L 1.04739, Z_v 0.96911, Z_R 0.96599 (R_z =
+    6 R_a, the standard's conversion, from R_a 1.0 um), Z_W = Z_X = 1.0, sigma_HP
+    1338.48050 / 1414.52551 N/mm^2 and S_H 1.02853 / 1.08696 with S_Hmin 1.0 (the safety
+    factors with the printed sigma_H 1301.35343 N/mm^2)."""
+    pair = tr30_example_1
+    chain = P.contact_stress(pair, 9000.0, 360.0, 1.003 * 1.16)
+    cycles = (360.0 * 60.0 * 50_000.0, 360.0 * 60.0 * 50_000.0 * 17 / 103)
+    assert cycles[0] == pytest.approx(1.080e9, rel=5e-4)
+    assert cycles[1] == pytest.approx(1.783e8, rel=5e-4)
+    sigma_h = 1301.35343 * MPA
+    want = ((0.91, 1338.48050, 1.02853), (0.962, 1414.52551, 1.08696))
+    for n, (znt, hp, sh) in zip(cycles, want, strict=True):
+        r = P.pitting_safety(sigma_h, 1500 * MPA, n, "hardened", 320e-6, 6.0e-6, chain)
+        assert r.life_factor == pytest.approx(znt, abs=5e-4 if znt == 0.962 else 5e-3)
+        assert r.lubricant_factor == pytest.approx(1.04739, abs=5e-6)
+        assert r.velocity_factor == pytest.approx(0.96911, abs=5e-6)
+        assert r.roughness_factor == pytest.approx(0.96599, abs=5e-6)
+        assert (r.work_hardening_factor, r.size_factor) == (1.0, 1.0)
+        assert r.permissible == pytest.approx(hp * MPA, rel=1e-5)
+        assert r.safety == pytest.approx(sh, abs=5e-6)
+
+
+@pytest.mark.parametrize("line", sorted(P.LIFE_LINES))
+def test_life_factor_lines(line):
+    """At every point of its line Z_NT is the table's value; static below the first;
+    log-log between (the geometric mean of two points' cycles gives the geometric mean of
+    their factors); 0.85 at and beyond 10^10, 1.0 with optimum conditions."""
+    points = P.LIFE_LINES[line]
+    for n, z in points:
+        assert P.life_factor(n, line) == pytest.approx(z, rel=1e-12)
+    assert P.life_factor(points[0][0] / 10, line) == points[0][1]
+    for (n0, z0), (n1, z1) in zip(points[:-1], points[1:], strict=True):
+        assert P.life_factor(math.sqrt(n0 * n1), line) == pytest.approx(math.sqrt(z0 * z1),
+                                                                        rel=1e-12)
+    assert P.life_factor(1e12, line) == 0.85
+    assert P.life_factor(1e12, line, optimum=True) == 1.0
+    with pytest.raises(InputError, match="rating.life_line"):
+        P.life_factor(1e6, "soft")
+
+
+def test_lubricant_and_velocity_factors_at_their_limits():
+    """Z_L -> C_ZL + 4 (1 - C_ZL) / 1.44 for an infinitely viscous oil and Z_v -> C_Zv +
+    2 (1 - C_Zv) / sqrt(0.8) at infinite speed; C_ZL 0.83 below 850 and 0.91 above
+    1200 N/mm^2, continuous at both ends."""
+    for s, c in ((800 * MPA, 0.83), (1300 * MPA, 0.91)):
+        assert P.lubricant_factor(s, 1.0) == pytest.approx(c + 4 * (1 - c) / 1.2**2, rel=1e-3)
+        assert P.velocity_factor(s, 1e9) == pytest.approx(
+            c + 0.02 + 2 * (1 - c - 0.02) / math.sqrt(0.8), rel=1e-6)
+    assert P.lubricant_constant(850 * MPA) == pytest.approx(0.83, abs=1e-4)
+    assert P.lubricant_constant(1200 * MPA) == pytest.approx(0.91, abs=1e-4)
+
+
+def test_spur_pair_contact_ratio_and_single_pair_factors():
+    """A spur pair (eps_beta = 0): Z_eps = sqrt((4 - eps_alpha) / 3); Z_B from M1 written
+    out with the pair's diameters; the wheel's Z_D from M2 (for z 17 / 60 both are >= 1)."""
+    from gearsets import spur
+
+    pair = GearPair(spur(17, "pinion"), spur(60, "gear"))
+    chain = P.contact_stress(pair, 100.0, 1000.0, 1.0)
+    ea = pair.transverse_contact_ratio
+    assert chain.contact_ratio_factor == pytest.approx(math.sqrt((4 - ea) / 3), rel=1e-14)
+    p, g = pair.pinion, pair.gear
+    a1 = math.sqrt((p.tip_radius_ / p.base_radius) ** 2 - 1)
+    a2 = math.sqrt((g.tip_radius_ / g.base_radius) ** 2 - 1)
+    tan_w = math.tan(pair.operating_pressure_angle)
+    m1 = tan_w / math.sqrt((a1 - 2 * math.pi / 17) * (a2 - (ea - 1) * 2 * math.pi / 60))
+    m2 = tan_w / math.sqrt((a2 - 2 * math.pi / 60) * (a1 - (ea - 1) * 2 * math.pi / 17))
+    assert chain.single_pair_factors == pytest.approx((max(m1, 1.0), max(m2, 1.0)), rel=1e-14)
+    assert chain.single_pair_factors[0] > 1.0
