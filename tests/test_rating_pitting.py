@@ -144,3 +144,62 @@ def test_spur_pair_contact_ratio_and_single_pair_factors():
     m2 = tan_w / math.sqrt((a2 - 2 * math.pi / 60) * (a1 - (ea - 1) * 2 * math.pi / 17))
     assert chain.single_pair_factors == pytest.approx((max(m1, 1.0), max(m2, 1.0)), rel=1e-14)
     assert chain.single_pair_factors[0] > 1.0
+
+
+@pytest.fixture(scope="module")
+def nrel_stage_3() -> GearPair:
+    """The parallel helical stage of the NREL 5 MW reference gearbox (Nejad et al. 2016) as
+    rated by KISSsoft Release 03/2017 A, "ISO 6336:2006 Method B" (the report
+    ``@NREL_5MW/stage_03.rtf`` of the public repository gfsReboucas/Drivetrain, commit
+    4a88df34): z 24/95, m_n 14 mm, alpha_n 20 deg, beta 10 deg, b 360 mm, x 0.4800 /
+    0.6691, a 861 mm, tip diameters 380.747 / 1395.376 mm, E 206 000 N/mm^2, nu 0.3."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
+                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
+    pinion = GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
+                      bore_radius=0.0896, name="pinion", **common)
+    wheel = GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
+                     bore_radius=0.5967, name="wheel", **common)
+    return GearPair(pinion, wheel)
+
+
+def test_kisssoft_report_of_a_helical_pair(nrel_stage_3):
+    """KISSsoft's printed pitting chain at 40953.0 N m, 1165.9 rpm (5 MW), K_A 1.25, its
+    K_v 1.092, K_Hbeta 1.150 (user given), K_Halpha 1.069, 175 200 h, ISO VG 220, R_z
+    4.80 um, sigma_Hlim 1500 N/mm^2, S_Hmin 1.25, life factors floored at 0.85 (its
+    "normal" material quality; the hardened line reaches 0.85 only at 10^10): a 861.000 mm,
+    eps_alpha 1.463, eps_beta 1.421, F_t 240064.4 N, v 20.83 m/s, Z_H 2.307, Z_eps 0.827,
+    Z_beta 1.008, sigma_H0 570.79 N/mm^2, sigma_H 739.61 N/mm^2 (0.05 % from the printed
+    K's rounding), Z_B = Z_D = 1.00, N_L 12255.788 / 3096.199 million, Z_L 1.020, Z_v
+    1.022, Z_R 1.007, Z_NT 0.850 / 0.881, sigma_HP 1070.64 / 1109.85 N/mm^2, S_H 1.81 /
+    1.88 (on its sigma_H)."""
+    pair = nrel_stage_3
+    assert pair.operating_centre_distance == pytest.approx(0.861, abs=5e-7)
+    assert pair.transverse_contact_ratio == pytest.approx(1.463, abs=5e-4)
+    assert pair.overlap_ratio == pytest.approx(1.421, abs=5e-4)
+    k = 1.25 * 1.092 * 1.150 * 1.069
+    chain = P.contact_stress(pair, 40953.0, 1165.9, k)
+    assert chain.tangential_load == pytest.approx(240064.4, abs=0.5)
+    assert chain.velocity == pytest.approx(20.83, abs=5e-3)
+    assert chain.zone_factor == pytest.approx(2.307, abs=5e-4)
+    assert chain.contact_ratio_factor == pytest.approx(0.827, abs=5e-4)
+    assert chain.helix_factor == pytest.approx(1.008, abs=5e-4)
+    assert chain.nominal == pytest.approx(570.79 * MPA, abs=0.005 * MPA)
+    assert chain.single_pair_factors == (1.0, 1.0)
+    rounding = 0.5 * (0.0005 / 1.092 + 0.0005 / 1.069)
+    assert chain.stress[0] == pytest.approx(739.61 * MPA, rel=rounding + 5e-6)
+    hours = 175_200.0  # the cycles at the printed speed, 1165.9 rpm rounded to 4e-5
+    assert 1165.9 * 60 * hours == pytest.approx(12255.788e6, rel=5e-5)
+    assert 1165.9 * 24 / 95 * 60 * hours == pytest.approx(3096.199e6, rel=5e-5)
+    cycles = (12255.788e6, 3096.199e6)
+    want = ((0.850, 1070.64, 1.81), (0.881, 1109.85, 1.88))
+    for n, (znt, hp, sh) in zip(cycles, want, strict=True):
+        r = P.pitting_safety(739.61 * MPA, 1500 * MPA, n, "hardened", 220e-6, 4.8e-6, chain,
+                             minimum_safety=1.25)
+        assert r.life_factor == pytest.approx(znt, abs=5e-4)
+        assert r.lubricant_factor == pytest.approx(1.020, abs=5e-4)
+        assert r.velocity_factor == pytest.approx(1.022, abs=5e-4)
+        assert r.roughness_factor == pytest.approx(1.007, abs=5e-4)
+        # the printed digit and its N_L's (8 digits of 1e10 cycles): 1e-5
+        assert r.permissible == pytest.approx(hp * MPA, rel=1e-5)
+        assert r.safety == pytest.approx(sh, abs=5e-3)
