@@ -1,0 +1,154 @@
+"""Tooth root bending strength of ISO 6336-3, method B: root stress, permissible root
+stress and the safety factor S_F of each gear.
+
+SI inside (m, N, Pa); the standard's formulas are in mm and N/mm^2 where a factor holds a
+dimensional constant, converted at that line.
+
+* Nominal root stress ``sigma_F0 = F_t / (b m_n) Y_F Y_S Y_beta Y_B Y_DT``
+  (:mod:`pipeline.contact.iso_root_stress`: the form factor, stress correction factor and
+  helix factor of method B, the load at the outer point of single pair contact);
+* face load factor ``K_Fbeta = K_Hbeta^N_F`` with ``N_F = (b/h)^2 / (1 + b/h + (b/h)^2)``,
+  ``b/h`` the face width over the tooth depth, at least 3 (ISO 6336-1:2019, 8.3.3; KISSsoft
+  takes the basic rack's depth ``h_aP + h_fP`` for ``h``);
+* ``sigma_F = sigma_F0 K_A K_gamma K_v K_Fbeta K_Falpha``;
+* ``sigma_FG = sigma_Flim Y_ST Y_NT Y_deltarelT Y_RrelT Y_X`` (``Y_ST = 2``), ``sigma_FP =
+  sigma_FG / S_Fmin`` and ``S_F = sigma_FG / sigma_F``, with
+  - the life factor ``Y_NT`` on the material's line (:data:`LIFE_LINES`, log-log between
+    the table's points, down to 0.85 at 10^10 cycles or 1.0 under optimum conditions);
+  - the relative notch sensitivity ``Y_deltarelT = (1 + sqrt(rho' chi*)) / (1 + sqrt(rho'
+    chi*_T))``, ``chi* = (1 + 2 q_s) / 5``, ``chi*_T = 1.2`` (the test gear's ``q_sT =
+    2.5``), ``rho'`` the material's slip-layer thickness (case-hardened steel 0.0030 mm);
+  - the relative surface factor ``Y_RrelT``: for steels ``1.674 - 0.529 (R_z + 1)^0.1``
+    (``1 <= R_z <= 40`` um, root roughness), 1.120 below 1 um;
+  - the size factor ``Y_X``: case-hardened and nitrided steels ``1.05 - 0.01 m_n`` for
+    ``5 < m_n < 25`` mm (1 at or below 5, 0.8 from 25); through-hardened steels ``1.03 -
+    0.006 m_n`` below 30 mm (0.85 from 30).
+
+``Y_deltarelT``, ``Y_RrelT`` and ``Y_X`` here are their values at and beyond the
+endurance knee of the life line (3 x 10^6 cycles); below it the standard interpolates them
+towards their static values, which is not built: fewer cycles are refused.
+
+Checked against KISSsoft's report of the NREL 5 MW reference gearbox's parallel stage
+(``tests/test_rating_bending.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from pipeline.contact.iso_root_stress import IsoRootStress
+from pipeline.validation import InputError, check_choice, check_range
+
+LIFE_LINES: dict[str, tuple[tuple[float, float], ...]] = {
+    "hardened": ((1e3, 2.5), (3e6, 1.0), (1e10, 0.85)),
+    "through_hardened": ((1e4, 2.5), (3e6, 1.0), (1e10, 0.85)),
+    "nitrided": ((1e3, 1.6), (3e6, 1.0), (1e10, 0.85)),
+    "nitrocarburized": ((1e3, 1.1), (3e6, 1.0), (1e10, 0.85)),
+}
+"""ISO 6336-3 life factor lines (clause 12, table): ``hardened`` Eh, IF (root);
+``through_hardened`` St, V, GGG (perl., bai.), GTS (perl.); ``nitrided`` NT, NV (nitr.),
+GG, GGG (ferr.); ``nitrocarburized`` NV (nitrocar.). (load cycles, Y_NT) at the table's
+points."""
+KNEE = 3e6
+"""Endurance knee of the bending life lines, load cycles."""
+SIZE_CLASSES = ("hardened", "through_hardened")
+
+
+def life_factor(cycles: float, line: str, optimum: bool = False) -> float:
+    """``Y_NT`` at ``cycles`` load cycles on the material ``line`` (:data:`LIFE_LINES`)."""
+    check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
+    check_range("rating.load_cycles", cycles, 0.0, math.inf, lo_open=True)
+    points = list(LIFE_LINES[line])
+    if optimum:
+        points[-1] = (points[-1][0], 1.0)
+    if cycles <= points[0][0]:
+        return points[0][1]
+    for (n0, y0), (n1, y1) in zip(points[:-1], points[1:], strict=True):
+        if cycles <= n1:
+            t = math.log(cycles / n0) / math.log(n1 / n0)
+            return math.exp(math.log(y0) + t * math.log(y1 / y0))
+    return points[-1][1]
+
+
+def face_load_factor(k_hbeta: float, face_width: float, tooth_height: float) -> float:
+    """``K_Fbeta = K_Hbeta^N_F`` for the face width and tooth height (m)."""
+    check_range("rating.K_Hbeta", k_hbeta, 1.0, 10.0)
+    r = max(face_width / tooth_height, 3.0)
+    return k_hbeta ** (r * r / (1.0 + r + r * r))
+
+
+def notch_sensitivity(q_s: float, slip_layer: float) -> float:
+    """``Y_deltarelT`` for the notch parameter ``q_s`` and the slip-layer thickness ``rho'``
+    (m)."""
+    rho = slip_layer * 1e3  # mm
+    chi = (1.0 + 2.0 * q_s) / 5.0
+    return (1.0 + math.sqrt(rho * chi)) / (1.0 + math.sqrt(rho * 1.2))
+
+
+def surface_factor(root_roughness: float) -> float:
+    """``Y_RrelT`` of a steel root with peak-to-valley roughness ``R_z`` (m)."""
+    rz = root_roughness * 1e6
+    check_range("rating.root_roughness_rz", rz, 0.0, 40.0, lo_open=True, unit="um")
+    return 1.120 if rz < 1.0 else 1.674 - 0.529 * (rz + 1.0) ** 0.1
+
+
+def size_factor(module: float, size_class: str) -> float:
+    """``Y_X`` for the normal module (m) of a ``"hardened"`` (case-hardened, nitrided) or
+    ``"through_hardened"`` steel."""
+    check_choice("rating.size_class", size_class, SIZE_CLASSES)
+    m = module * 1e3
+    if size_class == "hardened":
+        return 1.0 if m <= 5.0 else 0.8 if m >= 25.0 else 1.05 - 0.01 * m
+    return 1.0 if m <= 5.0 else 0.85 if m >= 30.0 else 1.03 - 0.006 * m
+
+
+@dataclass(frozen=True)
+class BendingSafety:
+    """Root stress, permissible root stress and safety of one gear (SI).
+
+    Attributes
+    ----------
+    nominal : sigma_F0, Pa (from :class:`~pipeline.contact.iso_root_stress.IsoRootStress`).
+    load_factor : K_A K_gamma K_v K_Fbeta K_Falpha (-).
+    stress : sigma_F, Pa.
+    life_factor, notch_factor, surface_factor, size_factor : Y_NT, Y_deltarelT, Y_RrelT,
+        Y_X (-).
+    limit : sigma_FG, Pa; permissible : sigma_FP, Pa; safety : S_F (-).
+    """
+
+    nominal: float
+    load_factor: float
+    stress: float
+    life_factor: float
+    notch_factor: float
+    surface_factor: float
+    size_factor: float
+    limit: float
+    permissible: float
+    safety: float
+
+
+def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, cycles: float,
+                   line: str, slip_layer: float, root_roughness: float, size_class: str,
+                   module: float, minimum_safety: float = 1.4, optimum: bool = False
+                   ) -> BendingSafety:
+    """``sigma_F``, ``sigma_FP`` and ``S_F`` of a gear from its method-B nominal ``root``
+    stress, the product ``K_A K_gamma K_v K_Fbeta K_Falpha``, its ``sigma_Flim`` (Pa, the
+    test gear's, without ``Y_ST``), ``cycles`` on the life ``line``, the slip-layer
+    thickness (m), the root roughness ``R_z`` (m), the size class and normal module (m)."""
+    check_range("rating.load_factor", load_factor, 1.0, 10.0)
+    check_range("rating.sigma_Flim", sigma_flim, 100e6, 1000e6, unit="Pa")
+    check_range("rating.minimum_safety_bending", minimum_safety, 0.5, 5.0)
+    if cycles < KNEE:
+        raise InputError(f"rating: {cycles:.4g} load cycles lie below the bending endurance knee "
+                         f"({KNEE:.0e}); the finite-life interpolation of Y_deltarelT, Y_RrelT "
+                         "and Y_X is not built yet")
+    ynt = life_factor(cycles, line, optimum)
+    yd = notch_sensitivity(root.q_s, slip_layer)
+    yr = surface_factor(root_roughness)
+    yx = size_factor(module, size_class)
+    limit = sigma_flim * 2.0 * ynt * yd * yr * yx
+    stress = root.sigma_f0 * load_factor
+    return BendingSafety(root.sigma_f0, load_factor, stress, ynt, yd, yr, yx, limit,
+                         limit / minimum_safety, limit / stress)
