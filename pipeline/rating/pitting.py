@@ -38,7 +38,12 @@ S_Hmin``, and the safety factor ``S_H = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X / si
   curvature at the pitch point in mm), ``C_ZR = 0.32 - 0.0002 sigma_Hlim`` within [0.08,
   0.15];
 * work hardening ``Z_W`` and size ``Z_X`` factors: 1 (equal hardness, module within the
-  standard's range for 1); a through-hardened wheel against a harder pinion is refused.
+  standard's range for 1).
+
+``Z_L``, ``Z_v``, ``Z_R`` are their values at and beyond the endurance knee of the life
+line; below it the standard interpolates them towards 1 (static), which is not built:
+fewer cycles are refused. ``Z_W`` for a through-hardened wheel against a harder pinion is
+not built either.
 
 Checked against ISO/TR 6336-30, Annex A, example 1 (``tests/test_rating_pitting.py``).
 """
@@ -243,6 +248,11 @@ def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
     check_range("rating.viscosity_40", viscosity_40, 1e-6, 5000e-6, unit="m^2/s")
     check_range("rating.roughness_rz", roughness, 0.0, 100e-6, lo_open=True, unit="m")
     check_range("rating.minimum_safety_pitting", minimum_safety, 0.5, 5.0)
+    knee = next(n for n, z in LIFE_LINES[line] if z == 1.0) if line in LIFE_LINES else 0.0
+    if cycles < knee:
+        raise InputError(f"rating: {cycles:.4g} load cycles lie below the pitting endurance knee "
+                         f"of the {line} line ({knee:.0e}); the finite-life interpolation of "
+                         "Z_L, Z_v, Z_R, Z_W and Z_X is not built yet")
     znt = life_factor(cycles, line, optimum)
     zl = lubricant_factor(sigma_hlim, viscosity_40)
     zv = velocity_factor(sigma_hlim, chain.velocity)
