@@ -145,3 +145,31 @@ def test_herringbone_halves_sum(helical_traction_pair):
     staggered = stiffness_at(model, s0, 40, half_offset=0.5).total
     assert np.ptp(staggered) < np.ptp(both)
     assert staggered.mean() == pytest.approx(both.mean(), rel=1e-3)
+
+
+def test_iso_stiffness_against_a_kisssoft_report():
+    """ISO 6336-1 method B stiffness against KISSsoft Release 03/2017 A's report of the NREL
+    5 MW reference gearbox's parallel helical stage (``@NREL_5MW/stage_03.rtf`` of the
+    public repository gfsReboucas/Drivetrain, commit 4a88df34; z 24/95, m_n 14 mm,
+    beta 10 deg, b 360 mm, x 0.4800 / 0.6691, tip diameters 380.747 / 1395.376 mm, ISO 53
+    profile A, K_A 1.25, 40953.0 N m). Printed: C_M 0.800, C_R 0.898 (b_s/b 0.250, s_R/m_n
+    5.000), C_B 0.975, c' 13.832 N/(mm um), c_gamma_alpha 18.632, c_gamma_beta 15.837."""
+    from pipeline.geometry.gear import GearSpec, Material
+    from pipeline.stiffness.iso6336 import blank_factor_cr
+
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
+                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
+    pair = GearPair(
+        GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
+                 bore_radius=0.0896, name="pinion", **common),
+        GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
+                 bore_radius=0.5967, name="wheel", **common))
+    c_r = blank_factor_cr(5.0, 0.25)
+    assert c_r == pytest.approx(0.898, abs=5e-4)
+    st = iso_stiffness(pair, 40953.0 / pair.pinion.reference_radius, 1.25, 0.8, c_r)
+    assert st.factors["C_B"] == pytest.approx(0.975, abs=5e-4)
+    unit = 1e9  # N/(mm um) in N/m^2
+    assert st.c_single / unit == pytest.approx(13.832, abs=5e-4)
+    assert st.c_gamma_alpha / unit == pytest.approx(18.632, abs=5e-4)
+    assert st.c_gamma_beta / unit == pytest.approx(15.837, abs=5e-4)
