@@ -3,12 +3,15 @@
 - :mod:`.pitting` - ISO 6336-2 method B: the contact stress chain (Z_H, Z_E, Z_eps,
   Z_beta, Z_B / Z_D, sigma_H0, sigma_H), the permissible contact stress (Z_NT, Z_L, Z_v,
   Z_R, Z_W, Z_X) and S_H of each gear.
+- :mod:`.accuracy` - ISO 1328-1:1995 tolerances of an accuracy grade (f_pt, f_pb, F_p,
+  profile and helix deviations), the inputs of ISO 6336-1's load factors.
 - :mod:`.bending` - ISO 6336-3 method B: sigma_F from the nominal root stress of
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),
   the permissible root stress (Y_ST, Y_NT, Y_deltarelT, Y_RrelT, Y_X) and S_F.
 
 Checked against ISO/TR 6336-30's example 1 (pitting, as transcribed) and KISSsoft's
-report of the NREL 5 MW gearbox's parallel stage (pitting and bending). Not built yet:
+reports of the NREL 5 MW gearbox (pitting and bending of the parallel stage, the
+tolerances of all eight gears). Not built yet:
 ISO 6336-1's K_v, K_Hbeta (method C), K_Halpha; ISO 6336-5's materials; the [rating]
 table, the report section, planetary sets, load spectra (ISO 6336-6), finite-life
 interpolation below the endurance knees.
