@@ -212,3 +212,48 @@ def test_fewer_cycles_than_the_knee_are_refused(tr30_example_1):
     with pytest.raises(InputError, match=r"below the pitting endurance knee of the hardened "
                                          r"line \(5e\+07\)"):
         P.pitting_safety(1e9, 1500 * MPA, 1e7, "hardened", 320e-6, 6e-6, chain)
+
+
+def test_kisssoft_report_of_a_planetary_sun_planet_mesh():
+    """The sun-planet mesh of the NREL 5 MW gearbox's second (spur planetary) stage as
+    KISSsoft Release 03/2017 A rates it (``@NREL_5MW/stage_02.rtf`` of gfsReboucas/
+    Drivetrain, commit 4a88df34): sun z 18, x 0.3890, planet z 36, x 0.50387, m_n 21 mm,
+    alpha_n 20 deg, b 550 mm, a 584 mm, tip diameters 432.838 / 815.663 mm, three planets,
+    162105.5 N m on the sun at 294.5 rpm with the carrier at 47.8 rpm, K_A 1.25,
+    K_gamma 1.10, K_v 1.06, K_Hbeta 2.06, K_Halpha 1.00 (all printed to 2 digits), sigma_Hlim
+    1500 N/mm^2, ISO VG 220, R_z 4.80 um, 175 200 h. The mesh's speed is the sun's relative
+    to the carrier (246.7 rpm: Z_v 0.982 with it; the absolute speed would give 0.986).
+    Printed: F_t 285900.438 N per planet, Z_H 2.25, Z_eps 0.936, Z_B 1.08 (the sun, spur:
+    M1 > 1), Z_D 1.00, sigma_H0 573.40 N/mm^2, sigma_H 1071.17 / 994.13 N/mm^2 (0.6 % from
+    the K's two digits), N_L 7782.3 / 1297.1 million, Z_NT 0.857 / 0.905, Z_L 1.020, Z_v
+    0.982, Z_R 1.007, sigma_HG 1295.42 / 1368.61 N/mm^2."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
+                  material=steel)
+    pair = GearPair(
+        GearSpec(teeth=18, profile_shift=0.389, tip_radius=0.432838 / 2, bore_radius=0.097,
+                 name="sun", **common),
+        GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
+                 bore_radius=0.288, name="planet", **common))
+    assert pair.operating_centre_distance == pytest.approx(0.584, abs=5e-7)
+    k = 1.25 * 1.10 * 1.06 * 2.06 * 1.00
+    chain = P.contact_stress(pair, 162105.5 / 3, 294.5 - 47.8, k)
+    assert chain.tangential_load == pytest.approx(285900.438, rel=5e-7)
+    assert chain.zone_factor == pytest.approx(2.25, abs=5e-3)
+    assert chain.contact_ratio_factor == pytest.approx(0.936, abs=5e-4)
+    assert chain.single_pair_factors[0] == pytest.approx(1.08, abs=5e-3)
+    assert chain.single_pair_factors[1] == 1.0
+    # 573.3946: the sun's shift printed to 4 digits moves it by 1e-5
+    assert chain.nominal == pytest.approx(573.40 * MPA, rel=2e-5)
+    rounding = 0.5 * (0.005 / 1.06 + 0.005 / 2.06 + 0.005 / 1.00)
+    for s, want in zip(chain.stress, (1071.17, 994.13), strict=True):
+        assert s == pytest.approx(want * MPA, rel=rounding)
+    for n, znt, hg in ((7782.3e6, 0.857, 1295.42), (1297.1e6, 0.905, 1368.61)):
+        r = P.pitting_safety(1000 * MPA, 1500 * MPA, n, "hardened", 220e-6, 4.8e-6, chain,
+                             minimum_safety=1.25)
+        assert r.life_factor == pytest.approx(znt, abs=5e-4)
+        assert r.lubricant_factor == pytest.approx(1.020, abs=5e-4)
+        assert r.velocity_factor == pytest.approx(0.982, abs=5e-4)
+        assert r.roughness_factor == pytest.approx(1.007, abs=5e-4)
+        # the printed N_L's five digits move Z_NT by up to 2e-6
+        assert r.permissible * 1.25 == pytest.approx(hg * MPA, rel=2e-5)
