@@ -257,3 +257,53 @@ def test_kisssoft_report_of_a_planetary_sun_planet_mesh():
         assert r.roughness_factor == pytest.approx(1.007, abs=5e-4)
         # the printed N_L's five digits move Z_NT by up to 2e-6
         assert r.permissible * 1.25 == pytest.approx(hg * MPA, rel=2e-5)
+
+
+def test_kisssoft_report_of_a_planet_ring_mesh():
+    """The planet-ring (internal) mesh of the same stage (``stage_02.rtf``): planet z 36,
+    x 0.50387, ring z 93 internal, x 0.11712, tip diameter 1906.081 mm, a 584 mm, F_t
+    285900.438 N per planet, the planet at 123.4 rpm relative to the carrier, K_A 1.25,
+    K_gamma 1.10, K_v 1.06, K_Hbeta 1.15, K_Halpha 1.00; the ring through-hardened 34 CrNiMo
+    6, 240 HBW, sigma_Hlim 700 N/mm^2, R_z 8.0 um (the planet's 4.8 um). The mesh's lower
+    sigma_Hlim sets C_ZL, C_Zv and C_ZR for both gears; Z_W = 1.2 - (240 - 130) / 1700
+    for the ring against the case-hardened planet. Printed: alpha_wt 15.630 deg,
+    eps_alpha 1.618, Z_H 2.85, Z_eps 0.891, Z_B = Z_D = 1.00, sigma_H0 312.44 N/mm^2,
+    sigma_H 404.76 N/mm^2 (the K's two digits), Z_L 1.038, Z_v 0.961, Z_R 1.026, Z_W
+    1.000 / 1.135, N_L 1297.1 / 1506.3 million, Z_NT 0.905 / 0.901, sigma_HG 1388.39 /
+    732.21 N/mm^2."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
+                  material=steel)
+    pair = GearPair(
+        GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
+                 bore_radius=0.288, name="planet", **common),
+        GearSpec(teeth=93, profile_shift=0.1171157, tip_radius=1.906081 / 2,
+                 bore_radius=2.14882 / 2, internal=True, name="ring", **common))
+    assert pair.operating_centre_distance == pytest.approx(0.584, abs=5e-7)
+    # 15.62949 deg, as a = 584 mm gives it exactly (cos = 598.5 cos 20 deg / 584)
+    assert math.degrees(pair.operating_pressure_angle) == pytest.approx(
+        math.degrees(math.acos(598.5 * math.cos(math.radians(20.0)) / 584.0)), abs=1e-6)
+    assert math.degrees(pair.operating_pressure_angle) == pytest.approx(15.630, abs=1e-3)
+    assert pair.transverse_contact_ratio == pytest.approx(1.618, abs=5e-4)
+    k = 1.25 * 1.10 * 1.06 * 1.15 * 1.00
+    chain = P.contact_stress(pair, 285900.438 * pair.pinion.reference_radius, 123.4, k)
+    assert chain.tangential_load == pytest.approx(285900.438, rel=1e-9)
+    assert chain.zone_factor == pytest.approx(2.85, abs=5e-3)
+    assert chain.contact_ratio_factor == pytest.approx(0.891, abs=5e-4)
+    assert chain.single_pair_factors == (1.0, 1.0)
+    assert chain.nominal == pytest.approx(312.44 * MPA, abs=0.005 * MPA)
+    rounding = 0.5 * (0.005 / 1.06 + 0.005 / 1.15 + 0.005 / 1.00)
+    assert chain.stress[1] == pytest.approx(404.76 * MPA, rel=rounding)
+    assert P.work_hardening_factor(240.0) == pytest.approx(1.135, abs=5e-4)
+    gears = ((1500 * MPA, 1297.1e6, 1.0, 0.905, 1388.39),
+             (700 * MPA, 1506.3e6, P.work_hardening_factor(240.0), 0.901, 732.21))
+    for limit, n, zw, znt, hg in gears:
+        r = P.pitting_safety(400 * MPA, limit, n, "hardened", 220e-6, (4.8e-6 + 8.0e-6) / 2,
+                             chain, minimum_safety=1.25, mesh_sigma_hlim=700 * MPA,
+                             work_hardening=zw)
+        assert r.life_factor == pytest.approx(znt, abs=5e-4)
+        assert r.lubricant_factor == pytest.approx(1.038, abs=5e-4)
+        assert r.velocity_factor == pytest.approx(0.961, abs=5e-4)
+        assert r.roughness_factor == pytest.approx(1.026, abs=5e-4)
+        assert r.work_hardening_factor == pytest.approx(zw, rel=1e-15)
+        assert r.permissible * 1.25 == pytest.approx(hg * MPA, rel=3e-5)

@@ -17,10 +17,13 @@ Contact stress (ISO 6336-2:2019, clause 5):
   pitch-point stress to the inner point of single pair contact of each gear:
   ``M1 = tan(alpha_wt) / sqrt((sqrt(d_a1^2 / d_b1^2 - 1) - 2 pi / z1)
   (sqrt(d_a2^2 / d_b2^2 - 1) - (eps_alpha - 1) 2 pi / z2))`` and ``M2`` with the gears
-  swapped; spur: ``Z_B = max(M1, 1)``, ``Z_D = max(M2, 1)``; helical with ``eps_beta >= 1``:
-  1; between: ``M - eps_beta (M - 1)``, at least 1;
+  swapped (the ratio of the relative radii of curvature at the pitch point and at those
+  points, :func:`single_pair_factors`); spur: ``Z_B = max(M1, 1)``, ``Z_D = max(M2, 1)``;
+  helical with ``eps_beta >= 1``: 1; between: ``M - eps_beta (M - 1)``, at least 1; an
+  internal gear's ``Z_D`` is 1;
 * nominal ``sigma_H0 = Z_H Z_E Z_eps Z_beta sqrt(F_t (u + 1) / (d_1 b u))`` with the
-  nominal tangential load ``F_t`` at the reference circle and ``u = z2 / z1``;
+  nominal tangential load ``F_t`` at the reference circle and ``u = z2 / z1`` (negative
+  for an internal pair, ISO 21771);
 * ``sigma_H = Z_B,D sigma_H0 sqrt(K_A K_gamma K_v K_Hbeta K_Halpha)``.
 
 Permissible contact stress (clause 6): ``sigma_HP = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X /
@@ -52,6 +55,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
+import numpy as np
 
 from pipeline.geometry.pair import GearPair
 from pipeline.validation import InputError, check_choice, check_range
@@ -168,35 +173,41 @@ def contact_ratio_factor(eps_alpha: float, eps_beta: float) -> float:
 
 
 def single_pair_factors(pair: GearPair) -> tuple[float, float]:
-    """``(Z_B, Z_D)`` of an external pair."""
-    p, g = pair.pinion, pair.gear
-    eps_a, eps_b = pair.transverse_contact_ratio, pair.overlap_ratio
-    awt = pair.operating_pressure_angle
-    f1 = math.sqrt((p.tip_radius_ / p.base_radius) ** 2 - 1.0)
-    f2 = math.sqrt((g.tip_radius_ / g.base_radius) ** 2 - 1.0)
-    t1, t2 = 2.0 * math.pi / p.teeth, 2.0 * math.pi / g.teeth
-    m1 = math.tan(awt) / math.sqrt((f1 - t1) * (f2 - (eps_a - 1.0) * t2))
-    m2 = math.tan(awt) / math.sqrt((f2 - t2) * (f1 - (eps_a - 1.0) * t1))
+    """``(Z_B, Z_D)``: ``M = sqrt(R_C / R_B)`` with the relative radii of curvature ``R = rho1
+    rho2 / (rho1 + rho2)`` at the pitch point C and at the inner point of single pair
+    contact of the pinion (B, one base pitch inside the end of the path) and of the wheel
+    (D, one base pitch inside its start) - ISO's ``M1`` and ``M2`` written through the
+    curvatures, so a ring's concave flank (``rho2 < 0``) enters as it is; an internal
+    gear's ``Z_D`` is 1 (ISO 6336-2)."""
+    eps_b = pair.overlap_ratio
+    pb = pair.base_pitch
 
-    def factor(m: float) -> float:
+    def relative_radius(s: float) -> float:
+        r1, r2 = pair.curvature_radii(np.array([s]))
+        return float(r1[0] * r2[0] / (r1[0] + r2[0]))
+
+    rc = relative_radius(pair.s_pitch)
+
+    def factor(s: float) -> float:
+        m = math.sqrt(rc / relative_radius(s))
         if eps_b >= 1.0:
             return 1.0
         return max(m - eps_b * (m - 1.0), 1.0)
 
-    return factor(m1), factor(m2)
+    zb = factor(pair.s_end - pb)
+    zd = 1.0 if pair.gear.internal else factor(pair.s_start + pb)
+    return zb, zd
 
 
 def contact_stress(pair: GearPair, torque: float, speed: float, load_factor: float
                    ) -> ContactStress:
     """The contact stress chain at the pinion ``torque`` (N m) and ``speed`` (rpm) with the
     product of the load factors ``K_A K_gamma K_v K_Hbeta K_Halpha`` (-)."""
-    if pair.gear.internal:
-        raise InputError("rating: the pitting rating of an internal pair is not built yet")
     check_range("rating.torque", torque, 0.0, math.inf, lo_open=True, unit="N m")
     check_range("rating.load_factor", load_factor, 1.0, 10.0)
     p, g = pair.pinion, pair.gear
     d1 = 2.0 * p.reference_radius
-    u = g.teeth / p.teeth
+    u = (-1.0 if g.internal else 1.0) * g.teeth / p.teeth  # ISO 21771: negative for a ring
     b = pair.face_width
     ft = 2.0 * torque / d1
     zh, ze = zone_factor(pair), elasticity_factor(pair)
@@ -207,7 +218,7 @@ def contact_stress(pair: GearPair, torque: float, speed: float, load_factor: flo
     root = math.sqrt(load_factor)
     awt = pair.operating_pressure_angle
     rho1 = p.base_radius * math.tan(awt)
-    rho2 = g.base_radius * math.tan(awt)
+    rho2 = (-1.0 if g.internal else 1.0) * g.base_radius * math.tan(awt)  # concave ring
     velocity = p.reference_radius * speed * 2.0 * math.pi / 60.0
     return ContactStress(zh, ze, zeps, zbeta, (zb, zd), ft, sigma0, load_factor,
                          (zb * sigma0 * root, zd * sigma0 * root),
@@ -237,13 +248,26 @@ class PittingSafety:
     safety: float
 
 
+def work_hardening_factor(hardness_hb: float) -> float:
+    """``Z_W`` of a through-hardened gear of Brinell hardness ``hardness_hb`` meshing with a
+    surface-hardened, smooth mate (ISO 6336-2:2006, 10: ``1.2 - (HB - 130) / 1700``, 1.2
+    below 130 HB, 1.0 above 470 HB); 1 for the hardened gear itself."""
+    check_range("rating.hardness_HB", hardness_hb, 50.0, 800.0)
+    return 1.2 - (min(max(hardness_hb, 130.0), 470.0) - 130.0) / 1700.0
+
+
 def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
                    viscosity_40: float, roughness: float, chain: ContactStress,
-                   minimum_safety: float = 1.0, optimum: bool = False) -> PittingSafety:
+                   minimum_safety: float = 1.0, optimum: bool = False,
+                   mesh_sigma_hlim: float | None = None, work_hardening: float = 1.0
+                   ) -> PittingSafety:
     """``sigma_HP`` and ``S_H`` of a gear under the contact ``stress`` (Pa) with its
     ``sigma_Hlim`` (Pa), ``cycles`` load cycles on the life ``line``, the lubricant's
-    kinematic viscosity at 40 deg C (m^2/s), the mean flank roughness ``R_z`` (m) and the
-    pair's contact stress ``chain`` (its pitch line velocity and relative radius)."""
+    kinematic viscosity at 40 deg C (m^2/s), the mean roughness ``R_z`` of the two flanks
+    (m) and the pair's contact stress ``chain`` (its pitch line velocity and relative
+    radius). ``mesh_sigma_hlim`` (Pa): the lower ``sigma_Hlim`` of the two gears, which sets
+    ``C_ZL``, ``C_Zv`` and ``C_ZR`` for both (default this gear's); ``work_hardening``:
+    ``Z_W`` (:func:`work_hardening_factor`)."""
     check_range("rating.sigma_Hlim", sigma_hlim, 200e6, 2500e6, unit="Pa")
     check_range("rating.viscosity_40", viscosity_40, 1e-6, 5000e-6, unit="m^2/s")
     check_range("rating.roughness_rz", roughness, 0.0, 100e-6, lo_open=True, unit="m")
@@ -253,10 +277,12 @@ def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
         raise InputError(f"rating: {cycles:.4g} load cycles lie below the pitting endurance knee "
                          f"of the {line} line ({knee:.0e}); the finite-life interpolation of "
                          "Z_L, Z_v, Z_R, Z_W and Z_X is not built yet")
+    check_range("rating.Z_W", work_hardening, 1.0, 1.2)
+    lower = sigma_hlim if mesh_sigma_hlim is None else mesh_sigma_hlim
     znt = life_factor(cycles, line, optimum)
-    zl = lubricant_factor(sigma_hlim, viscosity_40)
-    zv = velocity_factor(sigma_hlim, chain.velocity)
-    zr = roughness_factor(sigma_hlim, roughness, chain.relative_radius)
-    strength = sigma_hlim * znt * zl * zv * zr
-    return PittingSafety(znt, zl, zv, zr, 1.0, 1.0, strength / minimum_safety,
+    zl = lubricant_factor(lower, viscosity_40)
+    zv = velocity_factor(lower, chain.velocity)
+    zr = roughness_factor(lower, roughness, chain.relative_radius)
+    strength = sigma_hlim * znt * zl * zv * zr * work_hardening
+    return PittingSafety(znt, zl, zv, zr, work_hardening, 1.0, strength / minimum_safety,
                          strength / stress)
