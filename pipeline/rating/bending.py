@@ -8,10 +8,10 @@ dimensional constant, converted at that line.
   (:mod:`pipeline.contact.iso_root_stress`: the form factor, stress correction factor and
   helix factor of method B, the load at the outer point of single pair contact);
 * face load factor ``K_Fbeta = K_Hbeta^N_F`` with ``N_F = (b/h)^2 / (1 + b/h + (b/h)^2)``,
-  ``b/h`` the face width over the tooth depth, at least 3 (ISO 6336-1:2019, 8.3.3; KISSsoft
-  takes the basic rack's depth ``h_aP + h_fP`` for ``h``);
+  ``b/h`` the face width over the tooth depth, at least 3 (ISO 6336-1:2019, 8.3.3);
 * ``sigma_F = sigma_F0 K_A K_gamma K_v K_Fbeta K_Falpha``;
-* ``sigma_FG = sigma_Flim Y_ST Y_NT Y_deltarelT Y_RrelT Y_X`` (``Y_ST = 2``), ``sigma_FP =
+* ``sigma_FG = sigma_Flim Y_ST Y_NT Y_deltarelT Y_RrelT Y_X Y_M`` (``Y_ST = 2``; ``Y_M``
+  0.7 for an idler such as a planet, 1 otherwise), ``sigma_FP =
   sigma_FG / S_Fmin`` and ``S_F = sigma_FG / sigma_F``, with
   - the life factor ``Y_NT`` on the material's line (:data:`LIFE_LINES`, log-log between
     the table's points, down to 0.85 at 10^10 cycles or 1.0 under optimum conditions);
@@ -112,8 +112,8 @@ class BendingSafety:
     nominal : sigma_F0, Pa (from :class:`~pipeline.contact.iso_root_stress.IsoRootStress`).
     load_factor : K_A K_gamma K_v K_Fbeta K_Falpha (-).
     stress : sigma_F, Pa.
-    life_factor, notch_factor, surface_factor, size_factor : Y_NT, Y_deltarelT, Y_RrelT,
-        Y_X (-).
+    life_factor, notch_factor, surface_factor, size_factor, mean_stress_factor : Y_NT,
+        Y_deltarelT, Y_RrelT, Y_X, Y_M (-).
     limit : sigma_FG, Pa; permissible : sigma_FP, Pa; safety : S_F (-).
     """
 
@@ -124,6 +124,7 @@ class BendingSafety:
     notch_factor: float
     surface_factor: float
     size_factor: float
+    mean_stress_factor: float
     limit: float
     permissible: float
     safety: float
@@ -131,15 +132,18 @@ class BendingSafety:
 
 def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, cycles: float,
                    line: str, slip_layer: float, root_roughness: float, size_class: str,
-                   module: float, minimum_safety: float = 1.4, optimum: bool = False
-                   ) -> BendingSafety:
+                   module: float, minimum_safety: float = 1.4, optimum: bool = False,
+                   mean_stress_factor: float = 1.0) -> BendingSafety:
     """``sigma_F``, ``sigma_FP`` and ``S_F`` of a gear from its method-B nominal ``root``
     stress, the product ``K_A K_gamma K_v K_Fbeta K_Falpha``, its ``sigma_Flim`` (Pa, the
     test gear's, without ``Y_ST``), ``cycles`` on the life ``line``, the slip-layer
-    thickness (m), the root roughness ``R_z`` (m), the size class and normal module (m)."""
+    thickness (m), the root roughness ``R_z`` (m), the size class and normal module (m);
+    ``mean_stress_factor`` ``Y_M`` (1 for a pulsating load, 0.7 for an idler's
+    alternating one, ISO 6336-3:2019)."""
     check_range("rating.load_factor", load_factor, 1.0, 10.0)
     check_range("rating.sigma_Flim", sigma_flim, 100e6, 1000e6, unit="Pa")
     check_range("rating.minimum_safety_bending", minimum_safety, 0.5, 5.0)
+    check_range("rating.Y_M", mean_stress_factor, 0.5, 1.0)
     if cycles < KNEE:
         raise InputError(f"rating: {cycles:.4g} load cycles lie below the bending endurance knee "
                          f"({KNEE:.0e}); the finite-life interpolation of Y_deltarelT, Y_RrelT "
@@ -148,7 +152,7 @@ def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, c
     yd = notch_sensitivity(root.q_s, slip_layer)
     yr = surface_factor(root_roughness)
     yx = size_factor(module, size_class)
-    limit = sigma_flim * 2.0 * ynt * yd * yr * yx
+    limit = sigma_flim * 2.0 * ynt * yd * yr * yx * mean_stress_factor
     stress = root.sigma_f0 * load_factor
-    return BendingSafety(root.sigma_f0, load_factor, stress, ynt, yd, yr, yx, limit,
-                         limit / minimum_safety, limit / stress)
+    return BendingSafety(root.sigma_f0, load_factor, stress, ynt, yd, yr, yx,
+                         mean_stress_factor, limit, limit / minimum_safety, limit / stress)
