@@ -14,8 +14,9 @@ Stages, one sub-package each, in the order data flows through them:
   groove of a herringbone sun (``fem.groove``), size estimates before meshing.
 * ``contact`` - loaded tooth contact (complementarity solver, Hertz/Weber local contact),
   compliance sources (analytical slices, FE 2D, FE 3D), load distribution (K_Hbeta,
-  K_Halpha, Hertz pressure, TE orders), root stress (FE 2D beside ISO 6336-3), both
-  halves of a herringbone sun through its groove; :func:`~pipeline.contact.analyse_contact`.
+  tooth-pair unit load ratio, Hertz pressure, TE orders), root stress (FE 2D beside ISO
+  6336-3), both halves of a herringbone sun through its groove;
+  :func:`~pipeline.contact.analyse_contact`.
 * ``dynamics`` - lumped-parameter models and their solvers (package map in its
   docstring): modes, periodic response, speed sweeps.
 * ``viz`` - every figure (``plot_x(..., ax=None) -> Axes``, pyvista renders, ``save``).

@@ -93,7 +93,7 @@ def test_transverse_factor_single_and_equal_sharing(pair):
     cyc, op = _cycle(pair, 4, 1.4e10, 300.0, 0.0)
     dist = load_distribution(cyc, pair, op)
     # uniform stiffness: the pairs share in proportion to their contact lengths
-    np.testing.assert_allclose(dist.k_halpha_position, 1.0, rtol=1e-9)
+    np.testing.assert_allclose(dist.pair_load_ratio_position, 1.0, rtol=1e-9)
     np.testing.assert_allclose(dist.load_share.sum(axis=1), 1.0, rtol=1e-12)
     # a pitch error on pair 1 shifts the load to the other pair in double contact
     cyc2 = loaded_mesh_cycle(UniformSlices(pair, 4, 1.4e10), cyc.load,
@@ -105,8 +105,8 @@ def test_transverse_factor_single_and_equal_sharing(pair):
     share = 0.5 + 0.5 * 3e-6 * c_b / cyc.load
     double = n == 2
     assert double.any()
-    np.testing.assert_allclose(d2.k_halpha_position[double], 2 * share, rtol=1e-9)
-    np.testing.assert_allclose(d2.k_halpha_position[~double], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(d2.pair_load_ratio_position[double], 2 * share, rtol=1e-9)
+    np.testing.assert_allclose(d2.pair_load_ratio_position[~double], 1.0, rtol=1e-12)
 
 
 def test_hertz_pressure_at_pitch_point_matches_iso_6336_2(pair):

@@ -106,7 +106,7 @@ def test_mirror_symmetric_set_is_two_equal_halves_at_half_torque(case, groove, e
     for d, rtol in ((R, 1e-12), (ref, 1e-10)):
         np.testing.assert_allclose(d.line_load, L.line_load, rtol=0,
                                    atol=rtol * L.line_load.max())
-        for name in ("k_hbeta", "k_halpha", "mean_line_load"):
+        for name in ("k_hbeta", "pair_load_ratio", "mean_line_load"):
             assert getattr(d, name) == pytest.approx(getattr(L, name), rel=rtol), name
         for name in ("line_load_max", "hertz_max"):
             assert getattr(d, name).value == pytest.approx(getattr(L, name).value,

@@ -26,9 +26,9 @@ the loaded approach and the mesh stiffness.
 - :class:`HertzLineContact` - Weber-Banaschek local approach, Yang et al. (2026), eq. (24),
   and Hertz half-width / maximum pressure (:mod:`.hertz`).
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
-- :func:`load_distribution` - line load, K_Hbeta, K_Halpha, Hertz pressure, TE orders of a
-  loaded mesh cycle (:mod:`.distribution`); root stress (FE 2D, ISO 6336-3) in
-  :mod:`.root_stress` and :mod:`.iso_root_stress`.
+- :func:`load_distribution` - line load, K_Hbeta, tooth-pair unit load ratio, Hertz
+  pressure, TE orders of a loaded mesh cycle (:mod:`.distribution`); root stress (FE 2D, ISO
+  6336-3) in :mod:`.root_stress` and :mod:`.iso_root_stress`.
 - :class:`FE2DCompliance`, :class:`FE3DCompliance` - the FE stage's influence matrices
   adapted to :class:`ComplianceSource` (:mod:`.fe2d_source`; :mod:`.fe3d_source` on the
   tables of :mod:`.fe3d_table`).

@@ -9,22 +9,23 @@ loads of every candidate point at every mesh position) into:
   the tooth pairs touching in that section: ``w = sum_k F_k(z, t) / width``. Its face mean
   is ``P / b`` at every position. ``envelope`` is its largest value at each ``z`` over the
   cycle, ``cycle_mean`` its mean over the cycle.
-* **Face load factor** ``K_Hbeta`` (ISO 6336-1: maximum over mean load per unit face
-  width), from the cycle-mean line load: ``K_Hbeta = max_z w_bar(z) / mean_z w_bar(z)``.
-  Averaging over the cycle removes the way the load moves between the tooth pairs (which
-  is ``K_Halpha``'s), so a pair loaded evenly across its face has exactly 1, and a spur pair
-  of uniform mesh stiffness ``c_gamma`` (N/m per m of face) with a helix slope deviation
-  ``f_Hb`` has ISO 6336-1's closed form ``1 + f_Hb c_gamma / (2 P / b)`` while the whole
-  face carries load (``sqrt(2 f_Hb c_gamma / (P / b))`` once part of it lifts off at one
-  position). ``k_hbeta_position`` is the same ratio at every position
-  (``max_z w / (P(t) / b)``).
-* **Transverse load factor** ``K_Halpha``: how unevenly the tooth pairs in contact share the
-  load, from the computed sharing: at each position the largest mean unit load of a tooth
-  pair, ``F_k / L_k`` (its load over its contact-line length on the plane of action), over
-  the mean unit load of all its contact lines ``P(t) / sum_k L_k``; ``K_Halpha`` is the largest
-  over the cycle (1 in single contact, and for pairs sharing in proportion to their contact
-  lengths). This is the LTCA's own measure, not ISO 6336-1's empirical formula (which is
-  built to go with the contact ratio factor ``Z_eps``).
+* **Face load factor** ``K_Hbeta`` (ISO 6336-1: maximum over mean load per unit face width),
+  from the cycle-mean line load: ``K_Hbeta = max_z w_bar(z) / mean_z w_bar(z)``. Averaging
+  over the cycle removes the way the load moves between the tooth pairs (which is the
+  tooth-pair unit load ratio's), so a pair loaded evenly across its face has exactly 1, and
+  a spur pair of uniform mesh stiffness ``c_gamma`` (N/m per m of face) with a helix slope
+  deviation ``f_Hb`` has ISO 6336-1's closed form ``1 + f_Hb c_gamma / (2 P / b)`` while the
+  whole face carries load (``sqrt(2 f_Hb c_gamma / (P / b))`` once part of it lifts off at
+  one position). ``k_hbeta_position`` is the same ratio at every position (``max_z w / (P(t)
+  / b)``).
+* **Tooth-pair unit load ratio** (``pair_load_ratio``): how unevenly the tooth pairs in
+  contact share the load, from the computed sharing: at each position the largest mean unit
+  load of a tooth pair, ``F_k / L_k`` (its load over its contact-line length on the plane of
+  action), over the mean unit load of all its contact lines ``P(t) / sum_k L_k``; the ratio
+  is the largest over the cycle (1 in single contact, and for pairs sharing in proportion to
+  their contact lengths). This is the LTCA's own measure and not ISO 6336-1's transverse
+  load factor ``K_Halpha`` (an empirical factor for deviations, 1 for a perfect pair, built
+  to go with the contact ratio factor ``Z_eps``): hence its own name.
 * **Hertz contact pressure** at every loaded point (Johnson 1985, eq. 4.45) in the normal
   section of the flanks: unit load ``p`` (N/m along the contact line), effective radius
   ``R_n = R_t / cos(beta_b)``, contact modulus ``E*``; the same pressure acts on both flanks,
@@ -118,8 +119,8 @@ class LoadDistribution:
     cycle_mean : (n_z,) mean line load at each face position over the cycle, N/m.
     k_hbeta : face load factor K_Hbeta (-).
     k_hbeta_position : (m,) max_z w(z, t) / (P(t) / b) at each position (-).
-    k_halpha : transverse load factor K_Halpha (-).
-    k_halpha_position : (m,) the same ratio at each position (-).
+    pair_load_ratio : tooth-pair unit load ratio, the largest over the cycle (-).
+    pair_load_ratio_position : (m,) the same ratio at each position (-).
     hertz_pressure : (n_total,) Hertz maximum pressure p_H of every candidate point of the
         cycle (the order of ``cycle.point_*``), Pa; 0 where unloaded.
     hertz_max : largest p_H on the flanks, on the path of contact, and where (Pa).
@@ -147,8 +148,8 @@ class LoadDistribution:
     cycle_mean: np.ndarray
     k_hbeta: float
     k_hbeta_position: np.ndarray
-    k_halpha: float
-    k_halpha_position: np.ndarray
+    pair_load_ratio: float
+    pair_load_ratio_position: np.ndarray
     hertz_pressure: np.ndarray
     hertz_max: PeakLocation
     tip_corner_max: PeakLocation | None
@@ -167,7 +168,7 @@ class LoadDistribution:
 
     def __post_init__(self) -> None:
         for name in ("z", "line_load", "envelope", "cycle_mean", "k_hbeta_position",
-                     "k_halpha_position", "hertz_pressure", "pinion_angle",
+                     "pair_load_ratio_position", "hertz_pressure", "pinion_angle",
                      "transmission_error", "te_orders", "load_share", "mesh_stiffness"):
             object.__setattr__(self, name, _readonly(getattr(self, name)))
 
@@ -178,7 +179,7 @@ class LoadDistribution:
             "load_N": self.load,
             "face_width_m": self.face_width,
             "K_Hbeta": self.k_hbeta,
-            "K_Halpha": self.k_halpha,
+            "pair_unit_load_ratio": self.pair_load_ratio,
             "mean_line_load_N_per_m": self.mean_line_load,
             "max_line_load_N_per_m": w.value,
             "max_line_load_face_position_m": w.z,
@@ -207,7 +208,7 @@ class LoadDistribution:
             "transmission_error [m]": self.transmission_error,
             "mesh_stiffness_tangent [N/m]": self.mesh_stiffness,
             "K_Hbeta_at_position [-]": self.k_hbeta_position,
-            "K_Halpha_at_position [-]": self.k_halpha_position,
+            "pair_unit_load_ratio_at_position [-]": self.pair_load_ratio_position,
         }
         for n, j in enumerate(pairs_in_order_of_entry(self.load_share), start=1):
             cols[f"load_share_tooth_pair_{n} [-]"] = self.load_share[:, j]
@@ -322,7 +323,7 @@ def load_distribution(cycle: LoadedMeshCycle, pair: GearPair,
         z=z, line_load=w, mean_line_load=float(w_m), envelope=w.max(axis=0),
         cycle_mean=cycle_mean, k_hbeta=k_hb,
         k_hbeta_position=w.max(axis=1) / (p_t / b),
-        k_halpha=float(kha.max()), k_halpha_position=kha, hertz_pressure=hertz,
+        pair_load_ratio=float(kha.max()), pair_load_ratio_position=kha, hertz_pressure=hertz,
         hertz_max=_peak(np.where(corner, 0.0, hertz), cycle, pair),
         tip_corner_max=(_peak(np.where(corner, hertz, 0.0), cycle, pair)
                         if np.any(corner & (hertz > 0.0)) else None),

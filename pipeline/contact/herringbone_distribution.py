@@ -3,11 +3,12 @@ groove (:class:`~pipeline.contact.herringbone_results.HerringboneCycle`).
 
 Each half's contact is a helical-half cycle carrying its own load ``P_h(t)``, which moves
 over the mesh cycle, so :func:`~pipeline.contact.distribution.load_distribution` gives its
-line load (N/m over the face of that half), K_Hbeta, K_Halpha and Hertz pressure as for a
-helical pair, with every per-position ratio taken at ``P_h(t)``. The operating point of a
-half is the sun's torque through that half on one planet mesh at its mean load,
-``T_h = mean(P_h) r_b,sun`` (N m), at the sun's speed relative to the carrier (the
-contact is solved in the carrier frame); the whole sun carries ``N T_h`` through the half.
+line load (N/m over the face of that half), K_Hbeta, the tooth-pair unit load ratio and
+Hertz pressure as for a helical pair, with every per-position ratio taken at ``P_h(t)``. The
+operating point of a half is the sun's torque through that half on one planet mesh at its
+mean load, ``T_h = mean(P_h) r_b,sun`` (N m), at the sun's speed relative to the carrier
+(the contact is solved in the carrier frame); the whole sun carries ``N T_h`` through the
+half.
 
 The **governing half** is the one with the larger maximum line load over the cycle (the
 quantity the face load factor and the Hertz pressure grow with); ties go to the left.
@@ -48,7 +49,7 @@ class HalfDistribution:
     load : (m,) P_h(t), the half's load along the transverse line of action, N.
     share : (m,) P_h(t) / P, the half's share of the mesh load (-).
     sun_torque : N T_h, sun torque through this half from all N planets, N m.
-    distribution : line load, K_Hbeta, K_Halpha, Hertz pressure of the half.
+    distribution : line load, K_Hbeta, tooth-pair unit load ratio, Hertz pressure of the half.
     """
 
     side: str
@@ -129,7 +130,7 @@ class HerringboneDistribution:
                          "mean_line_load_N_per_m": d.mean_line_load,
                          "max_line_load_N_per_m": d.line_load_max.value,
                          "max_line_load_over_equal_split": self.over_equal_split(side),
-                         "K_Hbeta": d.k_hbeta, "K_Halpha": d.k_halpha,
+                         "K_Hbeta": d.k_hbeta, "pair_unit_load_ratio": d.pair_load_ratio,
                          "max_hertz_pressure_Pa": d.hertz_max.value}
         return out
 

@@ -10,10 +10,10 @@ its numbers as JSON and CSV (``gearpipe report``, and the last step of ``gearpip
 * :mod:`.writer` - :func:`write_reports`: every mesh of a run -> HTML, JSON, CSV files.
 * the command ``gearpipe report CONFIG`` is :mod:`pipeline.cli.report`.
 
-The load distribution quantities themselves (line load, K_Hbeta, K_Halpha, Hertz
-pressure, TE orders) are :func:`pipeline.contact.distribution.load_distribution`, the root
-stress :func:`pipeline.contact.root_stress.analyse_root_stress`: a design study computes
-the same numbers without writing a report.
+The load distribution quantities themselves (line load, K_Hbeta, tooth-pair unit load ratio,
+Hertz pressure, TE orders) are :func:`pipeline.contact.distribution.load_distribution`, the
+root stress :func:`pipeline.contact.root_stress.analyse_root_stress`: a design study
+computes the same numbers without writing a report.
 
 The HTML embeds its figures as data URIs and has no script or remote resource, with a print
 style sheet (Chromium prints the small test case to 10 A4 pages); every number in it
@@ -26,17 +26,17 @@ Measured through ``gearpipe report`` (one run each, 2 cores shared, load average
 * The demo's pair (z 50/50, FE 2D contact, 60 positions): root stress 184.1 / 184.5 MPa
   (pinion / gear) against ISO's 190.2 MPa (-3.3 / -3.0 %), the maximum with the tooth's own
   contact at 150.65 mm, ISO's outer point of single contact at 150.76 mm; Hertz 824 MPa, TE
-  5.25 um = 74.5 urad p-p, K_Halpha 1.22. With a 10 um slope deviation (30 slices, linear
-  local contact): K_Hbeta 1.3947, the N-slice closed form with the stiffness stage's k(t)
-  to 1e-6, against ISO 6336-1's continuous 1.4083 (the 1/N of the outer slice centre); with
-  Weber's local contact 1.3556, line load 337 N/mm against 241 N/mm mean, p_H 912 MPa
-  against 824 MPa aligned.
+  5.25 um = 74.5 urad p-p, tooth-pair unit load ratio 1.22. With a 10 um slope deviation (30
+  slices, linear local contact): K_Hbeta 1.3947, the N-slice closed form with the stiffness
+  stage's k(t) to 1e-6, against ISO 6336-1's continuous 1.4083 (the 1/N of the outer slice
+  centre); with Weber's local contact 1.3556, line load 337 N/mm against 241 N/mm mean, p_H
+  912 MPa against 824 MPa aligned.
 * The helical traction pair of Yang et al. (2026) (analytical slices, 40 positions, 30
   slices): perfect flanks K_Hbeta 1.0085 (1.0040 at 80 positions: the sampling of the
-  cycle), K_Halpha 1.18, p_H 570 MPa, root stress 25 / 32 % below ISO (eps_alpha 2.05: two
-  or three pairs always share the load that ISO puts on one tooth, with Y_DT = 1); with a
-  15 um slope deviation K_Hbeta 1.32, line load 744 N/mm against 432 N/mm mean, p_H 653
-  MPa, pinion root stress 3 % below ISO.
+  cycle), tooth-pair unit load ratio 1.18, p_H 570 MPa, root stress 25 / 32 % below ISO
+  (eps_alpha 2.05: two or three pairs always share the load that ISO puts on one tooth, with
+  Y_DT = 1); with a 15 um slope deviation K_Hbeta 1.32, line load 744 N/mm against 432 N/mm
+  mean, p_H 653 MPa, pinion root stress 3 % below ISO.
 * The wind-turbine planetary set of Xu et al. (2020) (one helical half, analytical slices):
   two reports; sun-planet K_Hbeta 1.03, p_H 833 MPa, root stress sun 137 MPa (+13 % to
   ISO), planet 122 MPa (+5 %); planet-ring p_H 373 MPa, planet 99.7 MPa (-2.4 %), ring 95.4

@@ -288,13 +288,14 @@ def transmission_error_section(dist: LoadDistribution, figures: Sequence[Figure]
 def load_distribution_section(dist: LoadDistribution, pair: GearPair,
                               figures: Sequence[Figure],
                               modifications: FlankModifications | None = None) -> Section:
-    """Line load over the face, K_Hbeta and K_Halpha."""
+    """Line load over the face, K_Hbeta and the tooth-pair unit load ratio."""
     w = dist.line_load_max
     notes = ["K_Hbeta = largest over mean of the line load averaged over the mesh cycle "
-             "(ISO 6336-1: maximum over mean load per unit face width); K_Halpha = largest "
-             "mean unit load of a tooth pair over the mean unit load of all contact lines "
-             "in contact, the largest over the cycle (from the computed load sharing, not ISO "
-             "6336-1's formula)."]
+             "(ISO 6336-1: maximum over mean load per unit face width); the tooth-pair unit "
+             "load ratio = largest mean unit load of a tooth pair over the mean unit load of "
+             "all contact lines in contact, the largest over the cycle (from the computed "
+             "load sharing; it is not ISO 6336-1's transverse load factor K_Halpha, which is "
+             "1 for a perfect pair)."]
     if dist.slices_across_face == 1 and modifications is not None \
             and modifications.varies_across_face:
         notes.append("Analysed with one slice across the face ([contact] slices = 1): the "
@@ -309,7 +310,8 @@ def load_distribution_section(dist: LoadDistribution, pair: GearPair,
         quantity("K_Hbeta", "face load factor K_Hbeta", "-", dist.k_hbeta),
         quantity("K_Hbeta_position_max", "largest instantaneous max/mean line load", "-",
            float(dist.k_hbeta_position.max())),
-        quantity("K_Halpha", "transverse load factor K_Halpha", "-", dist.k_halpha),
+        quantity("pair_unit_load_ratio", "tooth-pair unit load ratio (largest over mean)", "-",
+                 dist.pair_load_ratio),
         quantity("mean_line_load", "mean line load P / b", "N/mm", dist.mean_line_load * N_PER_MM),
         quantity("max_line_load", "largest line load w", "N/mm", w.value * N_PER_MM),
         quantity("max_line_load_face_position", "its face position b_z", "mm", w.z * MM),
