@@ -7,6 +7,8 @@
   profile and helix deviations), the inputs of ISO 6336-1's load factors.
 - :mod:`.dynamic` - ISO 6336-1 method B dynamic factor K_v in the subcritical range (the
   reduced mass of a pair or a planetary mesh, n_E1, running-in allowances, B_p, B_f, B_k).
+- :mod:`.pair_rating` - :func:`rate_pair`: every factor of a pair's rating in one record
+  (K_Hbeta as given for now; external pairs).
 - :mod:`.transverse` - ISO 6336-1 method B transverse load factors K_Halpha and K_Falpha.
 - :mod:`.bending` - ISO 6336-3 method B: sigma_F from the nominal root stress of
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),

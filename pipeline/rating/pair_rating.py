@@ -1,0 +1,201 @@
+"""The ISO 6336 rating of one external or internal gear pair, every factor in one record.
+
+:func:`rate_pair` chains the pieces of this package for a pair at its operating point:
+the tolerances of the accuracy grade (:mod:`.accuracy`), the running-in allowances and
+the dynamic factor K_v (:mod:`.dynamic`), ISO 6336-1's stiffness (c', c_gamma,
+:mod:`pipeline.stiffness.iso6336`), the transverse load factors (:mod:`.transverse`), the
+face load factor K_Hbeta as given (the standard's method C and the loaded contact's line
+load are to come), then the contact stress and S_H (:mod:`.pitting`) and the root stress
+and S_F (:mod:`.bending`) of both gears. SI inside; the record keeps each factor.
+
+Checked end to end against KISSsoft's report of the NREL 5 MW gearbox's parallel helical
+stage (``tests/test_rating_pair.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from pipeline.contact.iso_root_stress import iso_root_stress
+from pipeline.geometry.pair import GearPair
+from pipeline.rating.accuracy import Tolerances, tolerances
+from pipeline.rating.bending import BendingSafety, bending_safety, face_load_factor
+from pipeline.rating.dynamic import (
+    DynamicFactor,
+    dynamic_factor,
+    gear_mass,
+    reduced_mass,
+    running_in,
+    running_in_relief,
+)
+from pipeline.rating.pitting import (
+    ContactStress,
+    PittingSafety,
+    contact_stress,
+    pitting_safety,
+    work_hardening_factor,
+)
+from pipeline.rating.transverse import TransverseLoadFactors, transverse_load_factors
+from pipeline.stiffness.iso6336 import iso_stiffness
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
+
+SLIP_LAYER = {"hardened": 0.0030e-3}
+"""Slip-layer thickness rho' of Y_deltarelT (ISO 6336-3), m: case-hardened steel."""
+
+
+@dataclass(frozen=True)
+class GearRatingInputs:
+    """One gear's rating inputs (SI).
+
+    Attributes
+    ----------
+    sigma_hlim, sigma_flim : sigma_Hlim and sigma_Flim (the test gear's, without Y_ST), Pa.
+    hardening : "hardened" (case-hardened, nitrided) or "through_hardened".
+    hardness_hb : Brinell hardness of a through-hardened gear (for Z_W against a hardened
+        mate), or None.
+    flank_roughness, root_roughness : R_z of the flank and of the root, m.
+    slip_layer : rho' of Y_deltarelT, m, or None for the hardening's (case-hardened only).
+    mean_stress_factor : Y_M (1; 0.7 for an idler).
+    tip_relief : C_a, m, or None for the running-in relief C_ay.
+    """
+
+    sigma_hlim: float
+    sigma_flim: float
+    hardening: str = "hardened"
+    hardness_hb: float | None = None
+    flank_roughness: float = 4.8e-6
+    root_roughness: float = 20e-6
+    slip_layer: float | None = None
+    mean_stress_factor: float = 1.0
+    tip_relief: float | None = None
+
+    def __post_init__(self) -> None:
+        check_choice("rating.hardening", self.hardening, ("hardened", "through_hardened"))
+
+
+@dataclass(frozen=True)
+class RatingInputs:
+    """The pair's rating inputs (SI).
+
+    Attributes
+    ----------
+    application_factor : K_A; load_sharing : K_gamma (1 for a single mesh).
+    life_hours : required life, h.
+    accuracy_grade : ISO 1328-1:1995 grade of both gears.
+    viscosity_40 : kinematic viscosity of the oil at 40 deg C, m^2/s.
+    k_hbeta : the face load factor K_Hbeta (given).
+    blank_factor : C_R of ISO 6336-1's stiffness (1 for solid blanks).
+    minimum_safety_pitting, minimum_safety_bending : S_Hmin, S_Fmin.
+    """
+
+    application_factor: float
+    life_hours: float
+    accuracy_grade: int
+    viscosity_40: float
+    k_hbeta: float
+    load_sharing: float = 1.0
+    blank_factor: float = 1.0
+    minimum_safety_pitting: float = 1.0
+    minimum_safety_bending: float = 1.4
+
+    def __post_init__(self) -> None:
+        check_range("rating.application_factor", self.application_factor, 1.0, 5.0)
+        check_range("rating.life_hours", self.life_hours, 0.0, 1e7, lo_open=True, unit="h")
+        check_int_range("rating.accuracy_grade", self.accuracy_grade, 1, 12)
+        check_range("rating.k_hbeta", self.k_hbeta, 1.0, 10.0)
+        check_range("rating.load_sharing", self.load_sharing, 1.0, 3.0)
+
+
+@dataclass(frozen=True)
+class PairRating:
+    """Every factor of a pair's rating (SI; gear-wise tuples are (pinion, wheel))."""
+
+    tangential_load: float
+    velocity: float
+    tolerances: tuple[Tolerances, Tolerances]
+    single_stiffness: float
+    mesh_stiffness: float
+    dynamic: DynamicFactor
+    transverse: TransverseLoadFactors
+    k_hbeta: float
+    k_fbeta: float
+    contact: ContactStress
+    pitting: tuple[PittingSafety, PittingSafety]
+    bending: tuple[BendingSafety, BendingSafety]
+
+    @property
+    def safety_pitting_min(self) -> float:
+        return min(p.safety for p in self.pitting)
+
+    @property
+    def safety_bending_min(self) -> float:
+        return min(b.safety for b in self.bending)
+
+
+def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
+              gears: tuple[GearRatingInputs, GearRatingInputs]) -> PairRating:
+    """The rating of ``pair`` with the pinion ``torque`` (N m) at ``speed`` (rpm)."""
+    check_range("rating.torque", torque, 0.0, math.inf, lo_open=True, unit="N m")
+    if pair.gear.internal:
+        raise InputError("rating: the bending rating of an internal gear is not built yet "
+                         "(its form factors); rate its pitting with pipeline.rating.pitting")
+    p, g = pair.pinion, pair.gear
+    b = pair.face_width
+    d1 = 2.0 * p.reference_radius
+    ft = 2.0 * torque / d1
+    v = p.reference_radius * speed * math.pi / 30.0
+    ka, kg = inputs.application_factor, inputs.load_sharing
+    at = p.transverse_pressure_angle
+    tols = tuple(tolerances(inputs.accuracy_grade, gear.module, 2.0 * gear.reference_radius,
+                            b, at) for gear in (p, g))
+    f_pb = max(t.f_pb for t in tols)
+    f_fa = max(t.f_falpha for t in tols)
+    materials = tuple((gi.hardening, gi.sigma_hlim) for gi in gears)
+    y_p, y_f = (running_in(f, materials, v) for f in (f_pb, f_fa))
+    st = iso_stiffness(pair, ft, ka, c_r=inputs.blank_factor)
+    masses = [gear_mass(2.0 * gear.tip_radius_, 2.0 * gear.root_radius,
+                        2.0 * gear.base_radius, 2.0 * gear.bore_radius, gear.material.density)
+              for gear in (p, g)]
+    m_red = reduced_mass(masses[0], None, "planet_ring") if g.internal \
+        else reduced_mass(masses[0], masses[1])
+    reliefs = [gi.tip_relief if gi.tip_relief is not None else running_in_relief(gi.sigma_hlim)
+               for gi in gears]
+    kv = dynamic_factor(teeth_1=p.teeth, speed_1=speed, single_stiffness=st.c_single,
+                        mesh_stiffness=st.c_gamma_alpha, reduced_mass_per_width=m_red,
+                        line_load=ka * ft / b, total_contact_ratio=pair.total_contact_ratio,
+                        base_pitch_deviation=f_pb, form_deviation=f_fa, pitch_allowance=y_p,
+                        form_allowance=y_f, tip_relief=0.5 * (reliefs[0] + reliefs[1]))
+    khb = inputs.k_hbeta
+    chain0 = contact_stress(pair, torque, speed, 1.0)
+    kha = transverse_load_factors(
+        mesh_stiffness=st.c_gamma_alpha, base_pitch_deviation=f_pb, form_deviation=f_fa,
+        allowance=y_p, line_load_h=ft * ka * kg * kv.factor * khb / b,
+        transverse_contact_ratio=pair.transverse_contact_ratio,
+        total_contact_ratio=pair.total_contact_ratio,
+        contact_ratio_factor=chain0.contact_ratio_factor)
+    chain = contact_stress(pair, torque, speed, ka * kg * kv.factor * khb * kha.k_halpha)
+    depth = min(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g))
+    kfb = face_load_factor(khb, b, depth)
+    u = g.teeth / p.teeth
+    cycles = (speed * 60.0 * inputs.life_hours, speed / u * 60.0 * inputs.life_hours)
+    lower = min(gi.sigma_hlim for gi in gears)
+    rz = 0.5 * (gears[0].flank_roughness + gears[1].flank_roughness)
+    pit, bend = [], []
+    for k, (gear, gi, n) in enumerate(zip((p, g), gears, cycles, strict=True)):
+        other = gears[1 - k]
+        zw = (work_hardening_factor(gi.hardness_hb) if gi.hardening == "through_hardened"
+              and other.hardening == "hardened" and gi.hardness_hb is not None else 1.0)
+        # both hardenings take ISO 6336-2's line without pitting (St, V, Eh, IF)
+        pit.append(pitting_safety(chain.stress[k], gi.sigma_hlim, n, "hardened",
+                                  inputs.viscosity_40, rz, chain,
+                                  inputs.minimum_safety_pitting, mesh_sigma_hlim=lower,
+                                  work_hardening=zw))
+        root = iso_root_stress(gear, pair, ft)
+        slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER[gi.hardening]
+        bend.append(bending_safety(root, ka * kg * kv.factor * kfb * kha.k_falpha,
+                                   gi.sigma_flim, n, gi.hardening, slip, gi.root_roughness,
+                                   gi.hardening, gear.module, inputs.minimum_safety_bending,
+                                   mean_stress_factor=gi.mean_stress_factor))
+    return PairRating(ft, v, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
+                      (pit[0], pit[1]), (bend[0], bend[1]))
