@@ -161,3 +161,44 @@ def test_spur_planetary_meshes():
         assert r.life_factor == pytest.approx(ynt, abs=5e-4)
         assert r.mean_stress_factor == ym
         assert r.limit == pytest.approx(fg * MPA, rel=5e-4)
+
+
+def test_first_planetary_stage():
+    """The sun and a planet of the NREL 5 MW first stage (``stage_01.rtf``): m_n 45 mm, z 19
+    / 17, x 0.61713 / 0.8021, tip diameters 978.808 / 905.470 mm, tooth depth 90.389 mm,
+    b 491 mm, F_t 779454.877 N, K_A 1.25, K_gamma 1.10, K_v 1.0053 (printed 1.01; from its
+    printed stresses, tests/test_rating_pitting.py), K_Hbeta 1.15, the planet an idler.
+    Printed: K_Fbeta 1.12, Y_F 1.56 / 1.44, Y_S 2.06 / 2.14, h_F 64.83 / 65.24 mm, s_Fn
+    101.18 / 104.13 mm, rho_F 18.12 / 17.19 mm, sigma_F0 113.46 / 108.94, sigma_F 175.90 /
+    168.90 N/mm^2, Y_deltarelT 1.003 / 1.005, Y_X 0.800, Y_NT 0.888 / 0.906, sigma_FG
+    586.11 / 419.35 N/mm^2; sigma_F0 within 2e-4 (the planet's shift printed to 4 digits)."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=45e-3, pressure_angle=math.radians(20.0), face_width=0.491,
+                  material=steel)
+    pair = GearPair(
+        GearSpec(teeth=19, profile_shift=0.6171343, tip_radius=0.978808 / 2,
+                 bore_radius=0.48233 / 2, name="sun", **common),
+        GearSpec(teeth=17, profile_shift=0.8021, tip_radius=0.905470 / 2,
+                 bore_radius=0.40899 / 2, name="planet", **common))
+    kfb = B.face_load_factor(1.15, 0.491, (0.978808 - 0.798030) / 2)
+    assert kfb == pytest.approx(1.12, abs=5e-3)
+    load = 1.25 * 1.10 * 1.0053 * kfb
+    printed = ((pair.pinion, 1124.7e6, 1.0, 1.56, 2.06, 64.83, 101.18, 18.12, 113.46, 175.90,
+                1.003, 0.888, 586.11),
+               (pair.gear, 419.0e6, 0.7, 1.44, 2.14, 65.24, 104.13, 17.19, 108.94, 168.90,
+                1.005, 0.906, 419.35))
+    for gear, n, ym, yf, ys, hf, sfn, rhof, f0, f, yd, ynt, fg in printed:
+        root = iso_root_stress(gear, pair, 779454.877)
+        assert root.y_f == pytest.approx(yf, abs=5e-3)
+        assert root.y_s == pytest.approx(ys, abs=5e-3)
+        assert root.h_fe * 1e3 == pytest.approx(hf, abs=6e-3)
+        assert root.s_fn * 1e3 == pytest.approx(sfn, abs=5e-3)
+        assert root.rho_f * 1e3 == pytest.approx(rhof, abs=5e-3)
+        assert root.sigma_f0 == pytest.approx(f0 * MPA, rel=2e-4)
+        r = B.bending_safety(root, load, 430 * MPA, n, "hardened", 0.0030e-3, 20e-6,
+                             "hardened", 45e-3, minimum_safety=1.56, mean_stress_factor=ym)
+        assert r.stress == pytest.approx(f * MPA, rel=3e-4)
+        assert r.notch_factor == pytest.approx(yd, abs=5e-4)
+        assert r.size_factor == pytest.approx(0.800, abs=5e-4)
+        assert r.life_factor == pytest.approx(ynt, abs=5e-4)
+        assert r.limit == pytest.approx(fg * MPA, rel=5e-5)

@@ -307,3 +307,41 @@ def test_kisssoft_report_of_a_planet_ring_mesh():
         assert r.roughness_factor == pytest.approx(1.026, abs=5e-4)
         assert r.work_hardening_factor == pytest.approx(zw, rel=1e-15)
         assert r.permissible * 1.25 == pytest.approx(hg * MPA, rel=3e-5)
+
+
+def test_kisssoft_report_of_the_first_planetary_stage():
+    """The sun-planet mesh of the NREL 5 MW first stage (``stage_01.rtf``, KISSsoft 03/2017
+    A): sun z 19, x 0.61713, planet z 17, x 0.8021, m_n 45 mm, b 491 mm, a 863 mm, tip
+    diameters 978.808 / 905.470 mm, 999650.9 N m on the sun at 47.8 rpm, carrier 12.1 rpm,
+    three planets, K_A 1.25, K_gamma 1.10, K_Hbeta 1.15; K_v K_Halpha = 1.0053 from its
+    printed sigma_Hw / sigma_H0 = 958.15 / 759.92 (K_v printed 1.01, K_Halpha 1.00). Both
+    single pair factors above 1 here. Printed: F_t 779454.877 N, Z_H 2.06, Z_eps 0.981, Z_B
+    1.04, Z_D 1.05, sigma_H0 759.92, sigma_H 996.13 / 1002.73 N/mm^2, Z_L 1.020, Z_v 0.961,
+    Z_R 1.024, Z_NT 0.909 / 0.937 (N_L 1124.7 / 419.0 million), sigma_HG 1368.61 / 1410.69."""
+    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
+    common = dict(module=45e-3, pressure_angle=math.radians(20.0), face_width=0.491,
+                  material=steel)
+    pair = GearPair(
+        GearSpec(teeth=19, profile_shift=0.6171343, tip_radius=0.978808 / 2,
+                 bore_radius=0.48233 / 2, name="sun", **common),
+        GearSpec(teeth=17, profile_shift=0.8021, tip_radius=0.905470 / 2,
+                 bore_radius=0.40899 / 2, name="planet", **common))
+    # x of the planet to 4 digits: a 863.003 mm
+    assert pair.operating_centre_distance == pytest.approx(0.863, abs=5e-6)
+    k = (958.15 / 759.92) ** 2
+    chain = P.contact_stress(pair, 999650.9 / 3, 47.8 - 12.1, k)
+    assert chain.tangential_load == pytest.approx(779454.877, rel=1e-7)
+    assert chain.zone_factor == pytest.approx(2.06, abs=5e-3)
+    assert chain.contact_ratio_factor == pytest.approx(0.981, abs=5e-4)
+    assert chain.single_pair_factors == pytest.approx((1.04, 1.05), abs=5e-3)
+    assert chain.nominal == pytest.approx(759.92 * MPA, rel=1e-5)
+    for s, want in zip(chain.stress, (996.13, 1002.73), strict=True):
+        assert s == pytest.approx(want * MPA, rel=2e-4)
+    for n, znt, hg in ((1124.7e6, 0.909, 1368.61), (419.0e6, 0.937, 1410.69)):
+        r = P.pitting_safety(1000 * MPA, 1500 * MPA, n, "hardened", 220e-6, 4.8e-6, chain,
+                             minimum_safety=1.25)
+        assert r.life_factor == pytest.approx(znt, abs=5e-4)
+        assert r.lubricant_factor == pytest.approx(1.020, abs=5e-4)
+        assert r.velocity_factor == pytest.approx(0.961, abs=5e-4)
+        assert r.roughness_factor == pytest.approx(1.024, abs=5.1e-4)  # 1.02450
+        assert r.permissible * 1.25 == pytest.approx(hg * MPA, rel=3e-5)
