@@ -154,17 +154,11 @@ def test_iso_stiffness_against_a_kisssoft_report():
     beta 10 deg, b 360 mm, x 0.4800 / 0.6691, tip diameters 380.747 / 1395.376 mm, ISO 53
     profile A, K_A 1.25, 40953.0 N m). Printed: C_M 0.800, C_R 0.898 (b_s/b 0.250, s_R/m_n
     5.000), C_B 0.975, c' 13.832 N/(mm um), c_gamma_alpha 18.632, c_gamma_beta 15.837."""
-    from pipeline.geometry.gear import GearSpec, Material
+    import nrel_gearbox as nrel
+
     from pipeline.stiffness.iso6336 import blank_factor_cr
 
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
-                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
-    pair = GearPair(
-        GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
-                 bore_radius=0.0896, name="pinion", **common),
-        GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
-                 bore_radius=0.5967, name="wheel", **common))
+    pair = nrel.stage_3()
     c_r = blank_factor_cr(5.0, 0.25)
     assert c_r == pytest.approx(0.898, abs=5e-4)
     st = iso_stiffness(pair, 40953.0 / pair.pinion.reference_radius, 1.25, 0.8, c_r)
@@ -180,19 +174,10 @@ def test_iso_stiffness_of_planetary_meshes_against_a_kisssoft_report():
     stage (``stage_02.rtf`` of gfsReboucas/Drivetrain, KISSsoft 03/2017 A): C_R printed
     0.862 (b_s/b 0.250), C_B 0.975; c' 12.240 / 14.053 N/(mm um), c_gamma_alpha 15.640 /
     20.563; within the 0.06 % that C_R's three printed digits carry (measured -0.03 %)."""
-    from pipeline.geometry.gear import GearSpec, Material
+    import nrel_gearbox as nrel
 
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
-                  material=steel)
-    sun = GearSpec(teeth=18, profile_shift=0.389, tip_radius=0.432838 / 2, bore_radius=0.097,
-                   name="sun", **common)
-    planet = GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
-                      bore_radius=0.288, name="planet", **common)
-    ring = GearSpec(teeth=93, profile_shift=0.1171157, tip_radius=1.906081 / 2,
-                    bore_radius=2.14882 / 2, internal=True, name="ring", **common)
-    for pair, c1, cga in ((GearPair(sun, planet), 12.240, 15.640),
-                          (GearPair(planet, ring), 14.053, 20.563)):
+    for pair, c1, cga in ((nrel.stage_2_sun_planet(), 12.240, 15.640),
+                          (nrel.stage_2_planet_ring(), 14.053, 20.563)):
         st = iso_stiffness(pair, 285900.438, 1.25, 0.8, 0.862)
         assert st.factors["C_B"] == pytest.approx(0.975, abs=5e-4)
         assert st.c_single / 1e9 == pytest.approx(c1, rel=6e-4)

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import math
 
+import nrel_gearbox as nrel
 import pytest
 
 from pipeline.contact.iso_root_stress import iso_root_stress
-from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
 from pipeline.rating import bending as B
 from pipeline.validation import InputError
@@ -29,14 +29,7 @@ MPA = 1e6
 
 @pytest.fixture(scope="module")
 def stage_3() -> GearPair:
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
-                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
-    return GearPair(
-        GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
-                 bore_radius=0.0896, name="pinion", **common),
-        GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
-                 bore_radius=0.5967, name="wheel", **common))
+    return nrel.stage_3()
 
 
 def test_kisssoft_report_of_a_helical_pair(stage_3):
@@ -129,14 +122,7 @@ def test_spur_planetary_meshes():
     rho_F 9.52 / 8.69 mm, sigma_F0 73.95 / 74.21 N/mm^2, sigma_F 209.38 / 210.14 N/mm^2
     (0.05 %: K_v's digits), Y_deltarelT 0.999 / 1.002, Y_RrelT 0.957, Y_X 0.840, Y_NT
     0.854 / 0.886 (N_L 7782.3 / 1297.1 million), sigma_FG 589.60 / 429.38 N/mm^2."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
-                  material=steel)
-    pair = GearPair(
-        GearSpec(teeth=18, profile_shift=0.389, tip_radius=0.432838 / 2, bore_radius=0.097,
-                 name="sun", **common),
-        GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
-                 bore_radius=0.288, name="planet", **common))
+    pair = nrel.stage_2_sun_planet()
     kfb = B.face_load_factor(2.059767, 0.55, 45.5e-3)
     assert kfb == pytest.approx(1.94, abs=5e-3)
     load = 1.25 * 1.10 * 1.061 * kfb * 1.00
@@ -172,14 +158,7 @@ def test_first_planetary_stage():
     101.18 / 104.13 mm, rho_F 18.12 / 17.19 mm, sigma_F0 113.46 / 108.94, sigma_F 175.90 /
     168.90 N/mm^2, Y_deltarelT 1.003 / 1.005, Y_X 0.800, Y_NT 0.888 / 0.906, sigma_FG
     586.11 / 419.35 N/mm^2; sigma_F0 within 2e-4 (the planet's shift printed to 4 digits)."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=45e-3, pressure_angle=math.radians(20.0), face_width=0.491,
-                  material=steel)
-    pair = GearPair(
-        GearSpec(teeth=19, profile_shift=0.6171343, tip_radius=0.978808 / 2,
-                 bore_radius=0.48233 / 2, name="sun", **common),
-        GearSpec(teeth=17, profile_shift=0.8021, tip_radius=0.905470 / 2,
-                 bore_radius=0.40899 / 2, name="planet", **common))
+    pair = nrel.stage_1_sun_planet()
     kfb = B.face_load_factor(1.15, 0.491, (0.978808 - 0.798030) / 2)
     assert kfb == pytest.approx(1.12, abs=5e-3)
     load = 1.25 * 1.10 * 1.0053 * kfb

@@ -11,11 +11,9 @@ bores 179.10 / 1193.32 mm.
 
 from __future__ import annotations
 
-import math
-
+import nrel_gearbox as nrel
 import pytest
 
-from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.pair_rating import GearRatingInputs, RatingInputs, rate_pair
 from pipeline.validation import InputError
@@ -25,14 +23,7 @@ MPA = 1e6
 
 @pytest.fixture(scope="module")
 def stage_3() -> GearPair:
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3, density=7830.0)
-    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
-                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
-    return GearPair(
-        GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
-                 bore_radius=0.17910 / 2, name="pinion", **common),
-        GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
-                 bore_radius=1.19332 / 2, name="wheel", **common))
+    return nrel.stage_3()
 
 
 def test_kisssoft_helical_stage_from_its_inputs(stage_3):

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 
+import nrel_gearbox as nrel
 import pytest
 
 from pipeline.geometry.gear import GearSpec, Material
@@ -149,18 +150,8 @@ def test_spur_pair_contact_ratio_and_single_pair_factors():
 @pytest.fixture(scope="module")
 def nrel_stage_3() -> GearPair:
     """The parallel helical stage of the NREL 5 MW reference gearbox (Nejad et al. 2016) as
-    rated by KISSsoft Release 03/2017 A, "ISO 6336:2006 Method B" (the report
-    ``@NREL_5MW/stage_03.rtf`` of the public repository gfsReboucas/Drivetrain, commit
-    4a88df34): z 24/95, m_n 14 mm, alpha_n 20 deg, beta 10 deg, b 360 mm, x 0.4800 /
-    0.6691, a 861 mm, tip diameters 380.747 / 1395.376 mm, E 206 000 N/mm^2, nu 0.3."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=14e-3, pressure_angle=math.radians(20.0),
-                  helix_angle=math.radians(10.0), face_width=0.36, material=steel)
-    pinion = GearSpec(teeth=24, profile_shift=0.48, hand="right", tip_radius=0.380747 / 2,
-                      bore_radius=0.0896, name="pinion", **common)
-    wheel = GearSpec(teeth=95, profile_shift=0.6691, hand="left", tip_radius=1.395376 / 2,
-                     bore_radius=0.5967, name="wheel", **common)
-    return GearPair(pinion, wheel)
+    rated by KISSsoft Release 03/2017 A, "ISO 6336:2006 Method B" (:mod:`nrel_gearbox`)."""
+    return nrel.stage_3()
 
 
 def test_kisssoft_report_of_a_helical_pair(nrel_stage_3):
@@ -227,14 +218,7 @@ def test_kisssoft_report_of_a_planetary_sun_planet_mesh():
     M1 > 1), Z_D 1.00, sigma_H0 573.40 N/mm^2, sigma_H 1071.17 / 994.13 N/mm^2 (0.6 % from
     the K's two digits), N_L 7782.3 / 1297.1 million, Z_NT 0.857 / 0.905, Z_L 1.020, Z_v
     0.982, Z_R 1.007, sigma_HG 1295.42 / 1368.61 N/mm^2."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
-                  material=steel)
-    pair = GearPair(
-        GearSpec(teeth=18, profile_shift=0.389, tip_radius=0.432838 / 2, bore_radius=0.097,
-                 name="sun", **common),
-        GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
-                 bore_radius=0.288, name="planet", **common))
+    pair = nrel.stage_2_sun_planet()
     assert pair.operating_centre_distance == pytest.approx(0.584, abs=5e-7)
     k = 1.25 * 1.10 * 1.06 * 2.06 * 1.00
     chain = P.contact_stress(pair, 162105.5 / 3, 294.5 - 47.8, k)
@@ -271,14 +255,7 @@ def test_kisssoft_report_of_a_planet_ring_mesh():
     sigma_H 404.76 N/mm^2 (the K's two digits), Z_L 1.038, Z_v 0.961, Z_R 1.026, Z_W
     1.000 / 1.135, N_L 1297.1 / 1506.3 million, Z_NT 0.905 / 0.901, sigma_HG 1388.39 /
     732.21 N/mm^2."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=21e-3, pressure_angle=math.radians(20.0), face_width=0.55,
-                  material=steel)
-    pair = GearPair(
-        GearSpec(teeth=36, profile_shift=0.5038693, tip_radius=0.815663 / 2,
-                 bore_radius=0.288, name="planet", **common),
-        GearSpec(teeth=93, profile_shift=0.1171157, tip_radius=1.906081 / 2,
-                 bore_radius=2.14882 / 2, internal=True, name="ring", **common))
+    pair = nrel.stage_2_planet_ring()
     assert pair.operating_centre_distance == pytest.approx(0.584, abs=5e-7)
     # 15.62949 deg, as a = 584 mm gives it exactly (cos = 598.5 cos 20 deg / 584)
     assert math.degrees(pair.operating_pressure_angle) == pytest.approx(
@@ -318,14 +295,7 @@ def test_kisssoft_report_of_the_first_planetary_stage():
     single pair factors above 1 here. Printed: F_t 779454.877 N, Z_H 2.06, Z_eps 0.981, Z_B
     1.04, Z_D 1.05, sigma_H0 759.92, sigma_H 996.13 / 1002.73 N/mm^2, Z_L 1.020, Z_v 0.961,
     Z_R 1.024, Z_NT 0.909 / 0.937 (N_L 1124.7 / 419.0 million), sigma_HG 1368.61 / 1410.69."""
-    steel = Material(youngs_modulus=206e9, poisson_ratio=0.3)
-    common = dict(module=45e-3, pressure_angle=math.radians(20.0), face_width=0.491,
-                  material=steel)
-    pair = GearPair(
-        GearSpec(teeth=19, profile_shift=0.6171343, tip_radius=0.978808 / 2,
-                 bore_radius=0.48233 / 2, name="sun", **common),
-        GearSpec(teeth=17, profile_shift=0.8021, tip_radius=0.905470 / 2,
-                 bore_radius=0.40899 / 2, name="planet", **common))
+    pair = nrel.stage_1_sun_planet()
     # x of the planet to 4 digits: a 863.003 mm
     assert pair.operating_centre_distance == pytest.approx(0.863, abs=5e-6)
     k = (958.15 / 759.92) ** 2

@@ -38,6 +38,7 @@ import math
 from dataclasses import dataclass
 
 from pipeline.contact.iso_root_stress import IsoRootStress
+from pipeline.rating.life import life_factor_on
 from pipeline.validation import InputError, check_choice, check_range
 
 LIFE_LINES: dict[str, tuple[tuple[float, float], ...]] = {
@@ -58,17 +59,7 @@ SIZE_CLASSES = ("hardened", "through_hardened")
 def life_factor(cycles: float, line: str, optimum: bool = False) -> float:
     """``Y_NT`` at ``cycles`` load cycles on the material ``line`` (:data:`LIFE_LINES`)."""
     check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
-    check_range("rating.load_cycles", cycles, 0.0, math.inf, lo_open=True)
-    points = list(LIFE_LINES[line])
-    if optimum:
-        points[-1] = (points[-1][0], 1.0)
-    if cycles <= points[0][0]:
-        return points[0][1]
-    for (n0, y0), (n1, y1) in zip(points[:-1], points[1:], strict=True):
-        if cycles <= n1:
-            t = math.log(cycles / n0) / math.log(n1 / n0)
-            return math.exp(math.log(y0) + t * math.log(y1 / y0))
-    return points[-1][1]
+    return life_factor_on(LIFE_LINES[line], cycles, optimum)
 
 
 def face_load_factor(k_hbeta: float, face_width: float, tooth_height: float) -> float:

@@ -59,6 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pipeline.geometry.pair import GearPair
+from pipeline.rating.life import life_factor_on
 from pipeline.validation import InputError, check_choice, check_range
 
 LIFE_LINES: dict[str, tuple[tuple[float, float], ...]] = {
@@ -81,17 +82,7 @@ def life_factor(cycles: float, line: str, optimum: bool = False) -> float:
     long-life branch falling to 0.85 at 10^10 (1.0 with ``optimum`` lubrication,
     material, manufacturing and experience), constant beyond 10^10."""
     check_choice("rating.life_line", line, tuple(LIFE_LINES))
-    check_range("rating.load_cycles", cycles, 0.0, math.inf, lo_open=True)
-    points = list(LIFE_LINES[line])
-    if optimum:
-        points[-1] = (points[-1][0], 1.0)
-    if cycles <= points[0][0]:
-        return points[0][1]
-    for (n0, z0), (n1, z1) in zip(points[:-1], points[1:], strict=True):
-        if cycles <= n1:
-            t = math.log(cycles / n0) / math.log(n1 / n0)
-            return math.exp(math.log(z0) + t * math.log(z1 / z0))
-    return points[-1][1]
+    return life_factor_on(LIFE_LINES[line], cycles, optimum)
 
 
 def lubricant_constant(sigma_hlim: float) -> float:
