@@ -95,7 +95,7 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact | Tan
         # The Hertz half-width and pressure depend on the radii only through
         # R = rho1 rho2 / (rho1 + rho2) (a concave ring flank: rho2 < 0, R > rho1), and
         # HertzLineContact takes two convex radii; two equal radii 2R have that R.
-        radius = 2.0 * rho_a * rho_b / (rho_a + rho_b)
+        radius = 2.0 * effective_radius(rho_a, rho_b)
         return HertzLineContact(points.width, radius, radius, depths[0], depths[1],
                                 pair.pinion.material, pair.gear.material)
 

@@ -32,6 +32,7 @@ from pipeline.rating.dynamic import (
 from pipeline.rating.pitting import (
     ContactStress,
     PittingSafety,
+    contact_ratio_factor,
     contact_stress,
     pitting_safety,
     work_hardening_factor,
@@ -167,13 +168,13 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                         base_pitch_deviation=f_pb, form_deviation=f_fa, pitch_allowance=y_p,
                         form_allowance=y_f, tip_relief=0.5 * (reliefs[0] + reliefs[1]))
     khb = inputs.k_hbeta
-    chain0 = contact_stress(pair, torque, speed, 1.0)
     kha = transverse_load_factors(
         mesh_stiffness=st.c_gamma_alpha, base_pitch_deviation=f_pb, form_deviation=f_fa,
         allowance=y_p, line_load_h=ft * ka * kg * kv.factor * khb / b,
         transverse_contact_ratio=pair.transverse_contact_ratio,
         total_contact_ratio=pair.total_contact_ratio,
-        contact_ratio_factor=chain0.contact_ratio_factor)
+        contact_ratio_factor=contact_ratio_factor(pair.transverse_contact_ratio,
+                                                  pair.overlap_ratio))
     chain = contact_stress(pair, torque, speed, ka * kg * kv.factor * khb * kha.k_halpha)
     depth = min(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g))
     kfb = face_load_factor(khb, b, depth)

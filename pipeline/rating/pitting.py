@@ -58,6 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.contact.hertz import contact_modulus, effective_radius
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.life import life_factor_on
 from pipeline.validation import InputError, check_choice, check_range
@@ -150,10 +151,15 @@ def zone_factor(pair: GearPair) -> float:
 
 
 def elasticity_factor(pair: GearPair) -> float:
-    """``Z_E`` of ``pair`` (sqrt(Pa))."""
-    m1, m2 = pair.pinion.material, pair.gear.material
-    return math.sqrt(1.0 / (math.pi * ((1 - m1.poisson_ratio**2) / m1.youngs_modulus
-                                       + (1 - m2.poisson_ratio**2) / m2.youngs_modulus)))
+    """``Z_E = sqrt(E* / pi)`` of ``pair`` (sqrt(Pa)), ``E*`` the contact modulus."""
+    return math.sqrt(contact_modulus(pair.pinion.material, pair.gear.material) / math.pi)
+
+
+def relative_radius(pair: GearPair, s: float) -> float:
+    """Relative radius of curvature ``rho1 rho2 / (rho1 + rho2)`` (m) where the flanks meet
+    at roll coordinate ``s`` (a ring's concave flank: ``rho2 < 0``)."""
+    r1, r2 = pair.curvature_radii(np.array([s]))
+    return float(effective_radius(r1[0], r2[0]))
 
 
 def contact_ratio_factor(eps_alpha: float, eps_beta: float) -> float:
@@ -172,15 +178,10 @@ def single_pair_factors(pair: GearPair) -> tuple[float, float]:
     gear's ``Z_D`` is 1 (ISO 6336-2)."""
     eps_b = pair.overlap_ratio
     pb = pair.base_pitch
-
-    def relative_radius(s: float) -> float:
-        r1, r2 = pair.curvature_radii(np.array([s]))
-        return float(r1[0] * r2[0] / (r1[0] + r2[0]))
-
-    rc = relative_radius(pair.s_pitch)
+    rc = relative_radius(pair, pair.s_pitch)
 
     def factor(s: float) -> float:
-        m = math.sqrt(rc / relative_radius(s))
+        m = math.sqrt(rc / relative_radius(pair, s))
         if eps_b >= 1.0:
             return 1.0
         return max(m - eps_b * (m - 1.0), 1.0)
@@ -207,13 +208,10 @@ def contact_stress(pair: GearPair, torque: float, speed: float, load_factor: flo
     sigma0 = zh * ze * zeps * zbeta * math.sqrt(ft / (d1 * b) * (u + 1.0) / u)
     zb, zd = single_pair_factors(pair)
     root = math.sqrt(load_factor)
-    awt = pair.operating_pressure_angle
-    rho1 = p.base_radius * math.tan(awt)
-    rho2 = (-1.0 if g.internal else 1.0) * g.base_radius * math.tan(awt)  # concave ring
     velocity = p.reference_radius * speed * 2.0 * math.pi / 60.0
     return ContactStress(zh, ze, zeps, zbeta, (zb, zd), ft, sigma0, load_factor,
                          (zb * sigma0 * root, zd * sigma0 * root),
-                         rho1 * rho2 / (rho1 + rho2), velocity)
+                         relative_radius(pair, pair.s_pitch), velocity)
 
 
 @dataclass(frozen=True)
