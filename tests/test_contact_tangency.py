@@ -168,3 +168,13 @@ def test_loaded_te_is_continuous_through_the_tangency():
     f = np.array([load])
     assert model.approach(np.full(len(pts), load))[i] == pytest.approx(
         float(alone.approach(f)[0]), rel=1e-12)
+
+
+def test_a_rounding_too_small_to_resolve_is_refused():
+    """A rounding below 1e-4 of the flanks' effective radius is refused in one line naming
+    the key, the value in mm and the smallest the model resolves."""
+    pair = GearPair(spur(50, "pinion", tip_rounding=1e-7), spur(50, "gear"))
+    src = analytical_compliance(pair, OperatingPoint(100.0, 2340.0), ContactOptions())
+    with pytest.raises(InputError, match=r"^pinion\.tip_rounding = 0\.0001 mm is below the "
+                                         r"0\.00\d+ mm the tangency contact model resolves"):
+        loaded_mesh_cycle(src, 100.0 / pair.pinion.base_radius, None, "weber", 6)

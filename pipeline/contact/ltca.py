@@ -122,10 +122,11 @@ def weber_model(pair: GearPair, points: ContactPoints) -> HertzLineContact | Tan
         q = np.minimum(r_r / r_i, 1.0)
         if (near & (q < Q_MIN)).any():
             name = "pinion" if k == 0 else "gear"
+            r_max = float(np.max(r_i[near]))
             raise InputError(f"{name}.tip_rounding = {gear.tip_rounding * 1e3:.6g} mm is below "
-                             f"{Q_MIN:g} of the flanks' effective radius "
-                             f"({float(np.max(r_i[near])) * 1e3:.4g} mm) that the tangency "
-                             "contact model resolves: give a larger rounding, or 0 for a "
+                             f"the {Q_MIN * r_max * 1e3:.4g} mm the tangency contact model "
+                             f"resolves ({Q_MIN:g} of the flanks' effective radius "
+                             f"{r_max * 1e3:.4g} mm): give a larger rounding, or 0 for a "
                              "sharp corner")
         ratio = np.where(near, q, ratio)
         offset = np.where(near, e, offset)
