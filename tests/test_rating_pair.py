@@ -50,12 +50,69 @@ def test_kisssoft_helical_stage_from_its_inputs(stage_3):
     assert r.safety_bending_min == min(b.safety for b in r.bending)
 
 
-def test_internal_pairs_refused_for_now():
+def _stage_2(mesh, pair, torque, speed, k_hbeta, gears, dynamic=None):
+    inputs = RatingInputs(application_factor=1.25, life_hours=175_200.0, accuracy_grade=6,
+                          viscosity_40=220e-6, k_hbeta=k_hbeta, load_sharing=1.10,
+                          blank_factor=0.862, minimum_safety_pitting=1.25,
+                          minimum_safety_bending=1.56)
+    return rate_pair(pair, torque, speed, inputs, gears, mesh, planets=3, dynamic=dynamic)
+
+
+def test_kisssoft_planetary_stage_from_its_inputs():
+    """Both meshes of the NREL 5 MW gearbox's second (spur planetary) stage, as KISSsoft
+    03/2017 A rates them (``@NREL_5MW/stage_02.rtf``, gfsReboucas/Drivetrain 4a88df34):
+    162105.5 N m on the sun at 294.5 rpm, carrier 47.8 rpm, three planets, K_A 1.25,
+    K_gamma 1.10, K_Hbeta 2.06 / 1.15 (the report's own inputs), grade 6, ISO VG 220,
+    175 200 h, C_R 0.862; sun and planet case-carburized (1500 / 430 N/mm^2, R_z 4.8 / 20
+    um), the ring through-hardened 34CrNiMo6 240 HBW (700 / 290 N/mm^2, R_z 8.0 um), the
+    planet an idler (Y_M 0.7), S_Hmin 1.25, S_Fmin 1.56. Printed: K_V12, K_V23 1.02, 1.06
+    and K_V = max = 1.06 for both meshes; K_Halpha 1.00 / 1.00; S_H sun 1.21, planet 1.38
+    (sun side) / 3.43 (ring side), ring 1.81; S_F sun 2.82, planet 2.04 (sun side) / 4.18
+    (ring side); sigma_F sun 209.38, planet 210.14 N/mm^2. Here from the inputs alone: K_v
+    1.0198 / 1.0614, the same S_H at their printed digits, S_F planet 2.044 / 4.18 at
+    theirs; the sun's S_F 2.8146 where 2.82 is printed (589.60 / 209.38 = 2.8159): its
+    sigma_F 209.48 is 0.05 % above the report's, as K_v 1.0614 (printed 1.06) times K_Fbeta
+    1.9412 (printed 1.94) is above the report's product; the fourth digit of neither is
+    printed. The ring's bending needs the standard's internal-gear form factors, not built:
+    None."""
+    case = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
+    planet = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA,
+                              mean_stress_factor=0.7)
+    ring = GearRatingInputs(sigma_hlim=700 * MPA, sigma_flim=290 * MPA,
+                            hardening="through_hardened", hardness_hb=240.0,
+                            flank_roughness=8.0e-6)
+    rel = 294.5 - 47.8  # the sun relative to the carrier, rpm
+    sp, pr = nrel.stage_2_sun_planet(), nrel.stage_2_planet_ring()
+    t_planet = 162105.5 / 3 * 36 / 18  # the planet's torque on the ring side, N m
+    first = (_stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (case, planet)),
+             _stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring)))
+    assert [r.dynamic.factor for r in first] == pytest.approx([1.02, 1.06], abs=5e-3)
+    kv = max((r.dynamic for r in first), key=lambda d: d.factor)
+    r_sp = _stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (case, planet), kv)
+    r_pr = _stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring), kv)
+    assert r_sp.transverse.k_halpha == r_pr.transverse.k_halpha == 1.0
+    assert [p.safety for p in r_sp.pitting] == pytest.approx([1.21, 1.38], abs=5e-3)
+    assert [p.safety for p in r_pr.pitting] == pytest.approx([3.43, 1.81], abs=5e-3)
+    assert [b.stress / MPA for b in r_sp.bending] == pytest.approx([209.38, 210.14],
+                                                                    rel=6e-4)
+    assert r_sp.bending[0].safety == pytest.approx(589.60 / 209.38, rel=6e-4)
+    assert r_sp.bending[1].safety == pytest.approx(2.04, abs=5e-3)
+    assert r_pr.bending[0].safety == pytest.approx(4.18, abs=5e-3)
+    assert r_pr.bending[1] is None
+    assert r_pr.safety_bending_min == r_pr.bending[0].safety
+    # load cycles: the sun meets three planets per revolution relative to the carrier; the
+    # printed N_L imply 246.775 rpm relative, the printed speeds (one decimal) 246.7
+    assert r_sp.cycles[0] == pytest.approx(7782.3e6 * 246.7 / 246.775, rel=1e-5)
+    assert r_sp.cycles[1] == pytest.approx(1297.1e6 * 246.7 / 246.775, rel=5e-5)
+    assert r_pr.cycles[1] == pytest.approx(1506.3e6 * 246.7 / 246.775, rel=5e-5)
+
+
+def test_mesh_kind_must_match_the_pair():
     from gearsets import spur
 
     ring = GearPair(spur(24, "planet"), spur(72, "ring", internal=True, bore_radius=0.13))
     gear = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
     inputs = RatingInputs(application_factor=1.0, life_hours=1e4, accuracy_grade=6,
                           viscosity_40=220e-6, k_hbeta=1.1)
-    with pytest.raises(InputError, match="bending rating of an internal gear is not built"):
+    with pytest.raises(InputError, match="a pair mesh has no internal gear"):
         rate_pair(ring, 100.0, 1000.0, inputs, (gear, gear))

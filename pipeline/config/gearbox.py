@@ -81,6 +81,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.geometry.planetary import PlanetarySet
 from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
+from pipeline.rating.options import GearRatingOptions, RatingOptions, oil_grade_viscosity
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
 
@@ -92,7 +93,7 @@ PLANETARY_ROLES = ("sun", "planet", "ring")
 EXTERNAL_ROLES = ("pinion", "sun", "planet")
 """Gear tables that describe external gears only."""
 STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "herringbone",
-                "dynamics")
+                "dynamics", "rating")
 TABLES = PAIR_ROLES + PLANETARY_ROLES + ("carrier", "pair", "planetary", "lumped_model") \
     + STAGE_TABLES
 TOP_KEYS = ("name", "description")
@@ -135,6 +136,7 @@ class Gearbox:
     dynamics : options of the pair's or the planetary set's dynamic model (``[dynamics]``),
         or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
+    rating : the ISO 6336 rating's inputs (``[rating]``), or ``None`` (no rating).
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -155,6 +157,7 @@ class Gearbox:
     herringbone: HerringboneOptions = field(default_factory=HerringboneOptions)
     dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
     lumped: DynamicModel | None = None
+    rating: RatingOptions | None = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -534,6 +537,31 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone:
     return opts
 
 
+def _rating(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]) -> RatingOptions | None:
+    """``[rating]`` with a ``[rating.<gear>]`` table per gear (``roles``) it names; the oil
+    by ``oil_grade`` or ``oil_viscosity_40_mm2_per_s``, not both."""
+    if "rating" not in doc:
+        return None
+    if kind not in ("pair", "planetary"):
+        raise InputError(f"[rating] rates gears in mesh; this file describes a "
+                         f"{_KIND_TEXT[kind]}")
+    table = doc["rating"]
+    values = read_table(table, T.RATING, "rating", subtables=roles)
+    grade = values.pop("oil_grade", None)
+    if grade is not None:
+        if "viscosity_40" in values:
+            raise InputError("rating.oil_grade and rating.oil_viscosity_40_mm2_per_s both give "
+                             "the oil's viscosity; keep one")
+        values["viscosity_40"] = oil_grade_viscosity(grade)
+    if kind == "pair" and values.get("load_sharing") is not None:
+        raise InputError(f"rating.load_sharing = {table['load_sharing']!r} applies to a "
+                         "planetary set (K_gamma of its planets); a pair carries all the load")
+    gears = {role: build(GearRatingOptions, table[role], T.RATING_GEAR, f"rating.{role}")
+             for role in roles if role in table}
+    with restated("rating", T.RATING, table):
+        return RatingOptions(**values, gears=gears)
+
+
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                       base: Path | None = None, source: InputFile | None = None) -> Gearbox:
     """Build a :class:`Gearbox` from a parsed TOML document.
@@ -598,6 +626,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         herringbone=_herringbone(doc, kind, gears),
         dynamics=_dynamics(doc, base, kind,
                            kind == "planetary" and gears["sun"].herringbone),
+        rating=_rating(doc, kind, roles),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,

@@ -212,6 +212,32 @@ HERRINGBONE = (
 )
 """Keys of ``[herringbone]`` (:class:`~pipeline.contact.herringbone.HerringboneOptions`)."""
 
+RATING = (
+    Key("application_factor", help="K_A (ISO 6336-1, 6336-6 Annex A)"),
+    Key("life_h", field="life", help="required life"),
+    Key("accuracy_grade", I, help="ISO 1328-1:1995 accuracy grade of every gear"),
+    Key("oil_viscosity_40_mm2_per_s", field="viscosity_40",
+        help="kinematic viscosity of the oil at 40 deg C"),
+    Key("oil_grade", S, help='ISO VG grade ("VG 220"), instead of the viscosity'),
+    Key("face_load_factor", "number_or_string", choices=("contact",),
+        help='K_Hbeta: "contact" (the loaded contact\'s line load) or a number'),
+    Key("load_sharing", "number_or_string", choices=("computed",),
+        help='K_gamma: a number, or "computed" (planetary sets: the dynamic model\'s planets)'),
+    Key("minimum_safety_pitting", help="S_Hmin"),
+    Key("minimum_safety_bending", help="S_Fmin"),
+)
+"""Keys of ``[rating]`` (:class:`~pipeline.rating.options.RatingOptions`); each gear's
+table ``[rating.<gear>]`` holds :data:`RATING_GEAR`."""
+RATING_GEAR = (
+    Key("sigma_Hlim_MPa", field="sigma_hlim", help="allowable contact stress number"),
+    Key("sigma_Flim_MPa", field="sigma_flim", help="nominal bending stress number"),
+    Key("hardening", S, choices=("hardened", "through_hardened")),
+    Key("hardness_HB", field="hardness_hb", help="through-hardened gear: Brinell hardness"),
+    Key("flank_roughness_Rz_um", field="flank_roughness", help="flank R_z"),
+    Key("root_roughness_Rz_um", field="root_roughness", help="root R_z"),
+)
+"""Keys of ``[rating.<gear>]`` (:class:`~pipeline.rating.options.GearRatingOptions`)."""
+
 EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (
     Key("dofs", S, choices=("lateral_torsional", "torsional")),

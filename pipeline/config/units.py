@@ -65,6 +65,8 @@ UNITS: tuple[Unit, ...] = (
     Unit("Nm_per_rad", "N m/rad", 1.0, "N m/rad"),
     Unit("Nm2", "N m^2", 1.0, "N m^2"),
     Unit("mPas", "mPa s", 1e-3, "Pa s"),
+    Unit("mm2_per_s", "mm^2/s", 1e-6, "m^2/s"),
+    Unit("h", "h", 3600.0, "s"),
 )
 _BY_SUFFIX = {u.suffix: u for u in UNITS}
 

@@ -1,4 +1,4 @@
-"""The ISO 6336 rating of one external or internal gear pair, every factor in one record.
+"""The ISO 6336 rating of one gear mesh, every factor in one record.
 
 :func:`rate_pair` chains the pieces of this package for a pair at its operating point:
 the tolerances of the accuracy grade (:mod:`.accuracy`), the running-in allowances and
@@ -7,6 +7,13 @@ the dynamic factor K_v (:mod:`.dynamic`), ISO 6336-1's stiffness (c', c_gamma,
 face load factor K_Hbeta as given (the standard's method C and the loaded contact's line
 load are to come), then the contact stress and S_H (:mod:`.pitting`) and the root stress
 and S_F (:mod:`.bending`) of both gears. SI inside; the record keeps each factor.
+
+A mesh is a pair, or one mesh of a planetary set (``"sun_planet"``: the sun as pinion;
+``"planet_ring"``: the planet as pinion, the ring internal), with the speed relative to the
+carrier: the reduced mass of K_v is the mesh's (:func:`.dynamic.reduced_mass`), and a gear
+meets as many teeth per revolution as it has mates (the sun and the ring one per planet),
+which sets its load cycles. An internal gear's bending rating needs the standard's
+internal-gear form factors, not built yet: its entry is ``None``.
 
 Checked end to end against KISSsoft's report of the NREL 5 MW gearbox's parallel helical
 stage (``tests/test_rating_pair.py``).
@@ -123,7 +130,8 @@ class PairRating:
     k_fbeta: float
     contact: ContactStress
     pitting: tuple[PittingSafety, PittingSafety]
-    bending: tuple[BendingSafety, BendingSafety]
+    bending: tuple[BendingSafety | None, BendingSafety | None]
+    cycles: tuple[float, float] = (0.0, 0.0)
 
     @property
     def safety_pitting_min(self) -> float:
@@ -131,16 +139,28 @@ class PairRating:
 
     @property
     def safety_bending_min(self) -> float:
-        return min(b.safety for b in self.bending)
+        """The smaller S_F of the gears rated in bending (NaN when none is)."""
+        rated = [b.safety for b in self.bending if b is not None]
+        return min(rated) if rated else math.nan
+
+
+MESHES = ("pair", "sun_planet", "planet_ring")
 
 
 def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
-              gears: tuple[GearRatingInputs, GearRatingInputs]) -> PairRating:
-    """The rating of ``pair`` with the pinion ``torque`` (N m) at ``speed`` (rpm)."""
+              gears: tuple[GearRatingInputs, GearRatingInputs], mesh: str = "pair",
+              planets: int = 1, dynamic: DynamicFactor | None = None) -> PairRating:
+    """The rating of ``pair`` with the pinion ``torque`` (N m) at ``speed`` (rpm; a
+    planetary mesh's relative to the carrier) as a ``mesh`` of :data:`MESHES` in a set of
+    ``planets`` planets (module docstring). ``dynamic``: the K_v to use instead of this
+    mesh's own (a planetary set takes the larger of its two meshes' K_v, as KISSsoft does:
+    ``KV = max(KV12, KV23)``)."""
     check_range("rating.torque", torque, 0.0, math.inf, lo_open=True, unit="N m")
-    if pair.gear.internal:
-        raise InputError("rating: the bending rating of an internal gear is not built yet "
-                         "(its form factors); rate its pitting with pipeline.rating.pitting")
+    check_choice("rating.mesh", mesh, MESHES)
+    if pair.gear.internal != (mesh == "planet_ring"):
+        raise InputError(f"rating: a {mesh} mesh has "
+                         + ("an internal" if mesh == "planet_ring" else "no internal")
+                         + " gear")
     p, g = pair.pinion, pair.gear
     b = pair.face_width
     d1 = 2.0 * p.reference_radius
@@ -157,9 +177,8 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     st = iso_stiffness(pair, ft, ka, c_r=inputs.blank_factor)
     masses = [gear_mass(2.0 * gear.tip_radius_, 2.0 * gear.root_radius,
                         2.0 * gear.base_radius, 2.0 * gear.bore_radius, gear.material.density)
-              for gear in (p, g)]
-    m_red = reduced_mass(masses[0], None, "planet_ring") if g.internal \
-        else reduced_mass(masses[0], masses[1])
+              for gear in (p, g) if not gear.internal]
+    m_red = reduced_mass(masses[0], masses[1] if len(masses) > 1 else None, mesh, planets)
     reliefs = [gi.tip_relief if gi.tip_relief is not None else running_in_relief(gi.sigma_hlim)
                for gi in gears]
     kv = dynamic_factor(teeth_1=p.teeth, speed_1=speed, single_stiffness=st.c_single,
@@ -167,6 +186,7 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                         line_load=ka * ft / b, total_contact_ratio=pair.total_contact_ratio,
                         base_pitch_deviation=f_pb, form_deviation=f_fa, pitch_allowance=y_p,
                         form_allowance=y_f, tip_relief=0.5 * (reliefs[0] + reliefs[1]))
+    kv = kv if dynamic is None else dynamic
     khb = inputs.k_hbeta
     kha = transverse_load_factors(
         mesh_stiffness=st.c_gamma_alpha, base_pitch_deviation=f_pb, form_deviation=f_fa,
@@ -179,7 +199,9 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     depth = min(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g))
     kfb = face_load_factor(khb, b, depth)
     u = g.teeth / p.teeth
-    cycles = (speed * 60.0 * inputs.life_hours, speed / u * 60.0 * inputs.life_hours)
+    contacts = {"pair": (1, 1), "sun_planet": (planets, 1), "planet_ring": (1, planets)}[mesh]
+    cycles = (speed * 60.0 * inputs.life_hours * contacts[0],
+              speed / abs(u) * 60.0 * inputs.life_hours * contacts[1])
     lower = min(gi.sigma_hlim for gi in gears)
     rz = 0.5 * (gears[0].flank_roughness + gears[1].flank_roughness)
     pit, bend = [], []
@@ -192,6 +214,9 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                   inputs.viscosity_40, rz, chain,
                                   inputs.minimum_safety_pitting, mesh_sigma_hlim=lower,
                                   work_hardening=zw))
+        if gear.internal:
+            bend.append(None)
+            continue
         root = iso_root_stress(gear, pair, ft)
         slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER[gi.hardening]
         bend.append(bending_safety(root, ka * kg * kv.factor * kfb * kha.k_falpha,
@@ -199,4 +224,4 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                    gi.hardening, gear.module, inputs.minimum_safety_bending,
                                    mean_stress_factor=gi.mean_stress_factor))
     return PairRating(ft, v, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
-                      (pit[0], pit[1]), (bend[0], bend[1]))
+                      (pit[0], pit[1]), (bend[0], bend[1]), cycles)
