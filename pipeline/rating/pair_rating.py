@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pipeline.contact.iso_root_stress import iso_root_stress
+from pipeline.contact.iso_root_stress import IsoRootStress, iso_root_stress
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.accuracy import Tolerances, tolerances
 from pipeline.rating.bending import BendingSafety, bending_safety, face_load_factor
@@ -117,10 +117,14 @@ class RatingInputs:
 
 @dataclass(frozen=True)
 class PairRating:
-    """Every factor of a pair's rating (SI; gear-wise tuples are (pinion, wheel))."""
+    """Every factor of a pair's rating (SI; gear-wise tuples are (pinion, wheel)):
+    ``cycles`` the load cycles of each gear over the life; ``roots`` ISO 6336-3's nominal
+    root stress with its form factors (None where the gear is not rated in bending)."""
 
     tangential_load: float
     velocity: float
+    application_factor: float
+    load_sharing: float
     tolerances: tuple[Tolerances, Tolerances]
     single_stiffness: float
     mesh_stiffness: float
@@ -132,6 +136,7 @@ class PairRating:
     pitting: tuple[PittingSafety, PittingSafety]
     bending: tuple[BendingSafety | None, BendingSafety | None]
     cycles: tuple[float, float] = (0.0, 0.0)
+    roots: tuple[IsoRootStress | None, IsoRootStress | None] = (None, None)
 
     @property
     def safety_pitting_min(self) -> float:
@@ -204,7 +209,7 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
               speed / abs(u) * 60.0 * inputs.life_hours * contacts[1])
     lower = min(gi.sigma_hlim for gi in gears)
     rz = 0.5 * (gears[0].flank_roughness + gears[1].flank_roughness)
-    pit, bend = [], []
+    pit, bend, roots = [], [], []
     for k, (gear, gi, n) in enumerate(zip((p, g), gears, cycles, strict=True)):
         other = gears[1 - k]
         zw = (work_hardening_factor(gi.hardness_hb) if gi.hardening == "through_hardened"
@@ -216,12 +221,14 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                   work_hardening=zw))
         if gear.internal:
             bend.append(None)
+            roots.append(None)
             continue
         root = iso_root_stress(gear, pair, ft)
+        roots.append(root)
         slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER[gi.hardening]
         bend.append(bending_safety(root, ka * kg * kv.factor * kfb * kha.k_falpha,
                                    gi.sigma_flim, n, gi.hardening, slip, gi.root_roughness,
                                    gi.hardening, gear.module, inputs.minimum_safety_bending,
                                    mean_stress_factor=gi.mean_stress_factor))
-    return PairRating(ft, v, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
-                      (pit[0], pit[1]), (bend[0], bend[1]), cycles)
+    return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
+                      (pit[0], pit[1]), (bend[0], bend[1]), cycles, (roots[0], roots[1]))

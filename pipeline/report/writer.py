@@ -168,12 +168,29 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         summary = result.dynamics.summary()
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
+    if result.rating is not None:
+        sections += _rating_sections(result.rating, name, fig, title)
     run_s = result.log.summary()["total_s"]
     src = box.source
     record = provenance(box.to_dict(), file_sha256=src.sha256 if src else None,
                         command=command, run_seconds=run_s)
     sections.append(content.provenance_section(record))
     return MeshReport(title, name, tuple(sections))
+
+
+def _rating_sections(stage: Any, name: str, fig, title: str) -> list:
+    """The rating's two sections of mesh ``name`` of rating ``stage`` with its safety
+    figure."""
+    from pipeline.report.rating_section import rating_load_section, rating_section
+    from pipeline.viz.rating import plot_safety_factors
+
+    m = stage.meshes[name]
+    r = m.rating
+    s_f = [math.nan if b is None else b.safety for b in r.bending]
+    f = fig("report_rating.png", "ISO 6336 safety factors of both gears against the required "
+            "minimum", plot_safety_factors, list(m.gears), [p.safety for p in r.pitting], s_f,
+            stage.minimum_pitting, stage.minimum_bending, title)
+    return [rating_load_section(m), rating_section(m, [f])]
 
 
 def _csv_text(report: MeshReport) -> str:

@@ -14,6 +14,7 @@ from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
 from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
+from pipeline.run.rating import RatingStage, rating_stage
 from pipeline.validation import InputError
 
 
@@ -30,6 +31,8 @@ class RunResult:
     log : step durations (s) and which steps came from the cache.
     distributions : name -> the load distribution and root stress of each mesh with a
         contact cycle (:class:`pipeline.run.distribution.DistributionStage`).
+    rating : the ISO 6336 rating of every mesh (:class:`pipeline.run.rating.RatingStage`),
+        or ``None`` without a ``[rating]`` table.
     """
 
     gearbox: Gearbox
@@ -37,6 +40,7 @@ class RunResult:
     dynamics: DynamicsStages | None
     log: Steps = field(compare=False)
     distributions: dict[str, DistributionStage] = field(default_factory=dict, compare=False)
+    rating: RatingStage | None = field(default=None, compare=False)
 
     def summary(self) -> dict[str, Any]:
         """One summary of the run (SI; keys carry units)."""
@@ -44,6 +48,8 @@ class RunResult:
                                "meshes": {k: v.summary() for k, v in self.meshes.items()}}
         if self.dynamics is not None:
             out["dynamics"] = self.dynamics.summary()
+        if self.rating is not None:
+            out["rating"] = self.rating.summary()
         out["timing"] = self.log.summary()
         return out
 
@@ -57,7 +63,9 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
-    return RunResult(box, meshes, dynamics, log, distributions)
+    rating = rating_stage(box, meshes, {k: d.distribution for k, d in distributions.items()},
+                          {k: d.root_stress for k, d in distributions.items()}, dynamics, log)
+    return RunResult(box, meshes, dynamics, log, distributions, rating)
 
 
 def gearbox_dynamic_model(box: Gearbox, cache: Cache = DEFAULT_CACHE) -> DynamicModel:

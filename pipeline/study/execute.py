@@ -275,7 +275,7 @@ def check_study(spec: StudySpec) -> tuple[KPI, ...]:
     if dynamics and "dynamics" not in spec.base.document:
         raise InputError(f"{spec.path}: kpis.speed_range_rpm needs a [dynamics] table in the "
                          f"base file {spec.base_path.name}")
-    kpis = select_kpis(spec.kpis, dynamics)
+    kpis = select_kpis(spec.kpis, dynamics, "rating" in spec.base.document)
     names = [k.name for k in kpis]
     asked = [("best.kpi", spec.best_kpi)] if spec.best_kpi else []
     asked += [("plots.tradeoff", k) for k in spec.tradeoff]

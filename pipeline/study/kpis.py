@@ -3,7 +3,8 @@
 Each KPI is one row of :data:`KPIS`: its column name (unit suffix as in the gearbox
 file's keys), what it needs (``"contact"``: the loaded contact cycle of the main mesh;
 ``"root_stress"``: the FE fillet stress tables of its gears; ``"dynamics"``: a speed
-sweep of the dynamic model) and a function of the
+sweep of the dynamic model; ``"rating"``: the ISO 6336 rating of every mesh, which needs a
+``[rating]`` table in the base file) and a function of the
 :class:`PointResult`. Adding a KPI is adding one row. The load distribution KPIs
 (K_Hbeta, Hertz pressure, TE orders) are those of the report
 (:func:`pipeline.contact.distribution.load_distribution`), the root stress is the
@@ -84,6 +85,19 @@ class PointResult:
         return analyse_root_stress(self.contact, self.pair, self.operation,
                                    self.run.gearbox.fe_source, cache=self.cache)
 
+    @cached_property
+    def rating(self) -> Any:
+        """The ISO 6336 rating of every mesh (:func:`pipeline.run.rating.rating_stage`: its
+        K_Hbeta from each mesh's loaded contact, without dynamics and FE root stress)."""
+        from pipeline.progress import Steps
+        from pipeline.run.rating import rating_stage
+
+        meshes = self.run.meshes
+        dists = {name: load_distribution(st.contact, st.stiffness.actual, st.case.operation)
+                 for name, st in meshes.items()}
+        return rating_stage(self.run.gearbox, meshes, dists, {}, None,
+                            Steps("", enabled=False))
+
 
 @dataclass(frozen=True)
 class KPI:
@@ -145,6 +159,12 @@ KPIS: tuple[KPI, ...] = (
         lambda r: float(r.contact.max_unit_load.max()) * 1e-3,
         "largest load per unit length of contact line over the cycle",
         "max. unit load"),
+    KPI("safety_pitting_min", "-", "rating", lambda r: r.rating.smallest("pitting")[0],
+        "smallest ISO 6336-2 pitting safety factor S_H of any gear of any mesh",
+        "min. pitting safety S_H"),
+    KPI("safety_bending_min", "-", "rating", lambda r: r.rating.smallest("bending")[0],
+        "smallest ISO 6336-3 bending safety factor S_F of any gear rated in bending",
+        "min. bending safety S_F"),
     KPI("dynamic_factor_peak", "-", "dynamics", lambda r: _peak_factor(r)[0],
         "largest max/mean dynamic mesh force over the study's speed range",
         "peak dynamic factor"),
@@ -166,13 +186,17 @@ def kpi_label(name: str) -> str:
     return kpi.label if kpi.unit == "-" else f"{kpi.label} ({kpi.unit})"
 
 
-def select_kpis(names: tuple[str, ...], dynamics: bool) -> tuple[KPI, ...]:
-    """The KPIs a study asks for (all by default; the dynamic ones only with a speed range).
+def select_kpis(names: tuple[str, ...], dynamics: bool, rating: bool = False
+                ) -> tuple[KPI, ...]:
+    """The KPIs a study asks for (all by default; the dynamic ones only with a speed range,
+    the safety factors only when the base file has a ``[rating]`` table).
 
-    Raises :class:`InputError` for an unknown name or a dynamic KPI without a speed range.
+    Raises :class:`InputError` for an unknown name, a dynamic KPI without a speed range or a
+    rating KPI without a ``[rating]`` table.
     """
     if not names:
-        return tuple(k for k in KPIS if dynamics or k.needs != "dynamics")
+        return tuple(k for k in KPIS if (dynamics or k.needs != "dynamics")
+                     and (rating or k.needs != "rating"))
     out = []
     for n in names:
         if n not in KPI_BY_NAME:
@@ -182,6 +206,8 @@ def select_kpis(names: tuple[str, ...], dynamics: bool) -> tuple[KPI, ...]:
         if KPI_BY_NAME[n].needs == "dynamics" and not dynamics:
             raise InputError(f"kpis.names: {n!r} needs kpis.speed_range_rpm = [low, high] and "
                              "a [dynamics] table in the base file")
+        if KPI_BY_NAME[n].needs == "rating" and not rating:
+            raise InputError(f"kpis.names: {n!r} needs a [rating] table in the base file")
         out.append(KPI_BY_NAME[n])
     return tuple(out)
 

@@ -1,0 +1,159 @@
+"""The ISO 6336 rating sections of a mesh report, laid out as a commercial rating report.
+
+Two tables: the load factors of the mesh (value, where it comes from), and both gears side
+by side through the contact stress, the permissible contact stress and S_H, the root
+stress, the permissible root stress and S_F, each row with its symbol, unit and the part
+and method of ISO 6336 it follows; beside the standard's sigma_H and sigma_F the loaded
+contact's largest Hertz pressure and the FE root stress (both at the nominal torque).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from pipeline.report.content import MPA, quantity
+from pipeline.report.model import Figure, Section
+
+ISO1, ISO2, ISO3 = "ISO 6336-1", "ISO 6336-2 method B", "ISO 6336-3 method B"
+N_PER_MM_UM = 1e-9  # N/m^2 -> N/(mm um)
+
+
+def rating_load_section(m) -> Section:
+    """Mesh-wide factors of :class:`pipeline.run.rating.MeshRating` ``m``; beside K_v the run's
+    dynamic model's factor at the operating speed (a dash without dynamics)."""
+    r = m.rating
+    rows = [
+        quantity("F_t", "nominal tangential load at the reference circle F_t", "N",
+                 r.tangential_load, ISO1 if m.mesh == "mesh" else f"{ISO1}: one planet's"),
+        quantity("v", "pitch line velocity v", "m/s", r.velocity,
+                 f"{ISO1}, relative to the carrier" if m.mesh != "mesh" else ISO1),
+        quantity("K_A", "application factor K_A", "-", r.application_factor,
+                 "[rating] application_factor"),
+        quantity("K_gamma", "mesh load factor K_gamma", "-", r.load_sharing,
+                 m.load_sharing_source),
+        quantity("c_prime", "single tooth stiffness c'", "N/(mm um)",
+                 r.single_stiffness * N_PER_MM_UM, f"{ISO1} method B"),
+        quantity("c_gamma_alpha", "mesh stiffness c_gamma_alpha", "N/(mm um)",
+                 r.mesh_stiffness * N_PER_MM_UM, f"{ISO1} method B"),
+        quantity("f_pb", "base pitch deviation f_pb (larger gear)", "um",
+                 max(t.f_pb for t in r.tolerances) * 1e6, "ISO 1328-1:1995"),
+        quantity("f_falpha", "profile form deviation f_falpha (larger gear)", "um",
+                 max(t.f_falpha for t in r.tolerances) * 1e6, "ISO 1328-1:1995"),
+        quantity("K_v", "dynamic factor K_v", "-", r.dynamic.factor,
+                 f"{ISO1} method B, subcritical range" + (
+                     "; the larger of the set's two meshes" if m.mesh != "mesh" else "")),
+        quantity("resonance_ratio", "resonance ratio N = n_1 / n_E1", "-",
+                 r.dynamic.resonance_ratio, f"{ISO1} method B"),
+    ]
+    if m.dynamic_factor_model is not None:
+        rows.append(quantity("K_v_model", "dynamic factor of the run's dynamic model", "-",
+                             m.dynamic_factor_model,
+                             "largest over mean mesh force at the operating speed"))
+    if m.k_gamma_computed is not None:
+        rows.insert(4, quantity("K_gamma_computed", "K_gamma of the dynamic model's planet "
+                                "forces", "-", m.k_gamma_computed,
+                                "largest planet over the mean, at the operating speed"))
+    rows += [
+        quantity("K_Hbeta", "face load factor K_Hbeta", "-", r.k_hbeta, m.k_hbeta_source),
+        quantity("K_Hbeta_contact", "K_Hbeta of the loaded contact's line load", "-",
+                 m.k_hbeta_contact, "largest over mean of the cycle-mean line load"),
+        quantity("K_Fbeta", "face load factor K_Fbeta", "-", r.k_fbeta,
+                 f"{ISO1}: K_Hbeta^N_F"),
+        quantity("K_Halpha", "transverse load factor K_Halpha", "-", r.transverse.k_halpha,
+                 f"{ISO1} method B"),
+        quantity("K_Falpha", "transverse load factor K_Falpha", "-", r.transverse.k_falpha,
+                 f"{ISO1} method B"),
+    ]
+    notes = [
+        "K_Hbeta = " + ("the loaded contact's (largest over mean of the cycle-mean line load "
+                        "across the face)" if m.k_hbeta_source == "loaded contact" else
+                        "as given in [rating] face_load_factor")
+        + "; the standard's method C is not built yet. On rigid supports an aligned pair's "
+        "contact gives K_Hbeta near 1: give the misalignment ([contact] slope_deviation_um) "
+        "or a number to rate a real gearbox.",
+    ]
+    if m.herringbone_half:
+        notes.append("Herringbone: rated as one helical half (face width b_B) at half the load.")
+    return Section("rating_loads", "ISO 6336 rating: load factors", tuple(rows),
+                   ("value", "source"), notes=tuple(notes))
+
+
+def rating_section(m, figures: Sequence[Figure]) -> Section:
+    """Both gears of :class:`pipeline.run.rating.MeshRating` ``m`` side by side (module
+    docstring)."""
+    r = m.rating
+    c = r.contact
+    pit, bend, roots = r.pitting, r.bending, r.roots
+
+    def gear(key, label, unit, values, method):
+        return quantity(key, label, unit, *values, method)
+
+    def each(fn, items):
+        return tuple(None if x is None else fn(x) for x in items)
+
+    rows = [
+        gear("Z_H", "zone factor Z_H", "-", (c.zone_factor,) * 2, ISO2),
+        gear("Z_E", "elasticity factor Z_E", "(N/mm^2)^0.5", (c.elasticity_factor * 1e-3,) * 2,
+             ISO2),
+        gear("Z_eps", "contact ratio factor Z_eps", "-", (c.contact_ratio_factor,) * 2, ISO2),
+        gear("Z_beta", "helix angle factor Z_beta", "-", (c.helix_factor,) * 2, ISO2),
+        gear("Z_BD", "single pair tooth contact factor Z_B / Z_D", "-", c.single_pair_factors,
+             ISO2),
+        gear("sigma_H0", "nominal contact stress sigma_H0", "MPa", (c.nominal * MPA,) * 2, ISO2),
+        gear("sigma_H", "contact stress sigma_H", "MPa", tuple(s * MPA for s in c.stress), ISO2),
+        gear("p_H_contact", "loaded contact: largest Hertz pressure (nominal torque)", "MPa",
+             (m.contact_pressure_max * MPA,) * 2, "beside sigma_H0 Z_B,D: the contact's own"),
+        gear("N_L", "load cycles over the life N_L", "-", r.cycles,
+             "speed x life x mates per revolution"),
+        gear("Z_NT", "life factor Z_NT", "-", each(lambda p: p.life_factor, pit), ISO2),
+        gear("Z_L", "lubricant factor Z_L", "-", each(lambda p: p.lubricant_factor, pit), ISO2),
+        gear("Z_v", "velocity factor Z_v", "-", each(lambda p: p.velocity_factor, pit), ISO2),
+        gear("Z_R", "roughness factor Z_R", "-", each(lambda p: p.roughness_factor, pit), ISO2),
+        gear("Z_W", "work hardening factor Z_W", "-",
+             each(lambda p: p.work_hardening_factor, pit), ISO2),
+        gear("Z_X", "size factor Z_X", "-", each(lambda p: p.size_factor, pit), ISO2),
+        gear("sigma_Hlim", "allowable contact stress number sigma_Hlim", "MPa",
+             tuple(x * MPA for x in m.sigma_hlim), "[rating.<gear>] (ISO 6336-5)"),
+        gear("S_Hmin", "minimum safety factor S_Hmin", "-", (m.minimum_pitting,) * 2,
+             "[rating] minimum_safety_pitting"),
+        gear("sigma_HP", "permissible contact stress sigma_HP", "MPa",
+             each(lambda p: p.permissible * MPA, pit), f"{ISO2}, with S_Hmin"),
+        gear("S_H", "safety factor for pitting S_H", "-", each(lambda p: p.safety, pit), ISO2),
+        gear("Y_F", "form factor Y_F", "-", each(lambda x: x.y_f, roots), ISO3),
+        gear("Y_S", "stress correction factor Y_S", "-", each(lambda x: x.y_s, roots), ISO3),
+        gear("Y_beta", "helix angle factor Y_beta", "-", each(lambda x: x.y_beta, roots), ISO3),
+        gear("Y_B", "rim thickness factor Y_B", "-", each(lambda x: x.y_b, roots), ISO3),
+        gear("Y_DT", "deep tooth factor Y_DT", "-", each(lambda x: x.y_dt, roots), ISO3),
+        gear("sigma_F0", "nominal root stress sigma_F0", "MPa",
+             each(lambda b: b.nominal * MPA, bend), ISO3),
+        gear("sigma_F", "root stress sigma_F", "MPa", each(lambda b: b.stress * MPA, bend), ISO3),
+        gear("sigma_F_fe", "FE root stress: largest over the cycle (nominal torque)", "MPa",
+             each(lambda s: s * MPA, m.root_stress_fe), "beside sigma_F0: the FE 2D model"),
+        gear("sigma_Flim", "nominal bending stress number sigma_Flim", "MPa",
+             tuple(x * MPA for x in m.sigma_flim), "[rating.<gear>] (ISO 6336-5)"),
+        gear("Y_ST", "stress correction factor of the test gear Y_ST", "-", (2.0, 2.0), ISO3),
+        gear("Y_NT", "life factor Y_NT", "-", each(lambda b: b.life_factor, bend), ISO3),
+        gear("Y_deltarelT", "relative notch sensitivity factor Y_deltarelT", "-",
+             each(lambda b: b.notch_factor, bend), ISO3),
+        gear("Y_RrelT", "relative surface factor Y_RrelT", "-",
+             each(lambda b: b.surface_factor, bend), ISO3),
+        gear("Y_X", "size factor Y_X", "-", each(lambda b: b.size_factor, bend), ISO3),
+        gear("Y_M", "mean stress factor Y_M", "-", each(lambda b: b.mean_stress_factor, bend),
+             f"{ISO3}: 0.7 for an idler"),
+        gear("S_Fmin", "minimum safety factor S_Fmin", "-", (m.minimum_bending,) * 2,
+             "[rating] minimum_safety_bending"),
+        gear("sigma_FG", "root stress limit sigma_FG", "MPa", each(lambda b: b.limit * MPA,
+                                                                  bend), ISO3),
+        gear("sigma_FP", "permissible root stress sigma_FP", "MPa",
+             each(lambda b: b.permissible * MPA, bend), f"{ISO3}, with S_Fmin"),
+        gear("S_F", "safety factor for bending S_F", "-", each(lambda b: b.safety, bend), ISO3),
+    ]
+    notes = ["sigma_H = Z_B,D sigma_H0 sqrt(K_A K_gamma K_v K_Hbeta K_Halpha); sigma_F = "
+             "sigma_F0 K_A K_gamma K_v K_Fbeta K_Falpha; S_H = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W "
+             "Z_X / sigma_H; S_F = sigma_Flim Y_ST Y_NT Y_deltarelT Y_RrelT Y_X Y_M / sigma_F "
+             "(Y_ST = 2)."]
+    if any(b is None for b in bend):
+        notes.append("The ring is not rated in bending: ISO 6336-3's internal-gear form "
+                     "factors (its root chord and fillet radius) are not built yet.")
+    return Section("rating", "ISO 6336 rating: pitting and tooth root", tuple(rows),
+                   (*m.gears, "method"), figures=tuple(figures), notes=tuple(notes))
