@@ -1,6 +1,6 @@
 """Allowable stress numbers of ISO 6336-5:2016 (method B): sigma_Hlim and sigma_Flim of a gear
 material from its kind, its quality grade and its surface hardness, with the material's
-class for ISO 6336-1/-2/-3 (life lines, running-in allowances, size factors).
+class for ISO 6336-1/-2/-3 (life lines, running-in allowances, root size factor).
 
 Table 1 of ISO 6336-5:2016 (clause 5.5) writes every line of its figures as ``sigma_lim =
 A x + B`` (N/mm^2), ``x`` the surface hardness on the scale the row names (Brinell HBW or
@@ -69,10 +69,16 @@ The classes of each kind (:class:`MaterialKind`), as ISO 6336-1/-2/-3 group the 
   allowance`): ``"through_hardened"`` (``160 / sigma_Hlim f``) St, V, GGG (perl., bai.),
   GTS (perl.); ``"cast_iron"`` (``0.275 f``) GG, GGG (ferr.); ``"hardened"`` (``0.075 f``)
   Eh, IF, NT, NV;
-* size factor Y_X of ISO 6336-3: ``"through_hardened"`` St, V, GGG (perl., bai.), GTS
-  (perl.); ``"hardened"`` Eh, IF, NT, NV; ``"cast_iron"`` GG, GGG (ferr.);
-* size factor Z_X of ISO 6336-2: ``"through_hardened"`` (1) St, V, GGG, GTS, GG;
-  ``"hardened"`` Eh, IF; ``"nitrided"`` NT, NV.
+* size factor Y_X of ISO 6336-3: ``"through_hardened"`` (``1.03 - 0.006 m_n``) St, V, GGG
+  (perl., bai.), GTS (perl.); ``"hardened"`` (``1.05 - 0.01 m_n``) Eh, IF, NT, NV;
+  ``"cast_iron"`` (``1.075 - 0.015 m_n``, at least 0.7) GG, GGG (ferr.);
+
+The running-in groups are also those of the transcription of ISO 6336-1 in the same C#
+code as the table below, and the Y_X groups agree with public third-party quotes of ISO
+6336-3's size factor table; KISSsoft's reports (below) print the running-in allowances and
+Y_X of a case-hardened and a through-hardened gear that these classes reproduce. No flank
+size class is given: ISO 6336-2's Z_X is 1 here (:mod:`pipeline.rating.pitting`), as
+KISSsoft prints it (1.000) for case-hardened gears of module 45 mm.
 
 ``sigma_FE = Y_ST sigma_Flim`` with ``Y_ST = 2`` (ISO 6336-5, 5.3.2) is
 :attr:`MaterialLimits.sigma_fe`.
@@ -163,8 +169,6 @@ class MaterialKind:
     bending_life_line : key of :data:`pipeline.rating.bending.LIFE_LINES`.
     running_in : ``"hardened"``, ``"through_hardened"`` or ``"cast_iron"`` (ISO 6336-1).
     bending_size_class : Y_X line, ``"hardened"``, ``"through_hardened"`` or ``"cast_iron"``.
-    flank_size_class : Z_X line, ``"through_hardened"`` (Z_X = 1), ``"hardened"`` or
-        ``"nitrided"``.
     core_variants : MQ bending rows by core hardness (:data:`CORE_HARDNESS` order), or
         empty; the first is the one in ``bending``.
     gap_note : what the table holds beyond the transcribed ranges, or "".
@@ -180,7 +184,6 @@ class MaterialKind:
     bending_life_line: str
     running_in: str
     bending_size_class: str
-    flank_size_class: str
     core_variants: tuple[LimitLine, ...] = ()
     gap_note: str = ""
 
@@ -196,13 +199,12 @@ def _lines(*rows: tuple[int, float, float, float, float]) -> Lines:
 
 
 # Classes of the groups of ISO 6336-1/-2/-3 (see the module docstring):
-# (pitting life line, bending life line, running-in, Y_X class, Z_X class)
-_STEEL = ("hardened", "through_hardened", "through_hardened", "through_hardened",
-          "through_hardened")
-_CAST_IRON = ("nitrided", "nitrided", "cast_iron", "cast_iron", "through_hardened")
-_CASE = ("hardened", "hardened", "hardened", "hardened", "hardened")
-_NITRIDED = ("nitrided", "nitrided", "hardened", "hardened", "nitrided")
-_NITROCARBURIZED = ("nitrocarburized", "nitrocarburized", "hardened", "hardened", "nitrided")
+# (pitting life line, bending life line, running-in, Y_X class)
+_STEEL = ("hardened", "through_hardened", "through_hardened", "through_hardened")
+_CAST_IRON = ("nitrided", "nitrided", "cast_iron", "cast_iron")
+_CASE = ("hardened", "hardened", "hardened", "hardened")
+_NITRIDED = ("nitrided", "nitrided", "hardened", "hardened")
+_NITROCARBURIZED = ("nitrocarburized", "nitrocarburized", "hardened", "hardened")
 
 _GGG_CONTACT = ((11, 1.434, 211.0, 175.0, 300.0), (11, 1.434, 211.0, 175.0, 300.0),
                 (12, 1.500, 250.0, 200.0, 300.0))
@@ -339,7 +341,7 @@ class MaterialLimits:
     pitting_life_line : key of :data:`pipeline.rating.pitting.LIFE_LINES`.
     bending_life_line : key of :data:`pipeline.rating.bending.LIFE_LINES`.
     running_in : ``"hardened"``, ``"through_hardened"`` or ``"cast_iron"`` (ISO 6336-1).
-    bending_size_class : Y_X line; flank_size_class : Z_X line (:class:`MaterialKind`).
+    bending_size_class : Y_X line (:class:`MaterialKind`).
     """
 
     kind: str
@@ -355,7 +357,6 @@ class MaterialLimits:
     bending_life_line: str
     running_in: str
     bending_size_class: str
-    flank_size_class: str
 
     @property
     def sigma_fe(self) -> float:
@@ -458,4 +459,4 @@ def material_limits(kind: str, quality: str, hardness: float, scale: str, *, whe
         contact_row=contact.row, bending_row=bending.row,
         pitting_life_line="pitting_permitted" if pitting_permitted else mat.pitting_life_line,
         bending_life_line=mat.bending_life_line, running_in=mat.running_in,
-        bending_size_class=mat.bending_size_class, flank_size_class=mat.flank_size_class)
+        bending_size_class=mat.bending_size_class)
