@@ -245,8 +245,13 @@ def test_out_of_range_hardness_names_key_value_and_range():
     # row 53 ends at 570 HV; row 54 beyond it is not built
     with pytest.raises(InputError, match=r"\[500, 570\] HV .*row 54\) is not built"):
         M.material_limits("flame_induction_hardened", "MQ", 600.0, "HV", where=WHERE)
-    with pytest.raises(InputError, match=r"\[300, 450\] HV .*rows 70 and 73\) are not built"):
+    with pytest.raises(InputError, match=r"\[300, 450\] HV .*ME rows above 450 HV \(rows 70 "
+                                         r"and 73\) are not built"):
         M.material_limits("nitrocarburized", "ME", 500.0, "HV", where="rating.wheel")
+    # below the range, or another grade: no word of the rows above
+    for quality, x in (("MQ", 490.0), ("ML", 620.0)):
+        with pytest.raises(InputError, match=r"HV\)$"):
+            M.material_limits("flame_induction_hardened", quality, x, "HV", where=WHERE)
     with pytest.raises(InputError, match=r"surface_hardness_HBW = 'hard' is not a number"):
         M.material_limits("grey_cast_iron", "ML", "hard", "HBW", where=WHERE)
     with pytest.raises(InputError, match="must be finite"):

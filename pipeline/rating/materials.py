@@ -71,7 +71,7 @@ The classes of each kind (:class:`MaterialKind`), as ISO 6336-1/-2/-3 group the 
   Eh, IF, NT, NV;
 * size factor Y_X of ISO 6336-3: ``"through_hardened"`` (``1.03 - 0.006 m_n``) St, V, GGG
   (perl., bai.), GTS (perl.); ``"hardened"`` (``1.05 - 0.01 m_n``) Eh, IF, NT, NV;
-  ``"cast_iron"`` (``1.075 - 0.015 m_n``, at least 0.7) GG, GGG (ferr.);
+  ``"cast_iron"`` (``1.075 - 0.015 m_n``, at least 0.7) GG, GGG (ferr.).
 
 The running-in groups are also those of the transcription of ISO 6336-1 in the same C#
 code as the table below, and the Y_X groups agree with public third-party quotes of ISO
@@ -171,7 +171,8 @@ class MaterialKind:
     bending_size_class : Y_X line, ``"hardened"``, ``"through_hardened"`` or ``"cast_iron"``.
     core_variants : MQ bending rows by core hardness (:data:`CORE_HARDNESS` order), or
         empty; the first is the one in ``bending``.
-    gap_note : what the table holds beyond the transcribed ranges, or "".
+    gap_notes : (quality, note) of the grades whose Table 1 rows above the transcribed
+        range are not built.
     """
 
     name: str
@@ -185,7 +186,7 @@ class MaterialKind:
     running_in: str
     bending_size_class: str
     core_variants: tuple[LimitLine, ...] = ()
-    gap_note: str = ""
+    gap_notes: tuple[tuple[str, str], ...] = ()
 
     @property
     def may_permit_pitting(self) -> bool:
@@ -294,8 +295,8 @@ _KINDS = (
         _lines((52, 0.305, 76.0, 485.0, 615.0), (53, 0.138, 290.0, 500.0, 570.0),
                (55, 0.271, 237.0, 500.0, 615.0)),
         *_CASE,
-        gap_note="Table 1's MQ bending row above 570 HV (row 54) is not built: give "
-                 "sigma_Flim directly"),
+        gap_notes=(("MQ", "Table 1's MQ bending row above 570 HV (row 54) is not built: "
+                           "give sigma_Flim directly"),)),
     MaterialKind(
         "nitrided", "NT (nitr.)", "nitriding steel, nitrided", "HV",
         _lines((56, 0.0, 1125.0, 650.0, 900.0), (57, 0.0, 1250.0, 650.0, 900.0),
@@ -318,8 +319,9 @@ _KINDS = (
         _lines((71, 0.0, 224.0, 300.0, 650.0), (72, 0.653, 94.0, 300.0, 450.0),
                (72, 0.653, 94.0, 300.0, 450.0)),
         *_NITROCARBURIZED,
-        gap_note="Table 1's MQ and ME rows above 450 HV (rows 70 and 73) are not built: "
-                 "give sigma_Hlim and sigma_Flim directly"),
+        gap_notes=tuple((q, f"Table 1's {q} rows above 450 HV (rows 70 and 73) are not "
+                            "built: give sigma_Hlim and sigma_Flim directly")
+                        for q in ("MQ", "ME"))),
 )
 
 MATERIALS = MappingProxyType({k.name: k for k in _KINDS})
@@ -389,6 +391,13 @@ def _bending_line(kind: MaterialKind, quality: str, core_hardness: str | None,
     return kind.core_variants[CORE_HARDNESS.index(core_hardness)]
 
 
+def _above(value: object, limit: float) -> bool:
+    try:
+        return float(value) > limit
+    except (TypeError, ValueError):
+        return False
+
+
 def hardness_range(kind: str, quality: str, *, where: str) -> tuple[float, float, str]:
     """(lowest, highest, scale) of the surface hardness that both of the kind's lines of
     ``quality`` accept."""
@@ -444,8 +453,9 @@ def material_limits(kind: str, quality: str, hardness: float, scale: str, *, whe
     note = (f"ISO 6336-5:2016 Table 1, {mat.name} {quality}: sigma_Hlim row {contact.row} "
             f"{contact.x_min:g}-{contact.x_max:g} {mat.scale}, sigma_Flim row {bending.row} "
             f"{bending.x_min:g}-{bending.x_max:g} {mat.scale}")
-    if mat.gap_note:
-        note += "; " + mat.gap_note
+    gap = dict(mat.gap_notes).get(quality)
+    if gap and _above(hardness, hi):
+        note += "; " + gap
     check_range(key, hardness, lo, hi, unit=mat.scale, note=note)
     if pitting_permitted and not mat.may_permit_pitting:
         raise InputError(
