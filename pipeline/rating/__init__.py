@@ -10,6 +10,7 @@
 - :mod:`.pair_rating` - :func:`rate_pair`: every factor of a pair's rating in one record
   (K_Hbeta as given for now; external pairs).
 - :mod:`.transverse` - ISO 6336-1 method B transverse load factors K_Halpha and K_Falpha.
+- :mod:`.face_load` - ISO 6336-1 method C face load factor K_Hbeta (and K_Fbeta from it).
 - :mod:`.bending` - ISO 6336-3 method B: sigma_F from the nominal root stress of
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),
   the permissible root stress (Y_ST, Y_NT, Y_deltarelT, Y_RrelT, Y_X) and S_F.
@@ -17,7 +18,7 @@
 Checked against ISO/TR 6336-30's example 1 (pitting, as transcribed) and KISSsoft's reports
 of the NREL 5 MW gearbox (pitting of the parallel stage and of both meshes of a planetary
 stage, bending of the parallel stage and of a sun and a planet, K_v and K_Halpha of three
-meshes, the tolerances of all eight gears). Not built yet: ISO 6336-1's K_Hbeta (method C);
+meshes, the tolerances of all eight gears). Not built yet: K_Hbeta by method C inside rate_pair;
 ISO 6336-5's materials; internal gears' bending; the [rating] table, the rating stage and
 the report section; planetary sets as a whole; load spectra (ISO 6336-6); the finite-life
 interpolation below the endurance knees; the local pitting map of the loaded contact.

@@ -46,17 +46,19 @@ those of ISO 6336-1:2006.
 * ``K_Fbeta`` from ``K_Hbeta`` by :func:`pipeline.rating.bending.face_load_factor` (7.6;
   the face width of one helix for double helical gears).
 
-Sources: the standard's text was not at hand; the formulas follow three independent
-public transcriptions that agree where they overlap (a C# implementation of ISO
-6336-1:2006 with its equation numbers, the MATLAB ISO 6336 classes of Rebouças'
-Drivetrain and python-gearbox) and DIN 3990-11's same-form equations.
-``c_gamma_beta = 0.85 c_gamma_alpha`` is what KISSsoft prints (15.837 for 18.632); the rest
-is checked against hand calculations in the standard's units
-(``tests/test_rating_face_load.py``). Sources differ on ``f_ma`` (root sum of squares in
-the MATLAB and python transcriptions, the larger ``f_Hbeta`` in DIN 3990), on the 6 um
-cap of ``y_beta`` for hardened gears (DIN 3990 and one transcription; not in the C#
-one) and on ``f_Hbeta5`` against ``f_Hbeta6`` in Eq. (53) (a python-gearbox fork cites an
-erratum for grade 6).
+Sources: the standard's text was not at hand; the formulas follow public transcriptions
+that agree where they overlap (a C# implementation of ISO 6336-1:2006 with its equation
+numbers, the MATLAB ISO 6336 classes of Rebouças' Drivetrain, python-gearbox) and DIN
+3990-11's equations of the same form. No published example of the whole chain was found:
+KISSsoft's reports of the NREL 5 MW gearbox fix K_Hbeta by hand (their ``c_gamma_beta``
+15.837 = 0.85 x 18.632 is checked), and ISO/TR 6336-30's example 1 prints K_Hbeta 1.16,
+which this gives (1.1596) for a pinion at mid-span with ``f_ma`` the root sum of squares,
+inputs the example's shaft data (not available) cannot confirm. The rest is checked
+against hand calculations in the standard's units (``tests/test_rating_face_load.py``).
+Sources differ on ``f_ma`` (root sum of squares in the MATLAB and python transcriptions,
+the larger ``f_Hbeta`` in DIN 3990), on the 6 um cap of ``y_beta`` for hardened gears
+(DIN 3990 and one transcription; not in the C# one) and on ``f_Hbeta5`` against
+``f_Hbeta6`` in Eq. (53) (a python-gearbox fork cites an erratum for grade 6).
 """
 
 from __future__ import annotations
