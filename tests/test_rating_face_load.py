@@ -225,6 +225,11 @@ def test_hand_calculation_single_helical(w_nmm):
     assert r.contact_width_ratio == pytest.approx(width, rel=1e-12)
     assert r.k_fbeta == pytest.approx(k_fbeta_standard(k, b, 27.0), rel=1e-12)
     assert r.k_hbeta == pytest.approx({600.0: 1.2157, 50.0: 2.1899}[w_nmm], abs=1e-4)
+    table = r.summary()
+    assert table["f_sh_um"] == pytest.approx(f_sh, rel=1e-12)
+    assert table["F_betay_um"] == pytest.approx(fby, rel=1e-12)
+    assert table["F_m/b_N/mm"] == pytest.approx(w_nmm, rel=1e-12)
+    assert table["c_gamma_beta_N/(mm um)"] == pytest.approx(c, rel=1e-12)
 
 
 def test_hand_calculation_double_helical_power_split():

@@ -270,6 +270,26 @@ class FaceLoadFactor:
         """True when ``F_betax,min`` governs."""
         return self.f_beta_x_min > self.f_beta_x_calculated
 
+    def summary(self) -> dict[str, float]:
+        """The intermediates in the standard's units, the unit in each name."""
+        return {
+            "F_m/b_N/mm": self.line_load * 1e-3,
+            "B*": self.b_star,
+            "K'": self.k_prime,
+            "f_sh_um": self.f_sh / UM,
+            "f_ma_um": self.f_ma / UM,
+            "B1": self.b1,
+            "B2": self.b2,
+            "F_betax_min_um": self.f_beta_x_min / UM,
+            "F_betax_um": self.f_beta_x / UM,
+            "y_beta_um": self.y_beta / UM,
+            "F_betay_um": self.f_beta_y / UM,
+            "c_gamma_beta_N/(mm um)": self.c_gamma_beta * 1e-9,
+            "b_cal/b": self.contact_width_ratio,
+            "K_Hbeta": self.k_hbeta,
+            "K_Fbeta": self.k_fbeta,
+        }
+
 
 def power_path_factor(power_share: float, double_helical: bool = False) -> float:
     """``B*`` of Eq. (57)/(58) for ``power_share`` per cent of the power through the mesh."""
@@ -361,8 +381,9 @@ def face_load_method_c(inputs: FaceLoadInputs, *, line_load: float, face_width: 
     velocity : pitch line velocity, m/s.
     tooth_height : the larger tooth depth ``h`` of the two gears (the smaller ``b / h``),
         m, for K_Fbeta.
-    grade5_helix_slope_deviation : ``f_Hbeta5`` (m), the grade 5 tolerance of Eq. (53);
-        needed when the contact pattern is proven.
+    grade5_helix_slope_deviation : ``f_Hbeta5`` (m), the ISO 1328-1 grade 5 helix slope
+        tolerance of Eq. (53), the larger of the two gears'; needed when the contact
+        pattern is proven.
     double_helical : Eq. (58) and ``b_B = b / 2``.
     """
     w = inputs.where
@@ -372,6 +393,7 @@ def face_load_method_c(inputs: FaceLoadInputs, *, line_load: float, face_width: 
     check_range(f"{w}: c_gamma_beta", c_gamma_beta * 1e-9, 0.0, math.inf, lo_open=True,
                 unit="N/(mm um)")
     check_range(f"{w}: v", velocity, 0.0, math.inf, unit="m/s")
+    check_range(f"{w}: h", tooth_height * 1e3, 0.0, math.inf, lo_open=True, unit="mm")
     for k, f in enumerate(helix_slope_deviations):
         check_range(f"{w}: f_Hbeta{k + 1}", f / UM, 0.0, 1000.0, unit="um")
 
