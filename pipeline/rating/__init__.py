@@ -1,4 +1,4 @@
-"""Load capacity rating of ISO 6336 (in progress, issue 27).
+"""Load capacity rating of ISO 6336 .
 
 - :mod:`.pitting` - ISO 6336-2 method B: the contact stress chain (Z_H, Z_E, Z_eps,
   Z_beta, Z_B / Z_D, sigma_H0, sigma_H), the permissible contact stress (Z_NT, Z_L, Z_v,
@@ -7,9 +7,11 @@
   profile and helix deviations), the inputs of ISO 6336-1's load factors.
 - :mod:`.dynamic` - ISO 6336-1 method B dynamic factor K_v in the subcritical range (the
   reduced mass of a pair or a planetary mesh, n_E1, running-in allowances, B_p, B_f, B_k).
-- :mod:`.pair_rating` - :func:`rate_pair`: every factor of a pair's rating in one record
-  (K_Hbeta as given for now; external pairs).
+- :mod:`.pair_rating` - :func:`rate_pair`: every factor of a mesh's rating in one record
+  (a pair, or a planetary set's sun-planet or planet-ring mesh).
+- :mod:`.options` - the ``[rating]`` table's inputs (defaults, K_gamma by planet count).
 - :mod:`.transverse` - ISO 6336-1 method B transverse load factors K_Halpha and K_Falpha.
+- :mod:`.face_load` - ISO 6336-1 method C face load factor K_Hbeta (and K_Fbeta from it).
 - :mod:`.bending` - ISO 6336-3 method B: sigma_F from the nominal root stress of
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),
   the permissible root stress (Y_ST, Y_NT, Y_deltarelT, Y_RrelT, Y_X) and S_F.
@@ -18,8 +20,7 @@
 Checked against ISO/TR 6336-30's example 1 (pitting, as transcribed) and KISSsoft's reports
 of the NREL 5 MW gearbox (pitting of the parallel stage and of both meshes of a planetary
 stage, bending of the parallel stage and of a sun and a planet, K_v and K_Halpha of three
-meshes, the tolerances of all eight gears). Not built yet: ISO 6336-1's K_Hbeta (method C);
-internal gears' bending; the [rating] table, the rating stage and
-the report section; planetary sets as a whole; load spectra (ISO 6336-6); the finite-life
-interpolation below the endurance knees; the local pitting map of the loaded contact.
+meshes, the tolerances of all eight gears). Not built yet: internal gears' bending; load
+spectra (ISO 6336-6); the finite-life interpolation below the endurance knees; the local
+pitting map of the loaded contact.
 """
