@@ -95,15 +95,18 @@ def test_life_factor_lines(line):
 def test_factor_limits():
     """Y_deltarelT = 1 at the test gear's q_s 2.5; Y_RrelT 1.120 below R_z 1 um and the
     formula from there (0.957 at 20 um); Y_X continuous at 5 mm and constant from 25 mm
-    (case-hardened) or 30 mm (through-hardened); K_Fbeta = K_Hbeta for a long face and
+    (case-hardened, cast iron) or 30 mm (through-hardened); K_Fbeta = K_Hbeta for a long face and
     its b/h floor of 3; fewer cycles than the knee refused."""
     assert B.notch_sensitivity(2.5, 0.003e-3) == pytest.approx(1.0, rel=1e-14)
     assert B.surface_factor(0.5e-6) == 1.120
     assert B.surface_factor(20e-6) == pytest.approx(1.674 - 0.529 * 21**0.1, rel=1e-14)
-    for cls, top, end in (("hardened", 25e-3, 0.8), ("through_hardened", 30e-3, 0.85)):
+    for cls, top, end in (("hardened", 25e-3, 0.8), ("through_hardened", 30e-3, 0.85),
+                          ("cast_iron", 25e-3, 0.7)):
         assert B.size_factor(5e-3, cls) == pytest.approx(1.0, abs=0.05)
         assert B.size_factor(top * 2, cls) == end
     assert B.size_factor(5.0001e-3, "hardened") == pytest.approx(1.0, abs=1e-6)
+    # grey cast iron: 1.075 - 0.015 m_n, continuous at 25 mm (0.7)
+    assert B.size_factor(24.9999e-3, "cast_iron") == pytest.approx(0.7, abs=1e-5)
     assert B.face_load_factor(1.2, 100.0, 0.01) == pytest.approx(1.2, rel=1e-4)
     assert B.face_load_factor(1.2, 0.01, 0.01) == pytest.approx(1.2 ** (9 / 13), rel=1e-14)
     with pytest.raises(InputError, match="below the bending endurance knee"):

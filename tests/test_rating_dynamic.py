@@ -94,6 +94,11 @@ def test_limits():
     assert D.allowance(100e-6, "hardened", 1500e6, 1.0) == 3e-6
     assert D.allowance(100e-6, "through_hardened", 700e6, 12.0) == pytest.approx(
         6400 / 700 * 1e-6, rel=1e-12)
+    # grey and ferritic nodular cast iron (ISO 6336-1 method B): 0.275 f_pb, at most 22 um
+    # above 5 m/s and 11 um above 10 m/s
+    assert D.allowance(20e-6, "cast_iron", 300e6, 4.0) == pytest.approx(5.5e-6, rel=1e-12)
+    assert D.allowance(100e-6, "cast_iron", 300e6, 7.0) == pytest.approx(22e-6, rel=1e-12)
+    assert D.allowance(100e-6, "cast_iron", 300e6, 12.0) == pytest.approx(11e-6, rel=1e-12)
     kw = dict(teeth_1=20, single_stiffness=14e9, mesh_stiffness=20e9,
               reduced_mass_per_width=100.0, line_load=3e5, total_contact_ratio=1.6,
               base_pitch_deviation=10e-6, form_deviation=10e-6, pitch_allowance=1e-6,

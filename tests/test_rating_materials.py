@@ -214,13 +214,13 @@ def test_kisssoft_size_factor_and_running_in_of_the_classes():
 
 
 def test_classes_name_the_rating_modules_keys():
-    """Every life line is a key of the pitting and bending modules; the running-in and Y_X
-    classes are the modules' own except cast iron's, which they do not have yet."""
+    """Every life line, running-in and Y_X class is a key of the pitting, bending and
+    dynamic modules."""
     kinds = M.MATERIALS.values()
     assert {k.pitting_life_line for k in kinds} <= set(pitting.LIFE_LINES)
     assert {k.bending_life_line for k in kinds} <= set(bending.LIFE_LINES)
-    assert {k.running_in for k in kinds} - set(dynamic.HARDENING) == {"cast_iron"}
-    assert {k.bending_size_class for k in kinds} - set(bending.SIZE_CLASSES) == {"cast_iron"}
+    assert {k.running_in for k in kinds} == set(dynamic.HARDENING)
+    assert {k.bending_size_class for k in kinds} == set(bending.SIZE_CLASSES)
 
 
 def test_limited_pitting_is_asked_for():

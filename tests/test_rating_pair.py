@@ -108,11 +108,18 @@ def test_kisssoft_planetary_stage_from_its_inputs():
 
 
 def test_mesh_kind_must_match_the_pair():
+    """A sun-planet mesh has no internal gear and a planet-ring mesh has one; a pair may
+    (an internal pair is rated like a planet-ring mesh of one planet)."""
     from gearsets import spur
 
     ring = GearPair(spur(24, "planet"), spur(72, "ring", internal=True, bore_radius=0.13))
     gear = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
     inputs = RatingInputs(application_factor=1.0, life_hours=1e4, accuracy_grade=6,
                           viscosity_40=220e-6, k_hbeta=1.1)
-    with pytest.raises(InputError, match="a pair mesh has no internal gear"):
-        rate_pair(ring, 100.0, 1000.0, inputs, (gear, gear))
+    with pytest.raises(InputError, match="a sun_planet mesh has no internal gear"):
+        rate_pair(ring, 100.0, 1000.0, inputs, (gear, gear), "sun_planet", 3)
+    as_pair = rate_pair(ring, 100.0, 1000.0, inputs, (gear, gear))
+    as_mesh = rate_pair(ring, 100.0, 1000.0, inputs, (gear, gear), "planet_ring", 1)
+    assert as_pair.dynamic == as_mesh.dynamic
+    assert as_pair.pitting == as_mesh.pitting
+    assert as_pair.bending[1] is None

@@ -46,6 +46,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pipeline.config import tables as T
+from pipeline.config.rating import rating_options
 from pipeline.config.schema import (
     MAX_NAME_CHARS,
     MAX_TEXT_CHARS,
@@ -81,7 +82,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.geometry.planetary import PlanetarySet
 from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
-from pipeline.rating.options import GearRatingOptions, RatingOptions, oil_grade_viscosity
+from pipeline.rating.options import RatingOptions
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
 
@@ -537,31 +538,6 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone:
     return opts
 
 
-def _rating(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]) -> RatingOptions | None:
-    """``[rating]`` with a ``[rating.<gear>]`` table per gear (``roles``) it names; the oil
-    by ``oil_grade`` or ``oil_viscosity_40_mm2_per_s``, not both."""
-    if "rating" not in doc:
-        return None
-    if kind not in ("pair", "planetary"):
-        raise InputError(f"[rating] rates gears in mesh; this file describes a "
-                         f"{_KIND_TEXT[kind]}")
-    table = doc["rating"]
-    values = read_table(table, T.RATING, "rating", subtables=roles)
-    grade = values.pop("oil_grade", None)
-    if grade is not None:
-        if "viscosity_40" in values:
-            raise InputError("rating.oil_grade and rating.oil_viscosity_40_mm2_per_s both give "
-                             "the oil's viscosity; keep one")
-        values["viscosity_40"] = oil_grade_viscosity(grade)
-    if kind == "pair" and values.get("load_sharing") is not None:
-        raise InputError(f"rating.load_sharing = {table['load_sharing']!r} applies to a "
-                         "planetary set (K_gamma of its planets); a pair carries all the load")
-    gears = {role: build(GearRatingOptions, table[role], T.RATING_GEAR, f"rating.{role}")
-             for role in roles if role in table}
-    with restated("rating", T.RATING, table):
-        return RatingOptions(**values, gears=gears)
-
-
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                       base: Path | None = None, source: InputFile | None = None) -> Gearbox:
     """Build a :class:`Gearbox` from a parsed TOML document.
@@ -626,7 +602,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         herringbone=_herringbone(doc, kind, gears),
         dynamics=_dynamics(doc, base, kind,
                            kind == "planetary" and gears["sun"].herringbone),
-        rating=_rating(doc, kind, roles),
+        rating=rating_options(doc, kind, roles),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,

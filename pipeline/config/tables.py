@@ -229,10 +229,16 @@ RATING = (
 """Keys of ``[rating]`` (:class:`~pipeline.rating.options.RatingOptions`); each gear's
 table ``[rating.<gear>]`` holds :data:`RATING_GEAR`."""
 RATING_GEAR = (
-    Key("sigma_Hlim_MPa", field="sigma_hlim", help="allowable contact stress number"),
-    Key("sigma_Flim_MPa", field="sigma_flim", help="nominal bending stress number"),
-    Key("hardening", S, choices=("hardened", "through_hardened")),
-    Key("hardness_HB", field="hardness_hb", help="through-hardened gear: Brinell hardness"),
+    Key("material", S, help="ISO 6336-5 material kind (pipeline.rating.materials)"),
+    Key("quality", S, choices=("ML", "MQ", "ME"), help="ISO 6336-5 quality grade"),
+    Key("surface_hardness_HV", help="surface hardness, Vickers (kinds whose lines use HV)"),
+    Key("surface_hardness_HBW", help="surface hardness, Brinell (kinds whose lines use HBW)"),
+    Key("core_hardness", S, help="case_hardened MQ: the bending row by core hardness"),
+    Key("pitting_permitted", B, help="ISO 6336-2's life line with limited pitting"),
+    Key("sigma_Hlim_MPa", field="sigma_hlim", help="allowable contact stress number, given"),
+    Key("sigma_Flim_MPa", field="sigma_flim", help="nominal bending stress number, given"),
+    Key("hardness_HB", field="hardness_hb", help="through-hardened gear: Brinell hardness "
+                                                  "for Z_W"),
     Key("flank_roughness_Rz_um", field="flank_roughness", help="flank R_z"),
     Key("root_roughness_Rz_um", field="root_roughness", help="root R_z"),
 )

@@ -53,7 +53,7 @@ GG, GGG (ferr.); ``nitrocarburized`` NV (nitrocar.). (load cycles, Y_NT) at the 
 points."""
 KNEE = 3e6
 """Endurance knee of the bending life lines, load cycles."""
-SIZE_CLASSES = ("hardened", "through_hardened")
+SIZE_CLASSES = ("hardened", "through_hardened", "cast_iron")
 
 
 def life_factor(cycles: float, line: str, optimum: bool = False) -> float:
@@ -85,12 +85,14 @@ def surface_factor(root_roughness: float) -> float:
 
 
 def size_factor(module: float, size_class: str) -> float:
-    """``Y_X`` for the normal module (m) of a ``"hardened"`` (case-hardened, nitrided) or
-    ``"through_hardened"`` steel."""
+    """``Y_X`` for the normal module (m) of a ``"hardened"`` (case-hardened, nitrided),
+    ``"through_hardened"`` steel or ``"cast_iron"`` (GG, GGG ferr.) gear."""
     check_choice("rating.size_class", size_class, SIZE_CLASSES)
     m = module * 1e3
     if size_class == "hardened":
         return 1.0 if m <= 5.0 else 0.8 if m >= 25.0 else 1.05 - 0.01 * m
+    if size_class == "cast_iron":
+        return 1.0 if m <= 5.0 else 0.7 if m >= 25.0 else 1.075 - 0.015 * m
     return 1.0 if m <= 5.0 else 0.85 if m >= 30.0 else 1.03 - 0.006 * m
 
 

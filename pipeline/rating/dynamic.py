@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 from pipeline.validation import InputError, check_choice, check_range
 
-HARDENING = ("hardened", "through_hardened")
+HARDENING = ("hardened", "through_hardened", "cast_iron")
 
 
 def gear_mass(tip_diameter: float, root_diameter: float, base_diameter: float,
@@ -63,10 +63,14 @@ def reduced_mass(pinion: float, wheel: float | None, mesh: str = "pair", planets
 
 
 def allowance(deviation: float, hardening: str, sigma_hlim: float, velocity: float) -> float:
-    """Running-in allowance (m) of one gear for a deviation (m) on its material."""
+    """Running-in allowance (m) of one gear for a deviation (m) on its material class
+    (:data:`HARDENING`: Eh, IF, NT, NV; St, V, GGG perl., GTS; GG, GGG ferr.)."""
     check_choice("rating.hardening", hardening, HARDENING)
     if hardening == "hardened":
         return min(0.075 * deviation, 3e-6)
+    if hardening == "cast_iron":
+        y = 0.275 * deviation
+        return min(y, 11e-6) if velocity > 10.0 else min(y, 22e-6) if velocity > 5.0 else y
     s = sigma_hlim / 1e6
     y = 160.0 / s * deviation
     if velocity > 10.0:

@@ -17,9 +17,11 @@ Each default is a value the user may rely on and the README states:
   planets (:data:`PLANET_LOAD_SHARING`), a number, or ``"computed"``: the largest planet's
   mean mesh force over the mean of all planets in the dynamic model;
 * ``minimum_safety_pitting`` S_Hmin 1.0, ``minimum_safety_bending`` S_Fmin 1.4;
-* per gear: sigma_Hlim 1500 N/mm^2 and sigma_Flim 430 N/mm^2 (case-hardened wrought steel,
-  ISO 6336-5 quality MQ, as KISSsoft's ratings of the NREL 5 MW gearbox use for
-  18CrNiMo7-6), flank roughness R_z 4.8 um, root roughness R_z 20 um.
+* per gear: ``material = "case_hardened"``, ``quality = "MQ"`` (ISO 6336-5:2016 Table 1:
+  sigma_Hlim 1500 N/mm^2, sigma_Flim 425 N/mm^2 with the lower core hardness; any kind of
+  :data:`pipeline.rating.materials.MATERIALS` with its surface hardness, or
+  ``sigma_Hlim_MPa`` / ``sigma_Flim_MPa`` given directly), flank roughness R_z 4.8 um,
+  root roughness R_z 20 um (KISSsoft's values in its ratings of the NREL 5 MW gearbox).
 """
 
 from __future__ import annotations
@@ -43,9 +45,6 @@ the NREL 5 MW gearbox's second stage uses 1.10 for its three planets)."""
 FACE_LOAD_SOURCES = ("contact",)
 """Where K_Hbeta may come from besides a number: the loaded contact's line load."""
 
-HARDENINGS = ("hardened", "through_hardened")
-
-
 def oil_grade_viscosity(grade: str) -> float:
     """Kinematic viscosity at 40 deg C (m^2/s) of an ISO VG grade written ``"VG 220"``,
     ``"VG220"`` or ``"ISO VG 220"``."""
@@ -59,23 +58,30 @@ def oil_grade_viscosity(grade: str) -> float:
 
 @dataclass(frozen=True)
 class GearRatingOptions:
-    """One gear's rating inputs (``[rating.<gear>]``; SI).
+    """One gear's rating inputs (``[rating.<gear>]``), its material resolved (SI).
 
     Attributes
     ----------
     sigma_hlim : allowable contact stress number sigma_Hlim, Pa.
     sigma_flim : nominal bending stress number sigma_Flim (the test gear's, without Y_ST), Pa.
-    hardening : "hardened" (case-hardened, nitrided, induction-hardened: ISO 6336's Eh,
-        NT, NV, IF) or "through_hardened" (St, V): the life lines, running-in allowances,
-        size factor and slip layer.
+    material : where they come from: ISO 6336-5's row (:attr:`MaterialLimits.source
+        <pipeline.rating.materials.MaterialLimits.source>`) or "given".
+    running_in : ISO 6336-1 running-in class, "hardened" (Eh, IF, NT, NV),
+        "through_hardened" (St, V, GGG perl., GTS) or "cast_iron" (GG, GGG ferr.).
+    pitting_line, bending_line : ISO 6336-2 and -3 life lines.
+    size_class : ISO 6336-3 size factor class.
     hardness_hb : Brinell hardness (HBW) of a through-hardened gear, for the work hardening
         factor Z_W against a hardened mate; None elsewhere.
     flank_roughness, root_roughness : mean peak-to-valley roughness R_z, m.
     """
 
     sigma_hlim: float = 1500e6
-    sigma_flim: float = 430e6
-    hardening: str = "hardened"
+    sigma_flim: float = 425e6
+    material: str = "ISO 6336-5:2016 Table 1, case_hardened (Eh) MQ: rows 42 and 45"
+    running_in: str = "hardened"
+    pitting_line: str = "hardened"
+    bending_line: str = "hardened"
+    size_class: str = "hardened"
     hardness_hb: float | None = None
     flank_roughness: float = 4.8e-6
     root_roughness: float = 20e-6
@@ -83,16 +89,14 @@ class GearRatingOptions:
     def __post_init__(self) -> None:
         check_range("sigma_hlim", self.sigma_hlim, 200e6, 2500e6, unit="Pa")
         check_range("sigma_flim", self.sigma_flim, 50e6, 1000e6, unit="Pa")
-        check_choice("hardening", self.hardening, HARDENINGS)
         check_range("flank_roughness", self.flank_roughness, 0.0, 100e-6, lo_open=True,
                     unit="m")
         check_range("root_roughness", self.root_roughness, 0.0, 100e-6, lo_open=True,
                     unit="m")
         if self.hardness_hb is not None:
-            if self.hardening != "through_hardened":
+            if self.running_in != "through_hardened":
                 raise InputError("hardness_HB applies to a through-hardened gear only (its "
-                                 "work hardening factor Z_W); this gear is "
-                                 f'hardening = "{self.hardening}"')
+                                 "work hardening factor Z_W against a hardened mate)")
             check_range("hardness_hb", self.hardness_hb, 100.0, 600.0)
 
 

@@ -29,6 +29,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.rating.accuracy import Tolerances, tolerances
 from pipeline.rating.bending import BendingSafety, bending_safety, face_load_factor
 from pipeline.rating.dynamic import (
+    HARDENING,
     DynamicFactor,
     dynamic_factor,
     gear_mass,
@@ -49,7 +50,10 @@ from pipeline.stiffness.iso6336 import iso_stiffness
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 SLIP_LAYER = {"hardened": 0.0030e-3}
-"""Slip-layer thickness rho' of Y_deltarelT (ISO 6336-3), m: case-hardened steel."""
+"""Slip-layer thickness rho' of Y_deltarelT (ISO 6336-3), m, by bending life line: the
+case-hardened and flame- or induction-hardened root (Eh, IF). The other materials' rho'
+(by yield or tensile strength) and their Y_RrelT lines are not built: such a gear is not
+rated in bending unless its ``slip_layer`` is given."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +63,11 @@ class GearRatingInputs:
     Attributes
     ----------
     sigma_hlim, sigma_flim : sigma_Hlim and sigma_Flim (the test gear's, without Y_ST), Pa.
-    hardening : "hardened" (case-hardened, nitrided) or "through_hardened".
+    hardening : running-in class of ISO 6336-1: "hardened" (Eh, IF, NT, NV),
+        "through_hardened" (St, V, GGG perl., GTS) or "cast_iron" (GG, GGG ferr.).
+    pitting_line : ISO 6336-2 life line (:data:`pipeline.rating.pitting.LIFE_LINES`).
+    bending_line, size_class : ISO 6336-3 life line and Y_X class, or None for
+        ``hardening``'s.
     hardness_hb : Brinell hardness of a through-hardened gear (for Z_W against a hardened
         mate), or None.
     flank_roughness, root_roughness : R_z of the flank and of the root, m.
@@ -71,6 +79,9 @@ class GearRatingInputs:
     sigma_hlim: float
     sigma_flim: float
     hardening: str = "hardened"
+    pitting_line: str = "hardened"
+    bending_line: str | None = None
+    size_class: str | None = None
     hardness_hb: float | None = None
     flank_roughness: float = 4.8e-6
     root_roughness: float = 20e-6
@@ -79,7 +90,12 @@ class GearRatingInputs:
     tip_relief: float | None = None
 
     def __post_init__(self) -> None:
-        check_choice("rating.hardening", self.hardening, ("hardened", "through_hardened"))
+        check_choice("rating.hardening", self.hardening, HARDENING)
+
+    @property
+    def bending_class(self) -> str:
+        """The ISO 6336-3 life line."""
+        return self.bending_line or self.hardening
 
 
 @dataclass(frozen=True)
@@ -162,7 +178,7 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     ``KV = max(KV12, KV23)``)."""
     check_range("rating.torque", torque, 0.0, math.inf, lo_open=True, unit="N m")
     check_choice("rating.mesh", mesh, MESHES)
-    if pair.gear.internal != (mesh == "planet_ring"):
+    if pair.gear.internal != (mesh == "planet_ring") and mesh != "pair":
         raise InputError(f"rating: a {mesh} mesh has "
                          + ("an internal" if mesh == "planet_ring" else "no internal")
                          + " gear")
@@ -183,7 +199,9 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     masses = [gear_mass(2.0 * gear.tip_radius_, 2.0 * gear.root_radius,
                         2.0 * gear.base_radius, 2.0 * gear.bore_radius, gear.material.density)
               for gear in (p, g) if not gear.internal]
-    m_red = reduced_mass(masses[0], masses[1] if len(masses) > 1 else None, mesh, planets)
+    # an internal pair's ring is not a mass of the mesh (a planet-ring mesh's rule)
+    m_red = reduced_mass(masses[0], masses[1] if len(masses) > 1 else None,
+                         "planet_ring" if g.internal else mesh, planets)
     reliefs = [gi.tip_relief if gi.tip_relief is not None else running_in_relief(gi.sigma_hlim)
                for gi in gears]
     kv = dynamic_factor(teeth_1=p.teeth, speed_1=speed, single_stiffness=st.c_single,
@@ -214,21 +232,21 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
         other = gears[1 - k]
         zw = (work_hardening_factor(gi.hardness_hb) if gi.hardening == "through_hardened"
               and other.hardening == "hardened" and gi.hardness_hb is not None else 1.0)
-        # both hardenings take ISO 6336-2's line without pitting (St, V, Eh, IF)
-        pit.append(pitting_safety(chain.stress[k], gi.sigma_hlim, n, "hardened",
+        pit.append(pitting_safety(chain.stress[k], gi.sigma_hlim, n, gi.pitting_line,
                                   inputs.viscosity_40, rz, chain,
                                   inputs.minimum_safety_pitting, mesh_sigma_hlim=lower,
                                   work_hardening=zw))
-        if gear.internal:
+        slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER.get(gi.bending_class)
+        if gear.internal or slip is None:
             bend.append(None)
             roots.append(None)
             continue
         root = iso_root_stress(gear, pair, ft)
         roots.append(root)
-        slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER[gi.hardening]
         bend.append(bending_safety(root, ka * kg * kv.factor * kfb * kha.k_falpha,
-                                   gi.sigma_flim, n, gi.hardening, slip, gi.root_roughness,
-                                   gi.hardening, gear.module, inputs.minimum_safety_bending,
+                                   gi.sigma_flim, n, gi.bending_class, slip,
+                                   gi.root_roughness, gi.size_class or gi.hardening,
+                                   gear.module, inputs.minimum_safety_bending,
                                    mean_stress_factor=gi.mean_stress_factor))
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
                       (pit[0], pit[1]), (bend[0], bend[1]), cycles, (roots[0], roots[1]))

@@ -200,7 +200,8 @@ def _gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
     g = box.rating.gear(role)
     relief = getattr(box.contact.modifications, ("tip_relief_pinion", "tip_relief_gear")[k])
     return GearRatingInputs(
-        sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.hardening,
+        sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.running_in,
+        pitting_line=g.pitting_line, bending_line=g.bending_line, size_class=g.size_class,
         hardness_hb=g.hardness_hb, flank_roughness=g.flank_roughness,
         root_roughness=g.root_roughness,
         mean_stress_factor=IDLER_MEAN_STRESS if role == "planet" else 1.0,

@@ -1,0 +1,108 @@
+"""``[rating]`` of a gearbox file -> :class:`~pipeline.rating.options.RatingOptions`.
+
+The mesh-wide keys (:data:`~pipeline.config.tables.RATING`) and one ``[rating.<gear>]``
+table per gear (:data:`~pipeline.config.tables.RATING_GEAR`). A gear's allowable stress
+numbers come from its ISO 6336-5 material (``material``, ``quality`` and the surface
+hardness on the scale of the material's lines; :mod:`pipeline.rating.materials`), or are
+given (``sigma_Hlim_MPa``, ``sigma_Flim_MPa``): a value given replaces the table's, and the
+keys that would then select nothing (quality, hardness, core hardness) are refused. The
+material also sets the gear's classes (running-in, life lines, size factor). A kind whose
+lines are constant (case-hardened, nitrided) needs no hardness.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from pipeline.config import tables as T
+from pipeline.config.schema import read_table, restated
+from pipeline.rating.materials import (
+    MATERIALS,
+    QUALITIES,
+    hardness_range,
+    material_kind,
+    material_limits,
+)
+from pipeline.rating.options import GearRatingOptions, RatingOptions, oil_grade_viscosity
+from pipeline.validation import InputError
+
+_TABLE_KEYS = ("quality", "surface_hardness_HV", "surface_hardness_HBW", "core_hardness",
+               "pitting_permitted")
+
+
+def _hardness(table: Mapping[str, Any], kind: str, quality: str, where: str
+              ) -> tuple[float, str]:
+    """(hardness, scale) as given, or the range's low end for constant lines."""
+    for scale in ("HV", "HBW"):
+        if f"surface_hardness_{scale}" in table:
+            return table[f"surface_hardness_{scale}"], scale
+    lo, hi, scale = hardness_range(kind, quality, where=where)
+    mat = MATERIALS[kind]
+    i = QUALITIES.index(quality)
+    if mat.contact[i].slope == 0.0 and mat.bending[i].slope == 0.0:
+        return lo, scale  # neither line depends on it
+    raise InputError(f"{where}.surface_hardness_{scale} is needed: ISO 6336-5's {kind} "
+                     f"{quality} lines depend on it (allowed {lo:g} to {hi:g} {scale})")
+
+
+def gear_rating(table: Mapping[str, Any], where: str) -> GearRatingOptions:
+    """One ``[rating.<gear>]`` table (module docstring)."""
+    values = read_table(table, T.RATING_GEAR, where)
+    kind = values.pop("material", "case_hardened")
+    for k in _TABLE_KEYS:
+        values.pop(k, None)
+    material_kind(kind, where=where)  # an unknown kind: the allowed names
+    quality = table.get("quality", "MQ")
+    given = [k for k in ("sigma_Hlim_MPa", "sigma_Flim_MPa") if k in table]
+    if len(given) == 2:
+        extra = [k for k in _TABLE_KEYS[:-1] if k in table]
+        if extra:
+            raise InputError(f"{where}.{extra[0]} selects ISO 6336-5's numbers, but "
+                             f"{where}.sigma_Hlim_MPa and sigma_Flim_MPa are both given")
+        hardness, scale = hardness_range(kind, quality, where=where)[::2]  # classes only
+    else:
+        hardness, scale = _hardness(table, kind, quality, where)
+    typed = any(f"surface_hardness_{s}" in table for s in ("HV", "HBW"))
+    limits = material_limits(kind, quality, hardness, scale, where=where,
+                             core_hardness=table.get("core_hardness"),
+                             pitting_permitted=table.get("pitting_permitted", False))
+    values.setdefault("sigma_hlim", limits.sigma_hlim)
+    values.setdefault("sigma_flim", limits.sigma_flim)
+    source = limits.source if typed else (
+        f"ISO 6336-5:2016 Table 1, {kind} ({limits.symbol}) {quality}: rows "
+        f"{limits.contact_row} (sigma_Hlim) and {limits.bending_row} (sigma_Flim)")
+    source = source if not given else (
+        f"{', '.join(given)} given; classes of {kind} ({limits.symbol})" if len(given) == 2
+        else f"{source}; {given[0]} given")
+    with restated(where, T.RATING_GEAR, table):
+        return GearRatingOptions(
+            **values, material=source, running_in=limits.running_in,
+            pitting_line=limits.pitting_life_line, bending_line=limits.bending_life_line,
+            size_class=limits.bending_size_class)
+
+
+def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
+                   ) -> RatingOptions | None:
+    """``[rating]`` with a ``[rating.<gear>]`` table per gear (``roles``) it names; the oil
+    by ``oil_grade`` or ``oil_viscosity_40_mm2_per_s``, not both. None without the table."""
+    if "rating" not in doc:
+        return None
+    if kind not in ("pair", "planetary"):
+        raise InputError(f"[rating] rates gears in mesh; this file describes no mesh "
+                         f"({kind})")
+    table = doc["rating"]
+    values = read_table(table, T.RATING, "rating", subtables=roles)
+    grade = values.pop("oil_grade", None)
+    if grade is not None:
+        if "viscosity_40" in values:
+            raise InputError("rating.oil_grade and rating.oil_viscosity_40_mm2_per_s both give "
+                             "the oil's viscosity; keep one")
+        values["viscosity_40"] = oil_grade_viscosity(grade)
+    if kind == "pair" and values.get("load_sharing") is not None:
+        raise InputError(f"rating.load_sharing = {table['load_sharing']!r} applies to a "
+                         "planetary set (K_gamma of its planets); a pair carries all the load")
+    gears = {role: gear_rating(table[role], f"rating.{role}") for role in roles
+             if role in table}
+    with restated("rating", T.RATING, table):
+        return RatingOptions(**values, gears=gears)
