@@ -108,6 +108,8 @@ CONTEXTS = [
       for c in ("analytical", "fe2d", "fe3d")],
     ("GROOVE", _with(SUN_GROOVE, "groove", {"coupling": "tooth_forces"}), "groove", T.GROOVE),
     ("HERRINGBONE", PLANETARY, "herringbone", T.HERRINGBONE),
+    ("RATING", _with(PLANETARY, "rating", {}), "rating", T.RATING),
+    ("RATING_GEAR", _with(PAIR, "rating", {"pinion": {}}), "rating.pinion", T.RATING_GEAR),
     ("DYNAMICS", PAIR, "dynamics", T.DYNAMICS),
     ("DYNAMICS_PLANETARY", _with(PLANETARY, "dynamics", {"excitation": "analytical"}), "dynamics",
      T.DYNAMICS_PLANETARY),
@@ -131,6 +133,9 @@ SETUP = {
         for k in WEB},
     ("planetary", "planet_angles_deg"): {"planet_angles_deg": [0.0, 90.0, 180.0, 270.0]},
     ("lumped_model", "planet_angles_deg"): {"planet_angles_deg": [0.0, 90.0, 180.0, 270.0]},
+    ("rating.pinion", "surface_hardness_HBW"): {"material": "normalized_steel"},
+    ("rating.pinion", "hardness_HB"): {"material": "through_hardened_alloy",
+                                       "surface_hardness_HV": 300.0},
     ("dynamics.response", "segments"): {"method": "floquet", "n_harmonics": None},
     ("dynamics.response", "periods"): {"method": "time", "n_harmonics": None},
     ("dynamics", "groove_lateral_stiffness_N_per_m"): {

@@ -50,8 +50,8 @@ def gear_rating(table: Mapping[str, Any], where: str) -> GearRatingOptions:
     """One ``[rating.<gear>]`` table (module docstring)."""
     values = read_table(table, T.RATING_GEAR, where)
     kind = values.pop("material", "case_hardened")
-    for k in _TABLE_KEYS:
-        values.pop(k, None)
+    for k in ("quality", "surface_hardness", "core_hardness", "pitting_permitted"):
+        values.pop(k, None)  # read from the table as written: they select a row
     material_kind(kind, where=where)  # an unknown kind: the allowed names
     quality = table.get("quality", "MQ")
     given = [k for k in ("sigma_Hlim_MPa", "sigma_Flim_MPa") if k in table]

@@ -60,6 +60,7 @@ meets in minutes at most; a refused value names the key, the value and the range
 from __future__ import annotations
 
 from pipeline.config.schema import Key
+from pipeline.rating.materials import CORE_HARDNESS, MATERIALS
 
 N = "number"
 I = "integer"  # noqa: E741
@@ -229,11 +230,12 @@ RATING = (
 """Keys of ``[rating]`` (:class:`~pipeline.rating.options.RatingOptions`); each gear's
 table ``[rating.<gear>]`` holds :data:`RATING_GEAR`."""
 RATING_GEAR = (
-    Key("material", S, help="ISO 6336-5 material kind (pipeline.rating.materials)"),
+    Key("material", S, choices=tuple(MATERIALS), help="ISO 6336-5 material kind"),
     Key("quality", S, choices=("ML", "MQ", "ME"), help="ISO 6336-5 quality grade"),
     Key("surface_hardness_HV", help="surface hardness, Vickers (kinds whose lines use HV)"),
     Key("surface_hardness_HBW", help="surface hardness, Brinell (kinds whose lines use HBW)"),
-    Key("core_hardness", S, help="case_hardened MQ: the bending row by core hardness"),
+    Key("core_hardness", S, choices=CORE_HARDNESS,
+        help="case_hardened MQ: the bending row by core hardness"),
     Key("pitting_permitted", B, help="ISO 6336-2's life line with limited pitting"),
     Key("sigma_Hlim_MPa", field="sigma_hlim", help="allowable contact stress number, given"),
     Key("sigma_Flim_MPa", field="sigma_flim", help="nominal bending stress number, given"),

@@ -51,8 +51,8 @@ def oil_grade_viscosity(grade: str) -> float:
     text = grade.upper().replace("ISO", "").replace(" ", "")
     number = text[2:] if text.startswith("VG") else ""
     if not number.isdigit() or int(number) not in OIL_GRADES:
-        raise InputError(f'rating.oil_grade = "{grade}" is not an ISO 3448 grade; allowed: '
-                         + ", ".join(f"VG {g}" for g in OIL_GRADES))
+        raise InputError(f'rating.oil_grade = "{grade}" is not one of '
+                         + ", ".join(f"'VG {g}'" for g in OIL_GRADES) + " (ISO 3448 grades)")
     return int(number) * 1e-6
 
 
