@@ -88,6 +88,9 @@ def _fe_keys(compliance: str) -> tuple[Key, ...]:
 
 
 # (tables.py name, base document, table path, its keys)
+SHAFT = {"span_mm": 300.0, "offset_mm": 30.0, "shaft_diameter_mm": 60.0, "arrangement": "a"}
+"""A pinion shaft of ISO 6336-1 Figure 13 (method C's f_sh)."""
+
 CONTEXTS = [
     *[("GEAR", PAIR, role, T.GEAR) for role in ("pinion", "gear")],
     *[("GEAR", PLANETARY, role, T.GEAR) for role in ("sun", "planet", "ring")],
@@ -110,6 +113,10 @@ CONTEXTS = [
     ("HERRINGBONE", PLANETARY, "herringbone", T.HERRINGBONE),
     ("RATING", _with(PLANETARY, "rating", {}), "rating", T.RATING),
     ("RATING_GEAR", _with(PAIR, "rating", {"pinion": {}}), "rating.pinion", T.RATING_GEAR),
+    ("RATING_METHOD_C", _with(PAIR, "rating", {"method_c": {}}), "rating.method_c",
+     T.RATING_METHOD_C),
+    ("RATING_PINION_SHAFT", _with(PAIR, "rating", {"pinion_shaft": SHAFT}),
+     "rating.pinion_shaft", T.RATING_PINION_SHAFT),
     ("DYNAMICS", PAIR, "dynamics", T.DYNAMICS),
     ("DYNAMICS_PLANETARY", _with(PLANETARY, "dynamics", {"excitation": "analytical"}), "dynamics",
      T.DYNAMICS_PLANETARY),

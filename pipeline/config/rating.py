@@ -12,11 +12,13 @@ lines are constant (case-hardened, nitrided) needs no hardness.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from typing import Any
 
 from pipeline.config import tables as T
-from pipeline.config.schema import read_table, restated
+from pipeline.config.schema import build, read_table, restated
+from pipeline.rating.face_load import FaceLoadInputs, PinionShaft
 from pipeline.rating.materials import (
     MATERIALS,
     QUALITIES,
@@ -92,7 +94,8 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
         raise InputError(f"[rating] rates gears in mesh; this file describes no mesh "
                          f"({kind})")
     table = doc["rating"]
-    values = read_table(table, T.RATING, "rating", subtables=roles)
+    values = read_table(table, T.RATING, "rating",
+                        subtables=(*roles, "method_c", "pinion_shaft"))
     grade = values.pop("oil_grade", None)
     if grade is not None:
         if "viscosity_40" in values:
@@ -104,5 +107,12 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
                          "planetary set (K_gamma of its planets); a pair carries all the load")
     gears = {role: gear_rating(table[role], f"rating.{role}") for role in roles
              if role in table}
+    shaft = None
+    if "pinion_shaft" in table:
+        shaft = build(functools.partial(PinionShaft, where="rating.pinion_shaft"),
+                      table["pinion_shaft"], T.RATING_PINION_SHAFT, "rating.pinion_shaft")
+    method_c = build(functools.partial(FaceLoadInputs, where="rating.method_c"),
+                     table.get("method_c", {}), T.RATING_METHOD_C, "rating.method_c",
+                     shaft=shaft)
     with restated("rating", T.RATING, table):
-        return RatingOptions(**values, gears=gears)
+        return RatingOptions(**values, gears=gears, method_c=method_c)

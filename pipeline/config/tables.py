@@ -220,15 +220,43 @@ RATING = (
     Key("oil_viscosity_40_mm2_per_s", field="viscosity_40",
         help="kinematic viscosity of the oil at 40 deg C"),
     Key("oil_grade", S, help='ISO VG grade ("VG 220"), instead of the viscosity'),
-    Key("face_load_factor", "number_or_string", choices=("contact",),
-        help='K_Hbeta: "contact" (the loaded contact\'s line load) or a number'),
+    Key("face_load_factor", "number_or_string", choices=("method_c", "contact"),
+        help='K_Hbeta: "method_c" (ISO 6336-1), "contact" (the loaded contact\'s line '
+             'load) or a number'),
     Key("load_sharing", "number_or_string", choices=("computed",),
         help='K_gamma: a number, or "computed" (planetary sets: the dynamic model\'s planets)'),
     Key("minimum_safety_pitting", help="S_Hmin"),
     Key("minimum_safety_bending", help="S_Fmin"),
 )
 """Keys of ``[rating]`` (:class:`~pipeline.rating.options.RatingOptions`); each gear's
-table ``[rating.<gear>]`` holds :data:`RATING_GEAR`."""
+table ``[rating.<gear>]`` holds :data:`RATING_GEAR`, ``[rating.method_c]``
+:data:`RATING_METHOD_C` and ``[rating.pinion_shaft]`` :data:`RATING_PINION_SHAFT`."""
+RATING_METHOD_C = (
+    Key("helix_modification", S, choices=("none", "central_crowning",
+                                          "central_crowning_with_deflection",
+                                          "helix_correction", "helix_correction_and_crowning",
+                                          "end_relief"),
+        help="ISO 6336-1 Table 8 (B1, B2)"),
+    Key("contact_pattern_proven", B, help="a favourable contact pattern proven: Eq. (53)"),
+    Key("power_share_percent", N, field="power_share",
+        help="share of the pinion's power through this mesh (a sun: 100 / planets)"),
+    Key("f_ma_um", N, help="mesh misalignment from manufacture (default: from f_Hbeta)"),
+    Key("f_ma_rule", S, choices=("rss", "larger"),
+        help="f_ma from both gears' f_Hbeta: root sum of squares or the larger"),
+)
+"""Keys of ``[rating.method_c]`` (:class:`~pipeline.rating.face_load.FaceLoadInputs`)."""
+RATING_PINION_SHAFT = (
+    Key("span_mm", N, required=True, help="bearing span l"),
+    Key("offset_mm", N, required=True, help="offset s of the pinion from mid-span"),
+    Key("shaft_diameter_mm", N, field="diameter", required=True,
+        help="shaft diameter d_sh for bending"),
+    Key("arrangement", S, required=True, choices=("a", "b", "c", "d", "e"),
+        help="ISO 6336-1 Figure 13"),
+    Key("stiffening", B, help="the pinion can stiffen its shaft (default: the standard's rule)"),
+    Key("bore_diameter_mm", N, field="bore"),
+)
+"""Keys of ``[rating.pinion_shaft]`` (:class:`~pipeline.rating.face_load.PinionShaft`): the
+shaft of a pair's pinion or a planetary set's sun for f_sh of method C."""
 RATING_GEAR = (
     Key("material", S, choices=tuple(MATERIALS), help="ISO 6336-5 material kind"),
     Key("quality", S, choices=("ML", "MQ", "ME"), help="ISO 6336-5 quality grade"),

@@ -67,6 +67,7 @@ UNITS: tuple[Unit, ...] = (
     Unit("mPas", "mPa s", 1e-3, "Pa s"),
     Unit("mm2_per_s", "mm^2/s", 1e-6, "m^2/s"),
     Unit("h", "h", 3600.0, "s"),
+    Unit("percent", "%", 1.0, "%"),
     # hardness numbers: no SI unit, no conversion between scales (ISO 18265's are approximate)
     Unit("HV", "HV", 1.0, "HV"),
     Unit("HBW", "HBW", 1.0, "HBW"),

@@ -141,8 +141,9 @@ class PinionShaft:
 
     def __post_init__(self) -> None:
         w = self.where
-        check_range(f"{w}.span_mm", self.span * 1e3, 0.0, math.inf, lo_open=True, unit="mm")
-        check_range(f"{w}.shaft_diameter_mm", self.diameter * 1e3, 0.0, math.inf,
+        # the largest gearbox shafts (ship and wind drives) stay well inside 20 m and 5 m
+        check_range(f"{w}.span_mm", self.span * 1e3, 0.0, 20e3, lo_open=True, unit="mm")
+        check_range(f"{w}.shaft_diameter_mm", self.diameter * 1e3, 0.0, 5e3,
                     lo_open=True, unit="mm")
         check_range(f"{w}.offset_mm", self.offset * 1e3, 0.0, 0.5 * self.span * 1e3,
                     unit="mm", note="from the middle of the span to a bearing, span_mm / 2")
@@ -176,7 +177,8 @@ class FaceLoadInputs:
     contact_pattern_proven : True when a favourable contact pattern under load is proven
         (Eq. 53 instead of Eq. 52; ``contact_pattern_proven``).
     power_share : per cent of the power through this mesh when the pinion's power splits
-        (``power_share_percent``, 100 for one path), in (0, 100].
+        (``power_share_percent``), in (0, 100]; None: not given, one path (100) - the
+        rating of a planetary set's sun-planet mesh takes 100 / planets then.
     f_ma : the mesh misalignment from manufacture, m (``f_ma_um``), or None for
         ``f_ma_rule``.
     f_ma_rule : :data:`F_MA_RULES` entry used when ``f_ma`` is None (``f_ma_rule``).
@@ -186,7 +188,7 @@ class FaceLoadInputs:
     shaft: PinionShaft | None = None
     helix_modification: str = "none"
     contact_pattern_proven: bool = False
-    power_share: float = 100.0
+    power_share: float | None = None
     f_ma: float | None = None
     f_ma_rule: str | None = None
     where: str = field(default="rating", compare=False, repr=False)
@@ -198,8 +200,9 @@ class FaceLoadInputs:
         if not isinstance(self.contact_pattern_proven, bool):
             raise InputError(f"{w}.contact_pattern_proven = {self.contact_pattern_proven!r} "
                              "must be true or false")
-        check_range(f"{w}.power_share_percent", self.power_share, 0.0, 100.0, lo_open=True,
-                    unit="%")
+        if self.power_share is not None:
+            check_range(f"{w}.power_share_percent", self.power_share, 0.0, 100.0,
+                        lo_open=True, unit="%")
         if self.f_ma is not None and self.f_ma_rule is not None:
             raise InputError(f"{w}: give f_ma_um = {self.f_ma / UM:.6g} um or f_ma_rule = "
                              f"{self.f_ma_rule!r}, not both")
@@ -397,7 +400,8 @@ def face_load_method_c(inputs: FaceLoadInputs, *, line_load: float, face_width: 
     for k, f in enumerate(helix_slope_deviations):
         check_range(f"{w}: f_Hbeta{k + 1}", f / UM, 0.0, 1000.0, unit="um")
 
-    b_star = power_path_factor(inputs.power_share, double_helical)
+    share = 100.0 if inputs.power_share is None else inputs.power_share
+    b_star = power_path_factor(share, double_helical)
     shaft = inputs.shaft
     k_prime, stiffened, offset_term = 0.0, False, 0.0
     if shaft is not None:

@@ -11,8 +11,12 @@ Each default is a value the user may rely on and the README states:
 * ``life_h`` 20 000 h; ``accuracy_grade`` 6 (ISO 1328-1:1995, both gears);
 * ``oil_viscosity_40_mm2s`` 220 (ISO VG 220; ``oil_grade = "VG 220"`` gives the grade's
   mid-point viscosity, ISO 3448:1992);
-* ``face_load_factor`` ``"contact"``: K_Hbeta from the loaded contact's line load (the
-  largest over the mean of the cycle-mean line load across the face), or a number;
+* ``face_load_factor`` ``"method_c"``: K_Hbeta by ISO 6336-1 method C
+  (:mod:`pipeline.rating.face_load`; ``[rating.method_c]`` its choices, default no helix
+  modification and ``f_ma`` from both gears' ``f_Hbeta``; ``[rating.pinion_shaft]`` the
+  pinion's or sun's shaft, default a pinion at mid-span), ``"contact"`` from the loaded
+  contact's line load (the largest over the mean of the cycle-mean line load across the
+  face), or a number; the other two are shown beside the one used;
 * ``load_sharing`` K_gamma: 1 for a pair; for a planetary set the value for its number of
   planets (:data:`PLANET_LOAD_SHARING`), a number, or ``"computed"``: the largest planet's
   mean mesh force over the mean of all planets in the dynamic model;
@@ -29,6 +33,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from pipeline.rating.face_load import FaceLoadInputs
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 OIL_GRADES = (2, 3, 5, 7, 10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680, 1000,
@@ -42,8 +47,9 @@ PLANET_LOAD_SHARING = {3: 1.10, 4: 1.25, 5: 1.35, 6: 1.44, 7: 1.47}
 MATLAB ISO 6336 classes of gfsReboucas/Drivetrain, ``ISO_6336.m``; KISSsoft's rating of
 the NREL 5 MW gearbox's second stage uses 1.10 for its three planets)."""
 
-FACE_LOAD_SOURCES = ("contact",)
-"""Where K_Hbeta may come from besides a number: the loaded contact's line load."""
+FACE_LOAD_SOURCES = ("method_c", "contact")
+"""Where K_Hbeta may come from besides a number: ISO 6336-1 method C, the loaded contact's
+line load."""
 
 def oil_grade_viscosity(grade: str) -> float:
     """Kinematic viscosity at 40 deg C (m^2/s) of an ISO VG grade written ``"VG 220"``,
@@ -110,7 +116,10 @@ class RatingOptions:
     life : required life, s, (0, 1e7 h].
     accuracy_grade : ISO 1328-1:1995 accuracy grade of every gear, 1 .. 12.
     viscosity_40 : kinematic viscosity of the oil at 40 deg C, m^2/s.
-    face_load_factor : "contact" (K_Hbeta from the loaded contact) or a number >= 1.
+    face_load_factor : "method_c", "contact" (K_Hbeta from the loaded contact) or a number
+        >= 1.
+    method_c : ISO 6336-1 method C's inputs (computed for every mesh, shown beside a K_Hbeta
+        from elsewhere).
     load_sharing : K_gamma: a number >= 1, "computed" (planetary sets with dynamics), or
         None for the default (1; a planetary set's :data:`PLANET_LOAD_SHARING`).
     minimum_safety_pitting, minimum_safety_bending : S_Hmin, S_Fmin (-).
@@ -121,7 +130,8 @@ class RatingOptions:
     life: float = 20000.0 * 3600.0
     accuracy_grade: int = 6
     viscosity_40: float = 220e-6
-    face_load_factor: str | float = "contact"
+    face_load_factor: str | float = "method_c"
+    method_c: FaceLoadInputs = field(default_factory=FaceLoadInputs)
     load_sharing: str | float | None = None
     minimum_safety_pitting: float = 1.0
     minimum_safety_bending: float = 1.4

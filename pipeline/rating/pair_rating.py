@@ -37,6 +37,7 @@ from pipeline.rating.dynamic import (
     running_in,
     running_in_relief,
 )
+from pipeline.rating.face_load import FaceLoadFactor, FaceLoadInputs, face_load_method_c
 from pipeline.rating.pitting import (
     ContactStress,
     PittingSafety,
@@ -108,7 +109,10 @@ class RatingInputs:
     life_hours : required life, h.
     accuracy_grade : ISO 1328-1:1995 grade of both gears.
     viscosity_40 : kinematic viscosity of the oil at 40 deg C, m^2/s.
-    k_hbeta : the face load factor K_Hbeta (given).
+    k_hbeta : the face load factor K_Hbeta used, or None for ISO 6336-1 method C's.
+    face_load : method C's inputs (:class:`~pipeline.rating.face_load.FaceLoadInputs`): its
+        K_Hbeta is computed whenever they are given (shown beside a K_Hbeta given), and
+        used when ``k_hbeta`` is None.
     blank_factor : C_R of ISO 6336-1's stiffness (1 for solid blanks).
     minimum_safety_pitting, minimum_safety_bending : S_Hmin, S_Fmin.
     """
@@ -117,8 +121,9 @@ class RatingInputs:
     life_hours: float
     accuracy_grade: int
     viscosity_40: float
-    k_hbeta: float
+    k_hbeta: float | None
     load_sharing: float = 1.0
+    face_load: FaceLoadInputs | None = None
     blank_factor: float = 1.0
     minimum_safety_pitting: float = 1.0
     minimum_safety_bending: float = 1.4
@@ -127,14 +132,19 @@ class RatingInputs:
         check_range("rating.application_factor", self.application_factor, 1.0, 5.0)
         check_range("rating.life_hours", self.life_hours, 0.0, 1e7, lo_open=True, unit="h")
         check_int_range("rating.accuracy_grade", self.accuracy_grade, 1, 12)
-        check_range("rating.k_hbeta", self.k_hbeta, 1.0, 10.0)
+        if self.k_hbeta is None:
+            if self.face_load is None:
+                raise InputError("rating: K_Hbeta needs a value or method C's inputs")
+        else:
+            check_range("rating.k_hbeta", self.k_hbeta, 1.0, 10.0)
         check_range("rating.load_sharing", self.load_sharing, 1.0, 3.0)
 
 
 @dataclass(frozen=True)
 class PairRating:
     """Every factor of a pair's rating (SI; gear-wise tuples are (pinion, wheel)):
-    ``cycles`` the load cycles of each gear over the life; ``roots`` ISO 6336-3's nominal
+    ``face_load`` ISO 6336-1 method C's K_Hbeta with its intermediates (None without its
+    inputs); ``cycles`` the load cycles of each gear over the life; ``roots`` ISO 6336-3's nominal
     root stress with its form factors (None where the gear is not rated in bending)."""
 
     tangential_load: float
@@ -151,6 +161,7 @@ class PairRating:
     contact: ContactStress
     pitting: tuple[PittingSafety, PittingSafety]
     bending: tuple[BendingSafety | None, BendingSafety | None]
+    face_load: FaceLoadFactor | None = None
     cycles: tuple[float, float] = (0.0, 0.0)
     roots: tuple[IsoRootStress | None, IsoRootStress | None] = (None, None)
 
@@ -170,12 +181,14 @@ MESHES = ("pair", "sun_planet", "planet_ring")
 
 def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
               gears: tuple[GearRatingInputs, GearRatingInputs], mesh: str = "pair",
-              planets: int = 1, dynamic: DynamicFactor | None = None) -> PairRating:
+              planets: int = 1, dynamic: DynamicFactor | None = None,
+              double_helical: bool = False) -> PairRating:
     """The rating of ``pair`` with the pinion ``torque`` (N m) at ``speed`` (rpm; a
     planetary mesh's relative to the carrier) as a ``mesh`` of :data:`MESHES` in a set of
     ``planets`` planets (module docstring). ``dynamic``: the K_v to use instead of this
     mesh's own (a planetary set takes the larger of its two meshes' K_v, as KISSsoft does:
-    ``KV = max(KV12, KV23)``)."""
+    ``KV = max(KV12, KV23)``). ``double_helical``: ``pair`` is one helix of a double helical
+    pair at half the load (method C's Eq. (58) with both helices, K_Fbeta with ``b_B``)."""
     check_range("rating.torque", torque, 0.0, math.inf, lo_open=True, unit="N m")
     check_choice("rating.mesh", mesh, MESHES)
     if pair.gear.internal != (mesh == "planet_ring") and mesh != "pair":
@@ -210,7 +223,20 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                         base_pitch_deviation=f_pb, form_deviation=f_fa, pitch_allowance=y_p,
                         form_allowance=y_f, tip_relief=0.5 * (reliefs[0] + reliefs[1]))
     kv = kv if dynamic is None else dynamic
-    khb = inputs.k_hbeta
+    depth = min(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g))
+    method_c = None
+    if inputs.face_load is not None:
+        tol5 = [tolerances(5, gear.module, 2.0 * gear.reference_radius, b, at) for gear in (p, g)]
+        method_c = face_load_method_c(
+            inputs.face_load, line_load=ft * ka * kg * kv.factor / b,
+            face_width=(2.0 if double_helical else 1.0) * b, pinion_diameter=d1,
+            c_gamma_beta=st.c_gamma_beta,
+            helix_slope_deviations=(tols[0].f_Hbeta, tols[1].f_Hbeta),
+            materials=materials, velocity=v,
+            tooth_height=max(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g)),
+            grade5_helix_slope_deviation=max(t.f_Hbeta for t in tol5),
+            double_helical=double_helical)
+    khb = method_c.k_hbeta if inputs.k_hbeta is None else inputs.k_hbeta
     kha = transverse_load_factors(
         mesh_stiffness=st.c_gamma_alpha, base_pitch_deviation=f_pb, form_deviation=f_fa,
         allowance=y_p, line_load_h=ft * ka * kg * kv.factor * khb / b,
@@ -219,7 +245,6 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
         contact_ratio_factor=contact_ratio_factor(pair.transverse_contact_ratio,
                                                   pair.overlap_ratio))
     chain = contact_stress(pair, torque, speed, ka * kg * kv.factor * khb * kha.k_halpha)
-    depth = min(abs(gear.tip_radius_ - gear.root_radius) for gear in (p, g))
     kfb = face_load_factor(khb, b, depth)
     u = g.teeth / p.teeth
     contacts = {"pair": (1, 1), "sun_planet": (planets, 1), "planet_ring": (1, planets)}[mesh]
@@ -249,4 +274,5 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                    gear.module, inputs.minimum_safety_bending,
                                    mean_stress_factor=gi.mean_stress_factor))
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
-                      (pit[0], pit[1]), (bend[0], bend[1]), cycles, (roots[0], roots[1]))
+                      (pit[0], pit[1]), (bend[0], bend[1]), method_c, cycles,
+                      (roots[0], roots[1]))

@@ -57,6 +57,7 @@ def rating_load_section(m) -> Section:
         quantity("K_Hbeta", "face load factor K_Hbeta", "-", r.k_hbeta, m.k_hbeta_source),
         quantity("K_Hbeta_contact", "K_Hbeta of the loaded contact's line load", "-",
                  m.k_hbeta_contact, "largest over mean of the cycle-mean line load"),
+        *_method_c_rows(r.face_load),
         quantity("K_Fbeta", "face load factor K_Fbeta", "-", r.k_fbeta,
                  f"{ISO1}: K_Hbeta^N_F"),
         quantity("K_Halpha", "transverse load factor K_Halpha", "-", r.transverse.k_halpha,
@@ -65,17 +66,35 @@ def rating_load_section(m) -> Section:
                  f"{ISO1} method B"),
     ]
     notes = [
-        "K_Hbeta = " + ("the loaded contact's (largest over mean of the cycle-mean line load "
-                        "across the face)" if m.k_hbeta_source == "loaded contact" else
-                        "as given in [rating] face_load_factor")
-        + "; the standard's method C is not built yet. On rigid supports an aligned pair's "
-        "contact gives K_Hbeta near 1: give the misalignment ([contact] slope_deviation_um) "
-        "or a number to rate a real gearbox.",
+        f"K_Hbeta used: {m.k_hbeta_source} ([rating] face_load_factor); the others are shown "
+        "beside it. The loaded contact's K_Hbeta holds what the contact model holds: on "
+        "rigid supports an aligned pair gives about 1 unless the misalignment is given "
+        "([contact] slope_deviation_um); method C estimates the shaft's deflection and the "
+        "manufacturing misalignment from the accuracy grade.",
     ]
     if m.herringbone_half:
         notes.append("Herringbone: rated as one helical half (face width b_B) at half the load.")
     return Section("rating_loads", "ISO 6336 rating: load factors", tuple(rows),
                    ("value", "source"), notes=tuple(notes))
+
+
+def _method_c_rows(c) -> list:
+    """ISO 6336-1 method C's K_Hbeta and its misalignments (none without its inputs)."""
+    if c is None:
+        return []
+    src = f"{ISO1} method C"
+    return [
+        quantity("K_Hbeta_method_c", "K_Hbeta by method C", "-", c.k_hbeta, src),
+        quantity("f_sh", "method C: misalignment from shaft deflection f_sh", "um",
+                 c.f_sh * 1e6, f"{src}, Eq. (57)/(58)"),
+        quantity("f_ma", "method C: misalignment from manufacture f_ma", "um", c.f_ma * 1e6,
+                 src),
+        quantity("F_betax", "method C: initial equivalent misalignment F_betax", "um",
+                 c.f_beta_x * 1e6, f"{src}, Eq. (52)-(56)"),
+        quantity("y_beta", "method C: running-in allowance y_beta", "um", c.y_beta * 1e6, src),
+        quantity("F_betay", "method C: effective equivalent misalignment F_betay", "um",
+                 c.f_beta_y * 1e6, src),
+    ]
 
 
 def rating_section(m, figures: Sequence[Figure]) -> Section:

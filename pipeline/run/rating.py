@@ -27,6 +27,7 @@ is not rated in bending, and says so.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Mapping
@@ -52,6 +53,7 @@ IDLER_MEAN_STRESS = 0.7
 """Y_M of an idler, whose teeth are bent both ways (:mod:`pipeline.rating.bending`; KISSsoft
 prints 0.700 for the planets of the NREL 5 MW gearbox)."""
 
+_SOURCE = {"contact": "loaded contact", "method_c": "ISO 6336-1 method C"}
 _SUN_MESH = re.compile(r"^s-p(\d+)[LR]?$")
 
 
@@ -64,7 +66,7 @@ class MeshRating:
     mesh : "mesh", "sun_planet" or "planet_ring".
     gears : the gear tables rated, (pinion, gear).
     rating : every factor (:class:`~pipeline.rating.pair_rating.PairRating`).
-    k_hbeta_source : "loaded contact" or "given".
+    k_hbeta_source : "ISO 6336-1 method C", "loaded contact" or "given".
     k_hbeta_contact : the loaded contact's K_Hbeta (-).
     load_sharing_source : "single mesh", "default for N planets", "given" or "computed".
     k_gamma_computed : K_gamma from the dynamic model's planet forces, or None.
@@ -99,7 +101,9 @@ class MeshRating:
         r = self.rating
         out: dict[str, Any] = {
             "K_v": r.dynamic.factor, "K_Hbeta": r.k_hbeta, "K_Hbeta_source": self.k_hbeta_source,
-            "K_Hbeta_loaded_contact": self.k_hbeta_contact, "K_Fbeta": r.k_fbeta,
+            "K_Hbeta_loaded_contact": self.k_hbeta_contact,
+            "K_Hbeta_method_C": None if r.face_load is None else r.face_load.k_hbeta,
+            "K_Fbeta": r.k_fbeta,
             "K_Halpha": r.transverse.k_halpha, "K_Falpha": r.transverse.k_falpha,
             "K_gamma_source": self.load_sharing_source,
         }
@@ -240,10 +244,16 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
         k_gamma, sharing = _load_sharing(box, computed)
         planets = box.planetary.n_planets if box.kind == "planetary" else 1
         cases = {}
+        half_set = box.kind == "planetary" and box.planetary.sun.herringbone
         for name, st in meshes.items():
             dist = distributions[name]
-            khb = dist.k_hbeta if opts.face_load_factor == "contact" \
-                else float(opts.face_load_factor)
+            khb = {"contact": dist.k_hbeta, "method_c": None}.get(opts.face_load_factor,
+                                                                 opts.face_load_factor)
+            method_c = opts.method_c
+            if name == "planet_ring":  # the planet on its pin: no pinion shaft of Figure 13
+                method_c = dataclasses.replace(method_c, shaft=None)
+            elif name == "sun_planet" and method_c.power_share is None:
+                method_c = dataclasses.replace(method_c, power_share=100.0 / planets)
             # a planetary set's meshes are halves already (pipeline.run.chain.mesh_cases)
             whole = st.case.pair.pinion.herringbone
             pair = helical_half(st.stiffness.actual)
@@ -252,23 +262,24 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
             inputs = RatingInputs(
                 application_factor=opts.application_factor, life_hours=opts.life / 3600.0,
                 accuracy_grade=opts.accuracy_grade, viscosity_40=opts.viscosity_40,
-                k_hbeta=khb, load_sharing=k_gamma,
+                k_hbeta=khb, load_sharing=k_gamma, face_load=method_c,
                 minimum_safety_pitting=opts.minimum_safety_pitting,
                 minimum_safety_bending=opts.minimum_safety_bending)
             gears = tuple(_gear_inputs(box, role, k) for k, role in enumerate(ROLES[name]))
             cases[name] = (pair, torque, rpm, inputs, gears,
-                           "pair" if name == "mesh" else name, dist)
-        first = {n: rate_pair(*c[:5], mesh=c[5], planets=planets) for n, c in cases.items()}
+                           "pair" if name == "mesh" else name, dist, whole or half_set)
+        first = {n: rate_pair(*c[:5], mesh=c[5], planets=planets, double_helical=c[7])
+                 for n, c in cases.items()}
         kv = max((r.dynamic for r in first.values()), key=lambda d: d.factor)
         out = {}
-        half = any(g.herringbone for g in box.gears.values())
-        for name, (pair, torque, rpm, inputs, gears, mesh, dist) in cases.items():
+        for name, (pair, torque, rpm, inputs, gears, mesh, dist, half) in cases.items():
             rating = first[name] if len(first) == 1 else \
-                rate_pair(pair, torque, rpm, inputs, gears, mesh, planets, dynamic=kv)
+                rate_pair(pair, torque, rpm, inputs, gears, mesh, planets, dynamic=kv,
+                          double_helical=half)
             root = root_stress.get(name)
             out[name] = MeshRating(
                 name, ROLES[name], rating,
-                "loaded contact" if opts.face_load_factor == "contact" else "given",
+                _SOURCE.get(opts.face_load_factor, "given"),
                 dist.k_hbeta, sharing, computed, half, dist.hertz_max.value,
                 (None, None) if root is None else (root.pinion.max_stress,
                                                    root.gear.max_stress),
