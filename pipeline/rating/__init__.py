@@ -13,12 +13,17 @@
 - :mod:`.bending` - ISO 6336-3 method B: sigma_F from the nominal root stress of
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),
   the permissible root stress (Y_ST, Y_NT, Y_deltarelT, Y_RrelT, Y_X) and S_F.
+- :mod:`.life` - the life factor lines, the limited-life range of the influence factors
+  (log-log to their static values below the knee) and the S-N line of a gear
+  (:class:`~.life.StrengthCurve`) with its inverse.
+- :mod:`.spectrum` - ISO 6336-6 load spectra: the Palmgren-Miner damage of each gear and
+  failure mode and the spectrum's safety factor, from the stresses the caller gives per bin.
 
 Checked against ISO/TR 6336-30's example 1 (pitting, as transcribed) and KISSsoft's reports
 of the NREL 5 MW gearbox (pitting of the parallel stage and of both meshes of a planetary
 stage, bending of the parallel stage and of a sun and a planet, K_v and K_Halpha of three
 meshes, the tolerances of all eight gears). Not built yet: ISO 6336-1's K_Hbeta (method C);
 ISO 6336-5's materials; internal gears' bending; the [rating] table, the rating stage and
-the report section; planetary sets as a whole; load spectra (ISO 6336-6); the finite-life
-interpolation below the endurance knees; the local pitting map of the loaded contact.
+the report section; planetary sets as a whole; the local pitting map of the loaded
+contact. Checked as well: ISO 6336-6's Annex C spectrum (Table C.2).
 """

@@ -88,7 +88,7 @@ def static_notch_sensitivity(y_s: float, line: str, proof_stress: float | None =
     if line in ("nitrided", "nitrocarburized"):
         return 0.20 * y_s + 0.60
     if proof_stress is None:
-        raise InputError("rating.proof_stress_MPa is required for a through-hardened gear "
+        raise InputError("rating.proof_stress is required for a through-hardened gear "
                          "below the bending endurance knee (3e+06 load cycles): it sets the "
                          "static notch sensitivity Y_deltarelT,stat")
     check_range("rating.proof_stress", proof_stress, 100e6, 2500e6, unit="Pa")
