@@ -156,11 +156,8 @@ class BendingSafety:
     safety: float
 
 
-def _checked(load_factor: float, sigma_flim: float, minimum_safety: float,
-             mean_stress_factor: float, line: str) -> None:
-    check_range("rating.load_factor", load_factor, 1.0, 10.0)
+def _check_strength(sigma_flim: float, mean_stress_factor: float, line: str) -> None:
     check_range("rating.sigma_Flim", sigma_flim, 100e6, 1000e6, unit="Pa")
-    check_range("rating.minimum_safety_bending", minimum_safety, 0.5, 5.0)
     check_range("rating.Y_M", mean_stress_factor, 0.5, 1.0)
     check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
 
@@ -171,15 +168,13 @@ def strength_curve(root: IsoRootStress, sigma_flim: float, line: str, slip_layer
                    proof_stress: float | None = None) -> StrengthCurve:
     """The S-N line ``sigma_FG(N)`` of a gear (arguments as :func:`bending_safety`): the
     life ``line``, ``sigma_Flim Y_ST Y_M``, the endurance product ``Y_deltarelT Y_RrelT
-    Y_X`` and its static value ``Y_deltarelT,stat`` (which a through-hardened gear's
-    ``proof_stress``, Pa, sets; without it the curve keeps ``Y_deltarelT`` static)."""
-    _checked(1.0, sigma_flim, 1.4, mean_stress_factor, line)
-    yd = notch_sensitivity(root.q_s, slip_layer)
-    influence = yd * surface_factor(root_roughness) * size_factor(module, size_class)
-    static = (yd if line == "through_hardened" and proof_stress is None
-              else static_notch_sensitivity(root.y_s, line, proof_stress))
+    Y_X`` and its static value ``Y_deltarelT,stat`` (a through-hardened gear needs its
+    ``proof_stress``, Pa, for it)."""
+    _check_strength(sigma_flim, mean_stress_factor, line)
+    influence = (notch_sensitivity(root.q_s, slip_layer) * surface_factor(root_roughness)
+                 * size_factor(module, size_class))
     return StrengthCurve(LIFE_LINES[line], sigma_flim * 2.0 * mean_stress_factor, influence,
-                         static, optimum)
+                         static_notch_sensitivity(root.y_s, line, proof_stress), optimum)
 
 
 def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, cycles: float,
@@ -195,18 +190,17 @@ def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, c
     alternating one, ISO 6336-3:2019). Below the knee ``Y_deltarelT``, ``Y_RrelT`` and
     ``Y_X`` are their limited-life values; a through-hardened gear there needs its 0.2 %
     ``proof_stress`` (Pa) for ``Y_deltarelT,stat``."""
-    _checked(load_factor, sigma_flim, minimum_safety, mean_stress_factor, line)
+    check_range("rating.load_factor", load_factor, 1.0, 10.0)
+    check_range("rating.minimum_safety_bending", minimum_safety, 0.5, 5.0)
+    _check_strength(sigma_flim, mean_stress_factor, line)
     w = static_weight(LIFE_LINES[line], cycles)
-    if w > 0.0 and line == "through_hardened" and proof_stress is None:
-        static_notch_sensitivity(root.y_s, line)  # the one-line refusal naming the key
-    curve = strength_curve(root, sigma_flim, line, slip_layer, root_roughness, size_class,
-                           module, optimum, mean_stress_factor, proof_stress)
     ynt = life_factor(cycles, line, optimum)
-    yd = limited_life_value(notch_sensitivity(root.q_s, slip_layer), curve.influence_static,
-                            w)
+    yd = notch_sensitivity(root.q_s, slip_layer)
+    if w > 0.0:  # the static value matters only below the knee
+        yd = limited_life_value(yd, static_notch_sensitivity(root.y_s, line, proof_stress), w)
     yr = limited_life_value(surface_factor(root_roughness), 1.0, w)
     yx = limited_life_value(size_factor(module, size_class), 1.0, w)
-    limit = curve.strength(cycles)
+    limit = sigma_flim * 2.0 * ynt * yd * yr * yx * mean_stress_factor
     stress = root.sigma_f0 * load_factor
     return BendingSafety(root.sigma_f0, load_factor, stress, ynt, yd, yr, yx,
                          mean_stress_factor, limit, limit / minimum_safety, limit / stress)

@@ -159,8 +159,15 @@ class SpectrumDamage:
 
 def _cycles_to_failure(stress: np.ndarray, curves: list[StrengthCurve], factor: float
                        ) -> np.ndarray:
-    return np.array([float(c.cycles_to_failure(factor * s))
-                     for c, s in zip(curves, stress, strict=True)])
+    """N_Fi at ``factor`` times the stresses: one vectorised call per distinct curve (bins
+    at one speed share theirs)."""
+    out = np.empty(len(curves))
+    groups: dict[StrengthCurve, list[int]] = {}
+    for i, c in enumerate(curves):
+        groups.setdefault(c, []).append(i)
+    for c, idx in groups.items():
+        out[idx] = c.cycles_to_failure(factor * stress[idx])
+    return out
 
 
 def _damage(cycles: np.ndarray, stress: np.ndarray, curves: list[StrengthCurve],
