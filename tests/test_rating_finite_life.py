@@ -7,8 +7,10 @@ Rule (method B; DIN 3990-11, equations 4.04-4.10 and 5.04-5.06, section 5.6, equ
 static value at the line's first point and its endurance value at the knee, ``sigma_G(N)
 = sigma_G,ref (N_ref / N)^(c log(sigma_G,stat / sigma_G,ref))`` with ``c = 0.3705`` (10^5 to
 5 x 10^7, contact), ``0.2791`` (10^7 to 10^9, pitting permitted), ``0.2876`` (10^3 to 3 x
-10^6, case-hardened root); static: ``Z_L Z_v Z_R = Z_X = 1`` (``Z_W`` kept),
-``Y_deltarelT,stat = 0.44 Y_S + 0.12`` (case-hardened), ``Y_RrelT = Y_X = 1``.
+10^6, case-hardened root); static: ``Z_L Z_v Z_R = Z_X = 1``, ``Y_deltarelT,stat = 0.44
+Y_S + 0.12`` (case-hardened), ``Y_RrelT = Y_X = 1``. KISSsoft's ISO 6336:2006 reports
+(``@NREL_5MW/stage_03.rtf`` of gfsReboucas/Drivetrain, commit 4a88df34) name Z_W among the
+interpolated factors as well; its static value is taken as 1 (DIN 3990-11 keeps it).
 
 Published values at the knee: ISO/TR 6336-30, Annex A, example 1 (Z_L 1.04739, Z_v 0.96911,
 Z_R 0.96599, as transcribed in gfsReboucas/Drivetrain's ``MATISO_6336.m``, commit 4a88df34;
@@ -97,6 +99,19 @@ def test_pitting_factors_at_the_break_points(tr30_chain):
         assert got == pytest.approx(hand, abs=5e-6)
     assert mid.permissible == pytest.approx(1878.79 * MPA, abs=0.01 * MPA)
     assert mid.safety == pytest.approx(1878.79 / 1300, abs=1e-5)
+
+
+def test_work_hardening_factor_in_the_limited_life_range(tr30_chain):
+    """Z_W 1.1 (a through-hardened wheel against a hardened pinion) at the knee, 1 at the
+    static point, sqrt(1.1) = 1.048809 at the log-midpoint; sigma_HG at the static point
+    is 2400 N/mm^2 whatever Z_W."""
+    def at(n: float) -> P.PittingSafety:
+        return P.pitting_safety(1300 * MPA, 1500 * MPA, n, "hardened", 320e-6, 6e-6,
+                                tr30_chain, work_hardening=1.1)
+
+    assert at(5e7).work_hardening_factor == 1.1 and at(1e5).work_hardening_factor == 1.0
+    assert at(math.sqrt(5e12)).work_hardening_factor == pytest.approx(1.048809, abs=5e-7)
+    assert at(1e5).permissible == pytest.approx(2400 * MPA, rel=1e-14)
 
 
 def test_pitting_against_din_3990_11_equations(tr30_chain):

@@ -19,15 +19,19 @@ line with an intermediate point (ISO 6336-2's line where some pitting is permitt
 segment. Confirmed in DIN 3990-11 (the application standard of ISO 6336's method B; its
 equations 4.04-4.10 and 5.04-5.06 as transcribed in the public repository
 hanslhansl/din3990, ``din3990/din3990_11.py``): ``sigma_HG`` from ``sigma_HG,stat =
-sigma_Hlim Z_NT,stat Z_LVR,stat Z_W Z_X,stat`` (``Z_LVR,stat = Z_X,stat = 1``, ``Z_W``
-the same at both ends) to ``sigma_HG,dauer`` with the exponent ``0.3705 log(sigma_HG,stat /
-sigma_HG,dauer)`` on ``(5 x 10^7 / N_L)`` for 10^5 < N_L <= 5 x 10^7 (``0.3705 = 1 /
-log(500)``), ``0.7686`` from 10^5 to 2 x 10^6 (nitrided), ``0.3705`` on ``3 x 10^8 / N_L``
-and ``0.2791`` on ``10^9 / N_L`` where some pitting is permitted; ``sigma_FG`` from
-``sigma_FE Y_NT,stat Y_deltarelT,stat Y_RrelT,stat Y_X,stat`` (``Y_RrelT,stat = Y_X,stat =
-1``) with ``0.4037`` from 10^4 (through-hardened) and ``0.2876`` from 10^3 (case-hardened,
-nitrided) to 3 x 10^6. The same two-point rule, written with ``ln`` instead of ``log10``,
-is in gfsReboucas/Drivetrain's ``MATISO_6336.m`` (``life_factor``, commit 4a88df34).
+sigma_Hlim Z_NT,stat Z_LVR,stat Z_W Z_X,stat`` (``Z_LVR,stat = Z_X,stat = 1``) to
+``sigma_HG,dauer`` with the exponent ``0.3705 log(sigma_HG,stat / sigma_HG,dauer)`` on
+``(5 x 10^7 / N_L)`` for 10^5 < N_L <= 5 x 10^7 (``0.3705 = 1 / log(500)``), ``0.7686``
+from 10^5 to 2 x 10^6 (nitrided), ``0.3705`` on ``3 x 10^8 / N_L`` and ``0.2791`` on
+``10^9 / N_L`` where some pitting is permitted; ``sigma_FG`` from ``sigma_FE Y_NT,stat
+Y_deltarelT,stat Y_RrelT,stat Y_X,stat`` (``Y_RrelT,stat = Y_X,stat = 1``) with ``0.4037``
+from 10^4 (through-hardened) and ``0.2876`` from 10^3 (case-hardened, nitrided) to 3 x
+10^6. KISSsoft's ISO 6336:2006 method B reports say the same of ISO 6336 ("the
+logarithmically interpolated value taken from the values for the fatigue strength and the
+static strength, based on the number of load cycles, is used for coefficients ZL, ZV, ZR,
+ZW, ZX, YdrelT, YRrelT and YX": ``@NREL_5MW/stage_03.rtf`` of gfsReboucas/Drivetrain,
+commit 4a88df34). The same two-point rule, written with ``ln`` instead of ``log10``, is in
+that repository's ``MATISO_6336.m`` (``life_factor``).
 
 :class:`StrengthCurve` is that S-N line for one gear and failure mode: ``sigma_G(N) =
 limit x life factor(N) x I(N)``, and its inverse, the load cycles to failure at a stress,
@@ -103,7 +107,7 @@ class StrengthCurve:
     limit : the allowable stress number, Pa (``sigma_Hlim``; ``sigma_Flim Y_ST Y_M``).
     influence : the product of the influence factors at and beyond the knee (-)
         (``Z_L Z_v Z_R Z_W Z_X``; ``Y_deltarelT Y_RrelT Y_X``).
-    influence_static : their product at the static point (-) (``Z_W``; ``Y_deltarelT,stat``);
+    influence_static : their product at the static point (-) (1; ``Y_deltarelT,stat``);
         equal to ``influence`` for a line whose influence factors keep their endurance
         values, as ISO 6336-6's example of Annex C does.
     optimum : the long-life branch stays at 1 (optimum lubrication, material,

@@ -44,13 +44,18 @@ S_Hmin``, and the safety factor ``S_H = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X / si
   standard's range for 1).
 
 Limited life (fewer load cycles than the line's endurance knee, :mod:`.life`): ``Z_L``,
-``Z_v``, ``Z_R`` and ``Z_X`` run log-log from their endurance values at the knee to 1 at
-the static point (the line's first point, 10^5 cycles or 6 x 10^5 where some pitting is
-permitted), with the weight of the life factor's own interpolation, so that ``sigma_HG``
-runs log-log from ``sigma_Hlim Z_NT,stat Z_W`` to ``sigma_Hlim Z_L Z_v Z_R Z_W Z_X``
-(DIN 3990-11's equations 4.04-4.10, the two-point rule of ISO 6336-2's method B; ``Z_W``
-keeps its value at both ends there). Each record states the factors at the gear's load
-cycles. :func:`strength_curve` gives the whole S-N line for ISO 6336-6's Miner sum.
+``Z_v``, ``Z_R``, ``Z_W`` and ``Z_X`` run log-log from their endurance values at the knee
+to 1 at the static point (the line's first point, 10^5 cycles or 6 x 10^5 where some
+pitting is permitted), with the weight of the life factor's own interpolation, so that
+``sigma_HG`` runs log-log from ``sigma_Hlim Z_NT,stat`` to ``sigma_Hlim Z_L Z_v Z_R Z_W
+Z_X`` (the two-point rule of method B: DIN 3990-11's equations 4.04-4.10 with ``Z_LVR,stat
+= Z_X,stat = 1``; KISSsoft's ISO 6336:2006 reports state that ``Z_L``, ``Z_v``, ``Z_R``,
+``Z_W``, ``Z_X`` are interpolated logarithmically between their fatigue and static values).
+``Z_W``'s static value is taken as 1 here: DIN 3990-11 keeps ``Z_W`` at both ends, and
+ISO 6336-2's own static ``Z_W`` was not found in a public source (it matters only for a
+through-hardened gear against a hardened mate below the knee). Each record states the
+factors at the gear's load cycles. :func:`strength_curve` gives the whole S-N line for
+ISO 6336-6's Miner sum.
 
 Checked against ISO/TR 6336-30, Annex A, example 1 (``tests/test_rating_pitting.py``).
 """
@@ -232,7 +237,7 @@ class PittingSafety:
     life_factor, lubricant_factor, velocity_factor, roughness_factor : Z_NT, Z_L, Z_v,
         Z_R (-) at the gear's load cycles (below the endurance knee the limited-life values
         of Z_L, Z_v, Z_R).
-    work_hardening_factor, size_factor : Z_W, Z_X (-).
+    work_hardening_factor, size_factor : Z_W, Z_X (-), at the load cycles as well.
     permissible : sigma_HP, Pa.
     safety : S_H (-).
     """
@@ -275,14 +280,14 @@ def strength_curve(sigma_hlim: float, line: str, viscosity_40: float, roughness:
                    mesh_sigma_hlim: float | None = None, work_hardening: float = 1.0
                    ) -> StrengthCurve:
     """The S-N line ``sigma_HG(N)`` of a gear (arguments as :func:`pitting_safety`): the
-    life ``line``, ``sigma_Hlim``, the endurance product ``Z_L Z_v Z_R Z_W Z_X`` and its
-    static value ``Z_W``."""
+    life ``line``, ``sigma_Hlim`` and the endurance product ``Z_L Z_v Z_R Z_W Z_X`` (static
+    product 1)."""
     check_choice("rating.life_line", line, tuple(LIFE_LINES))
     zl, zv, zr = _influence_factors(sigma_hlim, viscosity_40, roughness, chain, 1.0,
                                     mesh_sigma_hlim, work_hardening)
     # Z_X = 1 at both ends (the module range of this rating)
-    return StrengthCurve(LIFE_LINES[line], sigma_hlim, zl * zv * zr * work_hardening,
-                         work_hardening, optimum)
+    return StrengthCurve(LIFE_LINES[line], sigma_hlim, zl * zv * zr * work_hardening, 1.0,
+                         optimum)
 
 
 def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
@@ -297,8 +302,8 @@ def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
     radius). ``mesh_sigma_hlim`` (Pa): the lower ``sigma_Hlim`` of the two gears, which sets
     ``C_ZL``, ``C_Zv`` and ``C_ZR`` for both (default this gear's); ``work_hardening``:
     ``Z_W`` (:func:`work_hardening_factor`). Below the line's endurance knee ``Z_L``,
-    ``Z_v``, ``Z_R`` and ``Z_X`` are their limited-life values (towards 1 at the static
-    point)."""
+    ``Z_v``, ``Z_R``, ``Z_W`` and ``Z_X`` are their limited-life values (towards 1 at the
+    static point)."""
     check_choice("rating.life_line", line, tuple(LIFE_LINES))
     zl, zv, zr = _influence_factors(sigma_hlim, viscosity_40, roughness, chain,
                                     minimum_safety, mesh_sigma_hlim, work_hardening)
@@ -308,6 +313,7 @@ def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
     znt = life_factor(cycles, line, optimum)
     strength = curve.strength(cycles)
     return PittingSafety(znt, limited_life_value(zl, 1.0, w), limited_life_value(zv, 1.0, w),
-                         limited_life_value(zr, 1.0, w), work_hardening,
+                         limited_life_value(zr, 1.0, w),
+                         limited_life_value(work_hardening, 1.0, w),
                          1.0, strength / minimum_safety,
                          strength / stress)
