@@ -16,11 +16,16 @@
   :mod:`pipeline.contact.iso_root_stress` and the load factors (K_Fbeta from K_Hbeta),
   the permissible root stress (Y_ST, Y_NT, Y_deltarelT, Y_RrelT, Y_X) and S_F.
 - :mod:`.materials` - ISO 6336-5:2016 Table 1: sigma_Hlim, sigma_Flim and a material's classes.
+- :mod:`.life` - the life factor lines, the limited-life range of the influence factors
+  (log-log to their static values below the knee) and the S-N line of a gear
+  (:class:`~.life.StrengthCurve`) with its inverse.
+- :mod:`.spectrum` - ISO 6336-6 load spectra: the Palmgren-Miner damage of each gear and
+  failure mode and the spectrum's safety factor, from the stresses the caller gives per bin.
 
 Checked against ISO/TR 6336-30's example 1 (pitting, as transcribed) and KISSsoft's reports
 of the NREL 5 MW gearbox (pitting of the parallel stage and of both meshes of a planetary
 stage, bending of the parallel stage and of a sun and a planet, K_v and K_Halpha of three
-meshes, the tolerances of all eight gears). Not built yet: internal gears' bending; load
-spectra (ISO 6336-6); the finite-life interpolation below the endurance knees; the local
+meshes, the tolerances of all eight gears) and ISO 6336-6's Annex C spectrum (Table C.2).
+Not built yet: internal gears' bending; the load spectrum in the [rating] table; the local
 pitting map of the loaded contact.
 """

@@ -24,9 +24,20 @@ dimensional constant, converted at that line.
     ``5 < m_n < 25`` mm (1 at or below 5, 0.8 from 25); through-hardened steels ``1.03 -
     0.006 m_n`` below 30 mm (0.85 from 30).
 
-``Y_deltarelT``, ``Y_RrelT`` and ``Y_X`` here are their values at and beyond the
-endurance knee of the life line (3 x 10^6 cycles); below it the standard interpolates them
-towards their static values, which is not built: fewer cycles are refused.
+Limited life (fewer load cycles than the knee, 3 x 10^6, :mod:`.life`): ``Y_deltarelT``,
+``Y_RrelT`` and ``Y_X`` run log-log from their endurance values at the knee to their static
+values at the line's first point (10^3 cycles for case-hardened and nitrided steels, 10^4
+for through-hardened ones), with the weight of ``Y_NT``'s own interpolation, so that
+``sigma_FG`` runs log-log between its static and endurance values. Static values
+(DIN 3990-11, section 5.6, equation 5.18 and table 5.1, as transcribed in the public
+repository hanslhansl/din3990, ``din3990/din3990_11.py``; :func:`static_notch_sensitivity`):
+
+* ``Y_deltarelT,stat``: case-hardened, induction- or flame-hardened steel ``0.44 Y_S +
+  0.12``; nitrided and nitrocarburized steels ``0.20 Y_S + 0.60``; through-hardened steel
+  ``(1 + 0.82 (Y_S - 1) (300 / sigma_0.2)^(1/4)) / (1 + 0.82 (300 / sigma_0.2)^(1/4))``
+  (``sigma_0.2`` the 0.2 % proof stress in N/mm^2); ``Y_S`` the stress correction factor at
+  the load's point (method B);
+* ``Y_RrelT,stat = 1``, ``Y_X,stat = 1``.
 
 Checked against KISSsoft's report of the NREL 5 MW reference gearbox's parallel stage
 (``tests/test_rating_bending.py``).
@@ -38,7 +49,12 @@ import math
 from dataclasses import dataclass
 
 from pipeline.contact.iso_root_stress import IsoRootStress
-from pipeline.rating.life import life_factor_on
+from pipeline.rating.life import (
+    StrengthCurve,
+    life_factor_on,
+    limited_life_value,
+    static_weight,
+)
 from pipeline.validation import InputError, check_choice, check_range
 
 LIFE_LINES: dict[str, tuple[tuple[float, float], ...]] = {
@@ -60,6 +76,24 @@ def life_factor(cycles: float, line: str, optimum: bool = False) -> float:
     """``Y_NT`` at ``cycles`` load cycles on the material ``line`` (:data:`LIFE_LINES`)."""
     check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
     return life_factor_on(LIFE_LINES[line], cycles, optimum)
+
+
+def static_notch_sensitivity(y_s: float, line: str, proof_stress: float | None = None
+                             ) -> float:
+    """``Y_deltarelT,stat`` for the stress correction factor ``Y_S`` on the material's life
+    ``line``; a through-hardened steel needs its 0.2 % ``proof_stress`` (Pa)."""
+    check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
+    if line == "hardened":
+        return 0.44 * y_s + 0.12
+    if line in ("nitrided", "nitrocarburized"):
+        return 0.20 * y_s + 0.60
+    if proof_stress is None:
+        raise InputError("rating.proof_stress is required for a through-hardened gear "
+                         "below the bending endurance knee (3e+06 load cycles): it sets the "
+                         "static notch sensitivity Y_deltarelT,stat")
+    check_range("rating.proof_stress", proof_stress, 100e6, 2500e6, unit="Pa")
+    k = 0.82 * (300e6 / proof_stress) ** 0.25
+    return (1.0 + k * (y_s - 1.0)) / (1.0 + k)
 
 
 def face_load_factor(k_hbeta: float, face_width: float, tooth_height: float) -> float:
@@ -106,7 +140,8 @@ class BendingSafety:
     load_factor : K_A K_gamma K_v K_Fbeta K_Falpha (-).
     stress : sigma_F, Pa.
     life_factor, notch_factor, surface_factor, size_factor, mean_stress_factor : Y_NT,
-        Y_deltarelT, Y_RrelT, Y_X, Y_M (-).
+        Y_deltarelT, Y_RrelT, Y_X, Y_M (-) at the gear's load cycles (below the knee the
+        limited-life values of Y_deltarelT, Y_RrelT, Y_X).
     limit : sigma_FG, Pa; permissible : sigma_FP, Pa; safety : S_F (-).
     """
 
@@ -123,28 +158,50 @@ class BendingSafety:
     safety: float
 
 
+def _check_strength(sigma_flim: float, mean_stress_factor: float, line: str) -> None:
+    check_range("rating.sigma_Flim", sigma_flim, 100e6, 1000e6, unit="Pa")
+    check_range("rating.Y_M", mean_stress_factor, 0.5, 1.0)
+    check_choice("rating.bending_life_line", line, tuple(LIFE_LINES))
+
+
+def strength_curve(root: IsoRootStress, sigma_flim: float, line: str, slip_layer: float,
+                   root_roughness: float, size_class: str, module: float,
+                   optimum: bool = False, mean_stress_factor: float = 1.0,
+                   proof_stress: float | None = None) -> StrengthCurve:
+    """The S-N line ``sigma_FG(N)`` of a gear (arguments as :func:`bending_safety`): the
+    life ``line``, ``sigma_Flim Y_ST Y_M``, the endurance product ``Y_deltarelT Y_RrelT
+    Y_X`` and its static value ``Y_deltarelT,stat`` (a through-hardened gear needs its
+    ``proof_stress``, Pa, for it)."""
+    _check_strength(sigma_flim, mean_stress_factor, line)
+    influence = (notch_sensitivity(root.q_s, slip_layer) * surface_factor(root_roughness)
+                 * size_factor(module, size_class))
+    return StrengthCurve(LIFE_LINES[line], sigma_flim * 2.0 * mean_stress_factor, influence,
+                         static_notch_sensitivity(root.y_s, line, proof_stress), optimum)
+
+
 def bending_safety(root: IsoRootStress, load_factor: float, sigma_flim: float, cycles: float,
                    line: str, slip_layer: float, root_roughness: float, size_class: str,
                    module: float, minimum_safety: float = 1.4, optimum: bool = False,
-                   mean_stress_factor: float = 1.0) -> BendingSafety:
+                   mean_stress_factor: float = 1.0, proof_stress: float | None = None
+                   ) -> BendingSafety:
     """``sigma_F``, ``sigma_FP`` and ``S_F`` of a gear from its method-B nominal ``root``
     stress, the product ``K_A K_gamma K_v K_Fbeta K_Falpha``, its ``sigma_Flim`` (Pa, the
     test gear's, without ``Y_ST``), ``cycles`` on the life ``line``, the slip-layer
     thickness (m), the root roughness ``R_z`` (m), the size class and normal module (m);
     ``mean_stress_factor`` ``Y_M`` (1 for a pulsating load, 0.7 for an idler's
-    alternating one, ISO 6336-3:2019)."""
+    alternating one, ISO 6336-3:2019). Below the knee ``Y_deltarelT``, ``Y_RrelT`` and
+    ``Y_X`` are their limited-life values; a through-hardened gear there needs its 0.2 %
+    ``proof_stress`` (Pa) for ``Y_deltarelT,stat``."""
     check_range("rating.load_factor", load_factor, 1.0, 10.0)
-    check_range("rating.sigma_Flim", sigma_flim, 100e6, 1000e6, unit="Pa")
     check_range("rating.minimum_safety_bending", minimum_safety, 0.5, 5.0)
-    check_range("rating.Y_M", mean_stress_factor, 0.5, 1.0)
-    if cycles < KNEE:
-        raise InputError(f"rating: {cycles:.4g} load cycles lie below the bending endurance knee "
-                         f"({KNEE:.0e}); the finite-life interpolation of Y_deltarelT, Y_RrelT "
-                         "and Y_X is not built yet")
+    _check_strength(sigma_flim, mean_stress_factor, line)
+    w = static_weight(LIFE_LINES[line], cycles)
     ynt = life_factor(cycles, line, optimum)
     yd = notch_sensitivity(root.q_s, slip_layer)
-    yr = surface_factor(root_roughness)
-    yx = size_factor(module, size_class)
+    if w > 0.0:  # the static value matters only below the knee
+        yd = limited_life_value(yd, static_notch_sensitivity(root.y_s, line, proof_stress), w)
+    yr = limited_life_value(surface_factor(root_roughness), 1.0, w)
+    yx = limited_life_value(size_factor(module, size_class), 1.0, w)
     limit = sigma_flim * 2.0 * ynt * yd * yr * yx * mean_stress_factor
     stress = root.sigma_f0 * load_factor
     return BendingSafety(root.sigma_f0, load_factor, stress, ynt, yd, yr, yx,

@@ -43,10 +43,19 @@ S_Hmin``, and the safety factor ``S_H = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X / si
 * work hardening ``Z_W`` and size ``Z_X`` factors: 1 (equal hardness, module within the
   standard's range for 1).
 
-``Z_L``, ``Z_v``, ``Z_R`` are their values at and beyond the endurance knee of the life
-line; below it the standard interpolates them towards 1 (static), which is not built:
-fewer cycles are refused. ``Z_W`` for a through-hardened wheel against a harder pinion is
-not built either.
+Limited life (fewer load cycles than the line's endurance knee, :mod:`.life`): ``Z_L``,
+``Z_v``, ``Z_R``, ``Z_W`` and ``Z_X`` run log-log from their endurance values at the knee
+to 1 at the static point (the line's first point, 10^5 cycles or 6 x 10^5 where some
+pitting is permitted), with the weight of the life factor's own interpolation, so that
+``sigma_HG`` runs log-log from ``sigma_Hlim Z_NT,stat`` to ``sigma_Hlim Z_L Z_v Z_R Z_W
+Z_X`` (the two-point rule of method B: DIN 3990-11's equations 4.04-4.10 with ``Z_LVR,stat
+= Z_X,stat = 1``; KISSsoft's ISO 6336:2006 reports state that ``Z_L``, ``Z_v``, ``Z_R``,
+``Z_W``, ``Z_X`` are interpolated logarithmically between their fatigue and static values).
+``Z_W``'s static value is taken as 1 here: DIN 3990-11 keeps ``Z_W`` at both ends, and
+ISO 6336-2's own static ``Z_W`` was not found in a public source (it matters only for a
+through-hardened gear against a hardened mate below the knee). Each record states the
+factors at the gear's load cycles. :func:`strength_curve` gives the whole S-N line for
+ISO 6336-6's Miner sum.
 
 Checked against ISO/TR 6336-30, Annex A, example 1 (``tests/test_rating_pitting.py``).
 """
@@ -60,8 +69,13 @@ import numpy as np
 
 from pipeline.contact.hertz import contact_modulus, effective_radius
 from pipeline.geometry.pair import GearPair
-from pipeline.rating.life import life_factor_on
-from pipeline.validation import InputError, check_choice, check_range
+from pipeline.rating.life import (
+    StrengthCurve,
+    life_factor_on,
+    limited_life_value,
+    static_weight,
+)
+from pipeline.validation import check_choice, check_range
 
 LIFE_LINES: dict[str, tuple[tuple[float, float], ...]] = {
     # (load cycles, Z_NT) at the table's points; log-log between; the last point is the
@@ -221,8 +235,9 @@ class PittingSafety:
     Attributes
     ----------
     life_factor, lubricant_factor, velocity_factor, roughness_factor : Z_NT, Z_L, Z_v,
-        Z_R (-).
-    work_hardening_factor, size_factor : Z_W, Z_X (-).
+        Z_R (-) at the gear's load cycles (below the endurance knee the limited-life values
+        of Z_L, Z_v, Z_R).
+    work_hardening_factor, size_factor : Z_W, Z_X (-), at the load cycles as well.
     permissible : sigma_HP, Pa.
     safety : S_H (-).
     """
@@ -245,6 +260,36 @@ def work_hardening_factor(hardness_hb: float) -> float:
     return 1.2 - (min(max(hardness_hb, 130.0), 470.0) - 130.0) / 1700.0
 
 
+def _influence_factors(sigma_hlim: float, viscosity_40: float, roughness: float,
+                       chain: ContactStress, minimum_safety: float,
+                       mesh_sigma_hlim: float | None, work_hardening: float
+                       ) -> tuple[float, float, float]:
+    """Check a gear's permissible-stress inputs; its endurance ``(Z_L, Z_v, Z_R)``."""
+    check_range("rating.sigma_Hlim", sigma_hlim, 200e6, 2500e6, unit="Pa")
+    check_range("rating.viscosity_40", viscosity_40, 1e-6, 5000e-6, unit="m^2/s")
+    check_range("rating.roughness_rz", roughness, 0.0, 100e-6, lo_open=True, unit="m")
+    check_range("rating.minimum_safety_pitting", minimum_safety, 0.5, 5.0)
+    check_range("rating.Z_W", work_hardening, 1.0, 1.2)
+    lower = sigma_hlim if mesh_sigma_hlim is None else mesh_sigma_hlim
+    return (lubricant_factor(lower, viscosity_40), velocity_factor(lower, chain.velocity),
+            roughness_factor(lower, roughness, chain.relative_radius))
+
+
+def strength_curve(sigma_hlim: float, line: str, viscosity_40: float, roughness: float,
+                   chain: ContactStress, optimum: bool = False,
+                   mesh_sigma_hlim: float | None = None, work_hardening: float = 1.0
+                   ) -> StrengthCurve:
+    """The S-N line ``sigma_HG(N)`` of a gear (arguments as :func:`pitting_safety`): the
+    life ``line``, ``sigma_Hlim`` and the endurance product ``Z_L Z_v Z_R Z_W Z_X`` (static
+    product 1)."""
+    check_choice("rating.life_line", line, tuple(LIFE_LINES))
+    zl, zv, zr = _influence_factors(sigma_hlim, viscosity_40, roughness, chain, 1.0,
+                                    mesh_sigma_hlim, work_hardening)
+    # Z_X = 1 at both ends (the module range of this rating)
+    return StrengthCurve(LIFE_LINES[line], sigma_hlim, zl * zv * zr * work_hardening, 1.0,
+                         optimum)
+
+
 def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
                    viscosity_40: float, roughness: float, chain: ContactStress,
                    minimum_safety: float = 1.0, optimum: bool = False,
@@ -256,22 +301,19 @@ def pitting_safety(stress: float, sigma_hlim: float, cycles: float, line: str,
     (m) and the pair's contact stress ``chain`` (its pitch line velocity and relative
     radius). ``mesh_sigma_hlim`` (Pa): the lower ``sigma_Hlim`` of the two gears, which sets
     ``C_ZL``, ``C_Zv`` and ``C_ZR`` for both (default this gear's); ``work_hardening``:
-    ``Z_W`` (:func:`work_hardening_factor`)."""
-    check_range("rating.sigma_Hlim", sigma_hlim, 200e6, 2500e6, unit="Pa")
-    check_range("rating.viscosity_40", viscosity_40, 1e-6, 5000e-6, unit="m^2/s")
-    check_range("rating.roughness_rz", roughness, 0.0, 100e-6, lo_open=True, unit="m")
-    check_range("rating.minimum_safety_pitting", minimum_safety, 0.5, 5.0)
-    knee = next(n for n, z in LIFE_LINES[line] if z == 1.0) if line in LIFE_LINES else 0.0
-    if cycles < knee:
-        raise InputError(f"rating: {cycles:.4g} load cycles lie below the pitting endurance knee "
-                         f"of the {line} line ({knee:.0e}); the finite-life interpolation of "
-                         "Z_L, Z_v, Z_R, Z_W and Z_X is not built yet")
-    check_range("rating.Z_W", work_hardening, 1.0, 1.2)
-    lower = sigma_hlim if mesh_sigma_hlim is None else mesh_sigma_hlim
+    ``Z_W`` (:func:`work_hardening_factor`). Below the line's endurance knee ``Z_L``,
+    ``Z_v``, ``Z_R``, ``Z_W`` and ``Z_X`` are their limited-life values (towards 1 at the
+    static point)."""
+    check_choice("rating.life_line", line, tuple(LIFE_LINES))
+    zl, zv, zr = _influence_factors(sigma_hlim, viscosity_40, roughness, chain,
+                                    minimum_safety, mesh_sigma_hlim, work_hardening)
+    curve = strength_curve(sigma_hlim, line, viscosity_40, roughness, chain, optimum,
+                           mesh_sigma_hlim, work_hardening)
+    w = static_weight(LIFE_LINES[line], cycles)
     znt = life_factor(cycles, line, optimum)
-    zl = lubricant_factor(lower, viscosity_40)
-    zv = velocity_factor(lower, chain.velocity)
-    zr = roughness_factor(lower, roughness, chain.relative_radius)
-    strength = sigma_hlim * znt * zl * zv * zr * work_hardening
-    return PittingSafety(znt, zl, zv, zr, work_hardening, 1.0, strength / minimum_safety,
+    strength = curve.strength(cycles)
+    return PittingSafety(znt, limited_life_value(zl, 1.0, w), limited_life_value(zv, 1.0, w),
+                         limited_life_value(zr, 1.0, w),
+                         limited_life_value(work_hardening, 1.0, w),
+                         1.0, strength / minimum_safety,
                          strength / stress)
