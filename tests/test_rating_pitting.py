@@ -196,15 +196,6 @@ def test_kisssoft_report_of_a_helical_pair(nrel_stage_3):
         assert r.safety == pytest.approx(sh, abs=5e-3)
 
 
-def test_fewer_cycles_than_the_knee_are_refused(tr30_example_1):
-    """Below the endurance knee the standard interpolates Z_L, Z_v, Z_R towards their static
-    values, which is not built: a one-line refusal naming the knee."""
-    chain = P.contact_stress(tr30_example_1, 9000.0, 360.0, 1.0)
-    with pytest.raises(InputError, match=r"below the pitting endurance knee of the hardened "
-                                         r"line \(5e\+07\)"):
-        P.pitting_safety(1e9, 1500 * MPA, 1e7, "hardened", 320e-6, 6e-6, chain)
-
-
 def test_kisssoft_report_of_a_planetary_sun_planet_mesh():
     """The sun-planet mesh of the NREL 5 MW gearbox's second (spur planetary) stage as
     KISSsoft Release 03/2017 A rates it (``@NREL_5MW/stage_02.rtf`` of gfsReboucas/

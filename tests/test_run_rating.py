@@ -1,0 +1,187 @@
+"""The rating step of a run (pipeline.run.rating): what it takes from the run, checked
+against the rating chain called directly with the same inputs, and the refusals.
+
+The chain itself is checked against ISO/TR 6336-30 and KISSsoft's reports in the
+``test_rating_*`` files; here: that the run hands it the right K_Hbeta (method C, the
+loaded contact's, a number), K_gamma (a planetary set's default, computed from the
+dynamic model's planets), K_v (the larger of a planetary set's meshes), the planet as an
+idler, the load cycles of the sun and ring per planet, and that the summary, the report and
+the study KPIs carry its numbers.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from pipeline.cache.folder import Cache
+from pipeline.config.gearbox import gearbox_from_text
+from pipeline.rating.pair_rating import GearRatingInputs, RatingInputs, rate_pair
+from pipeline.run.chain import RunOptions
+from pipeline.run.runner import run_pipeline
+from pipeline.validation import InputError
+from workflows.default_case import DEMO_PAIR
+
+FAST = '[contact]\ncompliance = "analytical"\npositions = 24\n'
+
+PLANETARY = """
+name = "spur_planetary"
+[sun]
+teeth = 21
+module_mm = 15.0
+pressure_angle_deg = 25.0
+face_width_mm = 185.0
+[planet]
+teeth = 37
+module_mm = 15.0
+pressure_angle_deg = 25.0
+face_width_mm = 175.0
+bore_radius_mm = 100.0
+[ring]
+teeth = 95
+module_mm = 15.0
+pressure_angle_deg = 25.0
+face_width_mm = 185.0
+internal = true
+rim_outer_radius_mm = 799.5
+[carrier]
+mass_kg = 2273.1
+inertia_kgm2 = 440.1
+[planetary]
+planets = 4
+[operation]
+torque_Nm = 74000.0
+speed_rpm = 96.67
+"""
+"""A spur planetary set with the gears of Xu et al. (2020)'s wind-turbine stage (z 21/37/95,
+m_n 15 mm, 25 deg, four planets)."""
+
+
+def _run(text: str, tmp_path):
+    box = gearbox_from_text(text, "box")
+    return run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
+
+
+def _direct(result, name, k_hbeta, roles=("pinion", "gear"), mesh="pair", planets=1, **kw):
+    """rate_pair on the run's own mesh with the run's own inputs (the defaults)."""
+    box = result.gearbox
+    st = result.meshes[name]
+    g = [box.rating.gear(r) for r in roles]
+    gears = tuple(GearRatingInputs(sigma_hlim=x.sigma_hlim, sigma_flim=x.sigma_flim,
+                                   mean_stress_factor=0.7 if r == "planet" else 1.0)
+                  for x, r in zip(g, roles, strict=True))
+    inputs = RatingInputs(application_factor=1.25, life_hours=20000.0, accuracy_grade=6,
+                          viscosity_40=220e-6, k_hbeta=k_hbeta, face_load=box.rating.method_c,
+                          **kw)
+    op = st.case.operation
+    return rate_pair(st.stiffness.actual, op.torque, op.speed * 30 / math.pi, inputs, gears,
+                     mesh, planets)
+
+
+def test_pair_takes_method_c_the_contact_or_a_number(tmp_path):
+    """The default K_Hbeta is method C's; "contact" takes the loaded contact's (the line
+    load's largest over its mean: 1.589 with a 15 um slope deviation, 1.8 % below ISO
+    6336-1's Eq. (41) for the same misalignment, 1 + F_betay c_gamma_beta / (2 F_m / b) =
+    1.619 with c_gamma_beta = 0.85 c_gamma_alpha of method B: the contact's own mesh
+    stiffness is lower than ISO's); a number is used as given. Each run's S_H and S_F equal
+    rate_pair's with that K_Hbeta to the last bit, and the others are shown beside it."""
+    slope = FAST + "slope_deviation_um = 15.0\n"
+    runs = {src: _run(DEMO_PAIR + slope + f"[rating]\nface_load_factor = {src}\n", tmp_path)
+            for src in ('"method_c"', '"contact"', "1.4")}
+    contact_khb = runs['"contact"'].distributions["mesh"].distribution.k_hbeta
+    r = runs['"contact"'].rating.meshes["mesh"].rating
+    eq41 = 1 + 15e-6 * 0.85 * r.mesh_stiffness / (2 * r.tangential_load / 0.020)
+    assert eq41 == pytest.approx(1.619, abs=5e-4)
+    assert contact_khb == pytest.approx(1.589, abs=5e-4)
+    assert contact_khb / eq41 - 1 == pytest.approx(-0.018, abs=1e-3)
+    method_c = runs['"method_c"'].rating.meshes["mesh"].rating.face_load.k_hbeta
+    for src, khb in (('"method_c"', None), ('"contact"', contact_khb), ("1.4", 1.4)):
+        m = runs[src].rating.meshes["mesh"]
+        want = _direct(runs[src], "mesh", khb)
+        assert m.rating.k_hbeta == (method_c if khb is None else khb)
+        assert [p.safety for p in m.rating.pitting] == [p.safety for p in want.pitting]
+        assert [b.safety for b in m.rating.bending] == [b.safety for b in want.bending]
+        assert m.k_hbeta_contact == contact_khb
+        assert m.rating.face_load.k_hbeta == method_c
+    sources = {src: r.rating.meshes["mesh"].k_hbeta_source for src, r in runs.items()}
+    assert sources == {'"method_c"': "ISO 6336-1 method C", '"contact"': "loaded contact",
+                       "1.4": "given"}
+    # the larger K_Hbeta lowers S_H by sqrt of the ratio (same K_v, K_Halpha = 1)
+    s = {src: r.rating.smallest("pitting")[0] for src, r in runs.items()}
+    assert s["1.4"] / s['"contact"'] == pytest.approx(math.sqrt(contact_khb / 1.4), rel=1e-9)
+
+
+def test_pair_summary_and_verdict(tmp_path):
+    """The run summary's verdict names the smallest S_H and S_F and the gear; the z 50/50
+    demo pair's gears are alike, so the pinion (the first) is named."""
+    r = _run(DEMO_PAIR + FAST + "[rating]\n", tmp_path)
+    summary = r.summary()["rating"]
+    s_h, gear, mesh = r.rating.smallest("pitting")
+    assert (gear, mesh) == ("pinion", "mesh")
+    assert summary["safety_pitting_min"] == s_h
+    assert summary["verdict"] == (f"S_H min {s_h:.3f} (pinion); S_F min "
+                                  f"{r.rating.smallest('bending')[0]:.3f} (pinion)")
+    pair = summary["meshes"]["mesh"]
+    assert pair["pinion"]["S_H"] == pytest.approx(pair["gear"]["S_H"], rel=1e-12)
+    assert pair["K_gamma_source"] == "single mesh"
+
+
+def test_planetary_set_every_mesh(tmp_path):
+    """Both meshes rated: K_gamma 1.25 by default for four planets (IEC 61400-4 / AGMA
+    6123), K_v the larger of the two meshes' (KISSsoft's KV = max(KV12, KV23)), the planet
+    an idler (Y_M 0.7) in both meshes, the sun and the ring four load cycles per revolution
+    relative to the carrier, the ring not rated in bending (internal-gear form factors not
+    built)."""
+    r = _run(PLANETARY + FAST + "[rating]\n", tmp_path)
+    sp, pr = r.rating.meshes["sun_planet"], r.rating.meshes["planet_ring"]
+    assert sp.gears == ("sun", "planet") and pr.gears == ("planet", "ring")
+    assert sp.rating.load_sharing == pr.rating.load_sharing == 1.25
+    assert sp.load_sharing_source == "default for 4 planets"
+    own = {n: _direct(r, n, None, m.gears, mesh=n, planets=4, load_sharing=1.25).dynamic
+           for n, m in r.rating.meshes.items()}
+    assert own["planet_ring"].factor > own["sun_planet"].factor
+    assert sp.rating.dynamic == pr.rating.dynamic == own["planet_ring"]
+    assert sp.rating.bending[1].mean_stress_factor == 0.7
+    assert pr.rating.bending[0].mean_stress_factor == 0.7
+    assert sp.rating.bending[0].mean_stress_factor == 1.0
+    assert pr.rating.bending[1] is None
+    rel = r.meshes["sun_planet"].case.operation.speed * 30 / math.pi  # sun, carrier frame
+    assert sp.rating.cycles[0] == pytest.approx(rel * 60 * 20000 * 4, rel=1e-12)
+    assert sp.rating.cycles[1] == pytest.approx(rel * 21 / 37 * 60 * 20000, rel=1e-12)
+    assert pr.rating.cycles[1] == pytest.approx(rel * 21 / 95 * 60 * 20000 * 4, rel=1e-12)
+
+
+def test_planet_load_sharing_computed_from_the_dynamic_model(tmp_path):
+    """``load_sharing = "computed"`` takes the dynamic model's planets: equally spaced, equal
+    planets without errors share the load equally (K_gamma 1 to 1e-5); without a [dynamics]
+    table it is refused in one line."""
+    dyn = '[dynamics]\nexcitation = "analytical"\n'
+    r = _run(PLANETARY + FAST + dyn + '[rating]\nload_sharing = "computed"\n', tmp_path)
+    m = r.rating.meshes["sun_planet"]
+    assert m.load_sharing_source == "computed"
+    assert m.rating.load_sharing == pytest.approx(1.0, abs=1e-5)
+    assert m.k_gamma_computed == m.rating.load_sharing
+    assert m.dynamic_factor_model > 1.0
+    with pytest.raises(InputError, match=r'load_sharing = "computed" .* needs a \[dynamics\]'):
+        _run(PLANETARY + FAST + '[rating]\nload_sharing = "computed"\n', tmp_path)
+
+
+def test_rating_inputs_refused_where_they_enter():
+    """One line naming the key: a pair has no K_gamma, an unknown gear table, two oils, a
+    through-hardened material without its hardness, a core hardness beside both stresses."""
+    cases = {
+        "[rating]\nload_sharing = 1.2\n": "rating.load_sharing = 1.2 applies to a planetary",
+        "[rating.wheel]\n": r"\[rating\] key 'wheel' is not known",
+        "[rating]\noil_grade = \"VG 220\"\noil_viscosity_40_mm2_per_s = 220\n":
+            "keep one",
+        "[rating.gear]\nmaterial = \"through_hardened_alloy\"\n":
+            r"rating.gear.surface_hardness_HV is needed: .* \(allowed 200 to 360 HV\)",
+        ("[rating.gear]\nsigma_Hlim_MPa = 1400\nsigma_Flim_MPa = 400\n"
+         "core_hardness = \"30HRC\"\n"): "rating.gear.core_hardness selects ISO 6336-5's",
+        "[rating]\nlife_h = 0\n":
+            r"rating.life_h = 0 h is outside the allowed range \(0, 1e\+07\] h",
+    }
+    for extra, message in cases.items():
+        with pytest.raises(InputError, match=message):
+            gearbox_from_text(DEMO_PAIR + extra)
