@@ -7,7 +7,9 @@ dynamic model excited by the loaded contact (loaded k(t), static transmission er
 friction). Writes to results/default_case/: the gearbox file it ran, and in ``run/`` the
 line of action and tooth profiles, the analytical mesh stiffness with the ISO 6336
 comparison, the loaded contact cycle and load maps, modes, the response at 2340 rpm, a
-speed sweep with the dynamic factor, the tooth load distribution report (``report.html``
+speed sweep with the dynamic factor, the ISO 6336 rating (safety factors S_H and S_F of
+both gears with every factor; the smallest in the summary), the tooth load distribution
+report (``report.html``
 with its ``report.json`` and ``report.csv``), one ``summary.json`` and ``run.json`` (inputs,
 versions, configuration hash). FE tables and the contact cycle are cached in ``meshes/``:
 a second run reads them back.
@@ -61,6 +63,9 @@ excitation = "contact"          # loaded k(t), static TE, friction of the FE-enr
 f_min_Hz = 200.0
 f_max_Hz = 6000.0
 points_coarse = 120
+[rating]                        # ISO 6336 method B; K_Hbeta by method C, the contact's beside
+application_factor = 1.25
+life_h = 20000.0
 """
 
 
