@@ -314,7 +314,7 @@ def test_pair_rating_over_a_spectrum(tr30_example_1):
 def test_spectrum_inputs_are_checked_where_they_enter():
     """An empty spectrum, a bin's non-positive torque, speed or time, an unknown or a
     missing key: one line naming the key as the user writes it (index from 0)."""
-    ok = {"torque_Nm": 100.0, "speed_rpm": 10.0, "hours": 1.0}
+    ok = {"torque_Nm": 100.0, "speed_rpm": 10.0, "duration_h": 1.0}
     with pytest.raises(InputError, match=r"rating\.spectrum is empty"):
         LoadSpectrum(())
     with pytest.raises(InputError, match=r"rating\.spectrum\[2\]\.torque_Nm = -5 N m is "
@@ -322,12 +322,12 @@ def test_spectrum_inputs_are_checked_where_they_enter():
         LoadSpectrum.from_rows([ok, ok, {**ok, "torque_Nm": -5.0}])
     with pytest.raises(InputError, match=r"rating\.spectrum\[0\]\.speed_rpm = 0 rpm"):
         LoadSpectrum((LoadBin(1.0, 0.0, 1.0),))
-    with pytest.raises(InputError, match=r"rating\.spectrum\[1\]\.hours = nan"):
+    with pytest.raises(InputError, match=r"rating\.spectrum\[1\]\.duration_h = nan"):
         LoadSpectrum((LoadBin(1.0, 1.0, 1.0), LoadBin(1.0, 1.0, math.nan)))
     with pytest.raises(InputError, match=r"rating\.spectrum\[1\]\.torque_kNm is not a key "
                                          r"of a spectrum bin \(known: torque_Nm"):
-        LoadSpectrum.from_rows([ok, {"torque_kNm": 1.0, "speed_rpm": 1.0, "hours": 1.0}])
-    with pytest.raises(InputError, match=r"rating\.spectrum\[0\]\.hours is missing"):
+        LoadSpectrum.from_rows([ok, {"torque_kNm": 1.0, "speed_rpm": 1.0, "duration_h": 1.0}])
+    with pytest.raises(InputError, match=r"rating\.spectrum\[0\]\.duration_h is missing"):
         LoadSpectrum.from_rows([{"torque_Nm": 1.0, "speed_rpm": 1.0}])
-    s = LoadSpectrum.from_rows([ok, {**ok, "hours": 2.5}])
+    s = LoadSpectrum.from_rows([ok, {**ok, "duration_h": 2.5}])
     assert s.bins[1] == LoadBin(100.0, 10.0, 2.5) and s.hours == 3.5

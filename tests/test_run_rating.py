@@ -185,3 +185,29 @@ def test_rating_inputs_refused_where_they_enter():
     for extra, message in cases.items():
         with pytest.raises(InputError, match=message):
             gearbox_from_text(DEMO_PAIR + extra)
+
+
+def test_load_spectrum_of_one_bin_is_the_constant_load_rating(tmp_path):
+    """ISO 6336-6 in a run: a spectrum of one bin at K_A times the operating torque for the
+    required life gives the constant-load rating's S_H and S_F (the spectrum stands for K_A:
+    its bins are rated with K_A = 1) to 1e-9; a second, lighter bin adds cycles but, below
+    the endurance limit here, no damage, and leaves the safety unchanged; a bin's bad key is
+    refused naming its index."""
+    bins = ("[[rating.spectrum]]\ntorque_Nm = 425.0\nspeed_rpm = 2340.0\n"
+            "duration_h = 20000.0\n")
+    r = _run(DEMO_PAIR + FAST + "[rating]\n" + bins, tmp_path)
+    m = r.rating.meshes["mesh"]
+    for k in range(2):
+        assert m.spectrum.pitting[k].safety == pytest.approx(m.rating.pitting[k].safety,
+                                                             rel=1e-9)
+        assert m.spectrum.bending[k].safety == pytest.approx(m.rating.bending[k].safety,
+                                                             rel=1e-9)
+    light = bins + ("[[rating.spectrum]]\ntorque_Nm = 100.0\nspeed_rpm = 2340.0\n"
+                    "duration_h = 500.0\n")
+    r2 = _run(DEMO_PAIR + FAST + "[rating]\n" + light, tmp_path)
+    m2 = r2.rating.meshes["mesh"]
+    assert m2.spectrum.pitting[0].damage[1] == 0.0
+    assert m2.spectrum.pitting[0].safety == m.spectrum.pitting[0].safety
+    assert "spectrum (ISO 6336-6): S_H min" in r2.rating.line()
+    with pytest.raises(InputError, match=r"rating\.spectrum\[0\]\.torque_kNm is not a key"):
+        gearbox_from_text(DEMO_PAIR + "[[rating.spectrum]]\ntorque_kNm = 1.0\n")

@@ -27,6 +27,7 @@ from pipeline.rating.materials import (
     material_limits,
 )
 from pipeline.rating.options import GearRatingOptions, RatingOptions, oil_grade_viscosity
+from pipeline.rating.spectrum import BIN_KEYS, LoadSpectrum
 from pipeline.validation import InputError
 
 _TABLE_KEYS = ("quality", "surface_hardness_HV", "surface_hardness_HBW", "core_hardness",
@@ -93,7 +94,8 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
     if kind not in ("pair", "planetary"):
         raise InputError(f"[rating] rates gears in mesh; this file describes no mesh "
                          f"({kind})")
-    table = doc["rating"]
+    table = dict(doc["rating"])
+    spectrum = _spectrum(table.pop("spectrum", None))
     values = read_table(table, T.RATING, "rating",
                         subtables=(*roles, "method_c", "pinion_shaft"))
     grade = values.pop("oil_grade", None)
@@ -115,4 +117,14 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
                      table.get("method_c", {}), T.RATING_METHOD_C, "rating.method_c",
                      shaft=shaft)
     with restated("rating", T.RATING, table):
-        return RatingOptions(**values, gears=gears, method_c=method_c)
+        return RatingOptions(**values, gears=gears, method_c=method_c, spectrum=spectrum)
+
+
+def _spectrum(rows: Any) -> LoadSpectrum | None:
+    """``[[rating.spectrum]]`` rows (``torque_Nm``, ``speed_rpm``, ``duration_h``)."""
+    if rows is None:
+        return None
+    if not isinstance(rows, list) or not all(isinstance(r, Mapping) for r in rows):
+        raise InputError("rating.spectrum: expected [[rating.spectrum]] tables, one per bin, "
+                         f"with {', '.join(BIN_KEYS)}")
+    return LoadSpectrum.from_rows(rows)

@@ -34,6 +34,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from pipeline.rating.face_load import FaceLoadInputs
+from pipeline.rating.spectrum import LoadSpectrum
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 OIL_GRADES = (2, 3, 5, 7, 10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680, 1000,
@@ -124,6 +125,9 @@ class RatingOptions:
         None for the default (1; a planetary set's :data:`PLANET_LOAD_SHARING`).
     minimum_safety_pitting, minimum_safety_bending : S_Hmin, S_Fmin (-).
     gears : the gears' :class:`GearRatingOptions` by role (every gear of the gearbox).
+    spectrum : a load spectrum (``[[rating.spectrum]]``: the driving gear's torque and speed
+        as in ``[operation]``, and the time at them) rated by ISO 6336-6's Miner sum beside
+        the constant-load rating, or None.
     """
 
     application_factor: float = 1.25
@@ -136,6 +140,7 @@ class RatingOptions:
     minimum_safety_pitting: float = 1.0
     minimum_safety_bending: float = 1.4
     gears: Mapping[str, GearRatingOptions] = field(default_factory=dict)
+    spectrum: LoadSpectrum | None = None
 
     def __post_init__(self) -> None:
         check_range("application_factor", self.application_factor, 1.0, 5.0)

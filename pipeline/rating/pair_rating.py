@@ -28,6 +28,7 @@ from pipeline.contact.iso_root_stress import IsoRootStress, iso_root_stress
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.accuracy import Tolerances, tolerances
 from pipeline.rating.bending import BendingSafety, bending_safety, face_load_factor
+from pipeline.rating.bending import strength_curve as bending_curve
 from pipeline.rating.dynamic import (
     HARDENING,
     DynamicFactor,
@@ -38,6 +39,7 @@ from pipeline.rating.dynamic import (
     running_in_relief,
 )
 from pipeline.rating.face_load import FaceLoadFactor, FaceLoadInputs, face_load_method_c
+from pipeline.rating.life import StrengthCurve
 from pipeline.rating.pitting import (
     ContactStress,
     PittingSafety,
@@ -46,6 +48,7 @@ from pipeline.rating.pitting import (
     pitting_safety,
     work_hardening_factor,
 )
+from pipeline.rating.pitting import strength_curve as pitting_curve
 from pipeline.rating.transverse import TransverseLoadFactors, transverse_load_factors
 from pipeline.stiffness.iso6336 import iso_stiffness
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -145,7 +148,10 @@ class PairRating:
     """Every factor of a pair's rating (SI; gear-wise tuples are (pinion, wheel)):
     ``face_load`` ISO 6336-1 method C's K_Hbeta with its intermediates (None without its
     inputs); ``cycles`` the load cycles of each gear over the life; ``roots`` ISO 6336-3's nominal
-    root stress with its form factors (None where the gear is not rated in bending)."""
+    root stress with its form factors (None where the gear is not rated in bending);
+    ``curves`` each gear's S-N lines (pitting, bending or None) of
+    :class:`~pipeline.rating.life.StrengthCurve`, ``cycles_per_revolution`` each gear's
+    load cycles per revolution of the pinion (the load spectrum's bookkeeping)."""
 
     tangential_load: float
     velocity: float
@@ -164,6 +170,8 @@ class PairRating:
     face_load: FaceLoadFactor | None = None
     cycles: tuple[float, float] = (0.0, 0.0)
     roots: tuple[IsoRootStress | None, IsoRootStress | None] = (None, None)
+    curves: tuple[tuple[StrengthCurve, StrengthCurve | None], ...] = ()
+    cycles_per_revolution: tuple[float, float] = (1.0, 1.0)
 
     @property
     def safety_pitting_min(self) -> float:
@@ -252,7 +260,7 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
               speed / abs(u) * 60.0 * inputs.life_hours * contacts[1])
     lower = min(gi.sigma_hlim for gi in gears)
     rz = 0.5 * (gears[0].flank_roughness + gears[1].flank_roughness)
-    pit, bend, roots = [], [], []
+    pit, bend, roots, curves = [], [], [], []
     for k, (gear, gi, n) in enumerate(zip((p, g), gears, cycles, strict=True)):
         other = gears[1 - k]
         zw = (work_hardening_factor(gi.hardness_hb) if gi.hardening == "through_hardened"
@@ -261,10 +269,13 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                   inputs.viscosity_40, rz, chain,
                                   inputs.minimum_safety_pitting, mesh_sigma_hlim=lower,
                                   work_hardening=zw))
+        curve_h = pitting_curve(gi.sigma_hlim, gi.pitting_line, inputs.viscosity_40, rz, chain,
+                                mesh_sigma_hlim=lower, work_hardening=zw)
         slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER.get(gi.bending_class)
         if gear.internal or slip is None:
             bend.append(None)
             roots.append(None)
+            curves.append((curve_h, None))
             continue
         root = iso_root_stress(gear, pair, ft)
         roots.append(root)
@@ -273,6 +284,11 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                    gi.root_roughness, gi.size_class or gi.hardening,
                                    gear.module, inputs.minimum_safety_bending,
                                    mean_stress_factor=gi.mean_stress_factor))
+        curves.append((curve_h, bending_curve(root, gi.sigma_flim, gi.bending_class, slip,
+                                              gi.root_roughness, gi.size_class or gi.hardening,
+                                              gear.module,
+                                              mean_stress_factor=gi.mean_stress_factor)))
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
                       (pit[0], pit[1]), (bend[0], bend[1]), method_c, cycles,
-                      (roots[0], roots[1]))
+                      (roots[0], roots[1]), (curves[0], curves[1]),
+                      (contacts[0], contacts[1] / abs(u)))

@@ -48,7 +48,7 @@ import numpy as np
 from pipeline.rating.life import StrengthCurve
 from pipeline.validation import InputError, check_range
 
-BIN_KEYS = ("torque_Nm", "speed_rpm", "hours")
+BIN_KEYS = ("torque_Nm", "speed_rpm", "duration_h")
 """The keys of one bin as a user writes it (``[[rating.spectrum]]`` rows)."""
 
 
@@ -100,7 +100,7 @@ class LoadSpectrum:
     def from_rows(cls, rows: list[Mapping[str, float]], key: str = "rating.spectrum"
                   ) -> LoadSpectrum:
         """The spectrum of ``rows`` written as a user writes them (``torque_Nm``,
-        ``speed_rpm``, ``hours``, every key required); an unknown key is an error."""
+        ``speed_rpm``, ``duration_h``, every key required); an unknown key is an error."""
         bins = []
         for i, row in enumerate(rows):
             unknown = sorted(set(row) - set(BIN_KEYS))
@@ -111,7 +111,11 @@ class LoadSpectrum:
             if missing:
                 raise InputError(f"{key}[{i}].{missing[0]} is missing (a bin needs "
                                  f"{', '.join(BIN_KEYS)})")
-            bins.append(LoadBin(row["torque_Nm"], row["speed_rpm"], row["hours"]))
+            for name in BIN_KEYS:
+                value = row[name]
+                if isinstance(value, bool) or not isinstance(value, (int, float)):
+                    raise InputError(f"{key}[{i}].{name} = {value!r}: expected a number")
+            bins.append(LoadBin(row["torque_Nm"], row["speed_rpm"], row["duration_h"]))
         return cls(tuple(bins), key)
 
     @property
@@ -236,11 +240,12 @@ class SpectrumRating:
 
     Attributes
     ----------
-    pitting, bending : the :class:`SpectrumDamage` of each gear.
+    pitting, bending : the :class:`SpectrumDamage` of each gear (bending: None for a gear
+        not rated in bending).
     """
 
     pitting: tuple[SpectrumDamage, SpectrumDamage]
-    bending: tuple[SpectrumDamage, SpectrumDamage]
+    bending: tuple[SpectrumDamage | None, SpectrumDamage | None]
 
     @property
     def safety_pitting_min(self) -> float:
@@ -248,15 +253,18 @@ class SpectrumRating:
 
     @property
     def safety_bending_min(self) -> float:
-        return min(d.safety for d in self.bending)
+        """The smaller S_F of the gears rated in bending (NaN when none is)."""
+        rated = [d.safety for d in self.bending if d is not None]
+        return min(rated) if rated else math.nan
 
 
 @dataclass(frozen=True)
 class PairBinStress:
-    """What a pair sees in one bin: ``pitting`` and ``bending`` of (pinion, wheel)."""
+    """What a pair sees in one bin: ``pitting`` and ``bending`` of (pinion, wheel) (bending
+    None for a gear not rated in bending)."""
 
     pitting: tuple[BinStress, BinStress]
-    bending: tuple[BinStress, BinStress]
+    bending: tuple[BinStress | None, BinStress | None]
 
 
 def rate_spectrum(spectrum: LoadSpectrum, stress_at: Callable[[LoadBin], PairBinStress], *,
@@ -270,8 +278,9 @@ def rate_spectrum(spectrum: LoadSpectrum, stress_at: Callable[[LoadBin], PairBin
     rated = [stress_at(b) for b in spectrum.bins]  # one evaluation per bin
     root_cycles = bending_cycles_per_revolution or cycles_per_revolution
 
-    def mode(name: str, k: int, c: float) -> SpectrumDamage:
-        return _miner(spectrum, [getattr(r, name)[k] for r in rated], c)
+    def mode(name: str, k: int, c: float) -> SpectrumDamage | None:
+        per_bin = [getattr(r, name)[k] for r in rated]
+        return None if per_bin[0] is None else _miner(spectrum, per_bin, c)
 
     return SpectrumRating(
         (mode("pitting", 0, cycles_per_revolution[0]),

@@ -167,10 +167,27 @@ def rating_section(m, figures: Sequence[Figure]) -> Section:
              each(lambda b: b.permissible * MPA, bend), f"{ISO3}, with S_Fmin"),
         gear("S_F", "safety factor for bending S_F", "-", each(lambda b: b.safety, bend), ISO3),
     ]
+    if m.spectrum is not None:
+        sp = m.spectrum
+        src = "ISO 6336-6, Miner sum"
+        rows += [
+            gear("spectrum_D_H", "load spectrum: pitting damage D_H over its time", "-",
+                 each(lambda d: d.total, sp.pitting), src),
+            gear("spectrum_S_H", "load spectrum: pitting safety (D_H = 1)", "-",
+                 each(lambda d: d.safety, sp.pitting), src),
+            gear("spectrum_D_F", "load spectrum: bending damage D_F over its time", "-",
+                 each(lambda d: d.total, sp.bending), src),
+            gear("spectrum_S_F", "load spectrum: bending safety (D_F = 1)", "-",
+                 each(lambda d: d.safety, sp.bending), src),
+        ]
     notes = ["sigma_H = Z_B,D sigma_H0 sqrt(K_A K_gamma K_v K_Hbeta K_Halpha); sigma_F = "
              "sigma_F0 K_A K_gamma K_v K_Fbeta K_Falpha; S_H = sigma_Hlim Z_NT Z_L Z_v Z_R Z_W "
              "Z_X / sigma_H; S_F = sigma_Flim Y_ST Y_NT Y_deltarelT Y_RrelT Y_X Y_M / sigma_F "
              "(Y_ST = 2)."]
+    if m.spectrum is not None:
+        notes.append("Load spectrum ([[rating.spectrum]]): each bin rated at its torque and "
+                     "speed with K_A = 1, its load cycles against the gear's S-N line; the "
+                     "safety is the factor on every bin's stress that makes the Miner sum 1.")
     if any(b is None for b in bend):
         notes.append("The ring is not rated in bending: ISO 6336-3's internal-gear form "
                      "factors (its root chord and fillet radius) are not built yet.")

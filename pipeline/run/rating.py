@@ -43,6 +43,8 @@ from pipeline.dynamics.models.planetary_gears import helical_half
 from pipeline.progress import Steps
 from pipeline.rating.options import planet_load_sharing
 from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInputs, rate_pair
+from pipeline.rating.pair_spectrum import rate_pair_spectrum
+from pipeline.rating.spectrum import LoadBin, LoadSpectrum, SpectrumRating
 from pipeline.run.chain import MeshStages
 from pipeline.validation import InputError
 
@@ -78,6 +80,8 @@ class MeshRating:
     minimum_pitting, minimum_bending : S_Hmin, S_Fmin (-).
     dynamic_factor_model : the run's dynamic model's largest over mean mesh force at the
         operating speed (the largest over a set's planets), or None without dynamics.
+    spectrum : the Miner sums over ``[[rating.spectrum]]``
+        (:func:`pipeline.rating.pair_spectrum.rate_pair_spectrum`), or None.
     """
 
     mesh: str
@@ -95,6 +99,7 @@ class MeshRating:
     minimum_pitting: float
     minimum_bending: float
     dynamic_factor_model: float | None = None
+    spectrum: SpectrumRating | None = None
 
     def summary(self) -> dict[str, Any]:
         """The safety factors and the load factors (keys carry units)."""
@@ -114,6 +119,12 @@ class MeshRating:
             out[role] = {"sigma_H_Pa": r.contact.stress[k], "S_H": r.pitting[k].safety,
                          "sigma_F_Pa": None if b is None else b.stress,
                          "S_F": None if b is None else b.safety}
+            if self.spectrum is not None:
+                d = self.spectrum.pitting[k], self.spectrum.bending[k]
+                out[role].update({
+                    "spectrum_damage_pitting": d[0].total, "spectrum_S_H": d[0].safety,
+                    "spectrum_damage_bending": None if d[1] is None else d[1].total,
+                    "spectrum_S_F": None if d[1] is None else d[1].safety})
         return out
 
 
@@ -125,25 +136,33 @@ class RatingStage:
     minimum_pitting: float
     minimum_bending: float
 
-    def smallest(self, kind: str) -> tuple[float, str, str]:
-        """(S, gear, mesh) of the smallest S_H (``kind`` "pitting") or S_F ("bending")."""
+    def smallest(self, kind: str, spectrum: bool = False) -> tuple[float, str, str]:
+        """(S, gear, mesh) of the smallest S_H (``kind`` "pitting") or S_F ("bending") at the
+        constant load, or over the load spectrum (``spectrum``; NaN without one)."""
         out = (math.inf, "", "")
         for name, m in self.meshes.items():
+            source = m.spectrum if spectrum else m.rating
+            if source is None:
+                return (math.nan, "", "")
             for k, role in enumerate(m.gears):
-                item = m.rating.pitting[k] if kind == "pitting" else m.rating.bending[k]
+                item = getattr(source, kind)[k]
                 if item is not None and item.safety < out[0]:
                     out = (item.safety, role, name)
         return out
 
     def line(self) -> str:
-        """One line: the smallest S_H and S_F, which gear, against their minimums."""
+        """One line: the smallest S_H and S_F, which gear, against their minimums (and over
+        the load spectrum, when there is one)."""
+        has_spectrum = next(iter(self.meshes.values())).spectrum is not None
         parts = []
-        for kind, sym, minimum in (("pitting", "S_H", self.minimum_pitting),
-                                   ("bending", "S_F", self.minimum_bending)):
-            s, role, mesh = self.smallest(kind)
-            where = role if len(self.meshes) == 1 else f"{role}, {mesh.replace('_', '-')}"
-            flag = "" if s >= minimum else f" BELOW {sym}min {minimum:g}"
-            parts.append(f"{sym} min {s:.3f} ({where}){flag}")
+        for spectrum in (False, True) if has_spectrum else (False,):
+            for kind, sym, minimum in (("pitting", "S_H", self.minimum_pitting),
+                                       ("bending", "S_F", self.minimum_bending)):
+                s, role, mesh = self.smallest(kind, spectrum)
+                where = role if len(self.meshes) == 1 else f"{role}, {mesh.replace('_', '-')}"
+                flag = "" if s >= minimum else f" BELOW {sym}min {minimum:g}"
+                head = "spectrum (ISO 6336-6): " if spectrum and kind == "pitting" else ""
+                parts.append(f"{head}{sym} min {s:.3f} ({where}){flag}")
         return "; ".join(parts)
 
     def summary(self) -> dict[str, Any]:
@@ -154,6 +173,11 @@ class RatingStage:
             out[f"safety_{kind}_min"] = s
             out[f"safety_{kind}_min_gear"] = role
             out[f"safety_{kind}_min_mesh"] = mesh
+            if next(iter(self.meshes.values())).spectrum is not None:
+                s, role, mesh = self.smallest(kind, spectrum=True)
+                out[f"spectrum_safety_{kind}_min"] = s
+                out[f"spectrum_safety_{kind}_min_gear"] = role
+                out[f"spectrum_safety_{kind}_min_mesh"] = mesh
         out["meshes"] = {k: m.summary() for k, m in self.meshes.items()}
         return out
 
@@ -188,6 +212,15 @@ def model_dynamic_factor(dynamics: Any, mesh: str) -> float | None:
     elastic = resp.elastic_mesh_force()[:, resp.steady_slice()]
     ratios = [float(elastic[i].max() / force[i].mean()) for i in rows if force[i].mean() > 0]
     return max(ratios) if ratios else None
+
+
+def _mesh_spectrum(spectrum: LoadSpectrum, operation: Any, torque: float, rpm: float
+                   ) -> LoadSpectrum:
+    """The spectrum's bins (the driving gear's torque and speed, as ``[operation]``) as this
+    mesh's pinion sees them: scaled with the mesh's pinion torque (N m) and speed (rpm)."""
+    t_ref, n_ref = operation.torque, operation.speed * 30.0 / math.pi
+    return LoadSpectrum(tuple(LoadBin(torque * b.torque / t_ref, rpm * b.speed / n_ref,
+                                      b.hours) for b in spectrum.bins), spectrum.key)
 
 
 def _pinion_load(st: MeshStages) -> tuple[float, float]:
@@ -243,7 +276,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
             else computed_load_sharing(dynamics)
         k_gamma, sharing = _load_sharing(box, computed)
         planets = box.planetary.n_planets if box.kind == "planetary" else 1
-        cases = {}
+        cases, bins = {}, {}
         half_set = box.kind == "planetary" and box.planetary.sun.herringbone
         for name, st in meshes.items():
             dist = distributions[name]
@@ -268,6 +301,8 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
             gears = tuple(_gear_inputs(box, role, k) for k, role in enumerate(ROLES[name]))
             cases[name] = (pair, torque, rpm, inputs, gears,
                            "pair" if name == "mesh" else name, dist, whole or half_set)
+            bins[name] = None if opts.spectrum is None else _mesh_spectrum(
+                opts.spectrum, box.operation, torque, rpm)
         first = {n: rate_pair(*c[:5], mesh=c[5], planets=planets, double_helical=c[7])
                  for n, c in cases.items()}
         kv = max((r.dynamic for r in first.values()), key=lambda d: d.factor)
@@ -286,7 +321,9 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 (gears[0].sigma_hlim, gears[1].sigma_hlim),
                 (gears[0].sigma_flim, gears[1].sigma_flim),
                 opts.minimum_safety_pitting, opts.minimum_safety_bending,
-                model_dynamic_factor(dynamics, name))
+                model_dynamic_factor(dynamics, name),
+                None if bins[name] is None else rate_pair_spectrum(
+                    pair, bins[name], inputs, gears, mesh, planets, double_helical=half))
         stage = RatingStage(out, opts.minimum_safety_pitting, opts.minimum_safety_bending)
         note["text"] = stage.line()
     return stage
