@@ -55,28 +55,36 @@ plane, the cutter's virtual tooth count ``z_0n = z_0 / (cos^2 beta_b cos beta)``
   inv(alpha_n) + 2 tan(alpha_n) (x_0 + x) / (z_0n + z_n)``, ``a_0 = m_n (|z_n| - z_0n)/2
   cos(alpha_n) / cos(alpha_w0)``, cutting pitch radii ``r_w0 = a_0 z_0n / (|z_n| - z_0n)``
   (cutter) and ``r_w = r_w0 + a_0`` (ring);
-* the centre M of the cutter's tip rounding lies ``rho_a0`` inside its tip circle
-  ``r_a0 = m_n (z_0n/2 + h_a0* + x_0)`` and ``rho_a0`` inside its involute flank, at roll
-  length ``sqrt((r_a0 - rho_a0)^2 - r_b0^2) + rho_a0`` of the flank point it touches;
+* the cutter's tip circle reaches the ring's root circle, ``r_a0 = r_fn - a_0`` with the
+  virtual ring's ``r_fn = |d_n + d_f - d| / 2`` (as KISSsoft sizes the cutter), unless its
+  addendum is given (``r_a0 = m_n (z_0n/2 + h_a0* + x_0)``); the centre M of its tip
+  rounding lies ``rho_a0`` inside the tip circle and ``rho_a0`` inside its involute flank,
+  at roll length ``sqrt((r_a0 - rho_a0)^2 - r_b0^2) + rho_a0`` of the flank point it
+  touches;
 * the cutter rolls its pitch circle inside the ring's: with its centre at angle ``psi``
   about the ring's axis it has turned ``psi (|z_n| / z_0n - 1)`` about its own; the normal
   of the generated surface passes through the pitch point C (Willis), so the rounding cuts
   the point ``E = M + rho_a0 (M - C) / |M - C|`` while that normal lies between the tip
-  circle's and the flank's on the rounding;
+  circle's and the flank's on the rounding (the flank's end gives the root form diameter
+  ``d_Ff``);
 * the 60 deg tangent point is where that normal makes 30 deg with the ring tooth's centre
   line (nearest the root when the fillet has several); ``s_Fn`` is twice its distance from
-  the centre line, ``d_sFn = -2 |E|``; the fillet is the offset by ``rho_a0`` of M's path,
-  so ``rho_F = rho_M + rho_a0`` with ``rho_M = |M'|^3 / (M' x M'')`` the radius of
-  curvature of M's path (its derivatives in ``psi`` in closed form).
+  the centre line, ``d_sFn = -2 |E|``; the fillet is the offset by ``rho_a0`` of M's path
+  and shares its centre of curvature ``M + n_M / kappa`` (``kappa = M' x M'' / |M'|^3``,
+  ``n_M`` the path's left normal, the derivatives in ``psi`` in closed form), so
+  ``rho_F = |rho_a0 (n . n_M) - 1 / kappa|``.
 
-The section of the ring is that of the cutter's actual generation (its root circle is
-``a_0 + r_a0``, a little shallower than the rack-based ``r_f`` of the gear's data). It is
-not ISO 6336-3:2006's approximation for internal gears (its Eq. (11) virtual fillet radius,
-(16) and (19), whose text is not at hand). KISSsoft 03/2017 ("roF and sFn according to
-ISO 6336-3:2007-04-01", the NREL 5 MW rings) prints s_Fn 56.76 mm, rho_F 8.78 mm (z -93,
-z_0 30) and 129.40 mm, 22.24 mm (z -56, z_0 36) where the exact generation gives 57.49,
-7.78 and 128.98, 13.54 mm; its load point, bending arm and factors from its printed
-section are reproduced (``tests/test_iso_root_stress_internal.py``).
+Checked against a simulated cutter sweeping out the ring and against the rack tooth a huge
+ring and cutter tend to; the cutter's ``d_Ff`` is KISSsoft's (1987.879 and 2662.682 mm
+for the NREL 5 MW rings). This exact generation is not ISO 6336-3:2006's approximation for
+internal gears (its Eq. (11) virtual fillet radius, (16) and (19), whose text is not at
+hand): KISSsoft 03/2017 ("roF and sFn according to ISO 6336-3:2007-04-01") prints s_Fn
+56.76 mm, rho_F 8.78 mm (z -93, z_0 30) and 129.40 mm, 22.24 mm (z -56, z_0 36) where the
+exact generation gives 57.53, 7.78 and 132.15, 13.57 mm (sigma_F0 3.6 % and 18 % above
+KISSsoft's); its load point, bending arm and factors from its printed section are
+reproduced (``tests/test_iso_root_stress_internal.py``). A helical ring is generated in
+its virtual spur gear's plane by the cutter's virtual spur gear, by analogy with ISO's
+virtual gear (not checked against a reference).
 
 ``load_diameter`` moves the load, e.g. to the tip (``d_en = d_an``, ISO's tip-load factors
 ``Y_Fa``, ``Y_Sa``); ``section`` imposes a critical section (e.g. a printed one).
