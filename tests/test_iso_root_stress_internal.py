@@ -260,7 +260,7 @@ def test_exact_generation_beside_kisssofts_iso_2006_section():
 def test_load_at_the_ring_tip():
     """``load_diameter = d_an`` (the ring's tip, ISO's tip-load factors): the load line
     crosses the centre line further from the root, so h_Fe and Y_F grow; beyond the tip or
-    past the root circle is refused."""
+    past the root circle is refused, and so is a load below the critical section."""
     pair = nrel.stage_2_planet_ring()
     ring, cutter = pair.gear, ShaperCutter(30, tip_radius_coef=0.3)
     hpstc = iso_root_stress(ring, pair, 1.0, cutter=cutter)
@@ -270,6 +270,8 @@ def test_load_at_the_ring_tip():
     for bad in (-1.9, -2.01, 1.95):
         with pytest.raises(InputError, match="outside the involute"):
             iso_root_stress(ring, pair, 1.0, cutter=cutter, load_diameter=bad)
+    with pytest.raises(InputError, match="bending arm <= 0"):  # below the critical section
+        iso_root_stress(ring, pair, 1.0, cutter=cutter, load_diameter=-2.0)
 
 
 def test_refusals():
@@ -292,3 +294,10 @@ def test_refusals():
         iso_root_stress(ring, pair, 1.0, section=RootSection(0.05, 0.008, 1.99, INTERNAL_TANGENT))
     with pytest.raises(InputError, match="is for internal gears"):
         shaper_root_section(planet, ShaperCutter(30))
+    printed = RootSection(0.05676, 0.00878, -1.998168, INTERNAL_TANGENT)
+    with pytest.raises(InputError, match="not both"):
+        iso_root_stress(ring, pair, 1.0, cutter=ShaperCutter(30), section=printed)
+    with pytest.raises(InputError, match="section.diameter = 0.05 m"):
+        RootSection(0.05676, 0.00878, -0.05, INTERNAL_TANGENT)
+    with pytest.raises(InputError, match="section.fillet_radius = 0 m"):
+        RootSection(0.05676, 0.0, -1.998168, INTERNAL_TANGENT)

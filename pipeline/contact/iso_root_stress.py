@@ -167,6 +167,15 @@ class RootSection:
     theta: float | None = None
     form_diameter: float | None = None
 
+    def __post_init__(self) -> None:
+        check_range("section.chord", self.chord, 0.0, math.inf, lo_open=True, unit="m")
+        check_range("section.fillet_radius", self.fillet_radius, 0.0, math.inf, lo_open=True,
+                    unit="m")
+        check_range("section.diameter", abs(self.diameter), self.chord, math.inf,
+                    lo_open=True, unit="m (absolute value, above the chord)")
+        check_range("section.tangent_angle", self.tangent_angle, 0.0, math.pi / 2.0,
+                    lo_open=True, hi_open=True, unit="rad")
+
     @property
     def height(self) -> float:
         """y_F: signed distance of the chord from the gear axis along the centre line, m."""
@@ -487,6 +496,9 @@ def iso_root_stress(gear: GearSpec, pair: GearPair, tangential_load: float, *,
     if cutter is not None and not gear.internal:
         raise InputError(f"{gear.name}: a pinion-type cutter is modelled for internal gears "
                          "only; an external gear is cut by its rack (leave cutter unset)")
+    if cutter is not None and section is not None:
+        raise InputError(f"{gear.name}: give the cutter that generates the root section or "
+                         "the section itself, not both")
     if section is None:
         if gear.internal and cutter is None:
             raise InputError(f"{gear.name}: an internal gear's root section needs its "
@@ -500,6 +512,10 @@ def iso_root_stress(gear: GearSpec, pair: GearPair, tangential_load: float, *,
     den, afen, y_e, ean = _load_point(gear, pair, zn, load_diameter)
     mn, s_fn, rho_f = gear.module, section.chord, section.fillet_radius
     h_fe = y_e - section.height
+    if not h_fe > 0.0:
+        raise InputError(f"{gear.name}: the load line crosses the tooth centre line "
+                         f"{-h_fe * 1e3:.6g} mm beyond the critical section (bending arm <= 0); "
+                         "move the load diameter towards the tip")
     y_f = 6.0 * (h_fe / mn) * math.cos(afen) / ((s_fn / mn) ** 2 * math.cos(gear.pressure_angle))
     L = s_fn / h_fe
     qs = s_fn / (2.0 * rho_f)
