@@ -297,7 +297,7 @@ def test_refusals():
     printed = RootSection(0.05676, 0.00878, -1.998168, INTERNAL_TANGENT)
     with pytest.raises(InputError, match="not both"):
         iso_root_stress(ring, pair, 1.0, cutter=ShaperCutter(30), section=printed)
-    with pytest.raises(InputError, match="section.diameter = 0.05 m"):
+    with pytest.raises(InputError, match="section.diameter = -0.05 m"):
         RootSection(0.05676, 0.00878, -0.05, INTERNAL_TANGENT)
     with pytest.raises(InputError, match="section.fillet_radius = 0 m"):
         RootSection(0.05676, 0.0, -1.998168, INTERNAL_TANGENT)

@@ -171,8 +171,9 @@ class RootSection:
         check_range("section.chord", self.chord, 0.0, math.inf, lo_open=True, unit="m")
         check_range("section.fillet_radius", self.fillet_radius, 0.0, math.inf, lo_open=True,
                     unit="m")
-        check_range("section.diameter", abs(self.diameter), self.chord, math.inf,
-                    lo_open=True, unit="m (absolute value, above the chord)")
+        if not abs(self.diameter) > self.chord:
+            raise InputError(f"section.diameter = {self.diameter:.6g} m: its magnitude must "
+                             f"exceed the chord section.chord = {self.chord:.6g} m")
         check_range("section.tangent_angle", self.tangent_angle, 0.0, math.pi / 2.0,
                     lo_open=True, hi_open=True, unit="rad")
 
