@@ -239,9 +239,9 @@ def test_exact_generation_beside_kisssofts_iso_2006_section():
     against 1.20, Y_S 2.479 against 2.34, sigma_F0 71.60 against 69.12 N/mm^2 (+3.6 %);
     stage 1 132.153 against 129.40 mm (+2.1 %), 13.574 against 22.24 mm (-39 %), 78.196
     against 78.40 mm, 1.212 against 1.27, 2.628 against 2.13, 112.34 against 95.32 N/mm^2
-    (+18 %): the rounding centre of stage 1's cutter passes 0.13 m_n from the cutting
-    pitch circle, so the fillet is hardly wider than the rounding. Pinned here so that a
-    change to either side shows."""
+    (+18 %): the rounding centre of stage 1's cutter passes 0.23 m_n from the cutting
+    pitch circle (1.01 m_n in stage 2), so its fillet is hardly wider than the rounding.
+    Pinned so that a change to either side shows."""
     ours = {"stage 2": (57.526, 7.784, 30.395, 1.1670, 2.4787, 71.604),
             "stage 1": (132.153, 13.574, 78.196, 1.2120, 2.6275, 112.344)}
     for stage, (s, rho, h, yf, ys, f0) in ours.items():
