@@ -113,6 +113,7 @@ CONTEXTS = [
     ("HERRINGBONE", PLANETARY, "herringbone", T.HERRINGBONE),
     ("RATING", _with(PLANETARY, "rating", {}), "rating", T.RATING),
     ("RATING_GEAR", _with(PAIR, "rating", {"pinion": {}}), "rating.pinion", T.RATING_GEAR),
+    ("RATING_GEAR", _with(PLANETARY, "rating", {"ring": {}}), "rating.ring", T.RATING_GEAR),
     ("RATING_METHOD_C", _with(PAIR, "rating", {"method_c": {}}), "rating.method_c",
      T.RATING_METHOD_C),
     ("RATING_PINION_SHAFT", _with(PAIR, "rating", {"pinion_shaft": SHAFT}),
@@ -132,6 +133,9 @@ NOT_APPLICABLE = {
     # (table, key): why the key cannot be given a range there (refused for another reason)
     **{(r, "rim_outer_radius_mm"): "external gear" for r in ("pinion", "gear", "sun", "planet")},
     ("ring", "bore_radius_mm"): "internal gear",
+    **{("rating.pinion", k): "external gear: the cutter keys are an internal gear's"
+       for k in ("cutter_teeth", "cutter_profile_shift", "cutter_tip_radius_coef",
+                 "cutter_addendum_coef")},
 }
 SETUP = {
     # (table, key) -> other keys of the same table the key needs to act
@@ -140,9 +144,13 @@ SETUP = {
         for k in WEB},
     ("planetary", "planet_angles_deg"): {"planet_angles_deg": [0.0, 90.0, 180.0, 270.0]},
     ("lumped_model", "planet_angles_deg"): {"planet_angles_deg": [0.0, 90.0, 180.0, 270.0]},
-    ("rating.pinion", "surface_hardness_HBW"): {"material": "normalized_steel"},
-    ("rating.pinion", "hardness_HB"): {"material": "through_hardened_alloy",
-                                       "surface_hardness_HV": 300.0},
+    **{(f"rating.{g}", "surface_hardness_HBW"): {"material": "normalized_steel"}
+       for g in ("pinion", "ring")},
+    **{(f"rating.{g}", k): {"material": "through_hardened_alloy", "surface_hardness_HV": 300.0}
+       for g in ("pinion", "ring") for k in ("hardness_HB", "proof_stress_MPa")},
+    **{("rating.ring", k): {"cutter_teeth": 30} for k in ("cutter_profile_shift",
+                                                         "cutter_tip_radius_coef",
+                                                         "cutter_addendum_coef")},
     ("dynamics.response", "segments"): {"method": "floquet", "n_harmonics": None},
     ("dynamics.response", "periods"): {"method": "time", "n_harmonics": None},
     ("dynamics", "groove_lateral_stiffness_N_per_m"): {

@@ -180,3 +180,36 @@ def test_first_planetary_stage():
         assert r.size_factor == pytest.approx(0.800, abs=5e-4)
         assert r.life_factor == pytest.approx(ynt, abs=5e-4)
         assert r.limit == pytest.approx(fg * MPA, rel=5e-5)
+
+
+def test_kisssoft_ring_bending_from_its_printed_section():
+    """The ring of the NREL 5 MW second stage (KISSsoft 03/2017 A, ``stage_02.rtf``,
+    gfsReboucas/Drivetrain 4a88df34) from KISSsoft's printed root section (s_Fn 56.76 mm,
+    rho_F 8.78 mm, dsFn 1998.168 mm: its ISO 6336-3:2006 internal-gear approximation, not
+    the exact generation this project computes): through-hardened 34CrNiMo6, yield 1000
+    N/mm^2, sigma_Flim 290 N/mm^2, R_z 20 um, m_n 21 mm, N_L 1506.3 million, K_A 1.25,
+    K_gamma 1.10, K_v 1.06, K_Fbeta 1.14, K_Falpha 1.00 (all printed to 2 digits), S_Fmin
+    1.56. Printed: Y_deltarelT 1.005 (the slip layer rho' 0.0014 mm of a through-hardened
+    steel at 1000 N/mm^2), Y_RrelT 0.957 (the case-hardened steels' line), Y_X 0.904,
+    Y_NT 0.883, sigma_F 114.61, sigma_FG 444.89 N/mm^2, S_F 3.88."""
+    from pipeline.contact.iso_root_stress import INTERNAL_TANGENT, RootSection
+    from pipeline.rating.pair_rating import slip_layer
+
+    pair = nrel.stage_2_planet_ring()
+    printed = RootSection(56.76e-3, 8.78e-3, -1998.168e-3, INTERNAL_TANGENT)
+    root = iso_root_stress(pair.gear, pair, 285900.438, section=printed)
+    assert root.sigma_f0 == pytest.approx(69.12 * MPA, abs=0.005 * MPA)
+    rho = slip_layer("through_hardened", 1000 * MPA)
+    assert rho == pytest.approx(0.0014e-3, rel=1e-12)
+    k = 1.25 * 1.10 * 1.06 * 1.14 * 1.00
+    r = B.bending_safety(root, k, 290 * MPA, 1506.3e6, "through_hardened", rho, 20e-6,
+                         "through_hardened", 21e-3, 1.56)
+    assert r.notch_factor == pytest.approx(1.005, abs=5e-4)
+    assert r.surface_factor == pytest.approx(0.957, abs=5e-4)
+    assert r.size_factor == pytest.approx(0.904, abs=5e-4)
+    assert r.life_factor == pytest.approx(0.883, abs=5e-4)
+    # the K's two printed digits: up to 0.5 % in sigma_F
+    rounding = 0.5 * (0.005 / 1.06 + 0.005 / 1.14 + 0.005 / 1.00)
+    assert r.stress == pytest.approx(114.61 * MPA, rel=rounding)
+    assert r.limit == pytest.approx(444.89 * MPA, rel=3e-4)
+    assert r.safety == pytest.approx(3.88, abs=0.005 + 3.88 * rounding)

@@ -131,8 +131,8 @@ def test_planetary_set_every_mesh(tmp_path):
     """Both meshes rated: K_gamma 1.25 by default for four planets (IEC 61400-4 / AGMA
     6123), K_v the larger of the two meshes' (KISSsoft's KV = max(KV12, KV23)), the planet
     an idler (Y_M 0.7) in both meshes, the sun and the ring four load cycles per revolution
-    relative to the carrier, the ring not rated in bending (internal-gear form factors not
-    built)."""
+    relative to the carrier, the ring not rated in bending without its cutter (the note
+    names the key)."""
     r = _run(PLANETARY + FAST + "[rating]\n", tmp_path)
     sp, pr = r.rating.meshes["sun_planet"], r.rating.meshes["planet_ring"]
     assert sp.gears == ("sun", "planet") and pr.gears == ("planet", "ring")
@@ -146,6 +146,8 @@ def test_planetary_set_every_mesh(tmp_path):
     assert pr.rating.bending[0].mean_stress_factor == 0.7
     assert sp.rating.bending[0].mean_stress_factor == 1.0
     assert pr.rating.bending[1] is None
+    assert pr.unrated == (None, "ring: give rating.ring.cutter_teeth (its pinion-type cutter "
+                                "sets its root section)")
     rel = r.meshes["sun_planet"].case.operation.speed * 30 / math.pi  # sun, carrier frame
     assert sp.rating.cycles[0] == pytest.approx(rel * 60 * 20000 * 4, rel=1e-12)
     assert sp.rating.cycles[1] == pytest.approx(rel * 21 / 37 * 60 * 20000, rel=1e-12)
@@ -211,3 +213,26 @@ def test_load_spectrum_of_one_bin_is_the_constant_load_rating(tmp_path):
     assert "spectrum (ISO 6336-6): S_H min" in r2.rating.line()
     with pytest.raises(InputError, match=r"rating\.spectrum\[0\]\.torque_kNm is not a key"):
         gearbox_from_text(DEMO_PAIR + "[[rating.spectrum]]\ntorque_kNm = 1.0\n")
+
+
+def test_ring_rated_in_bending_with_its_cutter(tmp_path):
+    """Given its pinion-type cutter (and, through-hardened, its proof stress for the slip
+    layer), the ring is rated in bending: its nominal root stress is iso_root_stress's for
+    the section that cutter generates, its S_F = sigma_FG / sigma_F; without the proof
+    stress a through-hardened ring is not rated and the note names the key."""
+    from pipeline.contact.iso_root_stress import ShaperCutter, iso_root_stress
+
+    ring = ('[rating.ring]\nmaterial = "through_hardened_alloy"\nsurface_hardness_HV = 300\n'
+            "cutter_teeth = 30\ncutter_tip_radius_coef = 0.15\n")
+    r = _run(PLANETARY + FAST + "[rating]\n" + ring + "proof_stress_MPa = 900\n", tmp_path)
+    m = r.rating.meshes["planet_ring"]
+    b, root = m.rating.bending[1], m.rating.roots[1]
+    pair = r.meshes["planet_ring"].stiffness.actual
+    want = iso_root_stress(pair.gear, pair, m.rating.tangential_load,
+                           cutter=ShaperCutter(30, tip_radius_coef=0.15))
+    assert root.sigma_f0 == want.sigma_f0 and root.s_fn == want.s_fn
+    assert b.safety == pytest.approx(b.limit / b.stress, rel=1e-14)
+    assert m.unrated == (None, None)
+    r2 = _run(PLANETARY + FAST + "[rating]\n" + ring, tmp_path)
+    assert r2.rating.meshes["planet_ring"].rating.bending[1] is None
+    assert "rating.ring.proof_stress_MPa" in r2.rating.meshes["planet_ring"].unrated[1]

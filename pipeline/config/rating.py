@@ -18,6 +18,7 @@ from typing import Any
 
 from pipeline.config import tables as T
 from pipeline.config.schema import build, read_table, restated
+from pipeline.contact.iso_root_stress import ShaperCutter
 from pipeline.rating.face_load import FaceLoadInputs, PinionShaft
 from pipeline.rating.materials import (
     MATERIALS,
@@ -49,9 +50,36 @@ def _hardness(table: Mapping[str, Any], kind: str, quality: str, where: str
                      f"{quality} lines depend on it (allowed {lo:g} to {hi:g} {scale})")
 
 
-def gear_rating(table: Mapping[str, Any], where: str) -> GearRatingOptions:
-    """One ``[rating.<gear>]`` table (module docstring)."""
+NOTCH_CLASS = {"Eh": "hardened", "IF": "hardened", "V": "through_hardened",
+               "V (cast)": "through_hardened", "GTS (perl.)": "through_hardened",
+               "GGG (perl., bai.)": "through_hardened"}
+"""The root's slip-layer class of ISO 6336-5's kinds by symbol (the others: not built)."""
+CUTTER_KEYS = {"cutter_teeth": "teeth", "cutter_profile_shift": "profile_shift",
+               "cutter_tip_radius_coef": "tip_radius_coef",
+               "cutter_addendum_coef": "addendum_coef"}
+
+
+def _cutter(values: dict[str, Any], table: Mapping[str, Any], where: str, internal: bool
+            ) -> ShaperCutter | None:
+    given = {CUTTER_KEYS[k]: table[k] for k in CUTTER_KEYS if k in table}
+    for k in CUTTER_KEYS:
+        values.pop(k, None)
+    if not given:
+        return None
+    if not internal:
+        raise InputError(f"{where}.{next(k for k in CUTTER_KEYS if k in table)} applies to an "
+                         "internal gear (its pinion-type cutter); this gear is external")
+    if "teeth" not in given:
+        raise InputError(f"{where}.cutter_teeth is needed with the cutter's other keys")
+    return ShaperCutter(**given, name=f"{where}.cutter")
+
+
+def gear_rating(table: Mapping[str, Any], where: str, internal: bool = False
+                ) -> GearRatingOptions:
+    """One ``[rating.<gear>]`` table (module docstring); ``internal``: the gear is internal
+    (the cutter keys apply)."""
     values = read_table(table, T.RATING_GEAR, where)
+    cutter = _cutter(values, table, where, internal)
     kind = values.pop("material", "case_hardened")
     for k in ("quality", "surface_hardness", "core_hardness", "pitting_permitted"):
         values.pop(k, None)  # read from the table as written: they select a row
@@ -82,11 +110,12 @@ def gear_rating(table: Mapping[str, Any], where: str) -> GearRatingOptions:
         return GearRatingOptions(
             **values, material=source, running_in=limits.running_in,
             pitting_line=limits.pitting_life_line, bending_line=limits.bending_life_line,
-            size_class=limits.bending_size_class)
+            size_class=limits.bending_size_class, notch_class=NOTCH_CLASS.get(limits.symbol),
+            cutter=cutter)
 
 
-def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
-                   ) -> RatingOptions | None:
+def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...],
+                   internal: frozenset[str] = frozenset()) -> RatingOptions | None:
     """``[rating]`` with a ``[rating.<gear>]`` table per gear (``roles``) it names; the oil
     by ``oil_grade`` or ``oil_viscosity_40_mm2_per_s``, not both. None without the table."""
     if "rating" not in doc:
@@ -107,8 +136,8 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...]
     if kind == "pair" and values.get("load_sharing") is not None:
         raise InputError(f"rating.load_sharing = {table['load_sharing']!r} applies to a "
                          "planetary set (K_gamma of its planets); a pair carries all the load")
-    gears = {role: gear_rating(table[role], f"rating.{role}") for role in roles
-             if role in table}
+    gears = {role: gear_rating(table[role], f"rating.{role}", role in internal)
+             for role in roles if role in table}
     shaft = None
     if "pinion_shaft" in table:
         shaft = build(functools.partial(PinionShaft, where="rating.pinion_shaft"),

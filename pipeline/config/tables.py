@@ -269,6 +269,15 @@ RATING_GEAR = (
     Key("sigma_Flim_MPa", field="sigma_flim", help="nominal bending stress number, given"),
     Key("hardness_HB", field="hardness_hb", help="through-hardened gear: Brinell hardness "
                                                   "for Z_W"),
+    Key("proof_stress_MPa", field="proof_stress",
+        help="through-hardened gear: 0.2 % proof stress (the root's slip layer)"),
+    Key("cutter_teeth", I, help="internal gear: teeth of the pinion-type cutter"),
+    Key("cutter_profile_shift", N, help="internal gear: the cutter's profile shift x_0"),
+    Key("cutter_tip_radius_coef", N,
+        help="internal gear: the cutter's tip radius rho_a0* (default the gear's "
+             "cutter_tip_radius_coef)"),
+    Key("cutter_addendum_coef", N,
+        help="internal gear: the cutter's addendum h_a0* (default: it cuts the root circle)"),
     Key("flank_roughness_Rz_um", field="flank_roughness", help="flank R_z"),
     Key("root_roughness_Rz_um", field="root_roughness", help="root R_z"),
 )

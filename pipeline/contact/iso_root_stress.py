@@ -124,7 +124,9 @@ class ShaperCutter:
     addendum_coef : h_a0* = h_a0 / m_n (-), its addendum (its tip radius ``m_n (z_0 / 2 +
         h_a0* + x_0)``); ``None`` (default): the addendum that cuts the ring's root circle
         (its ``root_radius``) at the cutting centre distance, as KISSsoft sizes the cutter.
-    name : key prefix in error messages (e.g. ``gears.ring.cutter``).
+    name : key prefix in error messages: its fields are named ``<name>_teeth``,
+        ``<name>_profile_shift``, ... (``rating.ring.cutter`` gives the gearbox file's keys
+        ``rating.ring.cutter_teeth``, ...).
     """
 
     teeth: int
@@ -135,12 +137,12 @@ class ShaperCutter:
 
     def __post_init__(self) -> None:
         p = self.name
-        check_int_range(f"{p}.teeth", self.teeth, 8)
-        check_range(f"{p}.profile_shift", self.profile_shift, -1.0, 1.0)
+        check_int_range(f"{p}_teeth", self.teeth, 8, 10000)
+        check_range(f"{p}_profile_shift", self.profile_shift, -1.0, 1.0)
         if self.tip_radius_coef is not None:
-            check_range(f"{p}.tip_radius_coef", self.tip_radius_coef, 0.0, 0.6)
+            check_range(f"{p}_tip_radius_coef", self.tip_radius_coef, 0.0, 0.6)
         if self.addendum_coef is not None:
-            check_range(f"{p}.addendum_coef", self.addendum_coef, 0.5, 2.5)
+            check_range(f"{p}_addendum_coef", self.addendum_coef, 0.5, 2.5)
 
 
 @dataclass(frozen=True)
@@ -337,7 +339,7 @@ def _shaping(gear: GearSpec, cutter: ShaperCutter) -> _Shaping:
     zn = gear.equivalent_teeth
     scale = zn / gear.teeth
     p = cutter.name
-    check_int_range(f"{p}.teeth", cutter.teeth, 8, gear.teeth - MIN_TEETH_DIFFERENCE)
+    check_int_range(f"{p}_teeth", cutter.teeth, 8, gear.teeth - MIN_TEETH_DIFFERENCE)
     z0 = cutter.teeth * scale
     x0 = cutter.profile_shift
     rho = mn * (gear.cutter_tip_radius_coef if cutter.tip_radius_coef is None
@@ -345,7 +347,7 @@ def _shaping(gear: GearSpec, cutter: ShaperCutter) -> _Shaping:
     inv_w = float(inv(an)) + 2.0 * math.tan(an) * (x0 + gear.profile_shift) / (z0 - zn)
     if inv_w <= 0.0:
         raise InputError(f"{p}: no cutting mesh (inv(alpha_w0) = {inv_w:.4g}); raise "
-                         f"{p}.profile_shift = {x0:.6g} or lower the ring's profile shift")
+                         f"{p}_profile_shift = {x0:.6g} or lower the ring's profile shift")
     aw = float(inv_inverse(inv_w))
     a0 = mn * (zn - z0) / 2.0 * math.cos(an) / math.cos(aw)
     r0 = mn * z0 / 2.0
@@ -354,13 +356,13 @@ def _shaping(gear: GearSpec, cutter: ShaperCutter) -> _Shaping:
         ra0 = mn * zn / 2.0 + gear.root_radius - gear.reference_radius - a0
         if ra0 <= r0:
             raise InputError(f"{p}: reaching the root circle of {gear.name} needs a cutter "
-                             f"addendum of {(ra0 - r0) * 1e3:.6g} mm; give {p}.addendum_coef")
+                             f"addendum of {(ra0 - r0) * 1e3:.6g} mm; give {p}_addendum_coef")
     else:
         ra0 = r0 + mn * (cutter.addendum_coef + x0)
     rm = ra0 - rho
     if rm <= rb0:
         raise InputError(f"{p}: the tip rounding {rho * 1e3:.6g} mm reaches below the "
-                         f"cutter's base circle; lower {p}.tip_radius_coef")
+                         f"cutter's base circle; lower {p}_tip_radius_coef")
     roll = math.sqrt(rm * rm - rb0 * rb0) + rho  # of the flank point the rounding touches
     rt = math.hypot(rb0, roll)
     at = math.acos(rb0 / rt)
@@ -370,8 +372,8 @@ def _shaping(gear: GearSpec, cutter: ShaperCutter) -> _Shaping:
     m0 = touch - rho * np.array([math.sin(flank_normal), math.cos(flank_normal)])
     if m0[0] < 0.0:
         raise InputError(f"{p}: the tip rounding {rho * 1e3:.6g} mm does not fit on the "
-                         f"cutter tooth (its tip is too narrow); lower {p}.tip_radius_coef or "
-                         f"{p}.addendum_coef")
+                         f"cutter tooth (its tip is too narrow); lower {p}_tip_radius_coef or "
+                         f"{p}_addendum_coef")
     return _Shaping(a0, zn / z0, a0 + a0 * z0 / (zn - z0), m0, rho,
                     math.atan2(m0[0], m0[1]), flank_normal)
 

@@ -33,6 +33,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from pipeline.contact.iso_root_stress import ShaperCutter
 from pipeline.rating.face_load import FaceLoadInputs
 from pipeline.rating.spectrum import LoadSpectrum
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
@@ -79,6 +80,11 @@ class GearRatingOptions:
     size_class : ISO 6336-3 size factor class.
     hardness_hb : Brinell hardness (HBW) of a through-hardened gear, for the work hardening
         factor Z_W against a hardened mate; None elsewhere.
+    notch_class : the root's slip-layer class ("hardened": Eh, IF; "through_hardened": V,
+        GTS, GGG perl.; None: not built, the gear is not rated in bending).
+    proof_stress : 0.2 % proof stress of a through-hardened gear, Pa, or None.
+    cutter : the pinion-type cutter of an internal gear
+        (:class:`~pipeline.contact.iso_root_stress.ShaperCutter`), or None.
     flank_roughness, root_roughness : mean peak-to-valley roughness R_z, m.
     """
 
@@ -90,6 +96,9 @@ class GearRatingOptions:
     bending_line: str = "hardened"
     size_class: str = "hardened"
     hardness_hb: float | None = None
+    notch_class: str | None = "hardened"
+    proof_stress: float | None = None
+    cutter: ShaperCutter | None = None
     flank_roughness: float = 4.8e-6
     root_roughness: float = 20e-6
 
@@ -105,6 +114,11 @@ class GearRatingOptions:
                 raise InputError("hardness_HB applies to a through-hardened gear only (its "
                                  "work hardening factor Z_W against a hardened mate)")
             check_range("hardness_hb", self.hardness_hb, 100.0, 600.0)
+        if self.proof_stress is not None:
+            if self.notch_class != "through_hardened":
+                raise InputError("proof_stress_MPa applies to a through-hardened steel (the "
+                                 "slip layer of its root), not to this gear's material")
+            check_range("proof_stress", self.proof_stress, 500e6, 1000e6, unit="Pa")
 
 
 @dataclass(frozen=True)

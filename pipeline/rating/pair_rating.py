@@ -12,8 +12,9 @@ A mesh is a pair, or one mesh of a planetary set (``"sun_planet"``: the sun as p
 ``"planet_ring"``: the planet as pinion, the ring internal), with the speed relative to the
 carrier: the reduced mass of K_v is the mesh's (:func:`.dynamic.reduced_mass`), and a gear
 meets as many teeth per revolution as it has mates (the sun and the ring one per planet),
-which sets its load cycles. An internal gear's bending rating needs the standard's
-internal-gear form factors, not built yet: its entry is ``None``.
+which sets its load cycles. An internal gear's root section is the one its pinion-type
+cutter generates (:class:`~pipeline.contact.iso_root_stress.ShaperCutter`); without a cutter
+its bending entry is ``None``, as is that of a gear whose slip layer is not built.
 
 Checked end to end against KISSsoft's report of the NREL 5 MW gearbox's parallel helical
 stage (``tests/test_rating_pair.py``).
@@ -24,7 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pipeline.contact.iso_root_stress import IsoRootStress, iso_root_stress
+import numpy as np
+
+from pipeline.contact.iso_root_stress import IsoRootStress, ShaperCutter, iso_root_stress
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.accuracy import Tolerances, tolerances
 from pipeline.rating.bending import BendingSafety, bending_safety, face_load_factor
@@ -53,11 +56,30 @@ from pipeline.rating.transverse import TransverseLoadFactors, transverse_load_fa
 from pipeline.stiffness.iso6336 import iso_stiffness
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
-SLIP_LAYER = {"hardened": 0.0030e-3}
-"""Slip-layer thickness rho' of Y_deltarelT (ISO 6336-3), m, by bending life line: the
-case-hardened and flame- or induction-hardened root (Eh, IF). The other materials' rho'
-(by yield or tensile strength) and their Y_RrelT lines are not built: such a gear is not
+SLIP_LAYER_HARDENED = 0.0030e-3
+"""Slip-layer thickness rho' of Y_deltarelT (ISO 6336-3), m: a case-hardened or flame- or
+induction-hardened root (Eh, IF)."""
+SLIP_LAYER_THROUGH_HARDENED = ((500e6, 0.0281e-3), (600e6, 0.0194e-3), (800e6, 0.0064e-3),
+                               (1000e6, 0.0014e-3))
+"""rho' (m) of a through-hardened steel, GTS or pearlitic GGG at its 0.2 % proof stress
+(Pa), ISO 6336-3's table points, linear between them (KISSsoft's 34CrNiMo6 ring of the NREL
+5 MW gearbox, yield 1000 N/mm^2, prints Y_deltarelT 1.005 with it). The other materials'
+rho' (St, GG, GGG ferr., NT, NV) and their Y_RrelT lines are not built: such a gear is not
 rated in bending unless its ``slip_layer`` is given."""
+NOTCH_CLASSES = ("hardened", "through_hardened")
+
+
+def slip_layer(notch_class: str | None, proof_stress: float | None) -> float | None:
+    """rho' (m) of a gear of ``notch_class`` ("hardened": Eh, IF; "through_hardened": V,
+    GTS, GGG perl. with its 0.2 % ``proof_stress`` in Pa), or None where it is not built."""
+    if notch_class == "hardened":
+        return SLIP_LAYER_HARDENED
+    if notch_class != "through_hardened" or proof_stress is None:
+        return None
+    xs, ys = zip(*SLIP_LAYER_THROUGH_HARDENED, strict=True)
+    check_range("rating.proof_stress", proof_stress, xs[0], xs[-1], unit="Pa",
+                note="the points of ISO 6336-3's slip-layer table")
+    return float(np.interp(proof_stress, xs, ys))
 
 
 @dataclass(frozen=True)
@@ -75,7 +97,12 @@ class GearRatingInputs:
     hardness_hb : Brinell hardness of a through-hardened gear (for Z_W against a hardened
         mate), or None.
     flank_roughness, root_roughness : R_z of the flank and of the root, m.
-    slip_layer : rho' of Y_deltarelT, m, or None for the hardening's (case-hardened only).
+    slip_layer : rho' of Y_deltarelT, m, or None for :func:`slip_layer`'s.
+    notch_class : :data:`NOTCH_CLASSES` entry of the root's material (its rho' and
+        Y_RrelT line), or None where not built (not rated in bending without ``slip_layer``).
+    proof_stress : 0.2 % proof stress of a through-hardened gear, Pa (its rho').
+    cutter : the pinion-type cutter that cut an internal gear (its root section), or None
+        (an internal gear is then not rated in bending).
     mean_stress_factor : Y_M (1; 0.7 for an idler).
     tip_relief : C_a, m, or None for the running-in relief C_ay.
     """
@@ -90,6 +117,9 @@ class GearRatingInputs:
     flank_roughness: float = 4.8e-6
     root_roughness: float = 20e-6
     slip_layer: float | None = None
+    notch_class: str | None = "hardened"
+    proof_stress: float | None = None
+    cutter: ShaperCutter | None = None
     mean_stress_factor: float = 1.0
     tip_relief: float | None = None
 
@@ -271,23 +301,26 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                   work_hardening=zw))
         curve_h = pitting_curve(gi.sigma_hlim, gi.pitting_line, inputs.viscosity_40, rz, chain,
                                 mesh_sigma_hlim=lower, work_hardening=zw)
-        slip = gi.slip_layer if gi.slip_layer is not None else SLIP_LAYER.get(gi.bending_class)
-        if gear.internal or slip is None:
+        slip = gi.slip_layer if gi.slip_layer is not None \
+            else slip_layer(gi.notch_class, gi.proof_stress)
+        if (gear.internal and gi.cutter is None) or slip is None:
             bend.append(None)
             roots.append(None)
             curves.append((curve_h, None))
             continue
-        root = iso_root_stress(gear, pair, ft)
+        root = iso_root_stress(gear, pair, ft, cutter=gi.cutter if gear.internal else None)
         roots.append(root)
         bend.append(bending_safety(root, ka * kg * kv.factor * kfb * kha.k_falpha,
                                    gi.sigma_flim, n, gi.bending_class, slip,
                                    gi.root_roughness, gi.size_class or gi.hardening,
                                    gear.module, inputs.minimum_safety_bending,
-                                   mean_stress_factor=gi.mean_stress_factor))
+                                   mean_stress_factor=gi.mean_stress_factor,
+                                   proof_stress=gi.proof_stress))
         curves.append((curve_h, bending_curve(root, gi.sigma_flim, gi.bending_class, slip,
                                               gi.root_roughness, gi.size_class or gi.hardening,
                                               gear.module,
-                                              mean_stress_factor=gi.mean_stress_factor)))
+                                              mean_stress_factor=gi.mean_stress_factor,
+                                              proof_stress=gi.proof_stress)))
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
                       (pit[0], pit[1]), (bend[0], bend[1]), method_c, cycles,
                       (roots[0], roots[1]), (curves[0], curves[1]),

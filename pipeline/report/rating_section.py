@@ -188,8 +188,13 @@ def rating_section(m, figures: Sequence[Figure]) -> Section:
         notes.append("Load spectrum ([[rating.spectrum]]): each bin rated at its torque and "
                      "speed with K_A = 1, its load cycles against the gear's S-N line; the "
                      "safety is the factor on every bin's stress that makes the Miner sum 1.")
-    if any(b is None for b in bend):
-        notes.append("The ring is not rated in bending: ISO 6336-3's internal-gear form "
-                     "factors (its root chord and fillet radius) are not built yet.")
+    for why in m.unrated:
+        if why is not None:
+            notes.append(f"Not rated in bending: {why}.")
+    if any(c is not None for c in (getattr(x, "cutter", None) for x in roots)):
+        notes.append("Internal gear: the root section the pinion-type cutter generates "
+                     "(its fillet exactly, the 60 deg tangent), not ISO 6336-3:2006's "
+                     "internal-gear approximation; the load point and Y_F, Y_S as for "
+                     "external gears with a signed tooth count.")
     return Section("rating", "ISO 6336 rating: pitting and tooth root", tuple(rows),
                    (*m.gears, "method"), figures=tuple(figures), notes=tuple(notes))

@@ -80,6 +80,7 @@ class MeshRating:
     minimum_pitting, minimum_bending : S_Hmin, S_Fmin (-).
     dynamic_factor_model : the run's dynamic model's largest over mean mesh force at the
         operating speed (the largest over a set's planets), or None without dynamics.
+    unrated : why each gear is not rated in bending (None where it is).
     spectrum : the Miner sums over ``[[rating.spectrum]]``
         (:func:`pipeline.rating.pair_spectrum.rate_pair_spectrum`), or None.
     """
@@ -100,6 +101,7 @@ class MeshRating:
     minimum_bending: float
     dynamic_factor_model: float | None = None
     spectrum: SpectrumRating | None = None
+    unrated: tuple[str | None, str | None] = (None, None)
 
     def summary(self) -> dict[str, Any]:
         """The safety factors and the load factors (keys carry units)."""
@@ -239,10 +241,26 @@ def _gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
     return GearRatingInputs(
         sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.running_in,
         pitting_line=g.pitting_line, bending_line=g.bending_line, size_class=g.size_class,
-        hardness_hb=g.hardness_hb, flank_roughness=g.flank_roughness,
+        hardness_hb=g.hardness_hb, notch_class=g.notch_class, proof_stress=g.proof_stress,
+        cutter=g.cutter, flank_roughness=g.flank_roughness,
         root_roughness=g.root_roughness,
         mean_stress_factor=IDLER_MEAN_STRESS if role == "planet" else 1.0,
         tip_relief=relief if relief > 0.0 else None)
+
+
+def _unrated(box: Gearbox, role: str, internal: bool) -> str | None:
+    """Why the gear ``role`` is not rated in bending, or None."""
+    g = box.rating.gear(role)
+    if internal and g.cutter is None:
+        return (f"{role}: give rating.{role}.cutter_teeth (its pinion-type cutter sets its "
+                "root section)")
+    if g.notch_class is None:
+        return (f"{role}: the slip layer of its material's root (ISO 6336-3's Y_deltarelT) "
+                "is not built")
+    if g.notch_class == "through_hardened" and g.proof_stress is None:
+        return (f"{role}: give rating.{role}.proof_stress_MPa (the slip layer of a "
+                "through-hardened root)")
+    return None
 
 
 def _load_sharing(box: Gearbox, computed: float | None) -> tuple[float, str]:
@@ -323,7 +341,9 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 opts.minimum_safety_pitting, opts.minimum_safety_bending,
                 model_dynamic_factor(dynamics, name),
                 None if bins[name] is None else rate_pair_spectrum(
-                    pair, bins[name], inputs, gears, mesh, planets, double_helical=half))
+                    pair, bins[name], inputs, gears, mesh, planets, double_helical=half),
+                tuple(_unrated(box, role, gear.internal) for role, gear
+                      in zip(ROLES[name], (pair.pinion, pair.gear), strict=True)))
         stage = RatingStage(out, opts.minimum_safety_pitting, opts.minimum_safety_bending)
         note["text"] = stage.line()
     return stage
