@@ -16,7 +16,7 @@ import math
 import pytest
 
 from pipeline.rating import dynamic as D
-from pipeline.validation import InputError
+from pipeline.validation import PhysicsWarning
 
 RHO = 7830.0
 HARD = ("hardened", 1500e6)
@@ -104,5 +104,32 @@ def test_limits():
               base_pitch_deviation=10e-6, form_deviation=10e-6, pitch_allowance=1e-6,
               form_allowance=1e-6, tip_relief=2e-6)
     assert D.dynamic_factor(speed_1=1e-6, **kw).factor == pytest.approx(1.0, abs=1e-8)
-    with pytest.raises(InputError, match="above the subcritical range"):
-        D.dynamic_factor(speed_1=1e5, **kw)
+
+
+def test_main_resonance_intermediate_and_supercritical_ranges():
+    """ISO 6336-1 method B above the subcritical range, by hand in the standard's units:
+    c' 14 N/(mm um), K_A F_t / b 300 N/mm, f - y 9 um, C_a 2 um, eps_gamma 1.6: B_p = B_f =
+    0.42, B_k = |1 - 28 / 300| = 0.906667; Table 8: C_v1 0.32, C_v2 0.34, C_v4 0.90, C_v5
+    0.47, C_v6 0.47, C_v7 = 0.125 sin(-0.4 pi) + 0.875 = 0.756118; n_E1 = 30000 / (20 pi)
+    sqrt(20 / 0.1) = 6752.3 rpm. Main resonance (N 1.0): 0.1344 + 0.1428 + 0.816 + 1 =
+    2.0932, with a warning; supercritical (N 2): 0.1974 + 0.1974 + 0.756118 = 1.150918;
+    between (N 1.3): 1.150918 + (2.0932 - 1.150918) 0.2 / 0.35 = 1.689365; continuous at
+    1.15 and 1.5."""
+    kw = dict(teeth_1=20, single_stiffness=14e9, mesh_stiffness=20e9,
+              reduced_mass_per_width=100.0, line_load=3e5, total_contact_ratio=1.6,
+              base_pitch_deviation=10e-6, form_deviation=10e-6, pitch_allowance=1e-6,
+              form_allowance=1e-6, tip_relief=2e-6)
+    n_e1 = 30000 / (20 * math.pi) * math.sqrt(20 / 0.1)
+    with pytest.warns(PhysicsWarning, match="main resonance range"):
+        main = D.dynamic_factor(speed_1=1.0 * n_e1, **kw)
+    assert (main.range, main.factor) == ("main resonance", pytest.approx(2.0932, rel=1e-12))
+    sup = D.dynamic_factor(speed_1=2.0 * n_e1, **kw)
+    assert (sup.range, sup.factor) == ("supercritical", pytest.approx(1.150918, abs=1e-6))
+    mid = D.dynamic_factor(speed_1=1.3 * n_e1, **kw)
+    assert (mid.range, mid.factor) == ("intermediate", pytest.approx(1.689365, abs=1e-6))
+    with pytest.warns(PhysicsWarning):
+        at = D.dynamic_factor(speed_1=1.15 * (1 - 1e-12) * n_e1, **kw).factor
+    above = D.dynamic_factor(speed_1=1.15 * (1 + 1e-12) * n_e1, **kw).factor
+    assert above == pytest.approx(at, abs=1e-9)
+    assert D.dynamic_factor(speed_1=1.5 * (1 - 1e-12) * n_e1, **kw).factor == pytest.approx(
+        sup.factor, abs=1e-9)

@@ -236,3 +236,37 @@ def test_ring_rated_in_bending_with_its_cutter(tmp_path):
     r2 = _run(PLANETARY + FAST + "[rating]\n" + ring, tmp_path)
     assert r2.rating.meshes["planet_ring"].rating.bending[1] is None
     assert "rating.ring.proof_stress_MPa" in r2.rating.meshes["planet_ring"].unrated[1]
+
+
+def test_study_kpis_are_the_runs_smallest_safety_factors(tmp_path):
+    """The study KPIs safety_pitting_min and safety_bending_min of a point equal the
+    smallest S_H and S_F of the run's rating of the same file; they are left out of a
+    study's default KPIs without a [rating] table, and asking for one then is refused."""
+    import tomllib
+
+    from pipeline.study.evaluate import evaluate_point
+    from pipeline.study.kpis import KPI_BY_NAME, select_kpis
+
+    text = DEMO_PAIR + FAST + "[rating]\n"
+    kpis = select_kpis(("safety_pitting_min", "safety_bending_min"), False, rating=True)
+    row = evaluate_point(tomllib.loads(text), kpis=kpis, cache=Cache(tmp_path))
+    r = _run(text, tmp_path)
+    assert row["safety_pitting_min"] == r.rating.smallest("pitting")[0]
+    assert row["safety_bending_min"] == r.rating.smallest("bending")[0]
+    assert "safety_pitting_min" not in [k.name for k in select_kpis((), False)]
+    assert KPI_BY_NAME["safety_pitting_min"] in select_kpis((), False, rating=True)
+    with pytest.raises(InputError, match=r"'safety_bending_min' needs a \[rating\] table"):
+        select_kpis(("safety_bending_min",), False)
+
+
+def test_life_in_load_cycles(tmp_path):
+    """``life_cycles`` (of the driving gear) gives the same rating as the life in hours at
+    the operating speed (2340 rpm: 2.808e9 cycles = 20 000 h); both at once are refused."""
+    hours = _run(DEMO_PAIR + FAST + "[rating]\nlife_h = 20000.0\n", tmp_path)
+    cycles = _run(DEMO_PAIR + FAST + "[rating]\nlife_cycles = 2.808e9\n", tmp_path)
+    assert cycles.rating.meshes["mesh"].rating.cycles == pytest.approx(
+        hours.rating.meshes["mesh"].rating.cycles, rel=1e-12)
+    assert cycles.rating.smallest("pitting")[0] == pytest.approx(
+        hours.rating.smallest("pitting")[0], rel=1e-12)
+    with pytest.raises(InputError, match="life_h and rating.life_cycles both"):
+        gearbox_from_text(DEMO_PAIR + "[rating]\nlife_h = 1.0\nlife_cycles = 1e6\n")

@@ -127,6 +127,9 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...],
     spectrum = _spectrum(table.pop("spectrum", None))
     values = read_table(table, T.RATING, "rating",
                         subtables=(*roles, "method_c", "pinion_shaft"))
+    if "life_h" in table and "life_cycles" in table:
+        raise InputError("rating.life_h and rating.life_cycles both give the required life; "
+                         "keep one")
     grade = values.pop("oil_grade", None)
     if grade is not None:
         if "viscosity_40" in values:

@@ -216,6 +216,7 @@ HERRINGBONE = (
 RATING = (
     Key("application_factor", help="K_A (ISO 6336-1, 6336-6 Annex A)"),
     Key("life_h", field="life", help="required life"),
+    Key("life_cycles", help="required life as load cycles of the driving gear, instead"),
     Key("accuracy_grade", I, help="ISO 1328-1:1995 accuracy grade of every gear"),
     Key("oil_viscosity_40_mm2_per_s", field="viscosity_40",
         help="kinematic viscosity of the oil at 40 deg C"),

@@ -1,4 +1,4 @@
-"""Dynamic factor K_v of ISO 6336-1, method B (the subcritical range).
+"""Dynamic factor K_v of ISO 6336-1, method B, in every range of the resonance ratio.
 
 SI inside; the standard's formulas in mm, um, N/mm and kg/mm are converted where written.
 
@@ -25,16 +25,27 @@ SI inside; the standard's formulas in mm, um, N/mm and kg/mm are converted where
   ``1 < eps_gamma <= 2`` ``C_v1 = 0.32``, ``C_v2 = 0.34``, ``C_v3 = 0.23``, above 2
   ``C_v2 = 0.57 / (eps_gamma - 0.3)``, ``C_v3 = 0.096 / (eps_gamma - 1.56)``.
 
-The main resonance and the supercritical range are not built: ``N > N_S`` is refused.
-Checked against KISSsoft's reports of the NREL 5 MW gearbox (``tests/test_rating_dynamic.py``).
+* The other ranges (ISO 6336-1:2006, 6.5.5-6.5.7, the coefficients of its Table 8; as
+  transcribed in the MATLAB ISO 6336 classes of gfsReboucas/Drivetrain, ``ISO_6336.m``):
+  the main resonance ``N_S < N <= 1.15``: ``K_v = C_v1 B_p + C_v2 B_f + C_v4 B_k + 1``
+  (to be avoided: a warning); the supercritical range ``N >= 1.5``: ``K_v = C_v5 B_p +
+  C_v6 B_f + C_v7``; between, linear in ``N`` from the value at 1.15 to that at 1.5;
+  ``C_v4 = 0.90``, ``C_v5 = 0.47``, ``C_v6 = 0.47`` for ``eps_gamma <= 2``, above
+  ``C_v4 = (0.57 - 0.05 eps_gamma) / (eps_gamma - 1.44)``, ``C_v6 = 0.12 / (eps_gamma -
+  1.74)``; ``C_v7 = 0.75`` up to ``eps_gamma`` 1.5, ``0.125 sin(pi (eps_gamma - 2)) +
+  0.875`` to 2.5, 1 above.
+
+Checked against KISSsoft's reports of the NREL 5 MW gearbox (``tests/test_rating_dynamic.py``,
+the subcritical range; the others against hand calculations there).
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
-from pipeline.validation import InputError, check_choice, check_range
+from pipeline.validation import InputError, PhysicsWarning, check_choice, check_range
 
 HARDENING = ("hardened", "through_hardened", "cast_iron")
 
@@ -103,6 +114,7 @@ class DynamicFactor:
     pitch_allowance, form_allowance : y_p, y_f, m.
     b_p, b_f, b_k : the non-dimensional deviation parameters (-).
     factor : K_v (-).
+    range : "subcritical", "main resonance", "intermediate" or "supercritical".
     """
 
     reduced_mass: float
@@ -114,6 +126,7 @@ class DynamicFactor:
     b_f: float
     b_k: float
     factor: float
+    range: str = "subcritical"
 
 
 def dynamic_factor(*, teeth_1: int, speed_1: float, single_stiffness: float,
@@ -133,19 +146,36 @@ def dynamic_factor(*, teeth_1: int, speed_1: float, single_stiffness: float,
     ratio = speed_1 / n_e1
     w = line_load * 1e-3  # N/mm
     n_s = 0.85 if w >= 100.0 else 0.5 + 0.35 * math.sqrt(w / 100.0)
-    if ratio > n_s:
-        raise InputError(f"rating: resonance ratio N = {ratio:.4g} above the subcritical range "
-                         f"(N_S = {n_s:.4g}); K_v of the main resonance and the supercritical "
-                         "range is not built yet")
     c = single_stiffness * 1e-9  # N/(mm um)
     bp = c * (base_pitch_deviation - pitch_allowance) * 1e6 / w
     bf = c * (form_deviation - form_allowance) * 1e6 / w
     bk = abs(1.0 - c * tip_relief * 1e6 / w)
-    eg = total_contact_ratio
-    if eg <= 2.0:
-        cv1, cv2, cv3 = 0.32, 0.34, 0.23
+    cv = _coefficients(total_contact_ratio)
+    main = cv[1] * bp + cv[2] * bf + cv[4] * bk + 1.0
+    supercritical = cv[5] * bp + cv[6] * bf + cv[7]
+    if ratio <= n_s:
+        name, kv = "subcritical", ratio * (cv[1] * bp + cv[2] * bf + cv[3] * bk) + 1.0
+    elif ratio <= 1.15:
+        name, kv = "main resonance", main
+        warnings.warn(f"rating: the pinion at {speed_1:.6g} rpm runs in the main resonance "
+                      f"range of ISO 6336-1 (N = {ratio:.4g}, N_S = {n_s:.4g} to 1.15), which "
+                      "the standard says to avoid; K_v of that range is used", PhysicsWarning,
+                      stacklevel=2)
+    elif ratio < 1.5:
+        name, kv = "intermediate", supercritical + (main - supercritical) * (1.5 - ratio) / 0.35
     else:
-        cv1, cv2, cv3 = 0.32, 0.57 / (eg - 0.3), 0.096 / (eg - 1.56)
-    k = cv1 * bp + cv2 * bf + cv3 * bk
+        name, kv = "supercritical", supercritical
     return DynamicFactor(reduced_mass_per_width, n_e1, ratio, pitch_allowance, form_allowance,
-                         bp, bf, bk, ratio * k + 1.0)
+                         bp, bf, bk, kv, name)
+
+
+def _coefficients(eg: float) -> dict[int, float]:
+    """C_v1 .. C_v7 of ISO 6336-1's Table 8 for the total contact ratio ``eg``."""
+    if eg <= 2.0:
+        cv = {2: 0.34, 3: 0.23, 4: 0.90, 6: 0.47}
+    else:
+        cv = {2: 0.57 / (eg - 0.3), 3: 0.096 / (eg - 1.56),
+              4: (0.57 - 0.05 * eg) / (eg - 1.44), 6: 0.12 / (eg - 1.74)}
+    cv7 = 0.75 if eg <= 1.5 else 0.125 * math.sin(math.pi * (eg - 2.0)) + 0.875 if eg <= 2.5 \
+        else 1.0
+    return {1: 0.32, 5: 0.47, 7: cv7, **cv}

@@ -30,6 +30,7 @@ Each default is a value the user may rely on and the README states:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -129,6 +130,8 @@ class RatingOptions:
     ----------
     application_factor : K_A (-), [1, 5].
     life : required life, s, (0, 1e7 h].
+    life_cycles : the required life as load cycles of the driving gear (``[operation]``'s),
+        or None; given, it sets the life at the operating speed (``life_h`` then refused).
     accuracy_grade : ISO 1328-1:1995 accuracy grade of every gear, 1 .. 12.
     viscosity_40 : kinematic viscosity of the oil at 40 deg C, m^2/s.
     face_load_factor : "method_c", "contact" (K_Hbeta from the loaded contact) or a number
@@ -146,6 +149,7 @@ class RatingOptions:
 
     application_factor: float = 1.25
     life: float = 20000.0 * 3600.0
+    life_cycles: float | None = None
     accuracy_grade: int = 6
     viscosity_40: float = 220e-6
     face_load_factor: str | float = "method_c"
@@ -159,6 +163,8 @@ class RatingOptions:
     def __post_init__(self) -> None:
         check_range("application_factor", self.application_factor, 1.0, 5.0)
         check_range("life", self.life, 0.0, 1e7 * 3600.0, lo_open=True, unit="s")
+        if self.life_cycles is not None:
+            check_range("life_cycles", self.life_cycles, 1e3, 1e12)
         check_int_range("accuracy_grade", self.accuracy_grade, 1, 12)
         check_range("viscosity_40", self.viscosity_40, 1e-6, 5000e-6, unit="m^2/s")
         if isinstance(self.face_load_factor, str):
@@ -171,6 +177,13 @@ class RatingOptions:
             check_range("load_sharing", self.load_sharing, 1.0, 3.0)
         check_range("minimum_safety_pitting", self.minimum_safety_pitting, 0.5, 5.0)
         check_range("minimum_safety_bending", self.minimum_safety_bending, 0.5, 5.0)
+
+    def life_hours(self, driver_speed: float) -> float:
+        """The required life, h: ``life``, or ``life_cycles`` at the driving gear's
+        ``driver_speed`` (rad/s)."""
+        if self.life_cycles is None:
+            return self.life / 3600.0
+        return self.life_cycles / (driver_speed * 30.0 / math.pi * 60.0)
 
     def gear(self, role: str) -> GearRatingOptions:
         """The options of the gear ``role`` (its defaults when the file gave none)."""

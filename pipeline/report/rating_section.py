@@ -40,7 +40,7 @@ def rating_load_section(m) -> Section:
         quantity("f_falpha", "profile form deviation f_falpha (larger gear)", "um",
                  max(t.f_falpha for t in r.tolerances) * 1e6, "ISO 1328-1:1995"),
         quantity("K_v", "dynamic factor K_v", "-", r.dynamic.factor,
-                 f"{ISO1} method B, subcritical range" + (
+                 f"{ISO1} method B, {r.dynamic.range} range" + (
                      "; the larger of the set's two meshes" if m.mesh != "mesh" else "")),
         quantity("resonance_ratio", "resonance ratio N = n_1 / n_E1", "-",
                  r.dynamic.resonance_ratio, f"{ISO1} method B"),

@@ -30,6 +30,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -46,7 +47,7 @@ from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInpu
 from pipeline.rating.pair_spectrum import rate_pair_spectrum
 from pipeline.rating.spectrum import LoadBin, LoadSpectrum, SpectrumRating
 from pipeline.run.chain import MeshStages
-from pipeline.validation import InputError
+from pipeline.validation import InputError, PhysicsWarning
 
 ROLES = {"mesh": ("pinion", "gear"), "sun_planet": ("sun", "planet"),
          "planet_ring": ("planet", "ring")}
@@ -248,6 +249,17 @@ def _gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
         tip_relief=relief if relief > 0.0 else None)
 
 
+def _warn_validity(m: MeshRating) -> None:
+    """One PhysicsWarning line per factor taken outside the range the standard validates:
+    the notch parameter q_s of Y_S (ISO 6336-3: 1 <= q_s < 8)."""
+    for role, root in zip(m.gears, m.rating.roots, strict=True):
+        if root is not None and not root.in_range:
+            warnings.warn(f"rating: the {role}'s notch parameter q_s = s_Fn / (2 rho_F) = "
+                          f"{root.q_s:.4g} lies outside 1 <= q_s < 8, where ISO 6336-3 "
+                          "validates its stress correction factor Y_S", PhysicsWarning,
+                          stacklevel=3)
+
+
 def _unrated(box: Gearbox, role: str, internal: bool) -> str | None:
     """Why the gear ``role`` is not rated in bending, or None."""
     g = box.rating.gear(role)
@@ -311,7 +323,8 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
             torque, rpm = _pinion_load(st)
             torque = torque / 2.0 if whole else torque
             inputs = RatingInputs(
-                application_factor=opts.application_factor, life_hours=opts.life / 3600.0,
+                application_factor=opts.application_factor,
+                life_hours=opts.life_hours(box.operation.speed),
                 accuracy_grade=opts.accuracy_grade, viscosity_40=opts.viscosity_40,
                 k_hbeta=khb, load_sharing=k_gamma, face_load=method_c,
                 minimum_safety_pitting=opts.minimum_safety_pitting,
@@ -344,6 +357,8 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                     pair, bins[name], inputs, gears, mesh, planets, double_helical=half),
                 tuple(_unrated(box, role, gear.internal) for role, gear
                       in zip(ROLES[name], (pair.pinion, pair.gear), strict=True)))
+        for m in out.values():
+            _warn_validity(m)
         stage = RatingStage(out, opts.minimum_safety_pitting, opts.minimum_safety_bending)
         note["text"] = stage.line()
     return stage
