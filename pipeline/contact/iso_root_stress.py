@@ -137,7 +137,7 @@ class ShaperCutter:
 
     def __post_init__(self) -> None:
         p = self.name
-        check_int_range(f"{p}_teeth", self.teeth, 8, 10000)
+        check_int_range(f"{p}_teeth", self.teeth, 8, 100000)
         check_range(f"{p}_profile_shift", self.profile_shift, -1.0, 1.0)
         if self.tip_radius_coef is not None:
             check_range(f"{p}_tip_radius_coef", self.tip_radius_coef, 0.0, 0.6)
