@@ -135,6 +135,8 @@ def rating_section(m, figures: Sequence[Figure]) -> Section:
              tuple(x * MPA for x in m.sigma_hlim), "[rating.<gear>] (ISO 6336-5)"),
         gear("S_Hmin", "minimum safety factor S_Hmin", "-", (m.minimum_pitting,) * 2,
              "[rating] minimum_safety_pitting"),
+        gear("sigma_HG", "pitting stress limit sigma_HG", "MPa",
+             each(lambda p: p.permissible * m.minimum_pitting * MPA, pit), ISO2),
         gear("sigma_HP", "permissible contact stress sigma_HP", "MPa",
              each(lambda p: p.permissible * MPA, pit), f"{ISO2}, with S_Hmin"),
         gear("S_H", "safety factor for pitting S_H", "-", each(lambda p: p.safety, pit), ISO2),
