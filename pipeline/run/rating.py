@@ -19,7 +19,10 @@ What the standard leaves to the analyst comes from the run where it can:
 * the tip relief C_a of K_v: the ``[contact]`` tip relief of the gear where given, else
   the standard's running-in value C_ay;
 * beside sigma_H and sigma_F: the loaded contact's largest Hertz pressure and the FE root
-  stress of each gear, both at the nominal torque (no load factors).
+  stress of each gear, both at the nominal torque (no load factors);
+* where the flank is at risk: the local pitting safety over each flank from the loaded
+  contact's Hertz pressure and, with the FE root stress, the root stress along the face with
+  its local bending safety (:mod:`pipeline.rating.local_safety`).
 
 A ring's bending needs the standard's internal-gear form factors, which are not built: it
 is not rated in bending, and says so.
@@ -40,6 +43,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.root_stress import RootStress
 from pipeline.dynamics.models.planetary_gears import helical_half
 from pipeline.progress import Steps
+from pipeline.rating.local_safety import LocalSafety, local_safety, rating_limits
 from pipeline.rating.options import planet_load_sharing
 from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInputs, rate_pair
 from pipeline.run.chain import MeshStages
@@ -76,6 +80,9 @@ class MeshRating:
     minimum_pitting, minimum_bending : S_Hmin, S_Fmin (-).
     dynamic_factor_model : the run's dynamic model's largest over mean mesh force at the
         operating speed (the largest over a set's planets), or None without dynamics.
+    local : the local pitting safety over both flanks and, where the FE root stress was
+        computed, the root stress along the face with its local bending safety
+        (:class:`~pipeline.rating.local_safety.LocalSafety`), or None.
     """
 
     mesh: str
@@ -93,6 +100,7 @@ class MeshRating:
     minimum_pitting: float
     minimum_bending: float
     dynamic_factor_model: float | None = None
+    local: LocalSafety | None = None
 
     def summary(self) -> dict[str, Any]:
         """The safety factors and the load factors (keys carry units)."""
@@ -110,6 +118,8 @@ class MeshRating:
             out[role] = {"sigma_H_Pa": r.contact.stress[k], "S_H": r.pitting[k].safety,
                          "sigma_F_Pa": None if b is None else b.stress,
                          "S_F": None if b is None else b.safety}
+        if self.local is not None:
+            out["local"] = self.local.summary()
         return out
 
 
@@ -266,6 +276,10 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
             rating = first[name] if len(first) == 1 else \
                 rate_pair(pair, torque, rpm, inputs, gears, mesh, planets, dynamic=kv)
             root = root_stress.get(name)
+            hg, fg, external = rating_limits(rating, opts.minimum_safety_pitting)
+            local = local_safety(meshes[name].contact, dist, meshes[name].stiffness.actual,
+                                 pitting_limit=hg, bending_limit=fg, load_factor=external,
+                                 root=root, gears=ROLES[name])
             out[name] = MeshRating(
                 name, ROLES[name], rating,
                 "loaded contact" if opts.face_load_factor == "contact" else "given",
@@ -275,7 +289,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 (gears[0].sigma_hlim, gears[1].sigma_hlim),
                 (gears[0].sigma_flim, gears[1].sigma_flim),
                 opts.minimum_safety_pitting, opts.minimum_safety_bending,
-                model_dynamic_factor(dynamics, name))
+                model_dynamic_factor(dynamics, name), local)
         stage = RatingStage(out, opts.minimum_safety_pitting, opts.minimum_safety_bending)
         note["text"] = stage.line()
     return stage
