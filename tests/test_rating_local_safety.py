@@ -267,4 +267,7 @@ def test_report_section_and_csv(tmp_path):
             col[f"diameter_{gear} [m]"][i] * 1e3, rel=1e-8)
         s_f = col[f"S_F_local_{gear} [-]"]
         assert q["S_F_loc_min"]["values"][gear] == pytest.approx(np.nanmin(s_f), rel=1e-8)
-        assert q["S_F_loc_face"]["values"][gear] == pytest.approx(1.0, rel=1e-6)
+        assert q["sigma_F_fe_face"]["values"][gear] == pytest.approx(1.0, rel=1e-6)
+        stress = col[f"root_stress_fe_along_face_{gear} [Pa]"]
+        assert q["sigma_F_fe_face_max"]["values"][gear] == pytest.approx(stress.max() * 1e-6,
+                                                                         rel=1e-8)

@@ -111,8 +111,8 @@ class LocalBending:
     stress : (n_z,) largest FE root stress in each face position over the cycle, Pa.
     limit : sigma_FG, Pa, or None for a gear not rated in bending.
     safety : (n_z,) S_F,loc (-), NaN without ``limit``.
-    minimum : the smallest S_F,loc (NaN without ``limit``); minimum_z : where (of the
-        largest stress), m.
+    minimum : the smallest S_F,loc (NaN without ``limit``); minimum_z : where it is, the face
+        position of the largest stress, m.
     """
 
     gear: str
@@ -146,7 +146,8 @@ class LocalSafety:
     bending: tuple[LocalBending, LocalBending] | None = None
 
     def summary(self) -> dict[str, Any]:
-        """Per gear: the smallest S_H,loc and S_F,loc and where (SI; keys carry units)."""
+        """Per gear: the smallest S_H,loc and where; the largest FE root stress along the face,
+        where, and the smallest S_F,loc, which is there (SI; keys carry units)."""
         out: dict[str, Any] = {"load_factor_KA_Kgamma_Kv": self.load_factor}
         for k, p in enumerate(self.pitting):
             g: dict[str, Any] = {"S_H_local_min": p.minimum,
@@ -155,8 +156,8 @@ class LocalSafety:
             if self.bending is not None:
                 b = self.bending[k]
                 g.update({"root_stress_fe_max_Pa": float(b.stress.max()),
-                          "S_F_local_min": None if math.isnan(b.minimum) else b.minimum,
-                          "S_F_local_min_face_position_m": b.minimum_z})
+                          "root_stress_fe_max_face_position_m": b.minimum_z,
+                          "S_F_local_min": None if math.isnan(b.minimum) else b.minimum})
             out[p.gear] = g
         return out
 

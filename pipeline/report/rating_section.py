@@ -187,10 +187,10 @@ def rating_local_section(m, figures: Sequence[Figure]) -> Section:
         rows += [
             gear("sigma_F_fe_face_max", "FE root stress: largest along the face", "MPa",
                  tuple(float(b.stress.max()) * MPA for b in bend), fe),
-            gear("S_F_loc_min", "smallest local bending safety S_F,loc", "-",
-                 tuple(None if b.limit is None else b.minimum for b in bend), fe),
-            gear("S_F_loc_face", "where: face position b_z", "mm",
+            gear("sigma_F_fe_face", "where: face position b_z", "mm",
                  tuple(b.minimum_z * 1e3 for b in bend), fe),
+            gear("S_F_loc_min", "smallest local bending safety S_F,loc (there)", "-",
+                 tuple(None if b.limit is None else b.minimum for b in bend), fe),
         ]
     notes = [
         f"S_H,loc = sigma_HG / (p_H sqrt(K_A K_gamma K_v)) at every point of each flank, p_H "

@@ -53,14 +53,17 @@ def plot_safety_factors(gears: Sequence[str], pitting: Sequence[float],
 
 
 def _safety_levels(maps: Sequence[np.ndarray], minimum: float) -> np.ndarray:
-    """Colour levels of the local safety maps: from just below the smallest value (or the
-    required minimum, whichever is lower) to twice the smallest value, so the colours
-    resolve the flank near its weakest point; larger values take the top colour."""
+    """Colour levels of the local safety maps (round numbers): from just below the smallest
+    value or the required minimum, whichever is lower, to twice the smallest value, so the
+    colours resolve the flank near its weakest point and start red at the minimum; larger
+    values take the top colour."""
+    from matplotlib.ticker import MaxNLocator
+
     smin = min(float(np.nanmin(m)) for m in maps)
     smax = max(float(np.nanmax(m)) for m in maps)
     lo = min(smin, minimum) * 0.98
     hi = max(min(smax, 2.0 * smin), minimum * 1.02, lo * 1.05)
-    return np.linspace(lo, hi, 17)
+    return MaxNLocator(nbins=16).tick_values(lo, hi)
 
 
 def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool,
@@ -99,7 +102,8 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
     pad = 0.04 * (zz.max() - zz.min())
     axes[0].set_ylim(zz.min() - pad, zz.max() + pad)
     axes[0].set_ylabel("face position b_z [mm]")
-    bar = fig.colorbar(filled, ax=axes, label="local pitting safety S_H,loc [-]")
+    bar = fig.colorbar(filled, ax=axes, label=f"local pitting safety S_H,loc [-]; black: "
+                       f"S_Hmin = {minimum:g}")
     bar.ax.axhline(minimum, color="k", lw=1.2)
     fig.suptitle(f"{title}\nS_H,loc = sigma_HG / (p_H sqrt(K_A K_gamma K_v)), K_A K_gamma K_v"
                  f" = {local.load_factor:.3f}; p_H the loaded contact's envelope over the "
