@@ -9,10 +9,11 @@ from matplotlib.collections import QuadMesh
 
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.ltca import loaded_mesh_cycle
+from pipeline.contact.pressure_envelope import to_face_ends
 from pipeline.contact.separations import FlankModifications
 from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
-from pipeline.viz.distribution import plot_contact_pressure, to_face_ends
+from pipeline.viz.distribution import plot_contact_pressure
 
 
 def test_to_face_ends_holds_the_end_slices():

@@ -28,7 +28,8 @@ the loaded approach and the mesh stiffness.
 - :class:`ContactSolution`, :class:`ContactSweep` - results (:mod:`.results`).
 - :func:`load_distribution` - line load, K_Hbeta, tooth-pair unit load ratio, Hertz
   pressure, TE orders of a loaded mesh cycle (:mod:`.distribution`); root stress (FE 2D, ISO
-  6336-3) in :mod:`.root_stress` and :mod:`.iso_root_stress`.
+  6336-3) in :mod:`.root_stress` and :mod:`.iso_root_stress`; the largest Hertz pressure
+  over the cycle at every point of the flanks in :mod:`.pressure_envelope`.
 - :class:`FE2DCompliance`, :class:`FE3DCompliance` - the FE stage's influence matrices
   adapted to :class:`ComplianceSource` (:mod:`.fe2d_source`; :mod:`.fe3d_source` on the
   tables of :mod:`.fe3d_table`).

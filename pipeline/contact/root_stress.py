@@ -74,6 +74,9 @@ class GearRootStress:
     passage_roll : (n_s,) roll coordinate of the tooth's own contact at z = 0 over its passage
         (ascending), m; passage_stress : (n_s,) largest principal root stress at each, Pa.
     position_max : (m,) largest root stress of any tooth at each mesh position, Pa.
+    face_z : (n_z,) face positions of the slices, m; face_envelope : (n_z,) largest
+        principal root stress over the fillet, the tooth's passage and the cycle in each
+        slice, Pa (its maximum is ``max_stress``).
     iso : ISO 6336-3 method B for the same load, or None (internal gears).
     label : how figures name the gear: the role, with the gear's own name when it differs
         ("pinion (sun)").
@@ -92,6 +95,8 @@ class GearRootStress:
     passage_roll: np.ndarray
     passage_stress: np.ndarray
     position_max: np.ndarray
+    face_z: np.ndarray
+    face_envelope: np.ndarray
     iso: IsoRootStress | None
     label: str = ""
 
@@ -191,7 +196,8 @@ def _gear_result(name: str, cycle: LoadedMeshCycle, pair: GearPair, gear: GearSp
         max_stress=float(sig[f, i, k, j]), max_radius=float(table.radius[f]),
         max_arc=float(table.arc[f]), max_load_roll=s_max, max_load_radius=float(r_load),
         max_face_position=float(z[j]), passage_roll=roll.ravel()[order],
-        passage_stress=per_state.ravel()[order], position_max=per_state.max(axis=1), iso=iso,
+        passage_stress=per_state.ravel()[order], position_max=per_state.max(axis=1),
+        face_z=z, face_envelope=sig.max(axis=(0, 1, 2)), iso=iso,
         label=name if gear.name in (name, "") else f"{name} ({gear.name})")
 
 

@@ -200,3 +200,67 @@ def rating_section(m, figures: Sequence[Figure]) -> Section:
                      "external gears with a signed tooth count.")
     return Section("rating", "ISO 6336 rating: pitting and tooth root", tuple(rows),
                    (*m.gears, "method"), figures=tuple(figures), notes=tuple(notes))
+
+
+def rating_local_section(m, figures: Sequence[Figure]) -> Section:
+    """Where the flanks and roots of :class:`pipeline.run.rating.MeshRating` ``m`` are at
+    risk: each gear's smallest local pitting safety and where, and with the FE root stress
+    its largest value along the face and the smallest local bending safety
+    (:mod:`pipeline.rating.local_safety`)."""
+    loc = m.local
+    pit = loc.pitting
+
+    def gear(key, label, unit, values, method):
+        return quantity(key, label, unit, *values, method)
+
+    src = "loaded contact, envelope over the cycle"
+    rows = [
+        gear("sigma_HG", "pitting stress limit sigma_HG = sigma_HP S_Hmin", "MPa",
+             tuple(p.limit * MPA for p in pit), ISO2),
+        gear("S_H_loc_min", "smallest local pitting safety S_H,loc", "-",
+             tuple(p.minimum for p in pit), src),
+        gear("S_H_loc_diameter", "where: diameter of the gear", "mm",
+             tuple(p.minimum_diameter * 1e3 for p in pit), src),
+        gear("S_H_loc_face", "where: face position b_z", "mm",
+             tuple(p.minimum_z * 1e3 for p in pit), src),
+    ]
+    if loc.bending is not None:
+        bend = loc.bending
+        fe = "FE 2D root stress under the contact's loads"
+        rows += [
+            gear("sigma_F_fe_face_max", "FE root stress: largest along the face", "MPa",
+                 tuple(float(b.stress.max()) * MPA for b in bend), fe),
+            gear("sigma_F_fe_face", "where: face position b_z", "mm",
+                 tuple(b.minimum_z * 1e3 for b in bend), fe),
+            gear("S_F_loc_min", "smallest local bending safety S_F,loc (there)", "-",
+                 tuple(None if b.limit is None else b.minimum for b in bend), fe),
+        ]
+    notes = [
+        f"S_H,loc = sigma_HG / (p_H sqrt(K_A K_gamma K_v)) at every point of each flank, p_H "
+        f"the loaded contact's largest Hertz pressure there over the mesh cycle at the nominal "
+        f"torque; K_A K_gamma K_v = {loc.load_factor:.4g}. Z_B / Z_D, Z_eps, K_Hbeta and "
+        "K_Halpha are not applied: the contact resolves the load across the face, its "
+        "sharing between the pairs and the pressure at each point itself. The smallest "
+        "S_H,loc therefore differs from ISO's S_H by the ratio of ISO's sigma_H to the "
+        "contact's largest pressure (both with the same external factors).",
+        "The contact knows the modifications and deviations given in [contact], not the "
+        "accuracy grade's deviations that ISO's K_Halpha allows for.",
+    ]
+    if loc.bending is not None:
+        notes.append(
+            "S_F,loc = sigma_FG / (sigma_FE K_A K_gamma K_v) along the face, sigma_FE the "
+            "largest FE root stress in each slice over the cycle (K_Fbeta, K_Falpha not "
+            "applied: the FE stress under the contact's loads holds them). The FE peak stress "
+            "is not ISO's nominal sigma_F0 (see the root stress section) and sigma_FG is "
+            "calibrated against ISO's: S_F,loc shows where along the face the root is most at "
+            "risk, not ISO's S_F.")
+    else:
+        notes.append("No FE root stress in this run: the root stress along the face is not "
+                     "shown.")
+    if loc.z.size <= 3:
+        notes.append("The contact was solved with one slice across the face (a spur pair "
+                     "without lead modifications or slope deviation): the maps are uniform "
+                     "across the face by construction.")
+    return Section("rating_local", "Local safety over the flank and along the root (loaded "
+                   "contact)", tuple(rows), (*m.gears, "source"), figures=tuple(figures),
+                   notes=tuple(notes))

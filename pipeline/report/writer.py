@@ -14,7 +14,10 @@ planetary set):
 * ``report.json`` - every number of it, by section and key, with labels and units;
 * ``report.csv`` - the same numbers as rows ``section,key,column,quantity,value,unit``;
 * ``report_cycle.csv`` - per mesh position: TE, mesh stiffness, load factors, load
-  shares, root stress maxima; ``report_face.csv`` - line load over the face.
+  shares, root stress maxima; ``report_face.csv`` - line load over the face;
+* ``rating_local.csv`` - with a rating: the local pitting safety of both flanks on the
+  (roll coordinate, face position) grid, and the FE root stress along the face with the
+  local bending safety (:meth:`pipeline.rating.local_safety.LocalSafety.columns`).
 """
 
 from __future__ import annotations
@@ -169,7 +172,7 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
     if result.rating is not None:
-        sections += _rating_sections(result.rating, name, fig, title)
+        sections += _rating_sections(result.rating, name, fig, title, actual.gear.internal)
     run_s = result.log.summary()["total_s"]
     src = box.source
     record = provenance(box.to_dict(), file_sha256=src.sha256 if src else None,
@@ -178,11 +181,20 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
     return MeshReport(title, name, tuple(sections))
 
 
-def _rating_sections(stage: Any, name: str, fig, title: str) -> list:
-    """The rating's two sections of mesh ``name`` of rating ``stage`` with its safety
-    figure."""
-    from pipeline.report.rating_section import rating_load_section, rating_section
-    from pipeline.viz.rating import plot_safety_factors
+def _rating_sections(stage: Any, name: str, fig, title: str, internal: bool) -> list:
+    """The rating's sections of mesh ``name`` of rating ``stage`` with their figures: the
+    load factors, both gears' safety factors and the local safety over the flank;
+    ``internal``: the mesh's second gear is a ring."""
+    from pipeline.report.rating_section import (
+        rating_load_section,
+        rating_local_section,
+        rating_section,
+    )
+    from pipeline.viz.rating import (
+        plot_local_pitting_safety,
+        plot_root_stress_along_face,
+        plot_safety_factors,
+    )
 
     m = stage.meshes[name]
     r = m.rating
@@ -190,7 +202,17 @@ def _rating_sections(stage: Any, name: str, fig, title: str) -> list:
     f = fig("report_rating.png", "ISO 6336 safety factors of both gears against the required "
             "minimum", plot_safety_factors, list(m.gears), [p.safety for p in r.pitting], s_f,
             stage.minimum_pitting, stage.minimum_bending, title)
-    return [rating_load_section(m), rating_section(m, [f])]
+    sections = [rating_load_section(m), rating_section(m, [f])]
+    if m.local is None:
+        return sections
+    local = [fig("report_rating_local_pitting.png", "Local pitting safety S_H,loc over both "
+                 "flanks (loaded contact), the required S_Hmin as a contour line",
+                 plot_local_pitting_safety, m.local, m.minimum_pitting, internal, title)]
+    if m.local.bending is not None:
+        local.append(fig("report_rating_root_face.png", "FE root stress along the face and "
+                         "the local bending safety S_F,loc", plot_root_stress_along_face,
+                         m.local, m.minimum_bending, title))
+    return [*sections, rating_local_section(m, local)]
 
 
 def _csv_text(report: MeshReport) -> str:
@@ -203,17 +225,21 @@ def _csv_text(report: MeshReport) -> str:
 
 
 def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, prefix: str,
-                      subtitle: str, root_stress: Any = None) -> list[Path]:
-    """The HTML, JSON and CSV files of one mesh report (module docstring)."""
+                      subtitle: str, root_stress: Any = None, local: Any = None) -> list[Path]:
+    """The HTML, JSON and CSV files of one mesh report (module docstring); ``local``: the
+    rating's :class:`~pipeline.rating.local_safety.LocalSafety`, or None."""
     cycle_cols = dist.columns()
     if root_stress is not None:
         cycle_cols.update(root_stress.cycle_columns())
+    extra = [] if local is None else [write_csv(out / f"{prefix}rating_local.csv",
+                                                local.columns())]
     return [
         atomic_write_text(out / f"{prefix}report.html", render_html(report, out, subtitle)),
         write_json(out / f"{prefix}report.json", report.to_json()),
         atomic_write_text(out / f"{prefix}report.csv", _csv_text(report)),
         write_csv(out / f"{prefix}report_cycle.csv", cycle_cols),
         write_csv(out / f"{prefix}report_face.csv", dist.face_columns()),
+        *extra,
     ]
 
 
@@ -251,5 +277,6 @@ def _write_one_report(result: Any, name: str, stage: Any, out: Path, figures: Fi
     subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
                 f"{len(st.contact)} mesh positions; written in "
                 f"{time.perf_counter() - t0:.1f} s")
+    local = None if result.rating is None else result.rating.meshes[name].local
     return write_mesh_report(report, stage.distribution, out, prefix, subtitle,
-                             stage.root_stress)
+                             stage.root_stress, local)

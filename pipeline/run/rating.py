@@ -19,7 +19,10 @@ What the standard leaves to the analyst comes from the run where it can:
 * the tip relief C_a of K_v: the ``[contact]`` tip relief of the gear where given, else
   the standard's running-in value C_ay;
 * beside sigma_H and sigma_F: the loaded contact's largest Hertz pressure and the FE root
-  stress of each gear, both at the nominal torque (no load factors).
+  stress of each gear, both at the nominal torque (no load factors);
+* where the flank is at risk: the local pitting safety over each flank from the loaded
+  contact's Hertz pressure and, with the FE root stress, the root stress along the face with
+  its local bending safety (:mod:`pipeline.rating.local_safety`).
 
 A ring's bending needs the standard's internal-gear form factors, which are not built: it
 is not rated in bending, and says so.
@@ -42,6 +45,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.root_stress import RootStress
 from pipeline.dynamics.models.planetary_gears import helical_half
 from pipeline.progress import Steps
+from pipeline.rating.local_safety import LocalSafety, local_safety, rating_limits
 from pipeline.rating.options import planet_load_sharing
 from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInputs, rate_pair
 from pipeline.rating.pair_spectrum import rate_pair_spectrum
@@ -81,9 +85,12 @@ class MeshRating:
     minimum_pitting, minimum_bending : S_Hmin, S_Fmin (-).
     dynamic_factor_model : the run's dynamic model's largest over mean mesh force at the
         operating speed (the largest over a set's planets), or None without dynamics.
-    unrated : why each gear is not rated in bending (None where it is).
+    local : the local pitting safety over both flanks and, where the FE root stress was
+        computed, the root stress along the face with its local bending safety
+        (:class:`~pipeline.rating.local_safety.LocalSafety`), or None.
     spectrum : the Miner sums over ``[[rating.spectrum]]``
         (:func:`pipeline.rating.pair_spectrum.rate_pair_spectrum`), or None.
+    unrated : why each gear is not rated in bending (None where it is).
     """
 
     mesh: str
@@ -101,6 +108,7 @@ class MeshRating:
     minimum_pitting: float
     minimum_bending: float
     dynamic_factor_model: float | None = None
+    local: LocalSafety | None = None
     spectrum: SpectrumRating | None = None
     unrated: tuple[str | None, str | None] = (None, None)
 
@@ -128,6 +136,8 @@ class MeshRating:
                     "spectrum_damage_pitting": d[0].total, "spectrum_S_H": d[0].safety,
                     "spectrum_damage_bending": None if d[1] is None else d[1].total,
                     "spectrum_S_F": None if d[1] is None else d[1].safety})
+        if self.local is not None:
+            out["local"] = self.local.summary()
         return out
 
 
@@ -343,6 +353,10 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 rate_pair(pair, torque, rpm, inputs, gears, mesh, planets, dynamic=kv,
                           double_helical=half)
             root = root_stress.get(name)
+            hg, fg, external = rating_limits(rating, opts.minimum_safety_pitting)
+            local = local_safety(meshes[name].contact, dist, meshes[name].stiffness.actual,
+                                 pitting_limit=hg, bending_limit=fg, load_factor=external,
+                                 root=root, gears=ROLES[name])
             out[name] = MeshRating(
                 name, ROLES[name], rating,
                 _SOURCE.get(opts.face_load_factor, "given"),
@@ -352,7 +366,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 (gears[0].sigma_hlim, gears[1].sigma_hlim),
                 (gears[0].sigma_flim, gears[1].sigma_flim),
                 opts.minimum_safety_pitting, opts.minimum_safety_bending,
-                model_dynamic_factor(dynamics, name),
+                model_dynamic_factor(dynamics, name), local,
                 None if bins[name] is None else rate_pair_spectrum(
                     pair, bins[name], inputs, gears, mesh, planets, double_helical=half),
                 tuple(_unrated(box, role, gear.internal) for role, gear

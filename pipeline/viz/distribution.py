@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.contact.distribution import LoadDistribution
+from pipeline.contact.pressure_envelope import pressure_envelope
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
 from pipeline.viz.canvas import new_figure
@@ -110,47 +111,6 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     return fig
 
 
-def _pressure_envelope(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: GearPair,
-                       n_s: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Largest p_H over the cycle on an (s, z) grid of the plane of action (Pa); z runs from
-    0 to the face width b (:func:`to_face_ends`). Points on the path of contact only: a tip
-    corner beyond it presses on the mate's flank below its active profile, edge loading
-    the figure states apart."""
-    s_grid = np.linspace(pair.s_start, pair.s_end, n_s)
-    zq = np.round(cycle.point_z, 12)
-    z = np.unique(zq)
-    env = np.zeros((n_s, z.size))
-    idx = np.clip(np.round((cycle.point_s - pair.s_start) / (pair.s_end - pair.s_start)
-                           * (n_s - 1)).astype(int), 0, n_s - 1)
-    iz = np.searchsorted(z, zq)
-    np.maximum.at(env, (idx, iz), np.where(cycle.point_corner > 0, 0.0, dist.hertz_pressure))
-    # positions sample the path at the cycle spacing: carry the largest value between samples
-    filled = env.copy()
-    for j in range(z.size):
-        col = env[:, j]
-        hit = np.flatnonzero(col > 0)
-        if hit.size >= 2:
-            # the nearest sample holds up to the ends of the path (no sample falls there)
-            filled[:, j] = np.interp(s_grid, s_grid[hit], col[hit])
-    z_ends, ends = to_face_ends(z, filled, pair.face_width)
-    return s_grid, z_ends, ends
-
-
-def to_face_ends(z: np.ndarray, values: np.ndarray, face_width: float
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """Slice-centre values (columns of ``values`` at face positions ``z``, m) extended to the
-    face ends z = 0 and b (m): each slice carries a uniform load over its width, so the end
-    slice's value holds up to its face end, the slice model's own shape there."""
-    if z.size == 0:
-        return z, values
-    if z[0] > 0.0:
-        z, values = np.concatenate(([0.0], z)), np.concatenate((values[:, :1], values), axis=1)
-    if z[-1] < face_width:
-        z = np.concatenate((z, [face_width]))
-        values = np.concatenate((values, values[:, -1:]), axis=1)
-    return z, values
-
-
 def _with_margin(lo: float, hi: float, share: float = 0.05) -> tuple[float, float]:
     """``(lo, hi)`` widened by ``share`` of its length on both sides (pcolormesh keeps no
     margin of its own, and a marker at the edge would be cut in half)."""
@@ -170,10 +130,12 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
                           title: str, profile_points: int = 80) -> Figure:
     """Hertz pressure envelope over the cycle on the pinion and the gear flank (MPa), drawn
     over the diameter of each flank (mm, growing to the right; the x label says on which
-    side the root is) and the whole face width 0..b (mm, :func:`to_face_ends`); the maximum
+    side the root is) and the whole face width 0..b (mm,
+    :func:`~pipeline.contact.pressure_envelope.to_face_ends`); the maximum
     is marked, inside a margin of 5 % of each axis so that a maximum at the end of the path
     or the face is not cut."""
-    s, z, env = _pressure_envelope(cycle, dist, pair, profile_points)
+    grid = pressure_envelope(cycle, dist, pair, profile_points)
+    s, z, env = grid.s, grid.z, grid.pressure
     r1, r2 = pair.contact_radii(s)
     fig = new_figure((10.0, 3.8), "constrained")
     axes = fig.subplots(1, 2, sharey=True)
