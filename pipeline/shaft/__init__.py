@@ -1,0 +1,8 @@
+"""Shafts and bearings that carry the gears: their layout and two models of one interface.
+
+- :mod:`.layout` - a shaft as the gearbox file describes it (segments, the gear's seat,
+  bearings, where the torque is held, material), checked where it enters.
+- :mod:`.model` - what every shaft model gives (:class:`~.model.ShaftModel`): the solution
+  under loads at the seat (deflection line, bearing reactions), the flexibility between
+  points of the seat, the stiffness condensed to the seat's centre.
+"""
