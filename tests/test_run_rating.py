@@ -270,3 +270,35 @@ def test_life_in_load_cycles(tmp_path):
         hours.rating.smallest("pitting")[0], rel=1e-12)
     with pytest.raises(InputError, match="life_h and rating.life_cycles both"):
         gearbox_from_text(DEMO_PAIR + "[rating]\nlife_h = 1.0\nlife_cycles = 1e6\n")
+
+
+def test_a_gearbox_file_reproduces_a_commercial_rating(tmp_path):
+    """``workflows/configs/nrel_5mw_parallel_stage.toml``: the NREL 5 MW gearbox's parallel
+    helical stage written as a gearbox file with the inputs of KISSsoft Release 03/2017 A's
+    rating (``@NREL_5MW/stage_03.rtf``, gfsReboucas/Drivetrain 4a88df34). The run derives
+    the gear blank factor from the wheel's web (0.25 b) and rim (s_R = (d_f - d_i) / 2 =
+    (1334.25 - 1193.32) / 2 = 70.47 mm = 5.033 m_n): 0.8987, where the report prints 0.898
+    with its own s_R / m_n = 5.000; K_v's wheel mass from its rim's inner diameter; and
+    gives, as the report prints, K_v 1.092, K_Halpha 1.069, K_Fbeta 1.136, S_H 1.81 / 1.88,
+    S_F 3.26 / 3.09."""
+    from pathlib import Path
+
+    from pipeline.config import load_gearbox
+
+    path = Path(__file__).parent.parent / "workflows/configs/nrel_5mw_parallel_stage.toml"
+    box = load_gearbox(path)
+    r = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
+    m = r.rating.meshes["mesh"].rating
+    gear = box.gears["gear"]
+    s_r = gear.root_radius - box.bodies["gear"].rim_inner_radius
+    assert 2 * gear.root_radius == pytest.approx(1334.252e-3, abs=5e-6)
+    assert m.blank_factor == pytest.approx(1 + math.log(0.25) / (5 * math.exp(s_r / 0.070)),
+                                           rel=1e-12)
+    assert m.blank_factor == pytest.approx(0.898, abs=1e-3)
+    assert m.dynamic.factor == pytest.approx(1.092, abs=1e-3)
+    # K_Halpha 1.06956: the report's own C_R (s_R / m_n 5.000) gives 1.0694
+    # (tests/test_rating_pair.py); this file's geometry, 1.3e-4 more through c_gamma_alpha
+    assert m.transverse.k_halpha == pytest.approx(1.0694 + 1.3e-4, abs=5e-5)
+    assert m.k_fbeta == pytest.approx(1.136, abs=6e-4)
+    assert [p.safety for p in m.pitting] == pytest.approx([1.81, 1.88], abs=5e-3)
+    assert [b.safety for b in m.bending] == pytest.approx([3.26, 3.09], abs=5e-3)

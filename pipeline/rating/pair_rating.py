@@ -103,6 +103,8 @@ class GearRatingInputs:
     proof_stress : 0.2 % proof stress of a through-hardened gear, Pa (its rho').
     cutter : the pinion-type cutter that cut an internal gear (its root section), or None
         (an internal gear is then not rated in bending).
+    inner_radius : the inner radius of K_v's gear mass m* (a webbed gear's rim), m, or None
+        for the gear's bore.
     mean_stress_factor : Y_M (1; 0.7 for an idler).
     tip_relief : C_a, m, or None for the running-in relief C_ay.
     """
@@ -120,6 +122,7 @@ class GearRatingInputs:
     notch_class: str | None = "hardened"
     proof_stress: float | None = None
     cutter: ShaperCutter | None = None
+    inner_radius: float | None = None
     mean_stress_factor: float = 1.0
     tip_relief: float | None = None
 
@@ -181,7 +184,8 @@ class PairRating:
     root stress with its form factors (None where the gear is not rated in bending);
     ``curves`` each gear's S-N lines (pitting, bending or None) of
     :class:`~pipeline.rating.life.StrengthCurve`, ``cycles_per_revolution`` each gear's
-    load cycles per revolution of the pinion (the load spectrum's bookkeeping)."""
+    load cycles per revolution of the pinion (the load spectrum's bookkeeping);
+    ``blank_factor`` C_R of the stiffness."""
 
     tangential_load: float
     velocity: float
@@ -202,6 +206,7 @@ class PairRating:
     roots: tuple[IsoRootStress | None, IsoRootStress | None] = (None, None)
     curves: tuple[tuple[StrengthCurve, StrengthCurve | None], ...] = ()
     cycles_per_revolution: tuple[float, float] = (1.0, 1.0)
+    blank_factor: float = 1.0
 
     @property
     def safety_pitting_min(self) -> float:
@@ -247,9 +252,10 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     materials = tuple((gi.hardening, gi.sigma_hlim) for gi in gears)
     y_p, y_f = (running_in(f, materials, v) for f in (f_pb, f_fa))
     st = iso_stiffness(pair, ft, ka, c_r=inputs.blank_factor)
-    masses = [gear_mass(2.0 * gear.tip_radius_, 2.0 * gear.root_radius,
-                        2.0 * gear.base_radius, 2.0 * gear.bore_radius, gear.material.density)
-              for gear in (p, g) if not gear.internal]
+    masses = [gear_mass(2.0 * gear.tip_radius_, 2.0 * gear.root_radius, 2.0 * gear.base_radius,
+                        2.0 * (gi.inner_radius if gi.inner_radius is not None
+                               else gear.bore_radius), gear.material.density)
+              for gear, gi in zip((p, g), gears, strict=True) if not gear.internal]
     # an internal pair's ring is not a mass of the mesh (a planet-ring mesh's rule)
     m_red = reduced_mass(masses[0], masses[1] if len(masses) > 1 else None,
                          "planet_ring" if g.internal else mesh, planets)
@@ -324,4 +330,4 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
                       (pit[0], pit[1]), (bend[0], bend[1]), method_c, cycles,
                       (roots[0], roots[1]), (curves[0], curves[1]),
-                      (contacts[0], contacts[1] / abs(u)))
+                      (contacts[0], contacts[1] / abs(u)), inputs.blank_factor)

@@ -31,6 +31,8 @@ def rating_load_section(m) -> Section:
                  "[rating] application_factor"),
         quantity("K_gamma", "mesh load factor K_gamma", "-", r.load_sharing,
                  m.load_sharing_source),
+        quantity("C_R", "gear blank factor C_R", "-", r.blank_factor,
+                 f"{ISO1} method B: the webbed blank's, 1 for solid discs"),
         quantity("c_prime", "single tooth stiffness c'", "N/(mm um)",
                  r.single_stiffness * N_PER_MM_UM, f"{ISO1} method B"),
         quantity("c_gamma_alpha", "mesh stiffness c_gamma_alpha", "N/(mm um)",

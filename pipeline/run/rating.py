@@ -51,6 +51,7 @@ from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInpu
 from pipeline.rating.pair_spectrum import rate_pair_spectrum
 from pipeline.rating.spectrum import LoadBin, LoadSpectrum, SpectrumRating
 from pipeline.run.chain import MeshStages
+from pipeline.stiffness.iso6336 import blank_factor_cr
 from pipeline.validation import InputError, PhysicsWarning
 
 ROLES = {"mesh": ("pinion", "gear"), "sun_planet": ("sun", "planet"),
@@ -253,7 +254,8 @@ def _gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
         sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.running_in,
         pitting_line=g.pitting_line, bending_line=g.bending_line, size_class=g.size_class,
         hardness_hb=g.hardness_hb, notch_class=g.notch_class, proof_stress=g.proof_stress,
-        cutter=g.cutter, flank_roughness=g.flank_roughness,
+        cutter=g.cutter, inner_radius=box.bodies[role].rim_inner_radius,
+        flank_roughness=g.flank_roughness,
         root_roughness=g.root_roughness,
         mean_stress_factor=IDLER_MEAN_STRESS if role == "planet" else 1.0,
         tip_relief=relief if relief > 0.0 else None)
@@ -268,6 +270,31 @@ def _warn_validity(m: MeshRating) -> None:
                           f"{root.q_s:.4g} lies outside 1 <= q_s < 8, where ISO 6336-3 "
                           "validates its stress correction factor Y_S", PhysicsWarning,
                           stacklevel=3)
+
+
+def blank_factor(box: Gearbox, roles: tuple[str, str]) -> float:
+    """ISO 6336-1's gear blank factor C_R of a mesh: the smaller of its gears' (a solid disc's
+    is 1; a webbed body's from its web width over the face width and its rim thickness
+    ``s_R`` = root radius - rim inner radius, :func:`pipeline.stiffness.iso6336.blank_factor_cr`;
+    KISSsoft prints the webbed wheel's 0.898 for the NREL 5 MW parallel stage with its solid
+    pinion)."""
+    out = 1.0
+    for role in roles:
+        body = box.bodies[role]
+        g = body.gear
+        if body.web_width is None or g.internal:
+            continue
+        web, rim = body.web_width / g.face_width, (g.root_radius - body.rim_inner_radius)
+        if not 0.2 <= web <= 1.2:
+            raise InputError(f"{role}.web_width_mm = {body.web_width * 1e3:.6g} mm is "
+                             f"{web:.4g} of the face width; ISO 6336-1's gear blank factor "
+                             "C_R holds for 0.2 to 1.2")
+        if rim < g.module:
+            raise InputError(f"{role}.rim_inner_radius_mm = {body.rim_inner_radius * 1e3:.6g} mm "
+                             f"leaves a rim of {rim * 1e3:.6g} mm under the root, less than "
+                             "m_n, where ISO 6336-1's gear blank factor C_R holds")
+        out = min(out, blank_factor_cr(rim / g.module, web))
+    return out
 
 
 def _unrated(box: Gearbox, role: str, internal: bool) -> str | None:
@@ -337,6 +364,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 life_hours=opts.life_hours(box.operation.speed),
                 accuracy_grade=opts.accuracy_grade, viscosity_40=opts.viscosity_40,
                 k_hbeta=khb, load_sharing=k_gamma, face_load=method_c,
+                blank_factor=blank_factor(box, ROLES[name]),
                 minimum_safety_pitting=opts.minimum_safety_pitting,
                 minimum_safety_bending=opts.minimum_safety_bending)
             gears = tuple(_gear_inputs(box, role, k) for k, role in enumerate(ROLES[name]))
