@@ -149,7 +149,7 @@ REFUSED = [
      "bore_radius_mm = 21.0\nmass_kg = 2.52\ninertia_kgm2 = 7.4e-3\nweb_width_mm = 8.0\n"
      "rim_inner_radius_mm = 60.0\nhub_radius_mm = 35.0",
      "pinion.web_width_mm = 8 mm changes nothing: [pinion] gives both mass_kg and "
-     "inertia_kgm2, the only quantities the web shapes"),
+     "inertia_kgm2, and without [rating] those are the only quantities the web shapes"),
     ("axial support of a free sun", WIND, r'^sun_axial = "held".*$', 'sun_axial = "free"',
      'herringbone.axial_support_stiffness_N_per_m = 1e+09 N/m applies to sun_axial = "held" '
      'only; this table\'s sun_axial is "free"'),

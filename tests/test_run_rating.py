@@ -302,3 +302,14 @@ def test_a_gearbox_file_reproduces_a_commercial_rating(tmp_path):
     assert m.k_fbeta == pytest.approx(1.136, abs=6e-4)
     assert [p.safety for p in m.pitting] == pytest.approx([1.81, 1.88], abs=5e-3)
     assert [b.safety for b in m.bending] == pytest.approx([3.26, 3.09], abs=5e-3)
+
+
+def test_a_web_acts_in_the_rating_beside_given_mass_and_inertia(tmp_path):
+    """With mass_kg and inertia_kgm2 given, a web changes nothing but a rating: there its
+    width and rim set C_R (and K_v's gear mass), so the file with [rating] is accepted and
+    the web lowers C_R below 1."""
+    web = ("bore_radius_mm = 21.0\nmass_kg = 2.52\ninertia_kgm2 = 7.4e-3\nweb_width_mm = 8.0\n"
+           "rim_inner_radius_mm = 60.0\nhub_radius_mm = 35.0\n")
+    text = DEMO_PAIR.replace("bore_radius_mm = 21.0\n", web, 1) + FAST + "[rating]\n"
+    r = _run(text, tmp_path)
+    assert r.rating.meshes["mesh"].rating.blank_factor < 1.0

@@ -265,10 +265,12 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
         values["material"] = _material(table["material"], f"{role}.material")
     if body.get("mass") is not None and body.get("inertia") is not None:
         for name in ("web_width_mm", "rim_inner_radius_mm", "hub_radius_mm"):
-            if name in table:  # the web shapes nothing but the derived mass and inertia
+            # the web shapes the derived mass and inertia, and a rating's C_R and K_v
+            if name in table and "rating" not in doc:
                 raise InputError(f"{role}.{name} = {format_value(table[name], unit_of_key(name))}"
                                  f" changes nothing: [{role}] gives both mass_kg and "
-                                 "inertia_kgm2, the only quantities the web shapes")
+                                 "inertia_kgm2, and without [rating] those are the only "
+                                 "quantities the web shapes")
         material = table.get("material", {})
         if isinstance(material, Mapping) and "density_kg_m3" in material:
             # warned, not refused: a material is stated whole, though here only its
