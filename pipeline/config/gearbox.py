@@ -57,6 +57,7 @@ from pipeline.config.schema import (
     restated,
     unknown,
 )
+from pipeline.config.shafts import shaft_layout
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
@@ -83,6 +84,7 @@ from pipeline.geometry.planetary import PlanetarySet
 from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
 from pipeline.rating.options import RatingOptions
+from pipeline.shaft.layout import ShaftLayout
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError, InputWarning, check_range
 
@@ -138,6 +140,7 @@ class Gearbox:
         or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
     rating : the ISO 6336 rating's inputs (``[rating]``), or ``None`` (no rating).
+    shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout).
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -159,6 +162,7 @@ class Gearbox:
     dynamics: PairDynamicsOptions | PlanetaryDynamicsOptions | None = None
     lumped: DynamicModel | None = None
     rating: RatingOptions | None = None
+    shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -238,7 +242,7 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
     if not isinstance(table, Mapping):
         raise InputError(f"{role} = {table!r}: expected a table [{role}]")
     keys = T.GEAR + T.BODY
-    values = read_table(table, keys, role, subtables=("material",))
+    values = read_table(table, keys, role, subtables=("material", "shaft"))
     body_fields = {k.target for k in T.BODY}
     body = {k: values.pop(k) for k in list(values) if k in body_fields}
     internal = values.get("internal", False)
@@ -540,6 +544,22 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone:
     return opts
 
 
+def _shafts(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]
+            ) -> dict[str, tuple[str, ShaftLayout]]:
+    """``[<gear>.shaft]`` of each gear that has one (:mod:`pipeline.config.shafts`); a ring
+    has none (it is the housing's)."""
+    out = {}
+    for role, gear in gears.items():
+        table = doc[role].get("shaft") if isinstance(doc[role], Mapping) else None
+        if table is None:
+            continue
+        if gear.internal:
+            raise InputError(f"[{role}.shaft]: an internal gear is held by the housing, not a "
+                             "shaft")
+        out[role] = shaft_layout(table, gear, f"{role}.shaft")
+    return out
+
+
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                       base: Path | None = None, source: InputFile | None = None) -> Gearbox:
     """Build a :class:`Gearbox` from a parsed TOML document.
@@ -606,6 +626,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                            kind == "planetary" and gears["sun"].herringbone),
         rating=rating_options(doc, kind, roles,
                               frozenset(r for r, g in gears.items() if g.internal)),
+        shafts=_shafts(doc, gears),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,

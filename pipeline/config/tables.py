@@ -284,6 +284,26 @@ RATING_GEAR = (
 )
 """Keys of ``[rating.<gear>]`` (:class:`~pipeline.rating.options.GearRatingOptions`)."""
 
+SHAFT = (
+    Key("model", S, choices=("beam", "fe3d"), help="Timoshenko beam FE or 3D FE superelement"),
+    Key("gear_position_mm", N, required=True, help="the gear's mid-face on the shaft"),
+    Key("torque_position_mm", N, required=True, help="where the torque is held"),
+    Key("hub", S, choices=("rigid", "integral"), help="the gear's seat"),
+)
+"""Keys of ``[<gear>.shaft]`` (:mod:`pipeline.config.shafts`)."""
+SHAFT_SEGMENT = (
+    Key("start_mm", N, required=True),
+    Key("end_mm", N, required=True),
+    Key("outer_diameter_mm", N, required=True),
+    Key("inner_diameter_mm", N),
+)
+SHAFT_BEARING = (
+    Key("position_mm", N, required=True),
+    Key("radial_stiffness_N_per_m", N, help="left out: rigid"),
+    Key("tilting_stiffness_Nm_per_rad", N),
+    Key("axial", B, help="this bearing locates the shaft axially"),
+)
+
 EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (
     Key("dofs", S, choices=("lateral_torsional", "torsional")),

@@ -70,10 +70,10 @@ class Bearing:
     axial: bool = False
 
     def __post_init__(self) -> None:
-        check_range("radial_stiffness", self.radial_stiffness, 0.0, math.inf, lo_open=True,
-                    unit="N/m")
-        check_range("tilting_stiffness", self.tilting_stiffness, 0.0, math.inf,
-                    unit="N m/rad")
+        if self.radial_stiffness != math.inf:  # inf: a rigid support
+            check_range("radial_stiffness", self.radial_stiffness, 0.0, 1e15, lo_open=True,
+                        unit="N/m")
+        check_range("tilting_stiffness", self.tilting_stiffness, 0.0, 1e15, unit="N m/rad")
 
 
 @dataclass(frozen=True)
