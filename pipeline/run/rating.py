@@ -8,10 +8,12 @@ Y_M 0.7, K_v the larger of the two meshes', as KISSsoft's ``KV = max(KV12, KV23)
 herringbone mesh as one helical half at half the load (ISO 6336-1: b_B of each half).
 What the standard leaves to the analyst comes from the run where it can:
 
-* the face load factor K_Hbeta is the loaded contact's (the largest over the mean of the
+* the face load factor K_Hbeta: ISO 6336-1 method C's (the default,
+  :mod:`pipeline.rating.face_load`), the loaded contact's (the largest over the mean of the
   cycle-mean line load across the face, :mod:`pipeline.contact.distribution`) with
-  ``face_load_factor = "contact"``, else the number given; the contact's value is shown
-  beside either way;
+  ``face_load_factor = "contact"``, or the number given; the other two are shown beside;
+* the gear blank factor C_R of a webbed body (:func:`blank_factor`) and K_v's gear mass of
+  a webbed gear from its rim;
 * the planets' load sharing K_gamma: the default for the number of planets
   (:data:`~pipeline.rating.options.PLANET_LOAD_SHARING`), a number, or ``"computed"``: the
   largest planet's mean sun-mesh force over the mean of all planets in the dynamic model's
@@ -24,8 +26,11 @@ What the standard leaves to the analyst comes from the run where it can:
   contact's Hertz pressure and, with the FE root stress, the root stress along the face with
   its local bending safety (:mod:`pipeline.rating.local_safety`).
 
-A ring's bending needs the standard's internal-gear form factors, which are not built: it
-is not rated in bending, and says so.
+An internal gear's root section is the one its pinion-type cutter generates
+(``cutter_teeth``); a gear without it, or whose material's slip layer is not built, is
+rated in pitting only, and the report says which key is missing. With
+``[[rating.spectrum]]`` each mesh is also rated over the load spectrum (ISO 6336-6,
+:mod:`pipeline.rating.pair_spectrum`).
 """
 
 from __future__ import annotations
