@@ -67,6 +67,10 @@ class FlankModifications:
     slope_deviation : helix slope deviation / misalignment f_Hb across the face, m,
         in [-1e-3, 1e-3].
     pitch_errors : offsets of tooth pairs k = 0, 1, 2, ..., m, each in [-1e-3, 1e-3].
+    lead_gap : a gap across the face tabulated as ((z_0, g_0), (z_1, g_1), ...), z in m from
+        the face's first end (ascending), g in m (magnitude <= 1e-3), linear between points
+        and constant beyond them: the relative displacement of the flanks along the line of
+        action that the shafts' deflection causes (:mod:`pipeline.shaft`); empty: none.
     """
 
     tip_relief_pinion: float = 0.0
@@ -77,6 +81,7 @@ class FlankModifications:
     crowning: float = 0.0
     slope_deviation: float = 0.0
     pitch_errors: tuple[float, ...] = ()
+    lead_gap: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self) -> None:
         for who in ("pinion", "gear"):
@@ -95,6 +100,13 @@ class FlankModifications:
         for j, e in enumerate(errs):
             check_range(f"contact.pitch_errors[{j}]", e, -_MAX_MOD, _MAX_MOD, unit="m")
         object.__setattr__(self, "pitch_errors", errs)
+        table = tuple((float(z), float(g)) for z, g in self.lead_gap)
+        for j, (z, g) in enumerate(table):
+            check_range(f"contact.lead_gap[{j}]", g, -_MAX_MOD, _MAX_MOD, unit="m")
+            if j and z <= table[j - 1][0]:
+                raise InputError(f"contact.lead_gap[{j}]: face positions must ascend "
+                                 f"({z:.6g} m after {table[j - 1][0]:.6g} m)")
+        object.__setattr__(self, "lead_gap", table)
 
     def check_fits(self, pair: GearPair, mesh: str = "") -> None:
         """Refuse a relief length longer than the path of contact of ``pair`` (named
@@ -108,12 +120,14 @@ class FlankModifications:
     def varies_across_face(self) -> bool:
         """Lead crowning or a helix slope deviation: the gap changes along the face, so even a
         spur pair's line load does (the solve needs slices across the face)."""
-        return bool(self.crowning or self.slope_deviation)
+        return bool(self.crowning or self.slope_deviation
+                    or (self.lead_gap and len({g for _, g in self.lead_gap}) > 1))
 
     @property
     def is_zero(self) -> bool:
         return not (self.tip_relief_pinion or self.tip_relief_gear or self.crowning
-                    or self.slope_deviation or any(self.pitch_errors))
+                    or self.slope_deviation or any(self.pitch_errors)
+                    or any(g for _, g in self.lead_gap))
 
     def describe(self) -> str:
         """One line for titles and reports, in the gearbox file's units (um, mm), e.g.
@@ -130,6 +144,10 @@ class FlankModifications:
         if any(self.pitch_errors):
             parts.append("pitch errors " + "/".join(f"{e * 1e6:.3g}" for e in self.pitch_errors)
                          + " um")
+        if any(g for _, g in self.lead_gap):
+            gaps = [g for _, g in self.lead_gap]
+            parts.append(f"shaft misalignment {min(gaps) * 1e6:.3g} to {max(gaps) * 1e6:.3g} um "
+                         "across the face")
         return ", ".join(parts) or "none"
 
 
@@ -184,6 +202,9 @@ def initial_separations(pair: GearPair, points: ContactPoints, mods: FlankModifi
                         mods.tip_relief_gear, mods.relief_length_gear, power)
     b = pair.face_width
     eps = eps + mods.crowning * (2.0 * z / b - 1.0) ** 2 + mods.slope_deviation * (z / b - 0.5)
+    if mods.lead_gap:
+        zs, gs = np.array(mods.lead_gap).T
+        eps = eps + np.interp(z, zs, gs)
     if mods.pitch_errors:
         table = np.asarray(mods.pitch_errors)
         k = points.pair
