@@ -130,6 +130,7 @@ class BeamShaft:
             check_range(f"{lay.name} point z_mm", p * 1e3, 0.0, length_mm, unit="mm",
                         note="on the shaft")
         z = nodes.beam_nodes(lay, self.element_length, self.extra_nodes)
+        z.flags.writeable = False
         set_ = object.__setattr__  # derived, immutable after construction
         set_(self, "z", z)
         k = _assemble(timoshenko.element_stiffness(self._sections()), z.size)
@@ -143,10 +144,10 @@ class BeamShaft:
 
     def _sections(self) -> timoshenko.Sections:
         lay, z = self.layout, self.z
-        mid = 0.5 * (z[:-1] + z[1:])
-        seg = [lay.segment_at(m) for m in mid]
-        outer = np.array([s.outer_diameter for s in seg])
-        inner = np.array([s.inner_diameter for s in seg])
+        ends = np.array([s.end for s in lay.segments])
+        seg = np.minimum(np.searchsorted(ends, 0.5 * (z[:-1] + z[1:])), ends.size - 1)
+        outer = np.array([s.outer_diameter for s in lay.segments])[seg]
+        inner = np.array([s.inner_diameter for s in lay.segments])[seg]
         mat = lay.material
         return timoshenko.Sections(
             length=np.diff(z),
