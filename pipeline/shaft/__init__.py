@@ -5,4 +5,7 @@
 - :mod:`.model` - what every shaft model gives (:class:`~.model.ShaftModel`): the solution
   under loads at the seat (deflection line, bearing reactions), the flexibility between
   points of the seat, the stiffness condensed to the seat's centre.
+- :mod:`.beam` - the ``"beam"`` model (:class:`~.beam.BeamShaft`): Timoshenko beam elements
+  (:mod:`.timoshenko`) on nodes at every key point (:mod:`.nodes`), the rigid seat and the
+  rigid supports eliminated exactly (:mod:`.constraints`).
 """

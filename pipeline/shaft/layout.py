@@ -17,9 +17,9 @@ transverse; the shaft's frame is the gear's (the pair's frame places it). Everyt
 
 Refused in one line naming the key as written (``pinion.shaft.bearings[1].position_mm``):
 gaps or overlaps between segments, a bore not inside its segment, a seat or a bearing or
-the torque point outside the shaft, a bearing inside the seat, no radial support that holds
-the shaft (two radial bearings, or one with a tilting stiffness), not exactly one axial
-location.
+the torque point outside the shaft, a bearing or the torque point inside the seat, two
+bearings at one position, no radial support that holds the shaft (two radial bearings, or
+one with a tilting stiffness), not exactly one axial location.
 """
 
 from __future__ import annotations
@@ -61,8 +61,8 @@ class ShaftSegment:
 @dataclass(frozen=True)
 class Bearing:
     """A support at ``position`` (m): radial stiffness (N/m; ``math.inf``: rigid), tilting
-    stiffness (N m/rad; 0 lets the shaft tilt), ``axial``: it locates the shaft axially
-    (rigidly)."""
+    stiffness (N m/rad; 0 lets the shaft tilt, ``math.inf`` clamps it), ``axial``: it
+    locates the shaft axially (rigidly)."""
 
     position: float
     radial_stiffness: float = math.inf
@@ -70,10 +70,13 @@ class Bearing:
     axial: bool = False
 
     def __post_init__(self) -> None:
-        if self.radial_stiffness != math.inf:  # inf: a rigid support
+        # inf is the rigid support (the default), which check_range refuses as non-finite;
+        # a finite stiffness has a finite range for the file's messages
+        if self.radial_stiffness != math.inf:
             check_range("radial_stiffness", self.radial_stiffness, 0.0, 1e15, lo_open=True,
                         unit="N/m")
-        check_range("tilting_stiffness", self.tilting_stiffness, 0.0, 1e15, unit="N m/rad")
+        if self.tilting_stiffness != math.inf:
+            check_range("tilting_stiffness", self.tilting_stiffness, 0.0, 1e15, unit="N m/rad")
 
 
 @dataclass(frozen=True)
@@ -134,16 +137,29 @@ class ShaftLayout:
         for i, b in enumerate(self.bearings):
             key = f"{n}.bearings[{i}].position_mm"
             check_range(key, b.position * 1e3, 0.0, end * 1e3, unit="mm", note="on the shaft")
-            if abs(b.position - self.gear_position) < half:
+            if abs(b.position - self.gear_position) < half - 1e-9:  # a seat's end is outside
                 raise InputError(f"{key} = {b.position * 1e3:.6g} mm lies inside the gear's "
                                  f"seat ({(self.gear_position - half) * 1e3:.6g} to "
                                  f"{(self.gear_position + half) * 1e3:.6g} mm)")
-        held = sum(1 for b in self.bearings) >= 2 or any(
+        tol = 1e-9
+        for i, b in enumerate(self.bearings):
+            for j, c in enumerate(self.bearings[:i]):
+                if abs(b.position - c.position) <= tol:
+                    raise InputError(f"{n}.bearings[{i}].position_mm = "
+                                     f"{b.position * 1e3:.6g} mm is that of bearings[{j}]; "
+                                     "give one bearing there (with the stiffness of both)")
+        held = len(self.bearings) >= 2 or any(
             b.tilting_stiffness > 0.0 for b in self.bearings)
         if not held:
             raise InputError(f"{n}.bearings: one bearing without a tilting stiffness lets the "
                              "shaft tilt freely; give a second bearing or its "
                              "tilting_stiffness_Nm_per_rad")
+        if abs(self.torque_position - self.gear_position) < half - 1e-9:
+            raise InputError(f"{n}.torque_position_mm = {self.torque_position * 1e3:.6g} mm "
+                             f"lies inside the gear's seat "
+                             f"({(self.gear_position - half) * 1e3:.6g} to "
+                             f"{(self.gear_position + half) * 1e3:.6g} mm); the torque "
+                             "flows between the seat and the torque point")
         axial = [i for i, b in enumerate(self.bearings) if b.axial]
         if len(axial) != 1:
             raise InputError(f"{n}.bearings: exactly one bearing locates the shaft axially "

@@ -36,7 +36,8 @@ class ShaftSolution:
     rotation : (n, 3) theta_x, theta_y, theta_z there, rad.
     reactions : (n_bearings, 6) loads of the supports on the shaft (F, M; N, N m), in the
         layout's bearing order.
-    torque_reaction : the moment about z the torque point takes, N m.
+    torque_reaction : the moment about z the torque point puts on the shaft, N m (a load
+        on the shaft like the reactions: it and the loads' moments about z sum to zero).
     """
 
     z: np.ndarray
