@@ -71,6 +71,7 @@ from pipeline.validation import InputError
 
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
+    from pipeline.run.shafts import ShaftStage
 
 
 @dataclass(frozen=True)
@@ -135,6 +136,8 @@ class MeshStages:
     herringbone : the sun-planet mesh of a herringbone sun with a ``[groove]`` table: both
         halves through the groove (:class:`pipeline.run.herringbone.HerringboneStage`), or
         ``None``.
+    shafts : a pair on shafts: the contact solved with their deflection
+        (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle), or None.
     """
 
     case: MeshCase
@@ -143,6 +146,7 @@ class MeshStages:
     contact: LoadedMeshCycle | None
     compliance: str
     herringbone: HerringboneStage | None = None
+    shafts: ShaftStage | None = None
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
@@ -229,6 +233,12 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
                             f"{cycle.mesh_stiffness.mean():.4g} N/m")
     stages = MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
+    if contact and box.shafts:
+        from pipeline.run.shafts import shaft_stage
+
+        sh = shaft_stage(box, stages, options, log)
+        if sh is not None:  # the contact downstream is the one with the shafts' deflection
+            stages = dataclasses.replace(stages, contact=sh.cycle, shafts=sh)
     if contact and case.name == "sun_planet":
         from pipeline.run.herringbone import herringbone_stage
 

@@ -1,0 +1,118 @@
+"""The shafts' deflection in a run: the loaded contact solved again with the misalignment
+the shafts' deflection opens, until the line load stops changing.
+
+For a pair whose gears sit on shafts (``[pinion.shaft]``, ``[gear.shaft]``;
+:mod:`pipeline.config.shafts`), a fixed point over the line load ``w(z)`` across the face
+(``[contact] slices`` face points):
+
+1. start from the uniform line load ``P / b``;
+2. load both shafts with it and take the gap they open across the face
+   (:func:`pipeline.shaft.misalignment.shaft_gap`; its mean, a rigid approach of the gears
+   that moves the transmission error only, taken out);
+3. solve the loaded contact with that gap added to the flank modifications
+   (``FlankModifications.lead_gap``) and take its cycle-mean line load;
+4. repeat from 2 until the line load changes by less than :data:`TOLERANCE` (largest change
+   over the largest line load); after :data:`MAX_ITERATIONS` a one-line error names the
+   iteration and the change.
+
+The contact on rigid supports (the run's own cycle) is kept beside the coupled one.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from pipeline.config import Gearbox
+from pipeline.contact.analysis import analyse_contact, line_of_action_load
+from pipeline.contact.compliance import compliance_source
+from pipeline.contact.distribution import load_distribution
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.progress import Steps
+from pipeline.shaft.beam import BeamShaft
+from pipeline.shaft.misalignment import FlankRetreat, shaft_gap
+from pipeline.validation import InputError
+
+TOLERANCE = 1e-3
+"""The fixed point's tolerance on the line load: largest change over its largest value."""
+MAX_ITERATIONS = 40
+
+
+@dataclass(frozen=True)
+class ShaftStage:
+    """The contact with the shafts' deflection.
+
+    Attributes
+    ----------
+    cycle : the loaded contact with the shafts' misalignment.
+    rigid : the loaded contact on rigid supports.
+    z : (n,) face positions, m.
+    gap : (n,) the misalignment the shafts open across the face (mean taken out), m.
+    approach : the mean gap (the rigid approach of the gears), m.
+    retreats : each gear's flank retreat (pinion, gear; None without a shaft).
+    iterations : fixed-point iterations taken; change : the last relative change.
+    """
+
+    cycle: LoadedMeshCycle
+    rigid: LoadedMeshCycle
+    z: np.ndarray
+    gap: np.ndarray
+    approach: float
+    retreats: tuple[FlankRetreat | None, FlankRetreat | None]
+    iterations: int
+    change: float
+
+
+def _model(spec: tuple[str, Any] | None, points: np.ndarray) -> BeamShaft | None:
+    if spec is None:
+        return None
+    model, layout = spec
+    if model != "beam":
+        raise InputError(f'{layout.name}.model = "{model}": only the beam model is coupled '
+                         "to the contact yet")
+    start = layout.gear_position - 0.5 * layout.seat_width
+    return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
+
+
+def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftStage | None:
+    """The :class:`ShaftStage` of a pair with shafts (module docstring), one timed step; None
+    without shafts."""
+    if box.kind != "pair" or not box.shafts:
+        return None
+    pair, op = stages.stiffness.actual, stages.case.operation
+    n = box.contact.slices
+    b = pair.face_width
+    z = (np.arange(n) + 0.5) * b / n
+    models = [_model(box.shafts.get(role), z) for role in ("pinion", "gear")]
+    radii = [pair.pinion.base_radius, pair.gear.base_radius]
+    w = np.full(n, line_of_action_load(pair, op) / b)
+    source, change = None, np.inf
+    with log.step("shaft deflection and loaded contact", announce=True) as note:
+        for iteration in range(1, MAX_ITERATIONS + 1):
+            gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle)
+            approach = float(gap.mean())
+            mods = dataclasses.replace(box.contact.modifications,
+                                       lead_gap=tuple(zip(z.tolist(),
+                                                          (gap - approach).tolist())))
+            opts = dataclasses.replace(box.contact, modifications=mods)
+            if source is None:
+                source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
+                                           cache=options.cache, model=stages.stiffness.model)
+            cycle = analyse_contact(source, op, opts)
+            dist = load_distribution(cycle, pair, op)
+            w_new = np.interp(z, dist.z, dist.cycle_mean)
+            change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
+            w = w_new
+            if change < TOLERANCE:
+                break
+        else:
+            raise InputError(f"shafts: the line load still changes by {change:.3g} (relative) "
+                             f"after iteration {iteration}; the shafts and the mesh do not "
+                             "settle")
+        note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um across the "
+                        f"face, K_Hbeta {dist.k_hbeta:.3f}")
+    return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
+                      (retreats[0], retreats[1]), iteration, change)
