@@ -89,14 +89,20 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     models = [_model(box.shafts.get(role), z) for role in ("pinion", "gear")]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
     w = np.full(n, line_of_action_load(pair, op) / b)
-    source, change = None, np.inf
+    source, change, iteration = None, np.inf, 0
     with log.step("shaft deflection and loaded contact", announce=True) as note:
-        for iteration in range(1, MAX_ITERATIONS + 1):
+        while change >= TOLERANCE:
+            iteration += 1
+            if iteration > MAX_ITERATIONS:
+                raise InputError(f"shafts: the line load still changes by {change:.3g} "
+                                 f"(relative) after iteration {MAX_ITERATIONS}; the shafts "
+                                 "and the mesh do not settle")
             gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle)
             approach = float(gap.mean())
             mods = dataclasses.replace(box.contact.modifications,
                                        lead_gap=tuple(zip(z.tolist(),
-                                                          (gap - approach).tolist())))
+                                                          (gap - approach).tolist(),
+                                                          strict=True)))
             opts = dataclasses.replace(box.contact, modifications=mods)
             if source is None:
                 source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
@@ -106,12 +112,6 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
             w_new = np.interp(z, dist.z, dist.cycle_mean)
             change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
             w = w_new
-            if change < TOLERANCE:
-                break
-        else:
-            raise InputError(f"shafts: the line load still changes by {change:.3g} (relative) "
-                             f"after iteration {iteration}; the shafts and the mesh do not "
-                             "settle")
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um across the "
                         f"face, K_Hbeta {dist.k_hbeta:.3f}")
     return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
