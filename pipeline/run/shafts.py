@@ -112,7 +112,7 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
             w_new = np.interp(z, dist.z, dist.cycle_mean)
             change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
             w = w_new
-        note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um across the "
-                        f"face, K_Hbeta {dist.k_hbeta:.3f}")
+        note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
+                        f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
     return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
                       (retreats[0], retreats[1]), iteration, change)
