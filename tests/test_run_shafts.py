@@ -78,3 +78,27 @@ def test_not_built_yet_refused(tmp_path):
         run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
     with pytest.raises(InputError, match='model = "fe3d": only the beam model'):
         _run(_shaft(60.0, (20.0, 100.0), 'model = "fe3d"\n'), tmp_path)
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_report_shows_the_shafts(tmp_path):
+    """gearpipe run of a pair on shafts: the report's shafts section gives the misalignment
+    and both K_Hbeta (with the shafts equal to the load distribution section's), its figure
+    is written, and summary.json carries the shafts' figures."""
+    import json
+
+    from pipeline.cli import main as cli
+
+    path = tmp_path / "box.toml"
+    path.write_text(DEMO_PAIR.replace("[gear]", _shaft(60.0, (20.0, 40.0)) + "[gear]") + FAST)
+    out = tmp_path / "run"
+    assert cli(["run", str(path), "--out", str(out), "--cache-dir", str(tmp_path / "c")]) == 0
+    report = json.loads((out / "report.json").read_text())["sections"]
+    rows = report["shafts"]["quantities"]
+    assert rows["K_Hbeta_shafts"]["value"] == report["load_distribution"]["quantities"][
+        "K_Hbeta"]["value"]
+    assert rows["K_Hbeta_shafts"]["value"] > rows["K_Hbeta_rigid"]["value"]
+    assert rows["misalignment"]["value"] > 1.0
+    assert (out / "report_shafts.png").is_file()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["meshes"]["mesh"]["shafts"]["iterations"] >= 2

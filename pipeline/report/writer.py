@@ -30,6 +30,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from pipeline.contact.distribution import LoadDistribution
 from pipeline.io import atomic_write_text, write_csv, write_json
 from pipeline.output_folder import mesh_label, mesh_prefix
@@ -160,6 +162,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         peak = st.contact.tip_contact_peak()
         sections.append(root_stress_section(root_stress, [r_fig],
                                             0.0 if peak is None else peak["share"]))
+    if st.shafts is not None:
+        sections.append(_shaft_section(box, st, dist, actual, op, fig, title))
     if halves is not None:
         sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, out,
                                              prefix, fig))
@@ -179,6 +183,30 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                         command=command, run_seconds=run_s)
     sections.append(content.provenance_section(record))
     return MeshReport(title, name, tuple(sections))
+
+
+def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any, fig,
+                   title: str):
+    """The shafts section of a pair on shafts with its figure."""
+    from pipeline.contact.distribution import load_distribution
+    from pipeline.report.shaft_section import shaft_section
+    from pipeline.viz.shafts import plot_shaft_deflection
+
+    stage = st.shafts
+    rigid = load_distribution(stage.rigid, pair, op)
+    shafts = []
+    for role, r in zip(("pinion", "gear"), stage.retreats, strict=True):
+        if r is None or r.solution is None:
+            continue
+        lay = box.shafts[role][1]
+        shafts.append((role, r.solution.z, r.solution.displacement[:, 1], lay.seat,
+                       np.array([b.position for b in lay.bearings])))
+    rigid_w = np.interp(stage.z, rigid.z, rigid.cycle_mean) if rigid.z.size > 1 \
+        else np.full(stage.z.size, float(rigid.cycle_mean.mean()))
+    f = fig("report_shafts.png", "The shafts' deflection along the line of action and the line "
+            "load across the face with and without it", plot_shaft_deflection, shafts,
+            stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title)
+    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
 
 
 def _rating_sections(stage: Any, name: str, fig, title: str, internal: bool) -> list:

@@ -163,6 +163,8 @@ class MeshStages:
             out["loaded_contact"] = self.contact.summary()
         if self.herringbone is not None:
             out["herringbone_contact"] = self.herringbone.summary()
+        if self.shafts is not None:
+            out["shafts"] = self.shafts.summary()
         return out
 
 

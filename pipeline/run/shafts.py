@@ -65,6 +65,27 @@ class ShaftStage:
     iterations: int
     change: float
 
+    def summary(self) -> dict[str, Any]:
+        """The misalignment, the K_Hbeta with and without the shafts, each shaft's seat
+        deflection and bearing reactions (SI; keys carry units)."""
+        out: dict[str, Any] = {
+            "iterations": self.iterations, "last_change": self.change,
+            "misalignment_across_face_m": float(np.ptp(self.gap)),
+            "rigid_approach_m": self.approach,
+        }
+        for role, r in zip(("pinion", "gear"), self.retreats, strict=True):
+            if r is None or r.solution is None:
+                continue
+            sol = r.solution
+            out[role] = {
+                "seat_translation_m": [float(r.translation.min()), float(r.translation.max())],
+                "seat_twist_at_base_circle_m": [float(r.twist.min()), float(r.twist.max())],
+                "bearing_reactions_N": [[float(v) for v in row[:3]] for row in sol.reactions],
+                "bearing_moments_Nm": [[float(v) for v in row[3:]] for row in sol.reactions],
+                "torque_reaction_Nm": sol.torque_reaction,
+            }
+        return out
+
 
 def _model(spec: tuple[str, Any] | None, points: np.ndarray) -> BeamShaft | None:
     if spec is None:

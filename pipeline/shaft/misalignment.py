@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.shaft.model import PointLoad, ShaftModel
+from pipeline.shaft.model import PointLoad, ShaftModel, ShaftSolution
 from pipeline.validation import InputError
 
 
@@ -44,11 +44,14 @@ class FlankRetreat:
     z : (n,) face positions from the face's first end, m.
     translation : (n,) ``u_y`` of the shaft there, m.
     twist : (n,) ``r_b theta_z`` there, m.
+    solution : the shaft's whole solution (deflection line, bearing reactions) in the mesh
+        frame, or None.
     """
 
     z: np.ndarray
     translation: np.ndarray
     twist: np.ndarray
+    solution: ShaftSolution | None = None
 
     @property
     def total(self) -> np.ndarray:
@@ -82,7 +85,7 @@ def flank_retreat(model: ShaftModel, z: np.ndarray, line_load: np.ndarray,
     at = np.array([ld.z for ld in loads])
     uy = np.interp(at, sol.z, sol.displacement[:, 1])
     tz = np.interp(at, sol.z, sol.rotation[:, 2])
-    return FlankRetreat(np.asarray(z, dtype=float), uy, base_radius * tz)
+    return FlankRetreat(np.asarray(z, dtype=float), uy, base_radius * tz, sol)
 
 
 def shaft_gap(models: Sequence[ShaftModel | None], base_radii: Sequence[float],

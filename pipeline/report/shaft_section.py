@@ -1,0 +1,45 @@
+"""The shafts section of a mesh report: their deflection, the misalignment it opens across
+the face and the line load with and without it."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from pipeline.report.content import quantity
+from pipeline.report.model import Figure, Section
+
+
+def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
+                  figures: Sequence[Figure]) -> Section:
+    """The :class:`pipeline.run.shafts.ShaftStage` of a pair, K_Hbeta on rigid supports and
+    with the shafts (-)."""
+    rows = [
+        quantity("misalignment", "misalignment from the shafts across the face", "um",
+                 float(np.ptp(stage.gap)) * 1e6),
+        quantity("approach", "rigid approach of the gears (adds to the TE only)", "um",
+                 stage.approach * 1e6),
+        quantity("K_Hbeta_rigid", "K_Hbeta on rigid supports", "-", k_rigid),
+        quantity("K_Hbeta_shafts", "K_Hbeta with the shafts", "-", k_coupled),
+        quantity("iterations", "fixed-point iterations (line load to 1e-3)", "-",
+                 stage.iterations),
+    ]
+    for role, r in zip(("pinion", "gear"), stage.retreats, strict=True):
+        if r is None or r.solution is None:
+            continue
+        rows.append(quantity(f"{role}_seat_translation", f"{role}: seat deflection along the "
+                             "line of action (mean)", "um", float(r.translation.mean()) * 1e6))
+        rows.append(quantity(f"{role}_seat_twist", f"{role}: twist at the base circle "
+                             "(mean)", "um", float(r.twist.mean()) * 1e6))
+        for i, row in enumerate(r.solution.reactions):
+            rows.append(quantity(f"{role}_bearing_{i}", f"{role}: bearing {i} radial reaction",
+                                 "N", float(np.hypot(row[0], row[1]))))
+    notes = ("Each shaft is a Timoshenko beam in its mesh frame (y along the line of action, "
+             "away from the mate): the line load loads it as forces and moments F r_b across "
+             "the seat, and the flank retreats by u_y + r_b theta_z; the gap the two shafts "
+             "open (its mean taken out) is added to the flank modifications and the contact "
+             "solved again until the line load changes by less than 1e-3.",)
+    return Section("shafts", "Shafts and bearings", tuple(rows), figures=tuple(figures),
+                   notes=notes)
