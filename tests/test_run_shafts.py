@@ -102,3 +102,34 @@ def test_report_shows_the_shafts(tmp_path):
     assert (out / "report_shafts.png").is_file()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["meshes"]["mesh"]["shafts"]["iterations"] >= 2
+
+
+def test_dynamics_take_the_shafts_support(tmp_path):
+    """With a shaft, the pair's dynamic model supports the pinion by its shaft at the seat:
+    an integral seat midway between two rigid bearings of a uniform shaft gives k = 1 /
+    (L^3 / (48 E I) + L / (4 kappa G A)) (Timoshenko, Cowper's kappa of a solid section),
+    the gear keeps [dynamics] bearing_stiffness_N_per_m; with both gears on shafts that key
+    is refused (it would change nothing)."""
+    import math
+
+    from pipeline.run.dynamics import dynamic_model
+
+    shaft = ("[pinion.shaft]\ngear_position_mm = 60.0\ntorque_position_mm = 0.0\n"
+             "hub = \"integral\"\n[[pinion.shaft.segments]]\nstart_mm = 0.0\nend_mm = 120.0\n"
+             "outer_diameter_mm = 30.0\n[[pinion.shaft.bearings]]\nposition_mm = 20.0\n"
+             "axial = true\n[[pinion.shaft.bearings]]\nposition_mm = 100.0\n")
+    dyn = "[dynamics]\nbearing_stiffness_N_per_m = 2.0e8\n"
+    text = DEMO_PAIR.replace("[gear]", shaft + "[gear]") + FAST + dyn
+    box = gearbox_from_text(text)
+    r = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
+    model, _ = dynamic_model(box, r.meshes)
+    e, nu, d, span = 2.06e11, 0.3, 0.030, 0.080
+    i_, area = math.pi * d**4 / 64, math.pi * d**2 / 4
+    kappa, g = 6 * (1 + nu) / (7 + 6 * nu), e / (2 * (1 + nu))
+    want = 1 / (span**3 / (48 * e * i_) + span / (4 * kappa * g * area))
+    assert model.bearing_stiffness == pytest.approx(want, rel=1e-9)
+    assert model.gear_bearing_stiffness == 2.0e8
+    both = text.replace("[operation]", shaft.replace("pinion.shaft", "gear.shaft")
+                        + "[operation]")
+    with pytest.raises(InputError, match="bearing_stiffness_N_per_m changes nothing"):
+        gearbox_from_text(both)

@@ -634,6 +634,11 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     if kind == "pair":
         with restated("pair", T.PAIR, doc.get("pair", {}), also=gear_scopes):
             box.actual_pair  # noqa: B018 - the displaced pair must still mesh (cached)
+    if (box.kind == "pair" and set(box.shafts) == {"pinion", "gear"}
+            and "bearing_stiffness_N_per_m" in doc.get("dynamics", {})):
+        raise InputError("dynamics.bearing_stiffness_N_per_m changes nothing: both gears sit "
+                         "on shafts ([pinion.shaft], [gear.shaft]), whose bearings and "
+                         "bending give the dynamic model's supports")
     _check_groove_sources(box, doc)
     _check_relief_lengths(box, doc)
     _check_fe3d_meshes(box, doc)

@@ -181,8 +181,13 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
     excitation = None
     if opts.mesh_stiffness is None or opts.friction:
         excitation = mesh_excitation(stages, friction, opts.excitation)
+    supports = (None, None)
+    if box.shafts:
+        from pipeline.run.shafts import support_stiffness
+
+        supports = support_stiffness(box)
     model = spur_pair_model(stages.stiffness.actual, (box.bodies["pinion"], box.bodies["gear"]),
-                            box.operation, opts, excitation)
+                            box.operation, opts, excitation, supports)
     return model, opts.excitation
 
 

@@ -98,6 +98,23 @@ def _model(spec: tuple[str, Any] | None, points: np.ndarray) -> BeamShaft | None
     return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
 
 
+def support_stiffness(box: Gearbox) -> tuple[float | None, float | None]:
+    """Each gear's support stiffness at its seat's centre from its shaft (N/m; bearings and
+    shaft bending in series, the seat free to tilt: ``1 / C_yy`` of the seat flexibility,
+    the same in x and y for round shafts on round bearings), None without a shaft."""
+    out = []
+    for role in ("pinion", "gear"):
+        spec = box.shafts.get(role)
+        if spec is None:
+            out.append(None)
+            continue
+        lay = spec[1]
+        model = _model(spec, np.array([]))
+        c = model.flexibility(np.array([lay.gear_position]))
+        out.append(float(1.0 / c[1, 1]))
+    return out[0], out[1]
+
+
 def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftStage | None:
     """The :class:`ShaftStage` of a pair with shafts (module docstring), one timed step; None
     without shafts."""

@@ -42,6 +42,9 @@ class SpurPairModel:
     mass_pinion, mass_gear : kg.
     inertia_pinion, inertia_gear : kg m^2.
     bearing_stiffness : N/m in x and y for both gears.
+    gear_bearing_stiffness : N/m in x and y of the gear alone (its shaft's support at the
+        seat), or None for ``bearing_stiffness``; ``bearing_stiffness`` is then the
+        pinion's.
     bearing_damping : N s/m in x and y.
     damping_ratio : mesh damping ratio zeta.
     torque : input torque on the pinion, N m.
@@ -69,6 +72,7 @@ class SpurPairModel:
     inertia_pinion: float = 7.4e-3
     inertia_gear: float = 7.4e-3
     bearing_stiffness: float = 1.0e8
+    gear_bearing_stiffness: float | None = None
     bearing_damping: float = 100.0
     damping_ratio: float = 0.07
     torque: float = 340.0
@@ -89,6 +93,9 @@ class SpurPairModel:
         check_range("torque", self.torque, 0.0, MAX_TORQUE, lo_open=True, unit="N m")
         check_range("speed", self.speed, 0.0, MAX_SPEED, lo_open=True, unit="rad/s")
         check_range("bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
+        if self.gear_bearing_stiffness is not None:
+            check_range("gear_bearing_stiffness", self.gear_bearing_stiffness, 0.0, 1e14,
+                        unit="N/m")
         check_range("bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
 
@@ -125,11 +132,13 @@ class SpurPairModel:
             ),
         ]
         if not self.torsional_only:
-            for b in ("pinion", "gear"):
+            gear_k = (self.bearing_stiffness if self.gear_bearing_stiffness is None
+                      else self.gear_bearing_stiffness)
+            for b, k in (("pinion", self.bearing_stiffness), ("gear", gear_k)):
                 couplings.append(
                     Bearing(
                         b,
-                        {"x": self.bearing_stiffness, "y": self.bearing_stiffness},
+                        {"x": k, "y": k},
                         {"x": self.bearing_damping, "y": self.bearing_damping},
                     )
                 )
@@ -146,6 +155,7 @@ def spur_pair_model(
     operation: OperatingPoint,
     options: PairDynamicsOptions,
     excitation: MeshExcitation | None = None,
+    supports: tuple[float | None, float | None] = (None, None),
 ) -> SpurPairModel:
     """The lateral-torsional (or torsional) model of a pair, everything derived from geometry.
 
@@ -162,6 +172,8 @@ def spur_pair_model(
         :func:`pipeline.dynamics.contact_excitation.excitation_from_contact`); needed unless
         ``options.mesh_stiffness`` is given. Its e(tau) belongs to its k(tau) (the static
         state ``k (x_s - e) = P``), so an explicit ``options.mesh_stiffness`` drops it.
+    supports : the pinion's and the gear's support stiffness at the seat from their shafts
+        (N/m, :mod:`pipeline.shaft`), or None for ``options.bearing_stiffness``.
     """
     if operation.driver != "pinion":
         raise InputError("operation.driver = 'gear': the pair dynamic model drives the pinion; "
@@ -184,7 +196,9 @@ def spur_pair_model(
         mass_gear=gb.mass_,
         inertia_pinion=pb.inertia_,
         inertia_gear=gb.inertia_,
-        bearing_stiffness=options.bearing_stiffness,
+        bearing_stiffness=options.bearing_stiffness if supports[0] is None else supports[0],
+        gear_bearing_stiffness=supports[1] if supports[1] is not None else (
+            None if supports[0] is None else options.bearing_stiffness),
         bearing_damping=options.bearing_damping,
         damping_ratio=options.damping_ratio,
         torque=operation.torque,
