@@ -70,10 +70,13 @@ class Bearing:
     axial: bool = False
 
     def __post_init__(self) -> None:
-        check_range("radial_stiffness", self.radial_stiffness, 0.0, math.inf, lo_open=True,
-                    unit="N/m")
-        check_range("tilting_stiffness", self.tilting_stiffness, 0.0, math.inf,
-                    unit="N m/rad")
+        # math.inf is the rigid bearing (check_range refuses non-finite values)
+        if self.radial_stiffness != math.inf:
+            check_range("radial_stiffness", self.radial_stiffness, 0.0, math.inf, lo_open=True,
+                        unit="N/m")
+        if self.tilting_stiffness != math.inf:
+            check_range("tilting_stiffness", self.tilting_stiffness, 0.0, math.inf,
+                        unit="N m/rad")
 
 
 @dataclass(frozen=True)

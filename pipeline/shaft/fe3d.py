@@ -1,0 +1,374 @@
+"""The 3D shaft model (``model = "fe3d"``): Gmsh + scikit-fem, condensed to a superelement.
+
+The shaft with its shoulders is meshed in Gmsh with curved P2 tetrahedra
+(:mod:`pipeline.fem.shaft_mesh`), assembled with the project's elasticity
+(:func:`pipeline.fem.linear_static.build_model`) and condensed to a few reference nodes on
+the axis (:mod:`pipeline.fem.superelement`): the gear's seat, one node per bearing, the
+torque point. Bearings, the torque point and the loads act on these nodes only, so the
+supports are applied to a matrix of some 6 x 10 rows, and the FE model is solved once per
+layout and cached (:func:`pipeline.cache.entries.cached_file`, kind ``shaftfe3d``) like the
+FE tooth tables.
+
+Modelling choices
+-----------------
+* Bearings: a distributing (RBE3-like) coupling of a reference node at the bearing's
+  position to the shaft's outer surface over a band ``band_factor`` times the local
+  diameter wide (clipped at the shaft's ends, at the seat and half-way to a neighbouring
+  bearing): the node moves with the band's least-squares rigid motion and its reaction is
+  spread as a traction varying like a rigid motion - a bearing ring that does not stiffen
+  the shaft. The bearing's radial stiffness (u_x, u_y), its tilting stiffness (theta_x,
+  theta_y; 0 lets the shaft tilt, as a ball bearing does) and, for the locating bearing,
+  a rigid axial support act between that node and the ground; an infinite stiffness holds
+  the DOF. The bearings are not part of the cached superelement: a changed stiffness reuses
+  the cache.
+* The torque point: theta_z held at a reference node tied the same way to a band of the
+  surface (a coupling's hub); a torque point inside a bearing's band shares its node. One
+  on the seat is refused (the seat would not turn).
+* The seat, ``hub = "rigid"``: the gear's hub is a rigid ring; every node of the shaft's
+  outer surface over the seat follows the seat node at the gear's mid-face (RBE2) - the
+  stiff bound of a shrink fit. ``hub = "integral"`` (a pinion cut on its shaft): the seat
+  is shaft material of its segment's diameter, loaded through ``seat_stations`` reference
+  nodes, each tied (RBE3) to a thin ring of the seat's surface (the seat split into equal
+  rings); a load at ``z`` is shared between the two neighbouring stations with linear
+  (hat) weights moved rigidly to the stations, and the motion at ``z`` is read with the
+  same weights, so ``flexibility(z)`` is symmetric and exact for rigid motions.
+* Condensation: one solver set-up, ``6 (n - 1)`` balanced load cases (``n`` nodes), the
+  motions of the nodes relative to the anchor (the seat node, or the first seat station),
+  ``K = A^T C^-1 A`` (:class:`~pipeline.fem.superelement.Superelement`). The deflection
+  line is read on the cross-sections at every cut of the mesh (ends, steps, seat and band
+  edges, bearings, torque point, and at most ``section_spacing`` diameters apart) as their
+  least-squares rigid motion: the beam's section kinematics.
+* Mesh: edge ``min(d / 4, wall) / refinement`` in each segment (``d`` its outer diameter,
+  ``wall`` its wall thickness), ``shoulder_factor`` times that at every shoulder circle,
+  growing away from it (:mod:`pipeline.fem.shaft_mesh`).
+
+Compared with beam theory (``tests/test_shaft_fe3d.py``): the 3D model adds the local
+flexibility of each shoulder (the stress spreads from the small into the large section
+over a length of the order of the step, a Saint-Venant zone beam theory lacks: about 0.1 d
+of extra small shaft per sharp shoulder in torsion) and of the ends of a rigid hub, and the
+bands replace point supports.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from pipeline.cache.entries import cached_file
+from pipeline.cache.folder import DEFAULT_CACHE, Cache
+from pipeline.fem.groove.coupling import transfer_matrix
+from pipeline.fem.mesh_cache import MESH_CODE
+from pipeline.fem.shaft_mesh import ShaftMeshSpec, ShaftPiece
+from pipeline.fem.superelement import Superelement
+from pipeline.shaft.layout import ShaftLayout
+from pipeline.shaft.model import PointLoad, ShaftSolution
+from pipeline.validation import InputError, check_int_range, check_range
+
+FE3D_CODE = (*MESH_CODE, "pipeline.shaft.fe3d")
+"""The code a shaft superelement depends on (part of its cache key)."""
+ELEMENTS_PER_DIAMETER = 4.0
+"""Element edges across a segment's diameter at ``refinement = 1``."""
+_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Fe3dSettings:
+    """Mesh and coupling controls of the 3D shaft model (module docstring).
+
+    Attributes
+    ----------
+    refinement : divides the element edge (``d / 4`` at 1), > 0.
+    shoulder_factor : edge at a shoulder over the smaller segment's edge.
+    band_factor : width of a bearing's or the torque point's band over the local outer
+        diameter.
+    seat_stations : reference nodes on an integral seat (``hub = "integral"``).
+    section_spacing : largest distance between deflection-line sections, in local
+        diameters.
+    solver : :func:`pipeline.fem.solvers.solver_named` ("auto", "cholmod", "cholespy",
+        "splu", "pmg-cg").
+    """
+
+    refinement: float = 1.0
+    shoulder_factor: float = 0.35
+    band_factor: float = 0.25
+    seat_stations: int = 5
+    section_spacing: float = 0.5
+    solver: str = "auto"
+
+    def __post_init__(self) -> None:
+        check_range("fe3d.refinement", self.refinement, 0.25, 8.0)
+        check_range("fe3d.shoulder_factor", self.shoulder_factor, 0.05, 1.0)
+        check_range("fe3d.band_factor", self.band_factor, 0.02, 2.0)
+        check_int_range("fe3d.seat_stations", self.seat_stations, 2, 40)
+        check_range("fe3d.section_spacing", self.section_spacing, 0.05, 10.0)
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What is meshed and condensed: pieces, the seat's nodes and bands, the bearings'
+    and the torque's nodes (index into the node list) and bands (m)."""
+
+    mesh: ShaftMeshSpec
+    rigid: bool
+    nodes_z: tuple[float, ...]  # node 0 (anchor) first
+    bands: tuple[tuple[float, float], ...]  # per node
+    seat_nodes: tuple[int, ...]
+    bearing_nodes: tuple[int, ...]
+    torque_node: int
+
+
+def _band(z: float, half: float, length: float, seat: tuple[float, float],
+          others: Sequence[tuple[float, float]], what: str) -> tuple[float, float]:
+    """``[z - half, z + half]`` clipped to the shaft, outside the seat and the ``others``."""
+    lo, hi = max(0.0, z - half), min(length, z + half)
+    for a, b in (seat, *others):
+        if z <= a:
+            hi = min(hi, a)
+        elif z >= b:
+            lo = max(lo, b)
+    if hi - lo < 1e-6:
+        raise InputError(f"{what}: no room for its band on the shaft ({lo * 1e3:.6g} to "
+                         f"{hi * 1e3:.6g} mm)")
+    return lo, hi
+
+
+def _plan(layout: ShaftLayout, s: Fe3dSettings) -> _Plan:
+    n, L = layout.name, layout.length
+    s0, s1 = layout.seat
+    if s0 - _TOL <= layout.torque_position <= s1 + _TOL:
+        raise InputError(f"{n}.torque_position_mm = {layout.torque_position * 1e3:.6g} mm lies "
+                         f"on the gear's seat ({s0 * 1e3:.6g} to {s1 * 1e3:.6g} mm): the torque "
+                         "must enter the shaft off the seat")
+    rigid = layout.hub == "rigid"
+    if rigid:
+        nodes, bands, seat_nodes = [layout.gear_position], [(s0, s1)], (0,)
+    else:
+        edges = np.linspace(s0, s1, s.seat_stations + 1)
+        bands = list(zip(edges[:-1], edges[1:], strict=True))
+        nodes = [0.5 * (a + b) for a, b in bands]
+        seat_nodes = tuple(range(s.seat_stations))
+    zb = sorted(b.position for b in layout.bearings)
+    bearing_nodes = []
+    for i, b in enumerate(layout.bearings):
+        k = zb.index(b.position)
+        mids = [(0.5 * (zb[k - 1] + b.position),) * 2] if k > 0 else []
+        mids += [(0.5 * (zb[k + 1] + b.position),) * 2] if k + 1 < len(zb) else []
+        half = 0.5 * s.band_factor * layout.segment_at(b.position).outer_diameter
+        bands.append(_band(b.position, half, L, (s0, s1), mids, f"{n}.bearings[{i}]"))
+        nodes.append(b.position)
+        bearing_nodes.append(len(nodes) - 1)
+    zt = layout.torque_position
+    inside = [j for j in bearing_nodes if bands[j][0] - _TOL <= zt <= bands[j][1] + _TOL]
+    if inside:
+        torque_node = inside[0]
+    else:
+        half = 0.5 * s.band_factor * layout.segment_at(zt).outer_diameter
+        bands.append(_band(zt, half, L, (s0, s1), [bands[j] for j in bearing_nodes],
+                           f"{n}.torque_position_mm"))
+        nodes.append(zt)
+        torque_node = len(nodes) - 1
+    cuts = {0.0, L, *nodes, *(e for band in bands for e in band),
+            *(seg.end for seg in layout.segments)}
+    # a rigid hub's edges are corner singularities like the shoulders: refined alike
+    r_seat = 0.5 * layout.segment_at(layout.gear_position).outer_diameter
+    edges = ((s0, r_seat), (s1, r_seat)) if rigid else ()
+    return _Plan(_pieces(layout, sorted(cuts), s, edges), rigid, tuple(nodes), tuple(bands),
+                 seat_nodes, tuple(bearing_nodes), torque_node)
+
+
+def _pieces(layout: ShaftLayout, cuts: list[float], s: Fe3dSettings,
+            edges: tuple[tuple[float, float], ...]) -> ShaftMeshSpec:
+    """Pieces between the cuts (merged when closer than 1 nm), each split further so that
+    sections are at most ``section_spacing`` diameters apart."""
+    z = [cuts[0]]
+    for c in cuts[1:]:
+        if c - z[-1] > _TOL:
+            z.append(c)
+    pieces = []
+    for a, b in zip(z[:-1], z[1:], strict=True):
+        seg = layout.segment_at(0.5 * (a + b))
+        ro, ri = 0.5 * seg.outer_diameter, 0.5 * seg.inner_diameter
+        size = min(2 * ro / ELEMENTS_PER_DIAMETER, ro - ri) / s.refinement
+        parts = max(1, math.ceil((b - a) / (s.section_spacing * 2 * ro) - 1e-9))
+        ends = np.linspace(a, b, parts + 1)
+        pieces += [ShaftPiece(float(p), float(q), ro, ri, size)
+                   for p, q in zip(ends[:-1], ends[1:], strict=True)]
+    return ShaftMeshSpec(tuple(pieces), shoulder_factor=s.shoulder_factor, edges=edges)
+
+
+def _build(plan: _Plan, layout: ShaftLayout, settings: Fe3dSettings) -> dict:
+    """Mesh, assemble and condense (the cache's build)."""
+    from pipeline.fem.linear_static import build_model
+    from pipeline.fem.shaft_mesh import mesh_shaft
+    from pipeline.fem.size3d import check_size_3d
+    from pipeline.fem.solvers import solver_named
+    from pipeline.fem.superelement import Patch, condense
+    from pipeline.fem.tetmesh import to_skfem
+
+    check_size_3d(f"the shaft {layout.name}", plan.mesh.estimated_size(),
+                  f"lower fe3d.refinement (now {settings.refinement:g})")
+    t0 = time.perf_counter()
+    sk = to_skfem(mesh_shaft(plan.mesh))
+    t_mesh = time.perf_counter() - t0
+    model = build_model(sk.mesh, layout.material, order=2, kind="3d")
+    piece_z = [(p.z0, p.z1) for p in plan.mesh.pieces]
+
+    def patch(z: float, band: tuple[float, float]) -> Patch:
+        ids = [i for i, (a, b) in enumerate(piece_z)
+               if a >= band[0] - _TOL and b <= band[1] + _TOL]
+        tri = np.hstack([sk.triangles[f"outer:{i}"] for i in ids])
+        return Patch(tri, np.array([0.0, 0.0, z]))
+
+    patches = [patch(z, b) for z, b in zip(plan.nodes_z, plan.bands, strict=True)]
+    cuts = plan.mesh.cuts
+    sections = [Patch(sk.triangles[f"section:{k}"], np.array([0.0, 0.0, c]))
+                for k, c in enumerate(cuts)]
+    se = condense(model, patches[0], patches[1:], sections, anchor_rigid=plan.rigid,
+                  solver=solver_named(settings.solver, dim=3))
+    timings = {"mesh": t_mesh, "assembly": model.assembly_seconds, **se.timings,
+               "total": time.perf_counter() - t0}
+    return {"positions": se.positions, "flexibility": se.flexibility,
+            "section_positions": se.section_positions,
+            "section_flexibility": se.section_flexibility, "asymmetry": se.asymmetry,
+            "n_dof": se.n_dof, "method": se.method,
+            "timing_names": np.array(list(timings)),
+            "timing_values": np.array(list(timings.values()))}
+
+
+def _superelement(v: dict) -> Superelement:
+    timings = {str(k): float(t) for k, t in zip(v["timing_names"], v["timing_values"],
+                                                strict=True)}
+    return Superelement(v["positions"], v["flexibility"], v["section_positions"],
+                        v["section_flexibility"], float(v["asymmetry"]), int(v["n_dof"]),
+                        str(v["method"]), timings)
+
+
+@dataclass(frozen=True, eq=False)
+class Fe3dShaft:
+    """The 3D FE shaft model of ``layout`` (module docstring); a
+    :class:`~pipeline.shaft.model.ShaftModel`.
+
+    Construction builds (or reads from ``cache``) the superelement.
+
+    Attributes
+    ----------
+    layout : the shaft.
+    settings : mesh and coupling controls.
+    cache : where superelements are kept (:class:`~pipeline.cache.folder.Cache`).
+    superelement : the condensed body (nodes: seat, bearings, torque point).
+    cached : True when the superelement was read from the cache.
+    seconds : wall time of the construction, s.
+    """
+
+    layout: ShaftLayout
+    settings: Fe3dSettings = field(default_factory=Fe3dSettings)
+    cache: Cache = DEFAULT_CACHE
+    superelement: Superelement = field(init=False)
+    cached: bool = field(init=False)
+    seconds: float = field(init=False)
+    _plan: _Plan = field(init=False, repr=False)
+    _held: np.ndarray = field(init=False, repr=False)
+    _free: np.ndarray = field(init=False, repr=False)
+    _compliance: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        t0 = time.perf_counter()
+        plan = _plan(self.layout, self.settings)
+        mat = self.layout.material
+        key = {"pieces": [asdict(p) for p in plan.mesh.pieces],
+               "shoulder_factor": plan.mesh.shoulder_factor, "grading": plan.mesh.grading,
+               "edges": plan.mesh.edges,
+               "rigid": plan.rigid, "nodes_z": plan.nodes_z, "bands": plan.bands,
+               "material": [mat.youngs_modulus, mat.poisson_ratio]}
+        v, _, hit = cached_file("shaftfe3d", key,
+                                lambda: _build(plan, self.layout, self.settings),
+                                lambda d: d, dict, code=FE3D_CODE, cache=self.cache)
+        se = _superelement(v)
+        K = se.stiffness()
+        held = np.zeros(K.shape[0], dtype=bool)
+        for b, j in zip(self.layout.bearings, plan.bearing_nodes, strict=True):
+            for dofs, k in (((0, 1), b.radial_stiffness), ((3, 4), b.tilting_stiffness)):
+                for d in dofs:
+                    if math.isinf(k):
+                        held[6 * j + d] = True
+                    else:
+                        K[6 * j + d, 6 * j + d] += k
+            held[6 * j + 2] |= b.axial
+        held[6 * plan.torque_node + 5] = True
+        free = np.flatnonzero(~held)
+        compliance = np.zeros_like(K)
+        compliance[np.ix_(free, free)] = np.linalg.inv(K[np.ix_(free, free)])
+        for name, value in (("superelement", se), ("cached", hit), ("_plan", plan),
+                            ("_held", held), ("_free", free),
+                            ("_compliance", 0.5 * (compliance + compliance.T)),
+                            ("seconds", time.perf_counter() - t0)):
+            object.__setattr__(self, name, value)
+
+    # -- the interface -------------------------------------------------------------------
+
+    def flexibility(self, z: np.ndarray) -> np.ndarray:
+        """(6m, 6m): generalised displacements at the seat points ``z`` (m,) per unit
+        generalised load at each of them, bearings and torque point as supports
+        (m/N, rad/(N m), ...; symmetric)."""
+        W = self._seat_weights(np.atleast_1d(np.asarray(z, dtype=float)))
+        C = W @ self._compliance @ W.T
+        return 0.5 * (C + C.T)
+
+    def seat_stiffness(self) -> np.ndarray:
+        """(6, 6) stiffness at the seat's centre (bearings and shaft in series; torsion to
+        the torque point), the inverse of ``flexibility([gear_position])``: N/m, N,
+        N m/rad."""
+        K = np.linalg.inv(self.flexibility(np.array([self.layout.gear_position])))
+        return 0.5 * (K + K.T)
+
+    def solve(self, loads: Sequence[PointLoad]) -> ShaftSolution:
+        """The deflection line (on the mesh's cross-sections) and the reactions under
+        ``loads`` on the seat."""
+        se, plan = self.superelement, self._plan
+        F = np.zeros(self._compliance.shape[0])
+        for ld in loads:
+            W = self._seat_weights(np.array([ld.z]))
+            F += W.T @ np.concatenate([ld.force, ld.moment])
+        U = self._compliance @ F
+        support = (se.stiffness() @ U - F).reshape(-1, 6)
+        torque = float(support[plan.torque_node, 5])
+        support[plan.torque_node, 5] = 0.0
+        reactions = np.array([support[j] for j in plan.bearing_nodes])
+        Un = U.reshape(-1, 6)
+        loads_rel = (se.stiffness() @ U)[6:]
+        rel0 = np.array([transfer_matrix(p - se.positions[0]) @ Un[0]
+                         for p in se.section_positions])
+        line = (se.section_flexibility @ loads_rel).reshape(-1, 6) + rel0
+        return ShaftSolution(se.section_positions[:, 2].copy(), line[:, :3], line[:, 3:],
+                             reactions, torque)
+
+    # -- helpers -------------------------------------------------------------------------
+
+    def _seat_weights(self, z: np.ndarray) -> np.ndarray:
+        """W (6m, 6n): the motion at seat points ``z`` from the nodes' motions (rigid
+        transfer from the seat node, or hat weights between seat stations)."""
+        s0, s1 = self.layout.seat
+        bad = (z < s0 - _TOL) | (z > s1 + _TOL)
+        if np.any(bad):
+            raise InputError(f"{self.layout.name}: a seat point at z = "
+                             f"{z[bad][0] * 1e3:.6g} mm lies off the gear's seat "
+                             f"({s0 * 1e3:.6g} to {s1 * 1e3:.6g} mm)")
+        nodes = np.array(self._plan.seat_nodes)
+        zs = np.array([self._plan.nodes_z[j] for j in nodes])
+        W = np.zeros((6 * z.size, self._compliance.shape[0]))
+        for i, zi in enumerate(z):
+            if nodes.size == 1:
+                weights = {0: 1.0}
+            else:
+                k = int(np.clip(np.searchsorted(zs, zi) - 1, 0, zs.size - 2))
+                t = float(np.clip((zi - zs[k]) / (zs[k + 1] - zs[k]), 0.0, 1.0))
+                weights = {k: 1.0 - t, k + 1: t}
+            for k, w in weights.items():
+                j = nodes[k]
+                W[6 * i:6 * i + 6, 6 * j:6 * j + 6] += w * transfer_matrix(
+                    np.array([0.0, 0.0, zi - zs[k]]))
+        return W
