@@ -12,11 +12,13 @@ together so that the mesh conforms across every cut. Named surfaces:
   end faces at ``k = 0`` and the last cut. Shoulder annuli and bores are free surfaces
   and are not named.
 
-Size field: ``size`` (m) inside each piece, and at every re-entrant shoulder (the circle where a smaller piece meets
-a larger one) ``shoulder_size``, growing linearly with the distance from that circle
-(``grading`` m per m) - the shoulder is where the 3D stress and the local flexibility differ
-from beam theory, and a sharp step is a corner singularity. Second-order nodes are placed
-on the true cylinders (curved P2 cells), as in :mod:`pipeline.fem.groove.mesh`.
+Size field: ``size`` (m) inside each piece; at every re-entrant shoulder (the circle where
+a smaller piece meets a larger one) and at further circles the caller names (the edges of a
+rigid hub bonded to the surface) ``shoulder_factor`` times the piece's size, growing
+linearly with the distance from that circle (``grading`` m per m): there the 3D stress and
+the local flexibility differ from beam theory, and a sharp corner is a singularity.
+Second-order nodes are placed on the true cylinders (curved P2 cells), as in
+:mod:`pipeline.fem.groove.mesh`.
 """
 
 from __future__ import annotations
@@ -184,7 +186,9 @@ def _set_sizes(gmsh, spec: ShaftMeshSpec) -> None:
         fields.append(box)
     for z, r, hs in spec.shoulders():
         ev = fld.add("MathEval")
-        fld.setString(ev, "F", f"{hs!r} + {spec.grading!r} * Sqrt((Sqrt(x*x + y*y) - {r!r})"
-                               f"*(Sqrt(x*x + y*y) - {r!r}) + (z - {z!r})*(z - {z!r}))")
+        # fixed-point numbers: Gmsh's expression parser refuses exponents (1e-05)
+        hs_, g_, r_, z_ = (f"{v:.15f}" for v in (hs, spec.grading, r, z))
+        rho = f"(Sqrt(x*x + y*y) - {r_})"
+        fld.setString(ev, "F", f"{hs_} + {g_} * Sqrt({rho}*{rho} + (z - {z_})*(z - {z_}))")
         fields.append(ev)
     size_from_fields(gmsh, fields)
