@@ -146,12 +146,13 @@ def _band(z: float, half: float, length: float, seat: tuple[float, float],
         elif z >= b:
             lo = max(lo, b)
     if hi - lo < 1e-6:
-        raise InputError(f"{what}: no room for its band on the shaft ({lo * 1e3:.6g} to "
-                         f"{hi * 1e3:.6g} mm)")
+        raise InputError(f"{what} = {z * 1e3:.6g} mm leaves no room for its band on the shaft "
+                         "(it meets the shaft's end, the seat or a neighbouring bearing)")
     return lo, hi
 
 
 def _plan(layout: ShaftLayout, s: Fe3dSettings) -> _Plan:
+    """The nodes, bands and pieces of ``layout`` (module docstring: modelling choices)."""
     n, L = layout.name, layout.length
     s0, s1 = layout.seat
     if s0 - _TOL <= layout.torque_position <= s1 + _TOL:
@@ -170,10 +171,13 @@ def _plan(layout: ShaftLayout, s: Fe3dSettings) -> _Plan:
     bearing_nodes = []
     for i, b in enumerate(layout.bearings):
         k = zb.index(b.position)
+        if zb.count(b.position) > 1:
+            raise InputError(f"{n}.bearings[{i}].position_mm = {b.position * 1e3:.6g} mm: "
+                             "another bearing sits there; give one bearing per position")
         mids = [(0.5 * (zb[k - 1] + b.position),) * 2] if k > 0 else []
         mids += [(0.5 * (zb[k + 1] + b.position),) * 2] if k + 1 < len(zb) else []
         half = 0.5 * s.band_factor * layout.segment_at(b.position).outer_diameter
-        bands.append(_band(b.position, half, L, (s0, s1), mids, f"{n}.bearings[{i}]"))
+        bands.append(_band(b.position, half, L, (s0, s1), mids, f"{n}.bearings[{i}].position_mm"))
         nodes.append(b.position)
         bearing_nodes.append(len(nodes) - 1)
     zt = layout.torque_position
