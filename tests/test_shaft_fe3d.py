@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -175,17 +176,18 @@ def test_hollow_shaft_saint_venant_zone():
     assert tx[2] - tx[0] == pytest.approx(moment_area / (E * I), rel=1e-3)
 
 
-def test_overhung_seat_on_one_clamping_bearing():
+def test_overhung_seat_on_one_clamping_bearing(tmp_path):
     """Overhung: one bearing rigid in translation and tilt at 20 mm (its band held as a
     whole), the torque held there too (the torque point inside its band shares its node),
     an integral seat at 200 mm. The seat deflects as a Timoshenko cantilever of 180 mm,
     F a^3 / (3 E I) + F a / (kappa G A), within 1 % (measured -0.39 %; -1.4 % and -0.08 %
     at refinements 0.5 and 1: the discretisation, converging on the beam) and twists by
-    T a / (G J) within 1 % (+0.26 %); the bearing takes the force and the moment F a."""
+    T a / (G J) within 1 % (+0.26 %); the bearing takes the force and the moment F a. A
+    tilting stiffness k instead of the rigid one adds a^2 / k exactly (springs in series)."""
     layout = ShaftLayout((ShaftSegment(0.0, 0.24, D),), 0.2, SEAT,
                          (Bearing(0.02, tilting_stiffness=math.inf, axial=True),), 0.02,
                          hub="integral")
-    m = Fe3dShaft(layout, Fe3dSettings(refinement=0.75), cache=Cache.off())
+    m = Fe3dShaft(layout, Fe3dSettings(refinement=0.75), cache=Cache(tmp_path))
     a, F, T = 0.18, 1000.0, 100.0
     c = m.flexibility([0.2])
     assert c[1, 1] == pytest.approx(a**3 / (3 * E * _I(D)) + a / (KAPPA * G * _A(D)), rel=0.01)
@@ -193,6 +195,12 @@ def test_overhung_seat_on_one_clamping_bearing():
     sol = m.solve([PointLoad(0.2, (0.0, F, 0.0), (0.0, 0.0, T))])
     np.testing.assert_allclose(sol.reactions[0], [0, -F, 0, F * a, 0, 0], atol=1e-6 * F)
     assert sol.torque_reaction == pytest.approx(-T, rel=1e-9)
+    # an elastic tilting stiffness k in series: + a^2 / k at the seat (same superelement)
+    k = 1e6
+    tilting = replace(layout, bearings=(replace(layout.bearings[0], tilting_stiffness=k),))
+    soft = Fe3dShaft(tilting, Fe3dSettings(refinement=0.75), cache=Cache(tmp_path))
+    assert soft.cached
+    assert soft.flexibility([0.2])[1, 1] - c[1, 1] == pytest.approx(a**2 / k, rel=1e-6)
 
 
 def test_coarse_reactions_and_torque_balance_the_load(coarse):
