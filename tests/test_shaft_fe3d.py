@@ -35,7 +35,8 @@ import pytest
 
 from pipeline.cache.folder import Cache
 from pipeline.geometry.gear import Material
-from pipeline.shaft.fe3d import Fe3dSettings, Fe3dShaft
+from pipeline.shaft.fe3d import Fe3dShaft
+from pipeline.shaft.fe3d_plan import Fe3dSettings
 from pipeline.shaft.layout import Bearing, ShaftLayout, ShaftSegment
 from pipeline.shaft.model import PointLoad
 from pipeline.validation import InputError
@@ -281,6 +282,8 @@ def test_bad_inputs_are_one_line_errors():
         Fe3dSettings(refinement=20)
     with pytest.raises(InputError, match=r"fe3d.seat_stations = 1 is outside"):
         Fe3dSettings(seat_stations=1)
+    with pytest.raises(InputError, match=r"fe3d.solver = 'lu' is not one of"):
+        Fe3dSettings(solver="lu")
 
 
 def test_load_off_the_seat_is_refused(coarse):

@@ -6,5 +6,6 @@
   under loads at the seat (deflection line, bearing reactions), the flexibility between
   points of the seat, the stiffness condensed to the seat's centre.
 - :mod:`.fe3d` - ``model = "fe3d"``: the shaft meshed in Gmsh, solved in scikit-fem and
-  condensed to the seat, the bearings and the torque point (:class:`~.fe3d.Fe3dShaft`).
+  condensed to the seat, the bearings and the torque point (:class:`~.fe3d.Fe3dShaft`);
+  :mod:`.fe3d_plan` turns a layout into its pieces, reference nodes and bands.
 """

@@ -77,149 +77,15 @@ from pipeline.cache.entries import cached_file
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.groove.coupling import transfer_matrix
 from pipeline.fem.mesh_cache import MESH_CODE
-from pipeline.fem.shaft_mesh import ShaftMeshSpec, ShaftPiece
 from pipeline.fem.superelement import Superelement
+from pipeline.shaft.fe3d_plan import TOL, Fe3dPlan, Fe3dSettings, plan_fe3d
 from pipeline.shaft.layout import ShaftLayout
 from pipeline.shaft.model import PointLoad, ShaftSolution
-from pipeline.validation import InputError, check_int_range, check_range
+from pipeline.validation import InputError
 
-FE3D_CODE = (*MESH_CODE, "pipeline.shaft.fe3d")
+FE3D_CODE = (*MESH_CODE, "pipeline.shaft.fe3d", "pipeline.shaft.fe3d_plan")
 """The code a shaft superelement depends on (part of its cache key)."""
-ELEMENTS_PER_DIAMETER = 4.0
-"""Element edges across a segment's diameter at ``refinement = 1``."""
-_TOL = 1e-9
-
-
-@dataclass(frozen=True)
-class Fe3dSettings:
-    """Mesh and coupling controls of the 3D shaft model (module docstring).
-
-    Attributes
-    ----------
-    refinement : divides the element edge (``d / 4`` at 1), > 0.
-    shoulder_factor : edge at a shoulder over the smaller segment's edge.
-    band_factor : width of a bearing's or the torque point's band over the local outer
-        diameter.
-    seat_stations : reference nodes on an integral seat (``hub = "integral"``).
-    section_spacing : largest distance between deflection-line sections, in local
-        diameters.
-    solver : :func:`pipeline.fem.solvers.solver_named` ("auto", "cholmod", "cholespy",
-        "splu", "pmg-cg").
-    """
-
-    refinement: float = 1.0
-    shoulder_factor: float = 0.35
-    band_factor: float = 0.25
-    seat_stations: int = 5
-    section_spacing: float = 0.5
-    solver: str = "auto"
-
-    def __post_init__(self) -> None:
-        check_range("fe3d.refinement", self.refinement, 0.25, 8.0)
-        check_range("fe3d.shoulder_factor", self.shoulder_factor, 0.05, 1.0)
-        check_range("fe3d.band_factor", self.band_factor, 0.02, 2.0)
-        check_int_range("fe3d.seat_stations", self.seat_stations, 2, 40)
-        check_range("fe3d.section_spacing", self.section_spacing, 0.05, 10.0)
-
-
-@dataclass(frozen=True)
-class _Plan:
-    """What is meshed and condensed: pieces, the seat's nodes and bands, the bearings'
-    and the torque's nodes (index into the node list) and bands (m)."""
-
-    mesh: ShaftMeshSpec
-    rigid: bool
-    nodes_z: tuple[float, ...]  # node 0 (anchor) first
-    bands: tuple[tuple[float, float], ...]  # per node
-    seat_nodes: tuple[int, ...]
-    bearing_nodes: tuple[int, ...]
-    torque_node: int
-
-
-def _band(z: float, half: float, length: float, seat: tuple[float, float],
-          others: Sequence[tuple[float, float]], what: str) -> tuple[float, float]:
-    """``[z - half, z + half]`` clipped to the shaft, outside the seat and the ``others``."""
-    lo, hi = max(0.0, z - half), min(length, z + half)
-    for a, b in (seat, *others):
-        if z <= a:
-            hi = min(hi, a)
-        elif z >= b:
-            lo = max(lo, b)
-    if hi - lo < 1e-6:
-        raise InputError(f"{what} = {z * 1e3:.6g} mm leaves no room for its band on the shaft "
-                         "(it meets the shaft's end, the seat or a neighbouring bearing)")
-    return lo, hi
-
-
-def _plan(layout: ShaftLayout, s: Fe3dSettings) -> _Plan:
-    """The nodes, bands and pieces of ``layout`` (module docstring: modelling choices)."""
-    n, L = layout.name, layout.length
-    s0, s1 = layout.seat
-    if s0 - _TOL <= layout.torque_position <= s1 + _TOL:
-        raise InputError(f"{n}.torque_position_mm = {layout.torque_position * 1e3:.6g} mm lies "
-                         f"on the gear's seat ({s0 * 1e3:.6g} to {s1 * 1e3:.6g} mm): the torque "
-                         "must enter the shaft off the seat")
-    rigid = layout.hub == "rigid"
-    if rigid:
-        nodes, bands, seat_nodes = [layout.gear_position], [(s0, s1)], (0,)
-    else:
-        edges = np.linspace(s0, s1, s.seat_stations + 1)
-        bands = list(zip(edges[:-1], edges[1:], strict=True))
-        nodes = [0.5 * (a + b) for a, b in bands]
-        seat_nodes = tuple(range(s.seat_stations))
-    zb = sorted(b.position for b in layout.bearings)
-    bearing_nodes = []
-    for i, b in enumerate(layout.bearings):
-        k = zb.index(b.position)
-        if zb.count(b.position) > 1:
-            raise InputError(f"{n}.bearings[{i}].position_mm = {b.position * 1e3:.6g} mm: "
-                             "another bearing sits there; give one bearing per position")
-        mids = [(0.5 * (zb[k - 1] + b.position),) * 2] if k > 0 else []
-        mids += [(0.5 * (zb[k + 1] + b.position),) * 2] if k + 1 < len(zb) else []
-        half = 0.5 * s.band_factor * layout.segment_at(b.position).outer_diameter
-        bands.append(_band(b.position, half, L, (s0, s1), mids, f"{n}.bearings[{i}].position_mm"))
-        nodes.append(b.position)
-        bearing_nodes.append(len(nodes) - 1)
-    zt = layout.torque_position
-    inside = [j for j in bearing_nodes if bands[j][0] - _TOL <= zt <= bands[j][1] + _TOL]
-    if inside:
-        torque_node = inside[0]
-    else:
-        half = 0.5 * s.band_factor * layout.segment_at(zt).outer_diameter
-        bands.append(_band(zt, half, L, (s0, s1), [bands[j] for j in bearing_nodes],
-                           f"{n}.torque_position_mm"))
-        nodes.append(zt)
-        torque_node = len(nodes) - 1
-    cuts = {0.0, L, *nodes, *(e for band in bands for e in band),
-            *(seg.end for seg in layout.segments)}
-    # a rigid hub's edges are corner singularities like the shoulders: refined alike
-    r_seat = 0.5 * layout.segment_at(layout.gear_position).outer_diameter
-    edges = ((s0, r_seat), (s1, r_seat)) if rigid else ()
-    return _Plan(_pieces(layout, sorted(cuts), s, edges), rigid, tuple(nodes), tuple(bands),
-                 seat_nodes, tuple(bearing_nodes), torque_node)
-
-
-def _pieces(layout: ShaftLayout, cuts: list[float], s: Fe3dSettings,
-            edges: tuple[tuple[float, float], ...]) -> ShaftMeshSpec:
-    """Pieces between the cuts (merged when closer than 1 nm), each split further so that
-    sections are at most ``section_spacing`` diameters apart."""
-    z = [cuts[0]]
-    for c in cuts[1:]:
-        if c - z[-1] > _TOL:
-            z.append(c)
-    pieces = []
-    for a, b in zip(z[:-1], z[1:], strict=True):
-        seg = layout.segment_at(0.5 * (a + b))
-        ro, ri = 0.5 * seg.outer_diameter, 0.5 * seg.inner_diameter
-        size = min(2 * ro / ELEMENTS_PER_DIAMETER, ro - ri) / s.refinement
-        parts = max(1, math.ceil((b - a) / (s.section_spacing * 2 * ro) - 1e-9))
-        ends = np.linspace(a, b, parts + 1)
-        pieces += [ShaftPiece(float(p), float(q), ro, ri, size)
-                   for p, q in zip(ends[:-1], ends[1:], strict=True)]
-    return ShaftMeshSpec(tuple(pieces), shoulder_factor=s.shoulder_factor, edges=edges)
-
-
-def _build(plan: _Plan, layout: ShaftLayout, settings: Fe3dSettings) -> dict:
+def _build(plan: Fe3dPlan, layout: ShaftLayout, settings: Fe3dSettings) -> dict:
     """Mesh, assemble and condense (the cache's build)."""
     from pipeline.fem.linear_static import build_model
     from pipeline.fem.shaft_mesh import mesh_shaft
@@ -238,7 +104,7 @@ def _build(plan: _Plan, layout: ShaftLayout, settings: Fe3dSettings) -> dict:
 
     def patch(z: float, band: tuple[float, float]) -> Patch:
         ids = [i for i, (a, b) in enumerate(piece_z)
-               if a >= band[0] - _TOL and b <= band[1] + _TOL]
+               if a >= band[0] - TOL and b <= band[1] + TOL]
         tri = np.hstack([sk.triangles[f"outer:{i}"] for i in ids])
         return Patch(tri, np.array([0.0, 0.0, z]))
 
@@ -266,7 +132,7 @@ def _superelement(v: dict) -> Superelement:
                         str(v["method"]), timings)
 
 
-def _supported_compliance(K: np.ndarray, layout: ShaftLayout, plan: _Plan) -> np.ndarray:
+def _supported_compliance(K: np.ndarray, layout: ShaftLayout, plan: Fe3dPlan) -> np.ndarray:
     """(6n, 6n) nodal motions per unit nodal load with the bearings (springs between their
     nodes and the ground; an infinite stiffness and the axial location hold the DOF) and
     the torque point (theta_z held) as supports; zero on held DOFs."""
@@ -310,13 +176,13 @@ class Fe3dShaft:
     superelement: Superelement = field(init=False)
     cached: bool = field(init=False)
     seconds: float = field(init=False)
-    _plan: _Plan = field(init=False, repr=False)
+    _plan: Fe3dPlan = field(init=False, repr=False)
     _stiffness: np.ndarray = field(init=False, repr=False)
     _compliance: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         t0 = time.perf_counter()
-        plan = _plan(self.layout, self.settings)
+        plan = plan_fe3d(self.layout, self.settings)
         mat = self.layout.material
         # everything of the layout that changes the superelement (bearing stiffnesses do not)
         key = {"pieces": [asdict(p) for p in plan.mesh.pieces],
@@ -379,7 +245,7 @@ class Fe3dShaft:
         """W (6m, 6n): the motion at seat points ``z`` from the nodes' motions (rigid
         transfer from the seat node, or hat weights between seat stations)."""
         s0, s1 = self.layout.seat
-        bad = (z < s0 - _TOL) | (z > s1 + _TOL)
+        bad = (z < s0 - TOL) | (z > s1 + TOL)
         if np.any(bad):
             raise InputError(f"{self.layout.name}: a seat point at z = "
                              f"{z[bad][0] * 1e3:.6g} mm lies off the gear's seat "

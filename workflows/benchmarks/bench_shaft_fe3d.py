@@ -29,7 +29,8 @@ def main(refinement: float = 1.0) -> None:
     import pipeline.fem.linear_static  # noqa: F401  (scikit-fem, counted apart)
     import pipeline.fem.shaft_mesh  # noqa: F401  (Gmsh)
     from pipeline.cache.folder import Cache
-    from pipeline.shaft.fe3d import Fe3dSettings, Fe3dShaft
+    from pipeline.shaft.fe3d import Fe3dShaft
+    from pipeline.shaft.fe3d_plan import Fe3dSettings
     from pipeline.shaft.layout import Bearing, ShaftLayout, ShaftSegment
     from pipeline.shaft.model import PointLoad
 
