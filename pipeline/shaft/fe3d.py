@@ -39,8 +39,10 @@ Modelling choices
   edges, bearings, torque point, and at most ``section_spacing`` diameters apart) as their
   least-squares rigid motion: the beam's section kinematics.
 * Mesh: edge ``min(d / 4, wall) / refinement`` in each segment (``d`` its outer diameter,
-  ``wall`` its wall thickness), ``shoulder_factor`` times that at every shoulder circle,
-  growing away from it (:mod:`pipeline.fem.shaft_mesh`).
+  ``wall`` its wall thickness), ``shoulder_factor`` times that at every shoulder circle
+  and at the edges of a rigid hub, growing away from them (:mod:`pipeline.fem.shaft_mesh`).
+  At the default refinement the seat's bending compliance is 0.06 % (integral seat) and
+  1.4 % (rigid hub) below its extrapolated value.
 
 Cache: the key holds everything of the layout that changes the superelement (the pieces
 with their radii and mesh sizes, the hub, the nodes and their bands, E and nu) and the
