@@ -229,9 +229,8 @@ def test_coarse_flexibility_symmetric_and_seat_stiffness_its_inverse(coarse):
     K = coarse.seat_stiffness()
     np.testing.assert_allclose(K @ C[6:12, 6:12], np.eye(6), atol=1e-8)
     assert np.all(np.linalg.eigvalsh(K) > 0)
-    # u_y at 129 mm under F_y at 111 mm equals u_y at the centre plus the tilt times 9 mm
-    lever = C[6 + 1, 1] + 0.009 * C[6 + 3, 1] * -1
-    assert C[12 + 1, 1] == pytest.approx(lever, rel=1e-9)
+    # u_y at 129 mm under F_y at 111 mm: u_y - 9 mm theta_x at the centre (u + theta x r)
+    assert C[12 + 1, 1] == pytest.approx(C[6 + 1, 1] - 0.009 * C[6 + 3, 1], rel=1e-9)
 
 
 def test_coarse_seat_twist_against_g_j_over_l(coarse):
