@@ -19,6 +19,9 @@
   constraints, one solver set-up, blocks of right-hand sides, minus the near field of
   ``nearfield_halfplane`` (2D) or ``nearfield_halfspace`` (3D Boussinesq).
 * ``groove`` - herringbone sun relief-groove stiffness (Xu et al. (2020)).
+* ``shaft_mesh`` / ``superelement`` - stepped shafts cut into pieces (Gmsh), and a body
+  condensed to reference nodes tied to its surfaces (the 3D shaft model of
+  :mod:`pipeline.shaft.fe3d`).
 
 The FE compliance sources of the contact solver are in :mod:`pipeline.contact`.
 """

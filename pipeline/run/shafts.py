@@ -33,7 +33,7 @@ from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.progress import Steps
 from pipeline.shaft.beam import BeamShaft
-from pipeline.shaft.misalignment import FlankRetreat, shaft_gap
+from pipeline.shaft.misalignment import FlankRetreat, seat_points, shaft_gap
 from pipeline.validation import InputError
 
 TOLERANCE = 1e-3
@@ -87,13 +87,16 @@ class ShaftStage:
         return out
 
 
-def _model(spec: tuple[str, Any] | None, points: np.ndarray) -> BeamShaft | None:
+def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) -> Any:
+    """The shaft model a ``[<gear>.shaft]`` names: the beam with nodes at the face
+    ``points`` (m from the face's first end), or the 3D superelement (cached)."""
     if spec is None:
         return None
     model, layout = spec
-    if model != "beam":
-        raise InputError(f'{layout.name}.model = "{model}": only the beam model is coupled '
-                         "to the contact yet")
+    if model == "fe3d":
+        from pipeline.shaft.fe3d import Fe3dShaft
+
+        return Fe3dShaft(layout) if cache is None else Fe3dShaft(layout, cache=cache)
     start = layout.gear_position - 0.5 * layout.seat_width
     return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
 
@@ -124,7 +127,8 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     n = box.contact.slices
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
-    models = [_model(box.shafts.get(role), z) for role in ("pinion", "gear")]
+    models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
+    flex = [None if m is None else m.flexibility(seat_points(m, z)) for m in models]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
     w = np.full(n, line_of_action_load(pair, op) / b)
     source, change, iteration = None, np.inf, 0
@@ -135,7 +139,7 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                 raise InputError(f"shafts: the line load still changes by {change:.3g} "
                                  f"(relative) after iteration {MAX_ITERATIONS}; the shafts "
                                  "and the mesh do not settle")
-            gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle)
+            gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle, flex)
             approach = float(gap.mean())
             mods = dataclasses.replace(box.contact.modifications,
                                        lead_gap=tuple(zip(z.tolist(),

@@ -8,4 +8,7 @@
 - :mod:`.beam` - the ``"beam"`` model (:class:`~.beam.BeamShaft`): Timoshenko beam elements
   (:mod:`.timoshenko`) on nodes at every key point (:mod:`.nodes`), the rigid seat and the
   rigid supports eliminated exactly (:mod:`.constraints`).
+- :mod:`.fe3d` - ``model = "fe3d"``: the shaft meshed in Gmsh, solved in scikit-fem and
+  condensed to the seat, the bearings and the torque point (:class:`~.fe3d.Fe3dShaft`);
+  :mod:`.fe3d_plan` turns a layout into its pieces, reference nodes and bands.
 """

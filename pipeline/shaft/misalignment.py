@@ -75,29 +75,42 @@ def seat_loads(z: np.ndarray, line_load: np.ndarray, face_width: float, gear_pos
             for zj, wj in zip(z, w, strict=True)]
 
 
+def seat_points(model: ShaftModel, z: np.ndarray) -> np.ndarray:
+    """The shaft positions (m) of the face points ``z`` (m from the face's first end)."""
+    lay = model.layout
+    return lay.gear_position - 0.5 * lay.seat_width + np.asarray(z, dtype=float)
+
+
 def flank_retreat(model: ShaftModel, z: np.ndarray, line_load: np.ndarray,
-                  base_radius: float) -> FlankRetreat:
+                  base_radius: float, flexibility: np.ndarray | None = None) -> FlankRetreat:
     """The retreat of one gear's flank across the face under the mesh's line load
-    (module docstring), ``model`` the gear's shaft in its mesh frame."""
+    (module docstring), ``model`` the gear's shaft in its mesh frame; ``flexibility`` its
+    :meth:`~pipeline.shaft.model.ShaftModel.flexibility` at the face points when computed
+    already (a fixed point reuses it)."""
     lay = model.layout
     loads = seat_loads(z, line_load, lay.seat_width, lay.gear_position, base_radius)
-    sol = model.solve(loads)
-    at = np.array([ld.z for ld in loads])
-    uy = np.interp(at, sol.z, sol.displacement[:, 1])
-    tz = np.interp(at, sol.z, sol.rotation[:, 2])
-    return FlankRetreat(np.asarray(z, dtype=float), uy, base_radius * tz, sol)
+    c = model.flexibility(seat_points(model, z)) if flexibility is None else flexibility
+    f = np.zeros(6 * len(loads))
+    f[1::6] = [ld.force[1] for ld in loads]
+    f[5::6] = [ld.moment[2] for ld in loads]
+    d = c @ f
+    return FlankRetreat(np.asarray(z, dtype=float), d[1::6], base_radius * d[5::6],
+                        model.solve(loads))
 
 
 def shaft_gap(models: Sequence[ShaftModel | None], base_radii: Sequence[float],
-              z: np.ndarray, line_load: np.ndarray, helix_angle: float = 0.0
+              z: np.ndarray, line_load: np.ndarray, helix_angle: float = 0.0,
+              flexibilities: Sequence[np.ndarray | None] | None = None
               ) -> tuple[np.ndarray, tuple[FlankRetreat | None, ...]]:
     """The gap (n,) the shafts of both gears open across the face (m; a gear without a
-    shaft: rigid) and each gear's retreat (module docstring)."""
+    shaft: rigid) and each gear's retreat (module docstring); ``flexibilities`` of the
+    models at the face points, when computed already."""
     if helix_angle != 0.0:
         raise InputError("shafts: the tilt a helical mesh's axial force gives is not built "
                          "yet; shafts take spur pairs")
-    retreats = tuple(None if m is None else flank_retreat(m, z, line_load, rb)
-                     for m, rb in zip(models, base_radii, strict=True))
+    flex = flexibilities or [None] * len(models)
+    retreats = tuple(None if m is None else flank_retreat(m, z, line_load, rb, c)
+                     for m, rb, c in zip(models, base_radii, flex, strict=True))
     gap = np.zeros(np.shape(z))
     for r in retreats:
         if r is not None:

@@ -200,7 +200,7 @@ def solve_free(model: ElasticModel, free: np.ndarray, F: np.ndarray, solver: str
     return X, factor.method, factor.factor_seconds, time.perf_counter() - t0
 
 
-def _support_321(model: ElasticModel, triangles: np.ndarray) -> np.ndarray:
+def support_321(model: ElasticModel, triangles: np.ndarray) -> np.ndarray:
     """Six DOFs on three far-apart surface nodes that remove rigid motion only."""
     nodes = np.unique(triangles)
     xyz = model.basis.doflocs[:, 3 * nodes]
@@ -227,7 +227,7 @@ def _couple_distributed(model, surface_left, surface_right, node_left, node_righ
         f_eq = f - P_R @ np.linalg.solve(G_R, gam.T @ W)
         F = np.column_stack([F, f_eq / W[5]])
         W = W / W[5]
-    fixed = _support_321(model, surface_right)
+    fixed = support_321(model, surface_right)
     free = np.setdiff1d(np.arange(model.n_dof), fixed)
     X, method, setup_s, solve_s = solve_free(model, free, F, solver)
     U = np.zeros((model.n_dof, F.shape[1]))
