@@ -137,14 +137,17 @@ def mesh_excitation(stages, friction, excitation: str) -> MeshExcitation:
     return excitation_from_stiffness(stages.stiffness.mesh)
 
 
-def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
+def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
+                  ) -> tuple[Any, str]:
     """The dynamic model of a gearbox excited by the static stages of its meshes.
 
     A pair: :func:`~pipeline.dynamics.models.spur_pair.spur_pair_model`; a planetary set:
     :func:`~pipeline.dynamics.models.planetary_gears.planetary_model_from_gears` (or its
     herringbone variant) with one sun-planet and one planet-ring excitation (an explicit
     ``[dynamics.sun_mesh_stiffness]`` / ``ring_mesh_stiffness`` replaces it); a
-    ``[lumped_model]``: that model. Returns (model, excitation name).
+    ``[lumped_model]``: that model. Returns (model, excitation name). A pair's gears on
+    shafts are supported by them (:func:`pipeline.run.shafts.support_stiffness`; the 3D
+    superelement read from or written to ``cache``).
     """
     from pipeline.dynamics.models import planetary_gears as pg
     from pipeline.dynamics.models.spur_pair import spur_pair_model
@@ -185,7 +188,7 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any]) -> tuple[Any, str]:
     if box.shafts:
         from pipeline.run.shafts import support_stiffness
 
-        supports = support_stiffness(box)
+        supports = support_stiffness(box, cache)
     model = spur_pair_model(stages.stiffness.actual, (box.bodies["pinion"], box.bodies["gear"]),
                             box.operation, opts, excitation, supports)
     return model, opts.excitation
@@ -208,7 +211,7 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: Steps) -> Dynamics
     """Model, modes, response at the operating speed and speed sweep."""
     opts = dynamics_options(box)
     with log.step("dynamic model"):
-        model, excitation = dynamic_model(box, meshes)
+        model, excitation = dynamic_model(box, meshes, options.cache)
         operating = operating_frequency(box, model)
     with log.step("modes") as note:
         modes = analyse_modes(model)

@@ -84,4 +84,4 @@ def gearbox_dynamic_model(box: Gearbox, cache: Cache = DEFAULT_CACHE) -> Dynamic
     options = RunOptions(show_progress=False, cache=cache)
     meshes = mesh_stages(box, options, Steps("", enabled=False),
                          contact=needs_contact(box))
-    return dynamic_model(box, meshes)[0]
+    return dynamic_model(box, meshes, cache)[0]

@@ -101,10 +101,11 @@ def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) 
     return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
 
 
-def support_stiffness(box: Gearbox) -> tuple[float | None, float | None]:
+def support_stiffness(box: Gearbox, cache: Any = None) -> tuple[float | None, float | None]:
     """Each gear's support stiffness at its seat's centre from its shaft (N/m; bearings and
     shaft bending in series, the seat free to tilt: ``1 / C_yy`` of the seat flexibility,
-    the same in x and y for round shafts on round bearings), None without a shaft."""
+    the same in x and y for round shafts on round bearings), None without a shaft; the 3D
+    superelement read from or written to ``cache``."""
     out = []
     for role in ("pinion", "gear"):
         spec = box.shafts.get(role)
@@ -112,7 +113,7 @@ def support_stiffness(box: Gearbox) -> tuple[float | None, float | None]:
             out.append(None)
             continue
         lay = spec[1]
-        model = _model(spec, np.array([]))
+        model = _model(spec, np.array([]), cache)
         c = model.flexibility(np.array([lay.gear_position]))
         out.append(float(1.0 / c[1, 1]))
     return out[0], out[1]

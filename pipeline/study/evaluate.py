@@ -98,7 +98,7 @@ def point_result(box: Gearbox, fe: Mapping[str, Any] | None = None, *,
     from pipeline.dynamics.sweep import mesh_force_sweep
     from pipeline.run.dynamics import dynamic_model, dynamics_options
 
-    model, _ = dynamic_model(box, meshes)
+    model, _ = dynamic_model(box, meshes, cache)
     opts = dynamics_options(box).sweep
     speeds = np.linspace(*speed_range_rpm, speed_points)
     period = next(iter(meshes.values())).stiffness.mesh.mesh_period  # at the operating speed
