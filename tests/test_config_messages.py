@@ -91,6 +91,13 @@ def _fe_keys(compliance: str) -> tuple[Key, ...]:
 SHAFT = {"span_mm": 300.0, "offset_mm": 30.0, "shaft_diameter_mm": 60.0, "arrangement": "a"}
 """A pinion shaft of ISO 6336-1 Figure 13 (method C's f_sh)."""
 
+SHAFT_TABLE = {"gear_position_mm": 60.0, "torque_position_mm": 0.0,
+               "segments": [{"start_mm": 0.0, "end_mm": 120.0, "outer_diameter_mm": 30.0}],
+               "bearings": [{"position_mm": 20.0, "axial": True}, {"position_mm": 100.0}]}
+"""A pinion shaft (pipeline.config.shafts); its [[segments]] and [[bearings]] rows are
+arrays of tables, which tests/test_config_shafts.py sweeps."""
+ARRAY_TABLES = {"SHAFT_SEGMENT", "SHAFT_BEARING"}
+
 CONTEXTS = [
     *[("GEAR", PAIR, role, T.GEAR) for role in ("pinion", "gear")],
     *[("GEAR", PLANETARY, role, T.GEAR) for role in ("sun", "planet", "ring")],
@@ -118,6 +125,7 @@ CONTEXTS = [
      T.RATING_METHOD_C),
     ("RATING_PINION_SHAFT", _with(PAIR, "rating", {"pinion_shaft": SHAFT}),
      "rating.pinion_shaft", T.RATING_PINION_SHAFT),
+    ("SHAFT", _with(PAIR, "pinion", {"shaft": SHAFT_TABLE}), "pinion.shaft", T.SHAFT),
     ("DYNAMICS", PAIR, "dynamics", T.DYNAMICS),
     ("DYNAMICS_PLANETARY", _with(PLANETARY, "dynamics", {"excitation": "analytical"}), "dynamics",
      T.DYNAMICS_PLANETARY),
@@ -282,7 +290,7 @@ def test_every_table_is_swept():
     """Every table of the schema has a context above, so a new table is swept too."""
     tables = {name for name, value in vars(T).items() if name.isupper()
               and isinstance(value, tuple) and value and isinstance(value[0], Key)}
-    covered = {name for name, *_ in CONTEXTS}
+    covered = {name for name, *_ in CONTEXTS} | ARRAY_TABLES
     assert tables - covered == set()
     assert {kind for kind in T.SIGNAL} == set(T.SIGNAL_KINDS)
     assert set(LUMPED) == set(MODELS)  # every [lumped_model] model

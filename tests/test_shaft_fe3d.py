@@ -270,13 +270,15 @@ def test_cache_reads_the_superelement_and_follows_the_layout(tmp_path):
 
 
 def test_bad_inputs_are_one_line_errors():
-    """A torque point on the seat, two bearings at one place and bad settings name the key."""
-    with pytest.raises(InputError, match=r"shaft.torque_position_mm = 120 mm lies on the gear"):
+    """A torque point on the seat and two bearings at one place (refused by the layout
+    itself) and bad settings name the key."""
+    with pytest.raises(InputError, match=r"shaft.torque_position_mm = 120 mm lies inside "
+                                         r"the gear's seat"):
         Fe3dShaft(plain(torque=0.12), cache=Cache.off())
-    twin = ShaftLayout((ShaftSegment(0.0, 0.24, D),), 0.12, SEAT,
-                       (Bearing(0.02, axial=True), Bearing(0.02)), 0.23)
-    with pytest.raises(InputError, match=r"shaft.bearings\[0\].position_mm = 20 mm: another"):
-        Fe3dShaft(twin, cache=Cache.off())
+    with pytest.raises(InputError, match=r"shaft.bearings\[1\].position_mm = 20 mm is that "
+                                         r"of bearings\[0\]"):
+        ShaftLayout((ShaftSegment(0.0, 0.24, D),), 0.12, SEAT,
+                    (Bearing(0.02, axial=True), Bearing(0.02)), 0.23)
     with pytest.raises(InputError, match=r"fe3d.refinement = 20 is outside"):
         Fe3dSettings(refinement=20)
     with pytest.raises(InputError, match=r"fe3d.seat_stations = 1 is outside"):
