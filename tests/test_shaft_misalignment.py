@@ -166,6 +166,39 @@ def test_reversing_the_hand_reverses_the_axial_force_and_its_tilt():
         assert np.abs(d_r + d_l).max() <= 1e-12 * np.abs(getattr(right, part)).max()
 
 
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_the_force_is_normal_to_the_contact_lines(hand):
+    """The project's own contact lines (GearPair.contact_lines, z 20/40, m_n 3 mm, beta 15
+    deg), taken into each gear's mesh frame (pinion: y = -s; gear: y = +s; the face point on
+    the shaft at zeta, or b - zeta for a right-hand pinion): the force per unit transverse
+    load (0, 1, a) is perpendicular to every contact line (to 1e-12), its transverse part
+    pushes each gear away from its mate (+y), and a = -+tan(beta_b) (pinion, right/left
+    hand) as the module docstring derives: |a| = tan(beta_b) to 1e-12."""
+    from pipeline.geometry.gear import GearSpec
+    from pipeline.geometry.pair import GearPair
+
+    other = "left" if hand == "right" else "right"
+    kw = dict(module=0.003, pressure_angle=math.radians(20.0), face_width=0.02,
+              helix_angle=math.radians(15.0))
+    pair = GearPair(GearSpec(20, hand=hand, name="pinion", **kw),
+                    GearSpec(40, hand=other, name="gear", **kw))
+    mesh = HelicalMesh.of(pair, np.full(10, pair.s_pitch))
+    b = pair.face_width
+    lines = [ln for s0 in np.linspace(pair.s_start, pair.s_start + pair.base_pitch, 7)
+             for ln in pair.contact_lines(s0)]
+    assert lines
+    for role, (sign, rb) in enumerate(((-1.0, pair.pinion.base_radius),
+                                       (1.0, pair.gear.base_radius))):
+        unit = unit_loads(rb, 10, mesh, role)[0]
+        for (s_a, z_a), (s_b, z_b) in lines:
+            zs = (b - np.array([z_a, z_b])) if mesh.reversed else np.array([z_a, z_b])
+            dy, dz = sign * (s_b - s_a), zs[1] - zs[0]
+            assert abs(unit[1] * dy + unit[2] * dz) <= 1e-12 * math.hypot(dy, dz)
+        assert unit[1] == 1.0
+        want = -math.tan(pair.pinion.base_helix_angle) * (1 if hand == "right" else -1)
+        assert unit[2] == pytest.approx(want if role == 0 else -want, rel=1e-12)
+
+
 def _k_tilt(span, seat):
     """The tilting stiffness (N m/rad) of a rigid seat of width ``seat`` at mid-span between
     two pinned supports ``span`` apart: each flexible piece, length l = (span - seat) / 2, is
