@@ -199,6 +199,26 @@ def test_the_force_is_normal_to_the_contact_lines(hand):
         assert unit[2] == pytest.approx(want if role == 0 else -want, rel=1e-12)
 
 
+def test_herringbone_and_helical_internal_pairs_refused():
+    """Shaft loads are built for external spur and helical pairs: a herringbone pair (the
+    contact takes one half, whose axial force the other half cancels) and a helical internal
+    pair (its ring's frame differs) are one line each."""
+    from pipeline.geometry.gear import GearSpec
+    from pipeline.geometry.pair import GearPair
+
+    kw = dict(module=0.003, pressure_angle=math.radians(20.0), face_width=0.04,
+              helix_angle=math.radians(15.0))
+    herring = GearPair(GearSpec(20, hand="right", herringbone=True, name="pinion", **kw),
+                       GearSpec(40, hand="left", herringbone=True, name="gear", **kw))
+    with pytest.raises(InputError, match="herringbone pair's two halves"):
+        HelicalMesh.of(herring, np.zeros(10))
+    ring = GearPair(GearSpec(20, hand="right", name="pinion", **kw),
+                    GearSpec(60, hand="right", internal=True, bore_radius=0.12, name="gear",
+                             **kw))
+    with pytest.raises(InputError, match="helical internal pair"):
+        HelicalMesh.of(ring, np.zeros(10))
+
+
 def _k_tilt(span, seat):
     """The tilting stiffness (N m/rad) of a rigid seat of width ``seat`` at mid-span between
     two pinned supports ``span`` apart: each flexible piece, length l = (span - seat) / 2, is

@@ -142,8 +142,8 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
     models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
-    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch)) if pair.pinion.is_helical
-            else None)
+    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch))
+            if pair.pinion.is_helical or pair.pinion.herringbone else None)
     flex = [None if m is None else m.flexibility(seat_points(m, z, mesh)) for m in models]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
     w = np.full(n, line_of_action_load(pair, op) / b)

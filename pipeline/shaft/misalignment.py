@@ -133,11 +133,14 @@ class HelicalMesh:
 
     @classmethod
     def of(cls, pair: GearPair, roll: np.ndarray) -> HelicalMesh:
-        """The mesh of an external ``pair`` with the cycle-mean roll coordinates ``roll`` (m)
-        of its face slices."""
+        """The mesh of an external, spur or helical (not herringbone) ``pair`` with the
+        cycle-mean roll coordinates ``roll`` (m) of its face slices."""
         if pair.gear.internal and pair.pinion.is_helical:
             raise InputError("shafts: the loads of a helical internal pair on its shafts are "
                              "not built; shafts take external helical pairs")
+        if pair.pinion.herringbone:
+            raise InputError("shafts: a herringbone pair's two halves on shafts are not built "
+                             "(the contact takes one half); shafts take spur and helical pairs")
         return cls(pair.pinion.base_helix_angle, pair.pinion.hand, pair.t1t2, roll)
 
     @property
