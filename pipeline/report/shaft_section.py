@@ -38,7 +38,11 @@ def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
                                  "N", float(np.hypot(row[0], row[1]))))
     notes = ("Each shaft is a Timoshenko beam in its mesh frame (y along the line of action, "
              "away from the mate): the line load loads it as forces and moments F r_b across "
-             "the seat, and the flank retreats by u_y + r_b theta_z; the gap the two shafts "
+             "the seat, and the flank retreats by u_y + r_b theta_z; a helical mesh adds its "
+             "axial force a F (a = -h tan beta_b, h = +1 for a right hand) and its moments "
+             "about x and y, "
+             "and the retreat a (u_z - d theta_x - r_b theta_y) (d the contact's distance "
+             "from the tangent point); the gap the two shafts "
              "open (its mean taken out) is added to the flank modifications and the contact "
              "solved again until the line load changes by less than 1e-3.",)
     return Section("shafts", "Shafts and bearings", tuple(rows), figures=tuple(figures),

@@ -205,7 +205,8 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
         else np.full(stage.z.size, float(rigid.cycle_mean.mean()))
     f = fig("report_shafts.png", "The shafts' deflection along the line of action and the line "
             "load across the face with and without it", plot_shaft_deflection, shafts,
-            stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title)
+            stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title,
+            stage.mesh is not None and stage.mesh.reversed)
     return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
 
 

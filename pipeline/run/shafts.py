@@ -8,14 +8,19 @@ For a pair whose gears sit on shafts (``[pinion.shaft]``, ``[gear.shaft]``;
 1. start from the uniform line load ``P / b``;
 2. load both shafts with it and take the gap they open across the face
    (:func:`pipeline.shaft.misalignment.shaft_gap`; its mean, a rigid approach of the gears
-   that moves the transmission error only, taken out);
+   that moves the transmission error only, taken out); a helical pair's axial force acts
+   at each face slice's cycle-mean contact position along the line of action
+   (:class:`~pipeline.shaft.misalignment.HelicalMesh`), the pitch point to start with;
 3. solve the loaded contact with that gap added to the flank modifications
-   (``FlankModifications.lead_gap``) and take its cycle-mean line load;
+   (``FlankModifications.lead_gap``) and take its cycle-mean line load and, per face slice,
+   the load-weighted mean roll coordinate of its contact points;
 4. repeat from 2 until the line load changes by less than :data:`TOLERANCE` (largest change
    over the largest line load); after :data:`MAX_ITERATIONS` a one-line error names the
    iteration and the change.
 
-The contact on rigid supports (the run's own cycle) is kept beside the coupled one.
+The contact on rigid supports (the run's own cycle) is kept beside the coupled one. The
+face positions ``z`` are the contact's; for a right-hand helical pinion they run against the
+shafts' axial coordinate (:func:`pipeline.shaft.misalignment.seat_points`).
 """
 
 from __future__ import annotations
@@ -33,7 +38,7 @@ from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.progress import Steps
 from pipeline.shaft.beam import BeamShaft
-from pipeline.shaft.misalignment import FlankRetreat, seat_points, shaft_gap
+from pipeline.shaft.misalignment import FlankRetreat, HelicalMesh, seat_points, shaft_gap
 from pipeline.validation import InputError
 
 TOLERANCE = 1e-3
@@ -54,6 +59,10 @@ class ShaftStage:
     approach : the mean gap (the rigid approach of the gears), m.
     retreats : each gear's flank retreat (pinion, gear; None without a shaft).
     iterations : fixed-point iterations taken; change : the last relative change.
+    mesh : a helical pair's mesh with the cycle-mean roll coordinates the last gap was
+        computed with (None: spur).
+    line_load : (n,) the line load the last gap was computed with, N/m (the cycle-mean one
+        of the iteration before the last).
     """
 
     cycle: LoadedMeshCycle
@@ -64,6 +73,8 @@ class ShaftStage:
     retreats: tuple[FlankRetreat | None, FlankRetreat | None]
     iterations: int
     change: float
+    mesh: HelicalMesh | None = None
+    line_load: np.ndarray | None = None
 
     def summary(self) -> dict[str, Any]:
         """The misalignment, the K_Hbeta with and without the shafts, each shaft's seat
@@ -73,7 +84,7 @@ class ShaftStage:
             "misalignment_across_face_m": float(np.ptp(self.gap)),
             "rigid_approach_m": self.approach,
         }
-        for role, r in zip(("pinion", "gear"), self.retreats, strict=True):
+        for i, (role, r) in enumerate(zip(("pinion", "gear"), self.retreats, strict=True)):
             if r is None or r.solution is None:
                 continue
             sol = r.solution
@@ -84,6 +95,8 @@ class ShaftStage:
                 "bearing_moments_Nm": [[float(v) for v in row[3:]] for row in sol.reactions],
                 "torque_reaction_Nm": sol.torque_reaction,
             }
+            if self.mesh is not None:
+                out[role]["mesh_axial_force_N"] = self.mesh.axial_ratio(i) * self.cycle.load
         return out
 
 
@@ -129,7 +142,9 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
     models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
-    flex = [None if m is None else m.flexibility(seat_points(m, z)) for m in models]
+    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch))
+            if pair.pinion.is_helical or pair.pinion.herringbone else None)
+    flex = [None if m is None else m.flexibility(seat_points(m, z, mesh)) for m in models]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
     w = np.full(n, line_of_action_load(pair, op) / b)
     source, change, iteration = None, np.inf, 0
@@ -140,7 +155,9 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                 raise InputError(f"shafts: the line load still changes by {change:.3g} "
                                  f"(relative) after iteration {MAX_ITERATIONS}; the shafts "
                                  "and the mesh do not settle")
-            gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle, flex)
+            gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle, flex,
+                                      mesh)
+            used, loaded = mesh, w
             approach = float(gap.mean())
             mods = dataclasses.replace(box.contact.modifications,
                                        lead_gap=tuple(zip(z.tolist(),
@@ -155,7 +172,22 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
             w_new = np.interp(z, dist.z, dist.cycle_mean)
             change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
             w = w_new
+            if mesh is not None:
+                mesh = dataclasses.replace(mesh, roll=mean_roll(cycle, b, n, pair.s_pitch))
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
                         f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
     return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
-                      (retreats[0], retreats[1]), iteration, change)
+                      (retreats[0], retreats[1]), iteration, change, used, loaded)
+
+
+def mean_roll(cycle: LoadedMeshCycle, face_width: float, n: int, empty: float
+              ) -> np.ndarray:
+    """(n,) the load-weighted mean roll coordinate ``s`` (m) of the contact points of each
+    of ``n`` equal face slices over the cycle (the points binned by their face position);
+    ``empty`` (m) for a slice that carries nothing."""
+    iz = np.clip((cycle.point_z / (face_width / n)).astype(int), 0, n - 1)
+    load = np.bincount(iz, weights=cycle.point_load, minlength=n)
+    moment = np.bincount(iz, weights=cycle.point_load * cycle.point_s, minlength=n)
+    out = np.full(n, float(empty))
+    np.divide(moment, load, out=out, where=load > 0.0)
+    return out

@@ -1,116 +1,301 @@
 """The gap the shafts' deflection opens across the face, in the plane of action.
 
-Each gear's shaft is solved in its own *mesh frame*: ``y`` is the direction in which the
-mesh force pushes this gear's axis (along the line of action, away from the mate), ``z``
-the shaft's axis (the face coordinate runs with it, from the face's first end at
-``gear_position - b / 2``), and a positive rotation about ``z`` turns the loaded flank back
-from the mate. In that frame a face slice ``j`` of width ``dz_j`` carrying the line load
-``w_j`` (N/m, along the line of action) loads the shaft with
+Frames
+------
+Each gear's shaft is solved in its own *mesh frame*, right-handed: ``y`` is the direction in
+which the mesh force pushes this gear's axis (along the line of action, away from the mate),
+``z`` the shaft's axis (the layout's axial coordinate), ``x = y x z``, and this gear's
+tangent point ``T_i`` (where the line of action touches its base circle) lies at ``x = +r_b``.
+Along the roll coordinate ``s`` of :mod:`pipeline.geometry.pair` (from ``T1`` towards ``T2``)
+"away from the mate" is ``-s`` for the pinion and ``+s`` for the gear: the loaded flanks
+touch, so the gear pushes the pinion back along the line of action towards ``T1`` and the
+pinion pushes the gear towards ``T2``. Check: the force ``F`` along ``y`` at ``x = r_b`` has the
+moment ``+F r_b`` about ``+z`` on *each* gear (two external gears turn opposite ways); on
+the driver (``OperatingPoint.driver``) it is the reaction to the driving torque
+``P r_b,driver`` (:func:`pipeline.contact.analysis.line_of_action_load`), on the other gear
+it turns it. This is the project's one loaded flank (the "right" flanks of
+:mod:`pipeline.contact.fe3d_source`): the pinion, driving, turns clockwise seen from
+``+z``; the opposite rotation is the same gearbox turned end for end (its shafts' axial
+coordinates mirrored).
 
-* the force ``F_j = w_j dz_j`` along ``+y`` at ``z_j``;
-* the moment ``F_j r_b`` about ``+z`` (the line of action is tangent to the base circle,
-  so its lever arm is the base radius ``r_b``),
+Loads
+-----
+The contact's line load ``w_j`` (N/m, along the transverse line of action) on face slice
+``j`` of width ``dz_j`` gives the transverse force ``F_j = w_j dz_j``. On a helical flank the
+force lies along the flank's normal, which is in the plane of action and perpendicular to
+the contact line. The contact lines of :meth:`GearPair.contact_lines` run at ``ds / dzeta =
++tan(beta_b)`` in the contact's face coordinate ``zeta``; the normal is therefore
+``(cos beta_b, -sin beta_b)`` in ``(s, zeta)`` up to its sense, and the force on the pinion,
+whose transverse part is ``-F`` along ``s``, is ``F (-1, +tan beta_b)``: an axial part
+``+F tan(beta_b)`` along ``+zeta`` (on the gear the opposite). Which way ``zeta`` runs
+along the shaft's ``z`` the hand says: the section of a right-hand (``h = +1``) flank at
+``z`` is turned by ``h tan(beta) z / r`` about ``+z``, so on the loaded flank the contact
+line has ``ds / dz = -h tan(beta_b)`` (:mod:`pipeline.contact.fe3d_source`, Mapping), hence
+``zeta = z`` for a left-hand pinion and ``zeta = b - z`` (the contact's face runs against
+the shaft's axis) for a right-hand pinion. In each gear's mesh frame the axial force is
 
-and the flank there retreats from the mate by ``delta_j = u_y(z_j) + r_b theta_z(z_j)``
-(first order in the deflection: the displacement across the line of action, ``u_x``,
-changes the centre distance, a second-order effect on the gap, left out). The gap the two
-shafts open at face point ``j`` is the sum of the two gears' retreats, ``g_j = delta_p,j +
-delta_g,j``: its variation across the face is the misalignment in the plane of action
-(ISO 6336-1's ``f_sh``), its mean a rigid approach that adds to the transmission error
-only.
+    F_a,j = a F_j,   a_pinion = -h_pinion tan(beta_b),   a_gear = +h_pinion tan(beta_b),
 
-Spur gears: a helical mesh's axial force tilts the shafts as well (its moment about ``x``,
-``F_a`` times the contact point's distance along the line of action), which is not built
-yet: a helical pair is refused.
+the same rule ``a = -h tan(beta_b)`` for each gear with its own hand (an external pair has
+opposite hands). As a screw: a right-hand pinion turning clockwise seen from ``+z`` (its
+rotation vector along ``-z``) drives the gear's teeth towards ``+z``, as a right-hand screw
+turned that way drives its nut, and is pushed back towards ``-z``.
+
+Where it acts: the contact point lies in the plane of action, ``r_b`` from the axis along
+``x`` and ``d_j`` back from the tangent point towards the mate, ``(r_b, -d_j)`` in ``(x, y)``,
+with ``d = s`` for the pinion (from ``T1``) and ``d = T1T2 - s`` for the gear (from ``T2``).
+Taking the force ``(0, F_j, a F_j)`` at that point to the shaft's axis at ``z_j`` (``M = r
+x F``), the slice loads the shaft with
+
+* the force ``(0, F_j, a F_j)``;
+* the moment ``(-a F_j d_j, -a F_j r_b, F_j r_b)``: about ``x``, the axial force's lever
+  along the line of action, which tilts the shaft in the ``y``-``z`` plane (the plane of
+  the gap); about ``y``, its lever ``r_b``, which tilts the shaft across the line of
+  action; about ``z``, the torque.
+
+That is ``F_j`` times the unit load ``L_j = (0, 1, a, -a d_j, -a r_b, r_b)``; a spur
+pair has ``a = 0``. The slice's ``d_j`` is the cycle-mean one: the load-weighted mean of
+the contact points' ``s`` in that slice over the mesh cycle (:class:`HelicalMesh`), which
+makes the cycle-mean moment exact (the moment is linear in each point's load and ``s``).
+
+Gap
+---
+The contact measures gaps along the transverse line of action
+(:mod:`pipeline.contact.separations`; :mod:`pipeline.contact.source`: transverse loads and
+approaches, ``G = G_normal / cos^2(beta_b)``). A small rigid motion ``(u, theta)`` of the
+shaft's section at ``z_j`` moves the contact point by ``u + theta x (r_b, -d_j, 0)``; the
+flank retreats along its unit normal ``n = cos(beta_b) (0, 1, a)`` by that motion dotted
+with ``n`` (the contact point's slide along the flank changes the gap only to second
+order), which is ``cos(beta_b)`` times the transverse retreat (a helicoid moved by
+``delta_t`` along ``y`` moves ``delta_t cos(beta_b)`` along its normal). The transverse
+retreat is thus
+
+    delta_j = u_y + r_b theta_z + a (u_z - d_j theta_x - r_b theta_y) = L_j . (u, theta)_j,
+
+the displacement work-conjugate to the transverse load, so ``delta = L^T C L F`` with the
+shaft's flexibility ``C`` (6 per point): symmetric, and for the pair the sum over the
+gears. The axial terms carry ``a = +-tan(beta_b)`` (``sin(beta_b)`` along the normal);
+``u_z`` is the seat's axial give (shaft and axial bearing); the tilts ``theta_x`` (in the
+plane of the gap, which shows itself in ``u_y`` changing across the face) and ``theta_y``
+(across it) move the contact point axially by ``-d theta_x`` and ``-r_b theta_y``. The
+displacement across the line of action, ``u_x``, changes the centre distance, a
+second-order effect on the gap (left out). The gap the two shafts open at face
+point ``j`` is ``g_j = delta_p,j + delta_g,j``: its variation across the face is the
+misalignment in the plane of action (ISO 6336-1's ``f_sh``), its mean a rigid approach that
+adds to the transmission error only.
+
+Checks (tests/test_shaft_misalignment.py, tests/test_run_shafts.py): the loads on the two
+shafts are equal and opposite in one global frame, force and moment (1e-12), with the
+moments ``P r_b`` about the axes; the force is normal to :meth:`GearPair.contact_lines` in
+either hand; reversing the hand reverses the axial force and the shaft's response to it
+exactly, and is the gearbox turned end for end (the mirrored shaft gives the same gap to
+1e-12); a rigid seat at mid-span tilts by the axial force's moment over its closed-form
+tilting stiffness (1e-9, its axial terms too); ``beta_b = 0`` is the spur result bit for
+bit. The demo pair at 15 deg on a straddle-mounted pinion opens 0.32 um (K_Hbeta 1.016;
+the spur pair 0) through its fixed point, to 1e-9 of the closed form.
+
+Face positions: functions here take and return the contact's face coordinate ``zeta`` (m
+from the face's first end, :attr:`LoadedMeshCycle.point_z`); the shaft's face point is at
+``gear_position - b / 2 + zeta``, or ``gear_position + b / 2 - zeta`` for a right-hand
+pinion (:func:`seat_points`).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.geometry.pair import GearPair
 from pipeline.shaft.model import PointLoad, ShaftModel, ShaftSolution
-from pipeline.validation import InputError
+from pipeline.validation import InputError, check_choice, check_range
+
+ROLES = ("pinion", "gear")
+"""The gears in the order :func:`shaft_gap` takes their shafts."""
+
+
+@dataclass(frozen=True)
+class HelicalMesh:
+    """What a helical mesh adds to its shafts' loads (module docstring).
+
+    Attributes
+    ----------
+    base_helix_angle : beta_b, rad, in [0, 45 deg).
+    pinion_hand : "right", "left" or "none" (spur; with ``beta_b = 0``).
+    t1t2 : the line of action between the tangent points, ``T1T2``, m.
+    roll : (n,) the cycle-mean roll coordinate ``s`` of the load in each face slice (the
+        load-weighted mean of the contact points' ``s``), m, in the contact's face order.
+    """
+
+    base_helix_angle: float
+    pinion_hand: str
+    t1t2: float
+    roll: np.ndarray
+
+    def __post_init__(self) -> None:
+        check_range("shafts: base helix angle", self.base_helix_angle, 0.0,
+                    math.radians(45.0), hi_open=True, unit="rad")
+        check_choice("shafts: pinion hand", self.pinion_hand, ("right", "left", "none"))
+        roll = np.array(self.roll, dtype=float)
+        roll.flags.writeable = False
+        object.__setattr__(self, "roll", roll)
+
+    @classmethod
+    def of(cls, pair: GearPair, roll: np.ndarray) -> HelicalMesh:
+        """The mesh of an external, spur or helical (not herringbone) ``pair`` with the
+        cycle-mean roll coordinates ``roll`` (m) of its face slices."""
+        if pair.gear.internal and pair.pinion.is_helical:
+            raise InputError("shafts: the loads of a helical internal pair on its shafts are "
+                             "not built; shafts take external helical pairs")
+        if pair.pinion.herringbone:
+            raise InputError("shafts: a herringbone pair's two halves on shafts are not built "
+                             "(the contact takes one half); shafts take spur and helical pairs")
+        return cls(pair.pinion.base_helix_angle, pair.pinion.hand, pair.t1t2, roll)
+
+    @property
+    def reversed(self) -> bool:
+        """True when the contact's face coordinate runs against the shafts' axis (a
+        right-hand pinion, module docstring)."""
+        return self.pinion_hand == "right"
+
+    def axial_ratio(self, role: int) -> float:
+        """``a = F_a / F``: the axial force over the transverse one along the shaft's ``z``
+        of gear ``role`` (0 pinion, 1 gear; module docstring), -."""
+        h = {"right": 1.0, "left": -1.0, "none": 0.0}[self.pinion_hand]
+        a = -h * math.tan(self.base_helix_angle)
+        return a if role == 0 else -a
+
+    def lever(self, role: int) -> np.ndarray:
+        """``d`` (n,): the contact's distance from gear ``role``'s tangent point along the
+        line of action (``s`` from ``T1``; ``T1T2 - s`` from ``T2``), m."""
+        return self.roll if role == 0 else self.t1t2 - self.roll
 
 
 @dataclass(frozen=True)
 class FlankRetreat:
-    """One gear's retreat across the face.
+    """One gear's retreat across the face, along the transverse line of action.
 
     Attributes
     ----------
-    z : (n,) face positions from the face's first end, m.
+    z : (n,) the contact's face positions from the face's first end, m.
     translation : (n,) ``u_y`` of the shaft there, m.
     twist : (n,) ``r_b theta_z`` there, m.
     solution : the shaft's whole solution (deflection line, bearing reactions) in the mesh
         frame, or None.
+    axial : (n,) ``a (u_z - d theta_x - r_b theta_y)`` there (a helical mesh's axial
+        terms, module docstring), m; None: 0 (spur).
     """
 
     z: np.ndarray
     translation: np.ndarray
     twist: np.ndarray
     solution: ShaftSolution | None = None
+    axial: np.ndarray | None = None
 
     @property
     def total(self) -> np.ndarray:
         """``delta`` (n,), m."""
-        return self.translation + self.twist
+        out = self.translation + self.twist
+        return out if self.axial is None else out + self.axial
+
+
+def unit_loads(base_radius: float, n: int, mesh: HelicalMesh | None = None,
+               role: int = 0) -> np.ndarray:
+    """``L`` (n, 6): each face slice's load on gear ``role``'s shaft per newton of transverse
+    load, ``(0, 1, a, -a d, -a r_b, r_b)`` (N/N and N m/N; module docstring); spur (``mesh``
+    None) ``a = 0``."""
+    out = np.zeros((n, 6))
+    out[:, 1] = 1.0
+    out[:, 5] = base_radius
+    if mesh is not None:
+        if mesh.roll.shape != (n,):
+            raise InputError(f"shaft loads: {mesh.roll.size} roll coordinates for {n} face "
+                             "slices")
+        a = mesh.axial_ratio(role)
+        out[:, 2] = a
+        out[:, 3] = -a * mesh.lever(role)
+        out[:, 4] = -a * base_radius
+    return out
 
 
 def seat_loads(z: np.ndarray, line_load: np.ndarray, face_width: float, gear_position: float,
-               base_radius: float) -> list[PointLoad]:
+               base_radius: float, unit: np.ndarray | None = None) -> list[PointLoad]:
     """The mesh's load on one gear's shaft in its mesh frame (module docstring): ``z`` (n,)
-    slice centres from the face's first end (m), ``line_load`` (n,) N/m; slices of equal
-    width ``face_width / n``."""
+    slice centres from the face's first end *along the shaft's axis* (m), ``line_load`` (n,)
+    N/m; slices of equal width ``face_width / n``; ``unit`` (n, 6) the loads per newton
+    (:func:`unit_loads`; None: spur)."""
     z = np.asarray(z, dtype=float)
     w = np.asarray(line_load, dtype=float)
     if z.shape != w.shape or z.ndim != 1 or z.size == 0:
         raise InputError("shaft loads: one line load per face position")
-    dz = face_width / z.size
+    unit = unit_loads(base_radius, z.size) if unit is None else unit
+    f = unit * (w * face_width / z.size)[:, None]
     start = gear_position - 0.5 * face_width
-    return [PointLoad(float(start + zj), (0.0, float(wj * dz), 0.0),
-                      (0.0, 0.0, float(wj * dz * base_radius)))
-            for zj, wj in zip(z, w, strict=True)]
+    return [PointLoad(float(start + zj), tuple(float(v) for v in fj[:3]),
+                      tuple(float(v) for v in fj[3:]))
+            for zj, fj in zip(z, f, strict=True)]
 
 
-def seat_points(model: ShaftModel, z: np.ndarray) -> np.ndarray:
-    """The shaft positions (m) of the face points ``z`` (m from the face's first end)."""
+def seat_points(model: ShaftModel, z: np.ndarray, mesh: HelicalMesh | None = None
+                ) -> np.ndarray:
+    """The shaft positions (m) of the contact's face points ``z`` (m from the face's first
+    end): ``gear_position - b / 2 + z``, or ``gear_position + b / 2 - z`` when the contact's
+    face runs against the shaft's axis (``mesh.reversed``, module docstring)."""
     lay = model.layout
-    return lay.gear_position - 0.5 * lay.seat_width + np.asarray(z, dtype=float)
+    z = np.asarray(z, dtype=float)
+    if mesh is not None and mesh.reversed:
+        return lay.gear_position + 0.5 * lay.seat_width - z
+    return lay.gear_position - 0.5 * lay.seat_width + z
 
 
 def flank_retreat(model: ShaftModel, z: np.ndarray, line_load: np.ndarray,
-                  base_radius: float, flexibility: np.ndarray | None = None) -> FlankRetreat:
-    """The retreat of one gear's flank across the face under the mesh's line load
-    (module docstring), ``model`` the gear's shaft in its mesh frame; ``flexibility`` its
-    :meth:`~pipeline.shaft.model.ShaftModel.flexibility` at the face points when computed
-    already (a fixed point reuses it)."""
+                  base_radius: float, flexibility: np.ndarray | None = None,
+                  mesh: HelicalMesh | None = None, role: int = 0) -> FlankRetreat:
+    """The retreat of gear ``role``'s flank (0 pinion, 1 gear) across the face under the
+    mesh's line load (module docstring), ``model`` the gear's shaft in its mesh frame,
+    ``z`` the contact's face positions (m); ``flexibility`` its
+    :meth:`~pipeline.shaft.model.ShaftModel.flexibility` at :func:`seat_points` when
+    computed already (a fixed point reuses it); ``mesh`` a helical mesh (None: spur)."""
     lay = model.layout
-    loads = seat_loads(z, line_load, lay.seat_width, lay.gear_position, base_radius)
-    c = model.flexibility(seat_points(model, z)) if flexibility is None else flexibility
-    f = np.zeros(6 * len(loads))
-    f[1::6] = [ld.force[1] for ld in loads]
-    f[5::6] = [ld.moment[2] for ld in loads]
-    d = c @ f
-    return FlankRetreat(np.asarray(z, dtype=float), d[1::6], base_radius * d[5::6],
-                        model.solve(loads))
+    points = seat_points(model, z, mesh)
+    w = np.asarray(line_load, dtype=float)
+    unit = unit_loads(base_radius, w.size, mesh, role)
+    loads = seat_loads(points - (lay.gear_position - 0.5 * lay.seat_width), w,
+                       lay.seat_width, lay.gear_position, base_radius, unit)
+    c = model.flexibility(points) if flexibility is None else flexibility
+    f = np.concatenate([np.r_[ld.force, ld.moment] for ld in loads])
+    d = (c @ f).reshape(-1, 6)
+    axial = None
+    if mesh is not None:
+        axial = (unit[:, 2] * d[:, 2] + unit[:, 3] * d[:, 3] + unit[:, 4] * d[:, 4])
+    return FlankRetreat(np.asarray(z, dtype=float), d[:, 1], base_radius * d[:, 5],
+                        model.solve(loads), axial)
 
 
 def shaft_gap(models: Sequence[ShaftModel | None], base_radii: Sequence[float],
               z: np.ndarray, line_load: np.ndarray, helix_angle: float = 0.0,
-              flexibilities: Sequence[np.ndarray | None] | None = None
+              flexibilities: Sequence[np.ndarray | None] | None = None,
+              mesh: HelicalMesh | None = None
               ) -> tuple[np.ndarray, tuple[FlankRetreat | None, ...]]:
     """The gap (n,) the shafts of both gears open across the face (m; a gear without a
-    shaft: rigid) and each gear's retreat (module docstring); ``flexibilities`` of the
-    models at the face points, when computed already."""
-    if helix_angle != 0.0:
-        raise InputError("shafts: the tilt a helical mesh's axial force gives is not built "
-                         "yet; shafts take spur pairs")
+    shaft: rigid) and each gear's retreat (module docstring).
+
+    ``models`` and ``base_radii`` in the order pinion, gear (:data:`ROLES`); ``z`` the
+    contact's face positions (m) and ``line_load`` its line load there (N/m);
+    ``flexibilities`` of the models at :func:`seat_points`, when computed already; ``mesh``
+    the helical mesh, needed when ``helix_angle`` (rad) is not 0.
+    """
+    if helix_angle != 0.0 and mesh is None:
+        raise InputError("shafts: a helical pair's shaft loads need its HelicalMesh (the "
+                         "axial force's sense and lever)")
+    if len(models) > len(ROLES):
+        raise InputError(f"shafts: {len(models)} shafts for the two gears of a pair")
     flex = flexibilities or [None] * len(models)
-    retreats = tuple(None if m is None else flank_retreat(m, z, line_load, rb, c)
-                     for m, rb, c in zip(models, base_radii, flex, strict=True))
+    retreats = tuple(None if m is None else flank_retreat(m, z, line_load, rb, c, mesh, role)
+                     for role, (m, rb, c) in enumerate(zip(models, base_radii, flex,
+                                                           strict=True)))
     gap = np.zeros(np.shape(z))
     for r in retreats:
         if r is not None:

@@ -16,11 +16,13 @@ if TYPE_CHECKING:
 def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
                                                  tuple[float, float], np.ndarray]],
                           z_face: np.ndarray, rigid: np.ndarray, coupled: np.ndarray,
-                          gap: np.ndarray, title: str) -> Figure:
+                          gap: np.ndarray, title: str, face_reversed: bool = False) -> Figure:
     """Left: each shaft's deflection along the line of action, ``(name, z m, u_y m, (seat
     start, end) m, bearing positions m)``, in um over mm with the seat shaded and the
     bearings marked. Right: the cycle-mean line load across the face on rigid supports and
-    with the shafts (N/mm), and the shafts' misalignment there (um, right axis)."""
+    with the shafts (N/mm), and the shafts' misalignment there (um, right axis), over the
+    contact's face position; ``face_reversed``: it runs against the shafts' z (a right-hand
+    helical pinion, :func:`pipeline.shaft.misalignment.seat_points`), which the label says."""
     fig = new_figure((9.0, 3.6), "constrained")
     ax = fig.add_subplot(1, 2, 1)
     for i, (name, z, uy, seat, bearings) in enumerate(shafts):
@@ -39,7 +41,8 @@ def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
     zf = np.asarray(z_face) * 1e3
     ax2.plot(zf, np.asarray(rigid) * 1e-3, "k--", lw=1.4, label="rigid supports")
     ax2.plot(zf, np.asarray(coupled) * 1e-3, "C3", lw=2.0, label="with the shafts")
-    ax2.set_xlabel("face position b_z [mm]")
+    ax2.set_xlabel("face position b_z [mm]" + (" (runs against the shaft's z)" if face_reversed
+                                               else ""))
     ax2.set_ylabel("cycle-mean line load [N/mm]")
     top = max(float(np.max(rigid)), float(np.max(coupled))) * 1e-3
     ax2.set_ylim(0.0, 1.2 * top)
