@@ -449,10 +449,20 @@ def _straddle_pinion():
 def test_straddle_pinion_body_is_one_solid_with_seat_rings():
     """A seat on a disc (20 mm long, 142.5 mm across): its four inner station edges split
     only its surface (rings), so the body is one solid with cross-sections at its faces
-    only; the journals keep their sections."""
+    only; the journals keep their sections. Its shoulders are a large step (142.5 / 35):
+    their circles are meshed at 0.08 of the journal's 8.75 mm edge, growing 1 m/m; the
+    stepped shaft's (45 / 30) at 0.35 of 7.5 mm, growing 0.5 m/m; the body at its length
+    over 2 (10 mm, not 142.5 / 4)."""
     from pipeline.shaft.fe3d_plan import plan_fe3d
 
     plan = plan_fe3d(_straddle_pinion(), Fe3dSettings())
+    for z, (zs, r, hs, h, g) in zip((0.07, 0.09), plan.mesh.shoulders(), strict=True):
+        assert (zs, r, h, g) == pytest.approx((z, 0.0175, 0.00875, 1.0))
+        assert hs == pytest.approx(0.08 * 0.00875)
+    body = [p for p in plan.mesh.pieces if p.outer_radius > 0.07]
+    assert [p.size for p in body] == pytest.approx([0.01] * len(body))
+    for _, _, hs, h, g in plan_fe3d(stepped(), Fe3dSettings()).mesh.shoulders():
+        assert (hs, h, g) == pytest.approx((0.35 * 0.0075, 0.0075, 0.5))
     assert np.allclose(plan.mesh.rings, [0.074, 0.078, 0.082, 0.086])
     cuts = plan.mesh.section_cuts
     assert not np.any((cuts > 0.0701) & (cuts < 0.0899))
@@ -464,8 +474,9 @@ def test_straddle_pinion_body_is_one_solid_with_seat_rings():
 @pytest.mark.slow
 def test_straddle_pinion_graded_mesh_against_a_finer_one():
     """The straddle-mounted pinion's seat compliance (centre of the 142.5 mm body on 35 mm
-    journals; the bearings rigid) at the default mesh (64k unknowns; shoulder circles at
-    0.08 of the journal's edge, growing 1 m/m; the body at its length / 2) agrees with the
+    journals; the bearings rigid) at the default mesh (64k unknowns; the large step's
+    shoulder circles at 0.08 of the journal's edge, growing 1 m/m; the body at its length
+    over 2, split by rings) agrees with the
     same mesh refined 1.5 times (121k unknowns) within 0.5 % in u_x, u_y, u_z and the
     twist (measured -0.41, -0.38, -0.47 and -0.16 %), and lies below it (a displacement
     model is too stiff). Against the earlier sizing (shoulder circles at 0.35 growing

@@ -20,9 +20,10 @@ that force flat elements across the whole disc and a large sparse factor.
 Size field: ``size`` (m) inside each piece; at every re-entrant shoulder (the circle where
 a smaller piece meets a larger one) ``shoulder_factor`` times the smaller piece's size,
 growing linearly with the distance from that circle (``grading`` m per m), and likewise
-at further circles the caller names (the edges of a rigid hub bonded to the surface) with
-``edge_factor`` and ``edge_grading``: there the 3D stress and the local flexibility
-differ from beam theory, and a sharp corner is a singularity.
+at further circles the caller names (the edges of a rigid hub bonded to the surface); at a
+large step (radii ``large_step_ratio`` apart) ``large_step_factor`` growing at
+``large_step_grading``: there the 3D stress and the local flexibility differ from beam
+theory, and a sharp corner is a singularity.
 Second-order nodes are placed on the true cylinders (curved P2 cells), as in
 :mod:`pipeline.fem.groove.mesh`.
 """
@@ -69,9 +70,12 @@ class ShaftMeshSpec:
     pieces : contiguous pieces (each starts where the one before ends).
     shoulder_factor : edge at a shoulder circle over the smaller piece's ``size``.
     grading : growth of the edge away from a shoulder circle, m per m.
+    large_step_ratio : outer radii this far apart (larger over smaller) make a large step.
+    large_step_factor, large_step_grading : ``shoulder_factor`` and ``grading`` at a large
+        step's shoulder (a stronger corner singularity, whose zone holds a larger share of
+        the shaft's flexibility).
     edges : further circles ``(z, radius)`` (m) refined like shoulders (the edges of a
-        rigid ring bonded to the surface, another corner singularity), with their own
-        ``edge_factor`` and ``edge_grading``.
+        rigid ring bonded to the surface, another corner singularity).
     rings : cuts (m, piece ends between pieces of one cross-section) that split only the
         outer surface: the pieces either side are one solid, with no cross-section there,
         so that narrow bands on a large diameter do not cut it into thin slabs.
@@ -80,9 +84,10 @@ class ShaftMeshSpec:
     pieces: tuple[ShaftPiece, ...]
     shoulder_factor: float = 0.35
     grading: float = 0.5
+    large_step_ratio: float = 2.0
+    large_step_factor: float = 0.08
+    large_step_grading: float = 1.0
     edges: tuple[tuple[float, float], ...] = ()
-    edge_factor: float = 0.35
-    edge_grading: float = 0.5
     rings: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
@@ -100,8 +105,10 @@ class ShaftMeshSpec:
                                  "pieces of the same cross-section")
         check_range("shaft mesh shoulder_factor", self.shoulder_factor, 0.05, 1.0)
         check_range("shaft mesh grading", self.grading, 0.05, 2.0)
-        check_range("shaft mesh edge_factor", self.edge_factor, 0.05, 1.0)
-        check_range("shaft mesh edge_grading", self.edge_grading, 0.05, 2.0)
+        check_range("shaft mesh large_step_ratio", self.large_step_ratio, 1.0, 100.0,
+                    lo_open=True)
+        check_range("shaft mesh large_step_factor", self.large_step_factor, 0.02, 1.0)
+        check_range("shaft mesh large_step_grading", self.large_step_grading, 0.05, 2.0)
 
     @property
     def cuts(self) -> np.ndarray:
@@ -128,18 +135,21 @@ class ShaftMeshSpec:
     def shoulders(self) -> list[tuple[float, float, float, float, float]]:
         """(z, radius, size at the circle, size it grows to, grading) of every refined
         circle: each re-entrant shoulder (a change of outer radius; the smaller piece's
-        size) and each of :attr:`edges` (its piece's size)."""
+        size; a large step's factor and grading) and each of :attr:`edges` (its piece's
+        size)."""
         out = []
         for a, b in zip(self.pieces[:-1], self.pieces[1:], strict=True):
             if abs(a.outer_radius - b.outer_radius) > _TOL:
-                small = a if a.outer_radius < b.outer_radius else b
-                out.append((a.z1, small.outer_radius, self.shoulder_factor * small.size,
-                            small.size, self.grading))
+                small, big = (a, b) if a.outer_radius < b.outer_radius else (b, a)
+                large = big.outer_radius >= self.large_step_ratio * small.outer_radius
+                f, g = ((self.large_step_factor, self.large_step_grading) if large
+                        else (self.shoulder_factor, self.grading))
+                out.append((a.z1, small.outer_radius, f * small.size, small.size, g))
         cuts = self.cuts
         for z, r in self.edges:
             k = int(np.clip(np.searchsorted(cuts, z) - 1, 0, len(self.pieces) - 1))
             h = self.pieces[k].size
-            out.append((z, r, self.edge_factor * h, h, self.edge_grading))
+            out.append((z, r, self.shoulder_factor * h, h, self.grading))
         return out
 
     def estimated_size(self) -> SizeEstimate:

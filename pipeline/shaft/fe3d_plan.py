@@ -23,8 +23,12 @@ ELEMENTS_PER_DIAMETER = 4.0
 ELEMENTS_PER_LENGTH = 2.0
 """Element edges along a segment's length at ``refinement = 1`` (it governs a short, wide
 segment: a disc bends and shears as a plate, through its length)."""
-SHOULDER_GRADING = 1.0
-"""Growth of the edge away from a shoulder circle, m per m (a rigid hub's edges: 0.5)."""
+LARGE_STEP_RATIO = 2.0
+"""Outer diameters this far apart (larger over smaller) make a large step (a pinion's body
+on its journals)."""
+LARGE_STEP_GRADING = 1.0
+"""Growth of the edge away from a large step's shoulder circle, m per m (other shoulders
+and a rigid hub's edges: 0.5)."""
 TOL = 1e-9
 """Axial positions closer than this (m) are one."""
 
@@ -36,8 +40,10 @@ class Fe3dSettings:
     Attributes
     ----------
     refinement : divides the element edge (``d / 4`` at 1), > 0.
-    shoulder_factor : edge at a shoulder circle over the smaller segment's edge (the edges
-        of a rigid hub: 0.35, :class:`~pipeline.fem.shaft_mesh.ShaftMeshSpec`).
+    shoulder_factor : edge at a shoulder circle over the smaller segment's edge, and at the
+        edges of a rigid hub over the seat's edge.
+    large_step_factor : the same at a large step (:data:`LARGE_STEP_RATIO`), whose corner
+        decides more of the flexibility.
     band_factor : width of a bearing's or the torque point's band over the local outer
         diameter.
     seat_stations : reference nodes on an integral seat (``hub = "integral"``).
@@ -48,7 +54,8 @@ class Fe3dSettings:
     """
 
     refinement: float = 1.0
-    shoulder_factor: float = 0.08
+    shoulder_factor: float = 0.35
+    large_step_factor: float = 0.08
     band_factor: float = 0.25
     seat_stations: int = 5
     section_spacing: float = 0.5
@@ -57,6 +64,7 @@ class Fe3dSettings:
     def __post_init__(self) -> None:
         check_range("fe3d.refinement", self.refinement, 0.25, 8.0)
         check_range("fe3d.shoulder_factor", self.shoulder_factor, 0.05, 1.0)
+        check_range("fe3d.large_step_factor", self.large_step_factor, 0.02, 1.0)
         check_range("fe3d.band_factor", self.band_factor, 0.02, 2.0)
         check_int_range("fe3d.seat_stations", self.seat_stations, 2, 40)
         check_range("fe3d.section_spacing", self.section_spacing, 0.05, 10.0)
@@ -172,4 +180,6 @@ def _pieces(layout: ShaftLayout, cuts: list[float], s: Fe3dSettings,
     ends = np.array(z)
     rings = tuple(float(ends[np.argmin(np.abs(ends - r))]) for r in rings)
     return ShaftMeshSpec(tuple(pieces), shoulder_factor=s.shoulder_factor,
-                         grading=SHOULDER_GRADING, edges=edges, rings=rings)
+                         large_step_ratio=LARGE_STEP_RATIO,
+                         large_step_factor=s.large_step_factor,
+                         large_step_grading=LARGE_STEP_GRADING, edges=edges, rings=rings)
