@@ -36,11 +36,14 @@ Modelling choices
   motions of the nodes relative to the anchor (the seat node, or the first seat station),
   ``K = A^T C^-1 A`` (:class:`~pipeline.fem.superelement.Superelement`). The deflection
   line is read on the cross-sections at every cut of the mesh (ends, steps, seat and band
-  edges, bearings, torque point, and at most ``section_spacing`` diameters apart) as their
-  least-squares rigid motion: the beam's section kinematics.
+  edges - not the rings inside a disc seat -, bearings, torque point, and at most
+  ``section_spacing`` diameters apart) as their least-squares rigid motion: the beam's
+  section kinematics.
 * Mesh: edge ``min(d / 4, wall, l / 2) / refinement`` in each segment (``d`` its outer
   diameter, ``wall`` its wall thickness, ``l`` its length: a short, wide segment - a
-  pinion's body - bends and shears as a plate through its length), ``shoulder_factor``
+  pinion's body - bends and shears as a plate through its length: loaded at its rim it
+  is not rigid; an edge growing from 10 mm at the core to 30 mm at the rim of the example
+  below lost 1.1 % of its axial and tilting compliance), ``shoulder_factor``
   times that at every shoulder circle and at the edges of a rigid hub, growing 0.5 m per
   m away from them (:mod:`pipeline.fem.shaft_mesh`). At a large step (outer diameters at
   least :data:`~pipeline.shaft.fe3d_plan.LARGE_STEP_RATIO` apart) ``large_step_factor``
@@ -75,8 +78,8 @@ fully effective (a Saint-Venant zone of the order of the step height, which beam
 lacks). The condensed flexibility is symmetric to 1e-15 before symmetrising. Timing
 (``workflows/benchmarks/bench_shaft_fe3d.py``; 2 cores, one busy with another job - the
 factorisation, cholespy's CHOLMOD on reference BLAS, runs on one): the straddle-mounted
-example (integral seat on the 142.5 mm body) 64k unknowns, 12 s cold (mesh 0.7-1.0,
-assembly 2.8-3.1, factorisation 7.2-7.4, solves 0.7-0.8 s; with the earlier sizing 51k
+example (integral seat on the 142.5 mm body) 64k unknowns, 12-15 s cold (mesh 0.6-1.2,
+assembly 1.7-3.4, factorisation 7.2-9.4, solves 0.7-1.0 s; with the earlier sizing 51k
 unknowns in 38-41 s, 34 s of them factorising the slabs); a straddle-mounted pinion
 shaft (35-45 mm, bearings 200 mm apart, rigid hub) 35k unknowns, 3.9 s cold (mesh 0.35,
 assembly 1.4, factorisation 1.9, solves 0.2 s); 2 ms warm.
