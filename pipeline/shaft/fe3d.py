@@ -36,13 +36,28 @@ Modelling choices
   motions of the nodes relative to the anchor (the seat node, or the first seat station),
   ``K = A^T C^-1 A`` (:class:`~pipeline.fem.superelement.Superelement`). The deflection
   line is read on the cross-sections at every cut of the mesh (ends, steps, seat and band
-  edges, bearings, torque point, and at most ``section_spacing`` diameters apart) as their
-  least-squares rigid motion: the beam's section kinematics.
-* Mesh: edge ``min(d / 4, wall) / refinement`` in each segment (``d`` its outer diameter,
-  ``wall`` its wall thickness), ``shoulder_factor`` times that at every shoulder circle
-  and at the edges of a rigid hub, growing away from them (:mod:`pipeline.fem.shaft_mesh`).
-  At the default refinement the seat's bending compliance is 0.06 % (integral seat) and
-  1.4 % (rigid hub) below its extrapolated value.
+  edges - not the rings inside a disc seat -, bearings, torque point, and at most
+  ``section_spacing`` diameters apart) as their least-squares rigid motion: the beam's
+  section kinematics.
+* Mesh: edge ``min(d / 4, wall, l / 2) / refinement`` in each segment (``d`` its outer
+  diameter, ``wall`` its wall thickness, ``l`` its length: a short, wide segment - a
+  pinion's body - bends and shears as a plate through its length: loaded at its rim it
+  is not rigid; an edge growing from 10 mm at the core to 30 mm at the rim of the example
+  below lost 1.1 % of its axial and tilting compliance), ``shoulder_factor``
+  times that at every shoulder circle and at the edges of a rigid hub, growing 0.5 m per
+  m away from them (:mod:`pipeline.fem.shaft_mesh`). At a large step (outer diameters at
+  least :data:`~pipeline.shaft.fe3d_plan.LARGE_STEP_RATIO` apart) ``large_step_factor``
+  (0.08) growing 1 m per m: its re-entrant corner is a stronger singularity, whose zone
+  holds much of the shaft's flexibility, and a uniform mesh converges there only like
+  h^1. An integral seat on a disc (its segment shorter than its diameter) is not cut at
+  its stations: their edges split only its surface (rings,
+  :attr:`~pipeline.fem.shaft_mesh.ShaftMeshSpec.rings`), so the disc is one solid meshed
+  by its own size instead of ten thin slabs across its whole diameter. At the default
+  refinement the seat's bending compliance is 0.06 % (integral seat) and 1.4 % (rigid
+  hub) below its extrapolated value on a plain shaft. On the straddle-mounted example
+  (35 mm journals, 142.5 mm body) the seat's 6 x 6 diagonal lies within 0.25 % (the
+  5-point seat flexibility within 0.35 % of its largest diagonal) of the earlier sizing
+  (slabs, shoulder circles at 0.35 growing 0.5 m/m) refined to 2 (121k unknowns).
 
 Cache: the key holds everything of the layout that changes the superelement (the pieces
 with their radii and mesh sizes, the hub, the nodes and their bands, E and nu) and the
@@ -61,9 +76,13 @@ and 4.8-5.5 % in torsion than the beam: each shoulder acts like 0.16-0.2 d (bend
 0.07-0.08 d (torsion) of extra small shaft - the large section next to a step is not
 fully effective (a Saint-Venant zone of the order of the step height, which beam theory
 lacks). The condensed flexibility is symmetric to 1e-15 before symmetrising. Timing
-(``workflows/benchmarks/bench_shaft_fe3d.py``, 2 shared cores): a straddle-mounted pinion
+(``workflows/benchmarks/bench_shaft_fe3d.py``; 2 cores, one busy with another job - the
+factorisation, cholespy's CHOLMOD on reference BLAS, runs on one): the straddle-mounted
+example (integral seat on the 142.5 mm body) 64k unknowns, 12-15 s cold (mesh 0.6-1.2,
+assembly 1.7-3.4, factorisation 7.2-9.4, solves 0.7-1.0 s; with the earlier sizing 51k
+unknowns in 38-41 s, 34 s of them factorising the slabs); a straddle-mounted pinion
 shaft (35-45 mm, bearings 200 mm apart, rigid hub) 35k unknowns, 3.9 s cold (mesh 0.35,
-assembly 1.4, factorisation 1.9, solves 0.2 s), 2 ms warm.
+assembly 1.4, factorisation 1.9, solves 0.2 s); 2 ms warm.
 """
 
 from __future__ import annotations
@@ -111,7 +130,7 @@ def _build(plan: Fe3dPlan, layout: ShaftLayout, settings: Fe3dSettings) -> dict:
         return Patch(tri, np.array([0.0, 0.0, z]))
 
     patches = [patch(z, b) for z, b in zip(plan.nodes_z, plan.bands, strict=True)]
-    cuts = plan.mesh.cuts
+    cuts = plan.mesh.section_cuts
     sections = [Patch(sk.triangles[f"section:{k}"], np.array([0.0, 0.0, c]))
                 for k, c in enumerate(cuts)]
     se = condense(model, patches[0], patches[1:], sections, anchor_rigid=plan.rigid,
@@ -189,7 +208,10 @@ class Fe3dShaft:
         # everything of the layout that changes the superelement (bearing stiffnesses do not)
         key = {"pieces": [asdict(p) for p in plan.mesh.pieces],
                "shoulder_factor": plan.mesh.shoulder_factor, "grading": plan.mesh.grading,
-               "edges": plan.mesh.edges, "rigid": plan.rigid, "nodes_z": plan.nodes_z,
+               "large_step": [plan.mesh.large_step_ratio, plan.mesh.large_step_factor,
+                              plan.mesh.large_step_grading],
+               "edges": plan.mesh.edges, "rings": plan.mesh.rings, "rigid": plan.rigid,
+               "nodes_z": plan.nodes_z,
                "bands": plan.bands, "material": [mat.youngs_modulus, mat.poisson_ratio]}
         v, _, hit = cached_file("shaftfe3d", key,
                                 lambda: _build(plan, self.layout, self.settings),

@@ -20,6 +20,15 @@ from pipeline.validation import InputError, check_choice, check_int_range, check
 
 ELEMENTS_PER_DIAMETER = 4.0
 """Element edges across a segment's diameter at ``refinement = 1``."""
+ELEMENTS_PER_LENGTH = 2.0
+"""Element edges along a segment's length at ``refinement = 1`` (it governs a short, wide
+segment: a disc bends and shears as a plate, through its length)."""
+LARGE_STEP_RATIO = 2.0
+"""Outer diameters this far apart (larger over smaller) make a large step (a pinion's body
+on its journals)."""
+LARGE_STEP_GRADING = 1.0
+"""Growth of the edge away from a large step's shoulder circle, m per m (other shoulders
+and a rigid hub's edges: 0.5)."""
 TOL = 1e-9
 """Axial positions closer than this (m) are one."""
 
@@ -31,7 +40,10 @@ class Fe3dSettings:
     Attributes
     ----------
     refinement : divides the element edge (``d / 4`` at 1), > 0.
-    shoulder_factor : edge at a shoulder over the smaller segment's edge.
+    shoulder_factor : edge at a shoulder circle over the smaller segment's edge, and at the
+        edges of a rigid hub over the seat's edge.
+    large_step_factor : the same at a large step (:data:`LARGE_STEP_RATIO`), whose corner
+        decides more of the flexibility.
     band_factor : width of a bearing's or the torque point's band over the local outer
         diameter.
     seat_stations : reference nodes on an integral seat (``hub = "integral"``).
@@ -43,6 +55,7 @@ class Fe3dSettings:
 
     refinement: float = 1.0
     shoulder_factor: float = 0.35
+    large_step_factor: float = 0.08
     band_factor: float = 0.25
     seat_stations: int = 5
     section_spacing: float = 0.5
@@ -51,6 +64,7 @@ class Fe3dSettings:
     def __post_init__(self) -> None:
         check_range("fe3d.refinement", self.refinement, 0.25, 8.0)
         check_range("fe3d.shoulder_factor", self.shoulder_factor, 0.05, 1.0)
+        check_range("fe3d.large_step_factor", self.large_step_factor, 0.02, 1.0)
         check_range("fe3d.band_factor", self.band_factor, 0.02, 2.0)
         check_int_range("fe3d.seat_stations", self.seat_stations, 2, 40)
         check_range("fe3d.section_spacing", self.section_spacing, 0.05, 10.0)
@@ -97,9 +111,10 @@ def plan_fe3d(layout: ShaftLayout, s: Fe3dSettings) -> Fe3dPlan:
     rigid = layout.hub == "rigid"
     if rigid:
         nodes, bands, seat_nodes = [layout.gear_position], [(s0, s1)], (0,)
+        edges_z = np.array([s0, s1])
     else:
-        edges = np.linspace(s0, s1, s.seat_stations + 1)
-        bands = list(zip(edges[:-1], edges[1:], strict=True))
+        edges_z = np.linspace(s0, s1, s.seat_stations + 1)
+        bands = list(zip(edges_z[:-1], edges_z[1:], strict=True))
         nodes = [0.5 * (a + b) for a, b in bands]
         seat_nodes = tuple(range(s.seat_stations))
     zb = sorted(b.position for b in layout.bearings)
@@ -125,19 +140,29 @@ def plan_fe3d(layout: ShaftLayout, s: Fe3dSettings) -> Fe3dPlan:
                            f"{n}.torque_position_mm"))
         nodes.append(zt)
         torque_node = len(nodes) - 1
-    cuts = {0.0, L, *nodes, *(e for band in bands for e in band),
+    # an integral seat on a disc (a segment shorter than its diameter, a pinion's body):
+    # cuts through it at the stations would slice it into thin full discs, each meshed
+    # across the whole diameter; its stations' edges split only its surface (rings), and
+    # their centres are not cut. A seat on a long segment is cut at both.
+    seat_seg = layout.segment_at(layout.gear_position)
+    disc = not rigid and seat_seg.end - seat_seg.start < seat_seg.outer_diameter
+    rings = tuple(e for e in edges_z[1:-1] if seat_seg.start + TOL < e < seat_seg.end - TOL
+                  ) if disc else ()
+    cut_nodes = nodes[len(seat_nodes):] if disc else nodes
+    cuts = {0.0, L, *cut_nodes, *(e for band in bands for e in band),
             *(seg.end for seg in layout.segments)}
     # a rigid hub's edges are corner singularities like the shoulders: refined alike
-    r_seat = 0.5 * layout.segment_at(layout.gear_position).outer_diameter
+    r_seat = 0.5 * seat_seg.outer_diameter
     edges = ((s0, r_seat), (s1, r_seat)) if rigid else ()
-    return Fe3dPlan(_pieces(layout, sorted(cuts), s, edges), rigid, tuple(nodes), tuple(bands),
-                 seat_nodes, tuple(bearing_nodes), torque_node)
+    return Fe3dPlan(_pieces(layout, sorted(cuts), s, edges, rings), rigid, tuple(nodes),
+                    tuple(bands), seat_nodes, tuple(bearing_nodes), torque_node)
 
 
 def _pieces(layout: ShaftLayout, cuts: list[float], s: Fe3dSettings,
-            edges: tuple[tuple[float, float], ...]) -> ShaftMeshSpec:
+            edges: tuple[tuple[float, float], ...], rings: tuple[float, ...]) -> ShaftMeshSpec:
     """Pieces between the cuts (merged when closer than 1 nm), each split further so that
-    sections are at most ``section_spacing`` diameters apart."""
+    sections are at most ``section_spacing`` diameters apart; the cuts at ``rings`` split
+    the surface only."""
     z = [cuts[0]]
     for c in cuts[1:]:
         if c - z[-1] > TOL:
@@ -146,9 +171,15 @@ def _pieces(layout: ShaftLayout, cuts: list[float], s: Fe3dSettings,
     for a, b in zip(z[:-1], z[1:], strict=True):
         seg = layout.segment_at(0.5 * (a + b))
         ro, ri = 0.5 * seg.outer_diameter, 0.5 * seg.inner_diameter
-        size = min(2 * ro / ELEMENTS_PER_DIAMETER, ro - ri) / s.refinement
+        size = min(2 * ro / ELEMENTS_PER_DIAMETER, ro - ri,
+                   (seg.end - seg.start) / ELEMENTS_PER_LENGTH) / s.refinement
         parts = max(1, math.ceil((b - a) / (s.section_spacing * 2 * ro) - 1e-9))
         ends = np.linspace(a, b, parts + 1)
         pieces += [ShaftPiece(float(p), float(q), ro, ri, size)
                    for p, q in zip(ends[:-1], ends[1:], strict=True)]
-    return ShaftMeshSpec(tuple(pieces), shoulder_factor=s.shoulder_factor, edges=edges)
+    ends = np.array(z)
+    rings = tuple(float(ends[np.argmin(np.abs(ends - r))]) for r in rings)
+    return ShaftMeshSpec(tuple(pieces), shoulder_factor=s.shoulder_factor,
+                         large_step_ratio=LARGE_STEP_RATIO,
+                         large_step_factor=s.large_step_factor,
+                         large_step_grading=LARGE_STEP_GRADING, edges=edges, rings=rings)

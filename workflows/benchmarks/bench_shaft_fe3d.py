@@ -1,16 +1,27 @@
-"""Benchmark: the 3D shaft superelement of a straddle-mounted pinion, cold and warm.
+"""Benchmark: the 3D shaft superelement, cold and warm, on two straddle-mounted pinions.
 
-Target: < 10 s cold (mesh, assembly, factorisation, condensation) for a shaft of the demo
-pair's size. The layout: a 260 mm shaft, 35 mm at the coupling (torque held at 20 mm),
-40 mm bearing journals with bearings 200 mm apart (55 and 255 mm, rigid), a 45 mm body
-carrying the pinion (reference diameter 150 mm, z 50, m 3 mm) on a rigid hub 20 mm wide
-at mid-span. The load: the demo pair's 340 N m, i.e. F_t = 2 T / d = 4533 N and
-F_r = F_t tan 20 deg = 1650 N at the pitch point, moved to the axis (the tangential
+Target: < 10 s cold (mesh, assembly, factorisation, condensation) on 2 cores.
+
+* ``straddle_pinion_example``: the pinion shaft of
+  ``workflows/configs/shaft_straddle_pinion.toml`` (35 mm journals, the pinion cut on its
+  shaft: a 142.5 mm body 70-90 mm, integral seat; bearings at 40 and 140 mm, torque at
+  0). The body is a disc: its seat's stations split only its surface, and the 35 mm
+  journals' shoulder circles are refined (:mod:`pipeline.shaft.fe3d`).
+* ``stepped_rigid_hub``: a 260 mm shaft, 35 mm at the coupling (torque held at 20 mm),
+  40 mm bearing journals with bearings 200 mm apart (55 and 255 mm, rigid), a 45 mm body
+  carrying the pinion (reference diameter 150 mm, z 50, m 3 mm) on a rigid hub 20 mm wide
+  at mid-span.
+
+The load for the deflection printed: the demo pair's 340 N m, i.e. F_t = 2 T / d = 4533 N
+and F_r = F_t tan 20 deg = 1650 N at the pitch point, moved to the axis (the tangential
 force's lever is the torque).
 
-Prints the import time, the cold build (empty temporary cache) with its parts, the warm
-build (read from the cache), the peak resident memory of the process, the unknowns and
-the seat's deflection.
+Prints and writes to ``results/benchmarks/shaft_fe3d.json`` per case: the cold build
+(empty temporary cache) with its parts (s), the warm build (read from the cache), the
+unknowns and tetrahedra, the seat centre's compliance diagonal and deflection (from
+``flexibility``), the bearing reactions (from ``solve``); and the import
+time and the peak resident memory of the process. Timings are printed, not asserted (the
+machine is shared).
 
 Run: ``python workflows/benchmarks/bench_shaft_fe3d.py [refinement]``.
 """
@@ -22,23 +33,33 @@ import resource
 import sys
 import tempfile
 import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parents[1]
 
 
-def main(refinement: float = 1.0) -> None:
-    t0 = time.perf_counter()
-    import pipeline.fem.linear_static  # noqa: F401  (scikit-fem, counted apart)
-    import pipeline.fem.shaft_mesh  # noqa: F401  (Gmsh)
-    from pipeline.cache.folder import Cache
-    from pipeline.shaft.fe3d import Fe3dShaft
-    from pipeline.shaft.fe3d_plan import Fe3dSettings
+def _layouts() -> dict:
+    from pipeline.config import load_gearbox
     from pipeline.shaft.layout import Bearing, ShaftLayout, ShaftSegment
-    from pipeline.shaft.model import PointLoad
 
-    t_import = time.perf_counter() - t0
+    example = load_gearbox(HERE / "configs" / "shaft_straddle_pinion.toml").shafts["pinion"][1]
     segments = (ShaftSegment(0.0, 0.04, 0.035), ShaftSegment(0.04, 0.07, 0.04),
                 ShaftSegment(0.07, 0.23, 0.045), ShaftSegment(0.23, 0.26, 0.04))
-    layout = ShaftLayout(segments, 0.155, 0.02, (Bearing(0.055, axial=True), Bearing(0.255)),
-                         0.02, hub="rigid", name="pinion.shaft")
+    stepped = ShaftLayout(segments, 0.155, 0.02, (Bearing(0.055, axial=True), Bearing(0.255)),
+                          0.02, hub="rigid", name="pinion.shaft")
+    return {"straddle_pinion_example": example, "stepped_rigid_hub": stepped}
+
+
+def bench_case(name: str, layout, refinement: float) -> dict:
+    """Cold and warm build of ``layout``'s superelement: times (s), parts, size, answers."""
+    import numpy as np
+
+    from pipeline.cache.folder import Cache
+    from pipeline.fem.shaft_mesh import mesh_shaft
+    from pipeline.shaft.fe3d import Fe3dShaft
+    from pipeline.shaft.fe3d_plan import Fe3dSettings, plan_fe3d
+    from pipeline.shaft.model import PointLoad
+
     settings = Fe3dSettings(refinement=refinement)
     with tempfile.TemporaryDirectory() as folder:
         cache = Cache(folder)
@@ -49,22 +70,56 @@ def main(refinement: float = 1.0) -> None:
         warm = Fe3dShaft(layout, settings, cache=cache)
         t_warm = time.perf_counter() - t0
     assert warm.cached and not cold.cached
+    tets = mesh_shaft(plan_fe3d(layout, settings).mesh).cells.shape[1]  # the same mesh again
+    zg = layout.gear_position
     torque, d_ref = 340.0, 0.15
     ft = 2 * torque / d_ref
     fr = ft * math.tan(math.radians(20.0))
-    sol = warm.solve([PointLoad(0.155, (-fr, ft, 0.0), (0.0, 0.0, torque))])
-    seat = min(range(sol.z.size), key=lambda i: abs(sol.z[i] - 0.155))
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    load = np.array([-fr, ft, 0.0, 0.0, 0.0, torque])
+    sol = warm.solve([PointLoad(zg, tuple(load[:3]), tuple(load[3:]))])
+    seat = warm.flexibility(np.array([zg])) @ load  # the seat centre's motion
     se = cold.superelement
-    parts = ", ".join(f"{k} {v:.2f} s" for k, v in se.timings.items())
-    print(f"straddle-mounted pinion shaft, refinement {refinement:g}: {se.n_dof} unknowns, "
-          f"solver {se.method}")
-    print(f"imports {t_import:.2f} s; cold {t_cold:.2f} s ({parts}); warm {t_warm:.3f} s")
-    print(f"peak resident memory {peak:.0f} MiB")
-    u = sol.displacement[seat] * 1e6
-    print(f"seat deflection (um): u_x {u[0]:.2f}, u_y {u[1]:.2f}; twist to the coupling "
-          f"{sol.rotation[seat, 2] * 1e3:.4f} mrad; bearing reactions (N): "
-          f"{sol.reactions[:, :2].round(1).tolist()}")
+    return {"case": name, "refinement": refinement, "cold_s": t_cold, "warm_s": t_warm,
+            "parts_s": dict(se.timings), "unknowns": se.n_dof, "tetrahedra_P2": int(tets),
+            "solver": se.method,
+            "seat_compliance_diagonal_m_per_N_rad_per_Nm": np.diag(
+                warm.flexibility(np.array([zg]))).tolist(),
+            "seat_deflection_um": (seat[:2] * 1e6).tolist(),
+            "twist_to_coupling_mrad": float(seat[5] * 1e3),
+            "bearing_reactions_N": sol.reactions[:, :2].round(1).tolist()}
+
+
+def _print(r: dict) -> None:
+    parts = ", ".join(f"{k} {v:.2f} s" for k, v in r["parts_s"].items())
+    print(f"{r['case']}, refinement {r['refinement']:g}: {r['unknowns']} unknowns, "
+          f"{r['tetrahedra_P2']} P2 tetrahedra, solver {r['solver']}")
+    print(f"  cold {r['cold_s']:.2f} s ({parts}); warm {r['warm_s']:.3f} s")
+    c = r["seat_compliance_diagonal_m_per_N_rad_per_Nm"]
+    print("  seat compliance diagonal (u_x, u_y, u_z in m/N; theta in rad/(N m)): "
+          + ", ".join(f"{v:.5e}" for v in c))
+    u = r["seat_deflection_um"]
+    print(f"  seat centre deflection (um): u_x {u[0]:.2f}, u_y {u[1]:.2f}; twist to the "
+          f"coupling {r['twist_to_coupling_mrad']:.4f} mrad; "
+          f"bearing reactions (N): {r['bearing_reactions_N']}")
+
+
+def main(refinement: float = 1.0) -> dict:
+    t0 = time.perf_counter()
+    import pipeline.fem.linear_static  # noqa: F401  (scikit-fem, counted apart)
+    import pipeline.fem.shaft_mesh  # noqa: F401  (Gmsh)
+    from pipeline.io import write_json
+    from pipeline.provenance import library_versions
+
+    t_import = time.perf_counter() - t0
+    cases = [bench_case(name, layout, refinement) for name, layout in _layouts().items()]
+    for r in cases:
+        _print(r)
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"imports {t_import:.2f} s; peak resident memory {peak:.0f} MiB")
+    out = {"cases": cases, "imports_s": t_import, "peak_rss_MiB": peak,
+           "versions": library_versions()}
+    write_json(Path("results/benchmarks/shaft_fe3d.json"), out)
+    return out
 
 
 if __name__ == "__main__":
