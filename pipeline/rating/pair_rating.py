@@ -222,6 +222,14 @@ class PairRating:
 MESHES = ("pair", "sun_planet", "planet_ring")
 
 
+def cycles_per_revolution(pair: GearPair, mesh: str, planets: int = 1) -> tuple[float, float]:
+    """Load cycles of the pinion and the gear per revolution of the pinion (relative to a
+    planet carrier) in a ``mesh`` of :data:`MESHES`: a sun or a ring meets each of the
+    ``planets`` once per revolution, the gear turns 1 / |u| times."""
+    contacts = {"pair": (1, 1), "sun_planet": (planets, 1), "planet_ring": (1, planets)}[mesh]
+    return (float(contacts[0]), contacts[1] * pair.pinion.teeth / pair.gear.teeth)
+
+
 def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
               gears: tuple[GearRatingInputs, GearRatingInputs], mesh: str = "pair",
               planets: int = 1, dynamic: DynamicFactor | None = None,
@@ -290,10 +298,8 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
                                                   pair.overlap_ratio))
     chain = contact_stress(pair, torque, speed, ka * kg * kv.factor * khb * kha.k_halpha)
     kfb = face_load_factor(khb, b, depth)
-    u = g.teeth / p.teeth
-    contacts = {"pair": (1, 1), "sun_planet": (planets, 1), "planet_ring": (1, planets)}[mesh]
-    cycles = (speed * 60.0 * inputs.life_hours * contacts[0],
-              speed / abs(u) * 60.0 * inputs.life_hours * contacts[1])
+    per_rev = cycles_per_revolution(pair, mesh, planets)
+    cycles = tuple(speed * 60.0 * inputs.life_hours * c for c in per_rev)
     lower = min(gi.sigma_hlim for gi in gears)
     rz = 0.5 * (gears[0].flank_roughness + gears[1].flank_roughness)
     pit, bend, roots, curves = [], [], [], []
@@ -330,4 +336,4 @@ def rate_pair(pair: GearPair, torque: float, speed: float, inputs: RatingInputs,
     return PairRating(ft, v, ka, kg, tols, st.c_single, st.c_gamma_alpha, kv, kha, khb, kfb, chain,
                       (pit[0], pit[1]), (bend[0], bend[1]), method_c, cycles,
                       (roots[0], roots[1]), (curves[0], curves[1]),
-                      (contacts[0], contacts[1] / abs(u)), inputs.blank_factor)
+                      per_rev, inputs.blank_factor)

@@ -15,7 +15,13 @@ from __future__ import annotations
 import dataclasses
 
 from pipeline.geometry.pair import GearPair
-from pipeline.rating.pair_rating import GearRatingInputs, PairRating, RatingInputs, rate_pair
+from pipeline.rating.pair_rating import (
+    GearRatingInputs,
+    PairRating,
+    RatingInputs,
+    cycles_per_revolution,
+    rate_pair,
+)
 from pipeline.rating.spectrum import (
     BinStress,
     LoadBin,
@@ -45,7 +51,5 @@ def rate_pair_spectrum(pair: GearPair, spectrum: LoadSpectrum, inputs: RatingInp
                       gears, mesh, planets, double_helical=double_helical)
         return _bin_stress(r)
 
-    first = rate_pair(pair, spectrum.bins[0].torque, spectrum.bins[0].speed, at_bin, gears,
-                      mesh, planets, double_helical=double_helical)
-    per_rev = first.cycles_per_revolution
-    return rate_spectrum(spectrum, stress_at, cycles_per_revolution=per_rev)
+    return rate_spectrum(spectrum, stress_at,
+                         cycles_per_revolution=cycles_per_revolution(pair, mesh, planets))

@@ -15,10 +15,10 @@ Two sections:
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from pipeline.dynamics.mesh_names import planet_meshes
 from pipeline.report.content import quantity
 from pipeline.report.model import Figure, Quantity, Section
 
@@ -27,25 +27,7 @@ SAME_RTOL = 1e-4
 (the report prints 4 significant digits; sequentially phased planets give forces that are
 time-shifted copies, equal up to the sampling of the steady period)."""
 
-REPORT_MESH_KIND = {"sun_planet": "s", "planet_ring": "r"}
-"""Report mesh name -> the prefix of its meshes in the dynamic model (``s-p1``, ``r-p2L``)."""
-
-_PLANETARY = re.compile(r"^([sr])-p(\d+)([LR]?)$")
 _HALF = {"": "", "L": "half L: ", "R": "half R: "}
-
-
-def _planet_meshes(names: Sequence[str], mesh: str) -> dict[str, dict[int, str]]:
-    """{half: {planet: model mesh name}} of the report's meshes: a planetary report's sun
-    or ring meshes by half ("", "L", "R") and planet; a pair's mesh as planet 0."""
-    kind = REPORT_MESH_KIND.get(mesh)
-    if kind is None:
-        return {"": {0: mesh}} if mesh in names else {}
-    out: dict[str, dict[int, str]] = {}
-    for n in names:
-        m = _PLANETARY.match(n)
-        if m is not None and m.group(1) == kind:
-            out.setdefault(m.group(3), {})[int(m.group(2))] = n
-    return out
 
 
 def _mesh_values(summary: Mapping[str, Any], name: str, driver: str | None,
@@ -95,7 +77,7 @@ def dynamics_meshes_section(summary: Mapping[str, Any], mesh: str,
     driver = next(iter(speeds), None)
     rpm_per_hz = speeds[driver] / op["mesh_frequency_Hz"] if driver else 0.0
     names = list(summary["response_at_operating_speed"]["meshes"])
-    by_half = _planet_meshes(names, mesh)
+    by_half = planet_meshes(names, mesh)
     planets = sorted({p for d in by_half.values() for p in d})
     per_planet = {p: [v for half in sorted(by_half)
                       for v in _mesh_values(summary, by_half[half][p], driver, rpm_per_hz)]

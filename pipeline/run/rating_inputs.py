@@ -6,12 +6,12 @@ of a webbed body, a load spectrum scaled to a mesh, why a gear is not rated in b
 from __future__ import annotations
 
 import math
-import re
 from typing import Any
 
 import numpy as np
 
 from pipeline.config import Gearbox
+from pipeline.dynamics.mesh_names import planet_meshes
 from pipeline.rating.options import planet_load_sharing
 from pipeline.rating.pair_rating import GearRatingInputs
 from pipeline.rating.spectrum import LoadBin, LoadSpectrum
@@ -22,7 +22,6 @@ from pipeline.validation import InputError
 IDLER_MEAN_STRESS = 0.7
 """Y_M of an idler, whose teeth are bent both ways (:mod:`pipeline.rating.bending`; KISSsoft
 prints 0.700 for the planets of the NREL 5 MW gearbox)."""
-_SUN_MESH = re.compile(r"^s-p(\d+)[LR]?$")
 
 
 def computed_load_sharing(dynamics: Any) -> float | None:
@@ -32,10 +31,9 @@ def computed_load_sharing(dynamics: Any) -> float | None:
     resp = dynamics.response.response
     mean = resp.mean_mesh_force()
     per_planet: dict[int, float] = {}
-    for i, name in enumerate(resp.mesh_names):
-        m = _SUN_MESH.match(name)
-        if m is not None:
-            per_planet[int(m.group(1))] = per_planet.get(int(m.group(1)), 0.0) + float(mean[i])
+    for half in planet_meshes(resp.mesh_names, "sun_planet").values():
+        for planet, name in half.items():
+            per_planet[planet] = per_planet.get(planet, 0.0) + float(mean[resp.mesh(name)])
     if not per_planet:
         return None
     forces = np.array(list(per_planet.values()))
@@ -44,13 +42,13 @@ def computed_load_sharing(dynamics: Any) -> float | None:
 
 def model_dynamic_factor(dynamics: Any, mesh: str) -> float | None:
     """The dynamic model's largest over mean mesh force at the operating speed for ``mesh``
-    (a pair's one mesh; a planetary set's sun or ring meshes, ``s-p*`` / ``r-p*``), or None
-    without dynamics."""
+    (a pair's one mesh; a planetary set's sun or ring meshes of every planet and half), or
+    None without dynamics."""
     if dynamics is None:
         return None
     resp = dynamics.response.response
-    prefix = {"sun_planet": "s-", "planet_ring": "r-"}.get(mesh, "")
-    rows = [i for i, n in enumerate(resp.mesh_names) if n.startswith(prefix)]
+    rows = [resp.mesh(n) for half in planet_meshes(resp.mesh_names, mesh).values()
+            for n in half.values()]
     force = resp.mesh_force[:, resp.steady_slice()]
     elastic = resp.elastic_mesh_force()[:, resp.steady_slice()]
     ratios = [float(elastic[i].max() / force[i].mean()) for i in rows if force[i].mean() > 0]
