@@ -639,6 +639,11 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         raise InputError("dynamics.bearing_stiffness_N_per_m changes nothing: both gears sit "
                          "on shafts ([pinion.shaft], [gear.shaft]), whose bearings and "
                          "bending give the dynamic model's supports")
+    for key, role, what in (("drive_inertia_kgm2", "pinion", "motor"),
+                            ("load_inertia_kgm2", "gear", "driven machine")):
+        if key in doc.get("dynamics", {}) and role not in box.shafts:
+            raise InputError(f"dynamics.{key} needs [{role}.shaft]: the {what} is tied to the "
+                             f"{role} by its shaft's torsion")
     _check_groove_sources(box, doc)
     _check_relief_lengths(box, doc)
     _check_fe3d_meshes(box, doc)

@@ -313,6 +313,11 @@ DYNAMICS = (
     Key("excitation", S, choices=EXCITATIONS,
         help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
     Key("friction", B),
+    Key("drive_inertia_kgm2", N,
+        help="the motor's inertia at the pinion shaft's torque point (needs [pinion.shaft])"),
+    Key("load_inertia_kgm2", N,
+        help="the driven machine's inertia at the gear shaft's torque point (needs "
+             "[gear.shaft])"),
 )
 """Keys of ``[dynamics]`` for a gear pair (:class:`PairDynamicsOptions`)."""
 DYNAMICS_SUBTABLES = ("mesh_stiffness", "response", "sweep")

@@ -1,9 +1,10 @@
-"""The shafts section of a mesh report: their deflection, the misalignment it opens across
-the face and the line load with and without it."""
+"""The shafts sections of a mesh report: their deflection, the misalignment it opens across
+the face and the line load with and without it; the dynamics with the shafts beside the
+same on rigid supports."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -47,3 +48,35 @@ def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
              "solved again until the line load changes by less than 1e-3.",)
     return Section("shafts", "Shafts and bearings", tuple(rows), figures=tuple(figures),
                    notes=notes)
+
+
+def shaft_dynamics_section(summary: Mapping[str, Any], figures: Sequence[Figure]) -> Section:
+    """Natural frequencies and the sweep's largest dynamic factor with the shafts and on
+    rigid supports, from the run's dynamics summary
+    (:meth:`pipeline.run.dynamics.DynamicsStages.summary` with its ``without_shafts``)."""
+    rigid = summary["without_shafts"]
+    with_fn = summary["natural_frequencies_Hz"]
+    rigid_fn = rigid["natural_frequencies_Hz"]
+    rows = [quantity(f"mode_{i + 1}", f"elastic mode {i + 1}", "Hz",
+                     with_fn[i] if i < len(with_fn) else None,
+                     rigid_fn[i] if i < len(rigid_fn) else None)
+            for i in range(max(len(with_fn), len(rigid_fn)))]
+    sweep = summary["sweep"]
+    for mesh, k in sweep["max_dynamic_factor"].items():
+        tag = "" if mesh == "mesh" else f" ({mesh})"
+        rows.append(quantity(f"max_dynamic_factor_{mesh}", f"largest dynamic factor over the "
+                             f"sweep{tag}", "-", k, rigid["max_dynamic_factor"][mesh]))
+        rows.append(quantity(f"max_dynamic_factor_at_{mesh}", f"... at mesh frequency{tag}",
+                             "Hz", sweep["max_dynamic_factor_at_Hz"][mesh],
+                             rigid["max_dynamic_factor_at_Hz"][mesh]))
+    notes = ("With the shafts each gear is held at its seat by its shaft (bearings and shaft "
+             "bending in series, 1 / C_yy of the seat flexibility) and, where [dynamics] "
+             "gives a motor's or a driven machine's inertia, tied to it by the shaft's "
+             "torsion between the seat and the torque point (1 / C_theta_z theta_z); its "
+             "mesh is excited by the contact with the shafts' misalignment. On rigid supports: "
+             "the gears' rotations only, no motor or machine, the contact on rigid supports. "
+             "The natural frequencies are the elastic ones up to the cut of the dynamics "
+             "section; a dash: the model has fewer.",)
+    return Section("shaft_dynamics", "Dynamics with the shafts and on rigid supports",
+                   tuple(rows), columns=("with the shafts", "rigid supports"),
+                   figures=tuple(figures), notes=notes)

@@ -114,22 +114,29 @@ def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) 
     return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
 
 
-def support_stiffness(box: Gearbox, cache: Any = None) -> tuple[float | None, float | None]:
-    """Each gear's support stiffness at its seat's centre from its shaft (N/m; bearings and
-    shaft bending in series, the seat free to tilt: ``1 / C_yy`` of the seat flexibility,
-    the same in x and y for round shafts on round bearings), None without a shaft; the 3D
-    superelement read from or written to ``cache``."""
-    out = []
+def support_stiffness(box: Gearbox, cache: Any = None
+                      ) -> tuple[tuple[float | None, float | None],
+                                 tuple[float | None, float | None]]:
+    """Each gear's support at its seat's centre from its shaft, None without a shaft:
+    ((lateral pinion, gear), (torsional pinion, gear)).
+
+    Lateral: N/m, bearings and shaft bending in series, the seat free to tilt: ``1 / C_yy``
+    of the seat flexibility, the same in x and y for round shafts on round bearings.
+    Torsional: N m/rad, the shaft's torsion between the seat's centre and the torque point,
+    ``1 / C_theta_z theta_z``. The 3D superelement is read from or written to ``cache``.
+    """
+    lateral, torsional = [], []
     for role in ("pinion", "gear"):
         spec = box.shafts.get(role)
         if spec is None:
-            out.append(None)
+            lateral.append(None)
+            torsional.append(None)
             continue
         lay = spec[1]
-        model = _model(spec, np.array([]), cache)
-        c = model.flexibility(np.array([lay.gear_position]))
-        out.append(float(1.0 / c[1, 1]))
-    return out[0], out[1]
+        c = _model(spec, np.array([]), cache).flexibility(np.array([lay.gear_position]))
+        lateral.append(float(1.0 / c[1, 1]))
+        torsional.append(float(1.0 / c[5, 5]))
+    return (lateral[0], lateral[1]), (torsional[0], torsional[1])
 
 
 def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftStage | None:
