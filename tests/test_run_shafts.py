@@ -162,6 +162,19 @@ def test_report_shows_the_shafts(tmp_path):
     assert (out / "report_shafts.png").is_file()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["meshes"]["mesh"]["shafts"]["iterations"] >= 2
+    # the CSVs: the deflection line through the bearings (rigid: zero there) and the
+    # misalignment across the face, its spread the report's
+    line = np.genfromtxt(out / "shaft_deflection.csv", delimiter=",", names=True,
+                         dtype=None, encoding="utf-8")
+    at = {round(float(z), 6): u for z, u in zip(line["z_m"], line["u_y_line_of_action_m"],
+                                                strict=True)}
+    assert at[0.02] == 0.0 and at[0.04] == 0.0
+    assert abs(at[0.07]) > abs(at[0.05]) > 0.0
+    face = np.genfromtxt(out / "shaft_face.csv", delimiter=",", names=True)
+    assert np.ptp(face["gap_m"]) * 1e6 == pytest.approx(rows["misalignment"]["value"],
+                                                        rel=1e-6)
+    assert face["pinion_retreat_m"] == pytest.approx(
+        face["pinion_translation_m"] + face["pinion_twist_at_base_circle_m"], rel=1e-9)
 
 
 def test_dynamics_take_the_shafts_support(tmp_path):

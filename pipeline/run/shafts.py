@@ -100,6 +100,42 @@ class ShaftStage:
         return out
 
 
+    def deflection_columns(self) -> dict[str, np.ndarray]:
+        """The deflection line of each shaft, for ``shaft_deflection.csv``: rows by shaft
+        and position along it, in the shaft's mesh frame (y along the line of action, away
+        from the mate; z along the shaft from its first end; :mod:`pipeline.shaft.misalignment`),
+        m and rad."""
+        parts = [(role, r.solution) for role, r in zip(("pinion", "gear"), self.retreats,
+                                                       strict=True)
+                 if r is not None and r.solution is not None]
+        cols: dict[str, Any] = {"shaft": np.concatenate([[role] * s.z.size
+                                                         for role, s in parts]),
+                                "z_m": np.concatenate([s.z for _, s in parts])}
+        for i, name in enumerate(("u_x_m", "u_y_line_of_action_m", "u_z_m")):
+            cols[name] = np.concatenate([s.displacement[:, i] for _, s in parts])
+        for i, name in enumerate(("theta_x_rad", "theta_y_rad", "theta_z_rad")):
+            cols[name] = np.concatenate([s.rotation[:, i] for _, s in parts])
+        return cols
+
+    def face_columns(self) -> dict[str, np.ndarray]:
+        """Across the face, for ``shaft_face.csv``: the contact's face position, the gap the
+        shafts open (mean taken out), each gear's flank retreat and its parts (translation
+        u_y, twist r_b theta_z, a helical mesh's axial terms), m; the line load the last gap
+        was computed with, N/m."""
+        cols: dict[str, np.ndarray] = {"face_position_m": self.z, "gap_m": self.gap}
+        for role, r in zip(("pinion", "gear"), self.retreats, strict=True):
+            if r is None:
+                continue
+            cols[f"{role}_retreat_m"] = r.total
+            cols[f"{role}_translation_m"] = r.translation
+            cols[f"{role}_twist_at_base_circle_m"] = r.twist
+            if r.axial is not None:
+                cols[f"{role}_axial_terms_m"] = r.axial
+        if self.line_load is not None:
+            cols["line_load_N_per_m"] = self.line_load
+        return cols
+
+
 def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) -> Any:
     """The shaft model a ``[<gear>.shaft]`` names: the beam with nodes at the face
     ``points`` (m from the face's first end), or the 3D superelement (cached)."""
