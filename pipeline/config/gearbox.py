@@ -141,6 +141,9 @@ class Gearbox:
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
     rating : the ISO 6336 rating's inputs (``[rating]``), or ``None`` (no rating).
     shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout).
+    pinion_rotation : "clockwise" or "counterclockwise", the pinion's sense of rotation seen
+        from the end its shafts' positions grow towards (``[operation] pinion_rotation``;
+        with the driver it picks the flanks that load the shafts).
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -163,6 +166,7 @@ class Gearbox:
     lumped: DynamicModel | None = None
     rating: RatingOptions | None = None
     shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
+    pinion_rotation: str = "clockwise"
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -373,8 +377,14 @@ def _stiffness(doc: Mapping[str, Any]) -> StiffnessOptions:
     return opts
 
 
-def _operation(doc: Mapping[str, Any]) -> OperatingPoint:
-    return build(OperatingPoint, doc.get("operation", {}), T.OPERATION, "operation")
+def _operation(doc: Mapping[str, Any]) -> tuple[OperatingPoint, str]:
+    """``[operation]``: the operating point and the pinion's sense of rotation (which flanks
+    its shafts load, :mod:`pipeline.shaft.misalignment`)."""
+    table = doc.get("operation", {})
+    values = read_table(table, T.OPERATION, "operation")
+    rotation = values.pop("pinion_rotation", "clockwise")
+    with restated("operation", T.OPERATION, table):
+        return OperatingPoint(**values), rotation
 
 
 def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOptions:
@@ -610,7 +620,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
     contact = contact_options_from_table(doc.get("contact"))
     fe = _fe(doc, contact)
-    operation = _operation(doc)
+    operation, rotation = _operation(doc)
     box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
@@ -627,6 +637,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         rating=rating_options(doc, kind, roles,
                               frozenset(r for r, g in gears.items() if g.internal)),
         shafts=_shafts(doc, gears),
+        pinion_rotation=rotation,
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
@@ -639,6 +650,10 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         raise InputError("dynamics.bearing_stiffness_N_per_m changes nothing: both gears sit "
                          "on shafts ([pinion.shaft], [gear.shaft]), whose bearings and "
                          "bending give the dynamic model's supports")
+    if "pinion_rotation" in doc.get("operation", {}) and not (box.kind == "pair"
+                                                              and box.shafts):
+        raise InputError(f'operation.pinion_rotation = "{rotation}" sets which flanks load '
+                         "a pair's shafts; this file has no [pinion.shaft] or [gear.shaft]")
     for key, role, what in (("drive_inertia_kgm2", "pinion", "motor"),
                             ("load_inertia_kgm2", "gear", "driven machine")):
         if key in doc.get("dynamics", {}) and role not in box.shafts:

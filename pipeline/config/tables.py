@@ -126,10 +126,14 @@ PLANETARY = (
                                       "meshes (default: from the profile shifts)"),
 )
 
+ROTATIONS = ("clockwise", "counterclockwise")
 OPERATION = (
     Key("torque_Nm", N, help="torque on the driving gear"),
     Key("speed_rpm", N, help="speed of the driving gear"),
     Key("driver", S, choices=("pinion", "gear")),
+    Key("pinion_rotation", S, choices=ROTATIONS,
+        help="the pinion's sense of rotation seen from the end its shafts' positions grow "
+             "towards (gears on shafts)"),
 )
 
 STIFFNESS = (

@@ -20,7 +20,10 @@ For a pair whose gears sit on shafts (``[pinion.shaft]``, ``[gear.shaft]``;
 
 The contact on rigid supports (the run's own cycle) is kept beside the coupled one. The
 face positions ``z`` are the contact's; for a right-hand helical pinion they run against the
-shafts' axial coordinate (:func:`pipeline.shaft.misalignment.seat_points`).
+shafts' axial coordinate (:func:`pipeline.shaft.misalignment.seat_points`). ``[operation]
+pinion_rotation`` and the driver pick the loaded flanks: the pinion driving clockwise seen
+from the end the shafts' positions grow towards is the misalignment module's frame, the
+other way its reflection (a helical mesh's hands reversed in the coupling).
 """
 
 from __future__ import annotations
@@ -63,6 +66,9 @@ class ShaftStage:
         computed with (None: spur).
     line_load : (n,) the line load the last gap was computed with, N/m (the cycle-mean one
         of the iteration before the last).
+    reflected : the other flanks load the shafts (the pinion turning counterclockwise, or
+        the gear driving; :mod:`pipeline.shaft.misalignment`): ``mesh`` is the reflected
+        one (its pinion's hand reversed), the retreats' solutions the real shafts' motion.
     """
 
     cycle: LoadedMeshCycle
@@ -75,6 +81,7 @@ class ShaftStage:
     change: float
     mesh: HelicalMesh | None = None
     line_load: np.ndarray | None = None
+    reflected: bool = False
 
     def summary(self) -> dict[str, Any]:
         """The misalignment, the K_Hbeta with and without the shafts, each shaft's seat
@@ -185,7 +192,8 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
     models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
-    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch))
+    reflected = (box.pinion_rotation == "counterclockwise") != (op.driver == "gear")
+    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch), reflected)
             if pair.pinion.is_helical or pair.pinion.herringbone else None)
     flex = [None if m is None else m.flexibility(seat_points(m, z, mesh)) for m in models]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
@@ -219,8 +227,12 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                 mesh = dataclasses.replace(mesh, roll=mean_roll(cycle, b, n, pair.s_pitch))
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
                         f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
+    if reflected:  # the shafts' motion in the real gearbox (misalignment module docstring)
+        retreats = [r if r is None or r.solution is None
+                    else dataclasses.replace(r, solution=r.solution.reflected())
+                    for r in retreats]
     return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
-                      (retreats[0], retreats[1]), iteration, change, used, loaded)
+                      (retreats[0], retreats[1]), iteration, change, used, loaded, reflected)
 
 
 def mean_roll(cycle: LoadedMeshCycle, face_width: float, n: int, empty: float
