@@ -326,7 +326,8 @@ def test_a_pair_on_shafts_is_rated_with_the_systems_k_hbeta(tmp_path):
     and it is not the rigid contact's (1.000 for this aligned spur pair). Rated again
     with the rigid contact's K_Hbeta given, sigma_H scales as sqrt(K_Hbeta K_Halpha)
     (ISO 6336-2 Eq. (2)-(3); nothing else changes, 1e-9) and S_H inversely. Given
-    ``"method_c"`` the file is rated by method C."""
+    ``"method_c"`` the file is rated by method C; a ``[rating.pinion_shaft]`` beside the
+    shaft model changes method C's K_Hbeta shown beside, not the one used."""
     from pipeline.contact.distribution import load_distribution
 
     text = (WORKFLOWS / "configs" / "shaft_overhung_pinion.toml").read_text()
@@ -358,3 +359,13 @@ def test_a_pair_on_shafts_is_rated_with_the_systems_k_hbeta(tmp_path):
                                        1))
     assert c.rating.face_load_factor == "method_c"
     assert gearbox_from_text(text).rating.face_load_factor == "contact"
+
+    # method C's own pinion shaft beside the shaft model: shown, not used (its f_sh carries
+    # the offset term of a 40 mm span, s = 10 mm, K' = 1.33)
+    both = text + ("[rating.pinion_shaft]\nspan_mm = 40.0\noffset_mm = 10.0\n"
+                   'shaft_diameter_mm = 35.0\narrangement = "c"\n')
+    d = run_pipeline(gearbox_from_text(both),
+                     RunOptions(show_progress=False, cache=Cache(tmp_path))).rating.meshes["mesh"]
+    assert d.rating.k_hbeta == pytest.approx(system, rel=1e-9)
+    assert d.rating.face_load.offset_term > 0.0
+    assert d.rating.face_load.k_hbeta != pytest.approx(m.rating.face_load.k_hbeta, rel=1e-3)
