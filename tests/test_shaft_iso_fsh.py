@@ -1,5 +1,6 @@
-"""ISO 6336-1 method C's f_sh (Eq. (57) of ISO 6336-1:2006; the same in 2019) beside the
-beam shaft's mesh misalignment for the standard's pinion-shaft arrangements (Figure 13).
+"""ISO 6336-1 method C's f_sh (ISO 6336-1:2006 Eq. (57) and Figure 13, the numbering of
+pipeline.rating.face_load) beside the beam shaft's mesh misalignment for the standard's
+pinion-shaft arrangements.
 
 The pinion is a spur pinion of reference diameter ``d1`` (20 deg) on a steel shaft of
 diameter ``d_sh`` between two rigid bearings ``l`` apart (``pipeline.shaft.beam``), the
