@@ -143,6 +143,7 @@ def test_iso_torsion_share_is_a_d1_body_twisted_by_its_face_load():
     (pi G 0.023) = 0.6566 (to 1e-6)."""
     beam, twist = _misalignment(_layout((FIRST + SECOND) / 2, D_SH, 0.5), D_SH)
     iso = _iso("a", False, 0.0, D_SH)
+    _row("mid-span", 0.0, iso, beam)
     assert abs(beam - twist) < 1e-9 * twist
     assert beam == pytest.approx(_torsion(D_SH), rel=1e-7)
     assert 0.7 * 0.023e-9 == pytest.approx(4 / (math.pi * G), rel=2e-3)
