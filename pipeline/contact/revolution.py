@@ -1,0 +1,201 @@
+"""Loaded tooth contact through a whole revolution, every tooth pair with its own errors.
+
+The mesh-cycle contact (:func:`pipeline.contact.ltca.loaded_mesh_cycle`) assumes every
+tooth pair alike. With per-tooth errors (:mod:`pipeline.contact.tooth_errors`: single
+pitch deviations and runout of either gear) no two mesh cycles are alike, so the contact
+is solved at ``m`` positions in each of the ``N`` mesh cycles of the span: the hunting
+cycle (``N = LCM(z1, z2)``, after which the same teeth meet again) or one revolution of a
+gear (``N = z``). Position ``j`` of cycle ``c`` lies at the roll coordinate
+``s0_j + c p_bt`` (unrolled); there tooth pair ``k`` is at ``s0_j + k p_bt`` on the path,
+as in every mesh cycle, and carries the gap of the flank modifications plus
+:func:`~pipeline.contact.tooth_errors.pitch_gaps` of its two teeth and the
+:func:`~pipeline.contact.tooth_errors.runout_gaps` of the instant.
+
+What repeats and what does not. The candidate points, their compliance ``G``, the local
+contact model and the gaps of the flank modifications depend only on the position in the
+mesh cycle (``j``), so they are built once per ``j`` (``m`` calls to the compliance
+source, as for one mesh cycle); the errors change only the gaps, so the ``N m`` solves
+(:func:`~pipeline.contact.complementarity.solve_contact`) are what repeats. Each solve is
+warm-started from the previous position's loads on the same tooth pair (pairs keep their
+identity across cycles: pair ``k`` of cycle ``c`` is pair ``k + 1`` of cycle ``c + 1``).
+Without errors every cycle is the same problem, so the revolution repeats the mesh cycle
+to round-off.
+
+A rigid offset of all pairs in mesh (a runout's gap at an instant) leaves the loads
+unchanged and adds itself to the transmission error (the conditions of
+:mod:`pipeline.contact.complementarity` hold with ``eps + d`` and ``x_s + d``); pitch
+deviations differ from pair to pair and redistribute the load.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pipeline.contact.complementarity import solve_contact
+from pipeline.contact.ltca import (
+    LOCAL_MODELS,
+    along_line_of_action,
+    check_tip_zone,
+    mesh_positions,
+    weber_model,
+)
+from pipeline.contact.recording import CycleRecorder
+from pipeline.contact.revolution_results import LoadedRevolution
+from pipeline.contact.separations import FlankModifications, initial_separations
+from pipeline.contact.source import ComplianceSource, ContactPoints, candidate_range
+from pipeline.contact.tooth_errors import ToothErrors, pitch_gaps, runout_gaps
+from pipeline.geometry.pair import GearPair
+from pipeline.geometry.tip_contact import tip_contact
+from pipeline.progress import progress
+from pipeline.stiffness.tooth import hertz_compliance
+from pipeline.validation import InputError, check_choice, check_range
+
+MAX_POSITIONS = 100_000
+"""Most positions of a full-revolution contact (mesh cycles x positions per cycle): about
+4 min of solves for a spur pair at 2.3 ms each (``workflows/benchmarks/bench_revolution.py``)."""
+
+
+@dataclass(frozen=True)
+class _Phase:
+    """What one position in the mesh cycle gives every cycle: points, the problem along
+    the line of action (``G``, local model, lever factors ``a``), the modifications' gaps
+    ``eps`` (m) and, for the linear local model, its compliance ``c_lin`` (m/N)."""
+
+    points: ContactPoints
+    G: np.ndarray
+    hertz: object
+    lever: np.ndarray
+    eps: np.ndarray
+    c_lin: np.ndarray | None
+    levers: tuple[np.ndarray, np.ndarray]
+
+    def error_gaps(self, pair: GearPair, errors: ToothErrors, cycle: int,
+                   runout: tuple[float, float]) -> np.ndarray:
+        """Gaps of the points from both gears' errors in mesh cycle ``cycle`` (m, along
+        each point's contact normal), with the runout gaps ``runout`` of the instant."""
+        g1, g2 = pitch_gaps(pair, errors, cycle, self.points.pair)
+        return (g1 + runout[0]) * self.levers[0] + (g2 + runout[1]) * self.levers[1]
+
+
+def _phase(source: ComplianceSource, s0: float, mods: FlankModifications, local: str,
+           driver: str, c_hertz: float) -> _Phase:
+    pair = source.pair
+    pts = source.points(s0)
+    if len(pts) == 0:
+        raise InputError(f"mesh position s0 = {s0 * 1e3:.6g} mm: the compliance source gives "
+                         "no candidate points")
+    G = np.asarray(source.matrix(s0), dtype=float)
+    eps = initial_separations(pair, pts, mods, candidate_range(pair, source.tip_contact))
+    hertz = c_lin = None
+    if local == "weber":
+        hertz = weber_model(pair, pts)
+    elif local == "linear":
+        c_lin = c_hertz / pts.width
+        G = G + np.diag(c_lin)
+    # eps is scaled by the lever per position (errors added first): pass zeros here
+    Gt, _, hertz, lever = along_line_of_action(pair, pts, G, np.zeros(len(pts)), hertz, driver)
+    tc = tip_contact(pair, pts.s)
+    return _Phase(pts, Gt, hertz, lever, eps, c_lin, (tc.lever_pinion, tc.lever_gear))
+
+
+def revolution_size(errors: ToothErrors, pair, positions: int) -> tuple[int, int]:
+    """(mesh cycles, positions in all) of the span, refused above :data:`MAX_POSITIONS`."""
+    cycles = errors.mesh_cycles(pair)
+    total = cycles * positions
+    if total > MAX_POSITIONS:
+        raise InputError(
+            f"contact.errors.span = \"{errors.span}\" is {cycles} mesh cycles x "
+            f"contact.positions = {positions} = {total} contact solves, more than "
+            f"{MAX_POSITIONS} (minutes of solves each 1e4): give span = \"pinion\" or \"gear\" "
+            "(one revolution) or fewer positions per mesh cycle")
+    return cycles, total
+
+
+def _keys(cycle: int, points: ContactPoints) -> np.ndarray:
+    """Identity of each point across cycles: the tooth pair's meshing number ``c - k``
+    and the face position (to 1 nm)."""
+    n = cycle - points.pair.astype(np.int64)
+    return n * (1 << 32) + np.round(points.z * 1e9).astype(np.int64)
+
+
+def _warm_start(prev: tuple[np.ndarray, np.ndarray] | None,
+                keys: np.ndarray) -> np.ndarray | None:
+    if prev is None or not prev[1].any():
+        return None
+    _, i_new, i_old = np.intersect1d(keys, prev[0], return_indices=True)
+    start = np.zeros(keys.size)
+    start[i_new] = prev[1][i_old]
+    return start if start.any() else None
+
+
+def loaded_revolution(
+    source: ComplianceSource,
+    load: float,
+    errors: ToothErrors,
+    modifications: FlankModifications | None = None,
+    local: str = "weber",
+    positions: int = 60,
+    *,
+    driver: str = "pinion",
+    tol: float = 1e-10,
+    max_iter: int = 100,
+    show_progress: bool = False,
+) -> LoadedRevolution:
+    """Loads and transmission error at ``positions`` positions of every mesh cycle of the
+    span of ``errors`` (module docstring).
+
+    Parameters
+    ----------
+    source : compliance source of the pair (built once; only its ``m`` positions of one
+        mesh cycle are asked for).
+    load : P along the transverse line of action, N, > 0.
+    errors : per-tooth errors of both gears and the span.
+    modifications : flank modifications of every tooth (their ``pitch_errors`` per pair of
+        one mesh cycle must be empty: the per-tooth errors replace them).
+    local : local contact model (:data:`~pipeline.contact.ltca.LOCAL_MODELS`).
+    positions : positions per mesh cycle, >= 1.
+    driver, tol, max_iter : as for :func:`~pipeline.contact.ltca.loaded_mesh_cycle`.
+    show_progress : progress bar on stderr.
+    """
+    check_range("contact.load", load, 0.0, math.inf, lo_open=True, unit="N")
+    check_choice("contact.local_contact", local, LOCAL_MODELS)
+    mods = modifications or FlankModifications()
+    if mods.pitch_errors:
+        raise InputError("contact.pitch_errors_um offsets the tooth pairs of one mesh cycle; "
+                         "with [contact.errors] give the teeth's own deviations "
+                         "(single_pitch_pinion_um, single_pitch_gear_um) instead")
+    pair = source.pair
+    errors.check_pair(pair)
+    s0 = mesh_positions(pair, positions)
+    m = s0.size
+    cycles, total = revolution_size(errors, pair, m)
+    c_hertz = hertz_compliance(pair.pinion, pair.gear)
+    phases = [_phase(source, float(s), mods, local, driver, c_hertz) for s in s0]
+    cycle_of = np.repeat(np.arange(cycles), m)
+    roll = cycle_of * pair.base_pitch + np.tile(s0 - s0[0], cycles)
+    runout = runout_gaps(pair, errors, roll)
+    record = CycleRecorder(pair, total, source.tip_contact)
+    prev = None
+    for i in progress(range(total), "revolution contact", total=total, enabled=show_progress):
+        c, ph = int(cycle_of[i]), phases[i % m]
+        label = f"mesh cycle {c}, position {i % m} (s0 = {s0[i % m] * 1e3:.6g} mm)"
+        eps = ph.eps + ph.error_gaps(pair, errors, c, (runout[0][i], runout[1][i]))
+        eps_t = eps / ph.lever
+        keys = _keys(c, ph.points)
+        sol = solve_contact(ph.G, eps_t, load, ph.hertz, tol=tol, max_iter=max_iter,
+                            start=_warm_start(prev, keys), label=label)
+        check_tip_zone(eps_t, sol.loads, sol.approach, label)
+        prev = (keys, sol.loads)
+        u = (sol.contact_deformation * ph.lever if ph.c_lin is None
+             else ph.c_lin * sol.loads / ph.lever)
+        record.add(i, ph.points, sol.loads, eps, u, sol.approach,
+                   (sol.mesh_stiffness_tangent, sol.mesh_stiffness_secant,
+                    sol.mesh_stiffness_pointwise),
+                   (sol.residual, sol.tolerance, sol.newton_iterations), ph.lever)
+    contact = record.cycle(s0[0] + roll, load, local)
+    return LoadedRevolution(contact=contact, mesh_cycles=cycles, positions_per_cycle=m,
+                            teeth=np.array([pair.pinion.teeth, pair.gear.teeth]),
+                            span=errors.span, runout_gap=runout[0] + runout[1])
