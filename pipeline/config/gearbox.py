@@ -59,10 +59,12 @@ from pipeline.config.schema import (
 )
 from pipeline.config.shafts import shaft_layout
 from pipeline.config.signals import signal_from_table
+from pipeline.config.tooth_errors import tooth_errors
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
 from pipeline.contact.options import ContactOptions
+from pipeline.contact.tooth_errors import ToothErrors
 from pipeline.contact.separations import (
     FlankModifications,
     meshing_pairs,
@@ -144,6 +146,8 @@ class Gearbox:
     pinion_rotation : "clockwise" or "counterclockwise", the pinion's sense of rotation seen
         from the end its shafts' positions grow towards (``[operation] pinion_rotation``;
         with the driver it picks the flanks that load the shafts).
+    errors : per-tooth errors of a pair's gears (``[contact.errors]``,
+        :mod:`pipeline.config.tooth_errors`), or ``None``.
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -167,6 +171,7 @@ class Gearbox:
     rating: RatingOptions | None = None
     shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
     pinion_rotation: str = "clockwise"
+    errors: ToothErrors | None = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -391,7 +396,7 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     """:class:`ContactOptions` from a parsed ``[contact]`` table (or ``None``: defaults)."""
     table = {} if table is None else table
     keys = T.CONTACT + T.MODIFICATIONS
-    values = read_table(table, keys, "contact")
+    values = read_table(table, keys, "contact", subtables=("errors",))
     mod_fields = {k.target for k in T.MODIFICATIONS}
     mods = {k: values.pop(k) for k in list(values) if k in mod_fields}
     with restated("contact", keys, table):
@@ -638,6 +643,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                               frozenset(r for r, g in gears.items() if g.internal)),
         shafts=_shafts(doc, gears),
         pinion_rotation=rotation,
+        errors=tooth_errors(doc, kind, kw.get("pair"), contact.positions),
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,

@@ -32,6 +32,10 @@ meets in minutes at most; a refused value names the key, the value and the range
   ``pitch_errors_um``: magnitude <= 1000; ``pitch_errors_um`` (tooth pairs k = 0, 1, ... of
   the mesh cycle) at most the smaller gear's teeth entries, a warning names those of pairs
   k >= epsilon_alpha (they never mesh)
+* ``[contact.errors]`` ``single_pitch_*_um`` / ``eccentricity_*_um`` /
+  ``eccentricity_phase_*_deg``: one entry per tooth, each of magnitude <= 1000, summing to 0
+  within 0.5 / [0, 1000] / [-360, 360]; mesh cycles of the span x ``[contact] positions``
+  <= 100000
 * ``[fe]`` ``teeth`` / ``points``: 1 .. 99 (contact sources 3 .., a 3D sector at least the
   tooth pairs in contact) / 2 .. 1000 (2D source 4 .., 3D source 2 .. 200); points x teeth
   (``gearpipe fe``) or points x loaded teeth (x ``face_points`` in 3D) <= 8000 flank points
@@ -167,6 +171,18 @@ MODIFICATIONS = (
     Key("pitch_errors_um", L),
 )
 """Keys of the ``[contact]`` table that set :class:`FlankModifications`."""
+ERRORS = (
+    Key("single_pitch_pinion_um", L,
+        help="single pitch deviations f_pt of the pinion's teeth 0 .. z1 - 1 (ISO 1328-1)"),
+    Key("single_pitch_gear_um", L, help="single pitch deviations f_pt of the gear's teeth"),
+    Key("eccentricity_pinion_um", N, help="runout: the pinion's teeth off its axis by e"),
+    Key("eccentricity_phase_pinion_deg", N, help="angle of the pinion's eccentricity"),
+    Key("eccentricity_gear_um", N),
+    Key("eccentricity_phase_gear_deg", N),
+    Key("span", S, choices=("hunting", "pinion", "gear"),
+        help="the hunting cycle (LCM(z1, z2) mesh cycles) or one revolution of a gear"),
+)
+"""Keys of ``[contact.errors]`` (:mod:`pipeline.config.tooth_errors`)."""
 
 FE = (
     Key("teeth", I, help="teeth in the FE model (default: gearpipe fe 5, contact sources "

@@ -126,7 +126,7 @@ class GearErrors:
         """Refuse a list of pitch deviations whose length is not the gear's tooth count."""
         n = len(self.pitch_deviations)
         if n and n != teeth:
-            raise InputError(f"contact.errors.single_pitch_{self.name}_um has {n} entries; "
+            raise InputError(f"contact.errors.single_pitch_{self.name} has {n} entries; "
                              f"the {self.name} has {teeth} teeth (one deviation per tooth)")
 
     @property

@@ -71,6 +71,7 @@ from pipeline.validation import InputError
 
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
+    from pipeline.run.revolution import RevolutionStage
     from pipeline.run.shafts import ShaftStage
 
 
@@ -138,6 +139,8 @@ class MeshStages:
         ``None``.
     shafts : a pair on shafts: the contact solved with their deflection
         (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle), or None.
+    revolution : a pair with ``[contact.errors]``: the contact through the revolution
+        (:class:`pipeline.run.revolution.RevolutionStage`), or None.
     """
 
     case: MeshCase
@@ -147,6 +150,7 @@ class MeshStages:
     compliance: str
     herringbone: HerringboneStage | None = None
     shafts: ShaftStage | None = None
+    revolution: RevolutionStage | None = None
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
@@ -165,6 +169,8 @@ class MeshStages:
             out["herringbone_contact"] = self.herringbone.summary()
         if self.shafts is not None:
             out["shafts"] = self.shafts.summary()
+        if self.revolution is not None:
+            out["revolution"] = self.revolution.summary()
         return out
 
 
@@ -241,6 +247,11 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
         sh = shaft_stage(box, stages, options, log)
         if sh is not None:  # the contact downstream is the one with the shafts' deflection
             stages = dataclasses.replace(stages, contact=sh.cycle, shafts=sh)
+    if contact and box.errors is not None:
+        from pipeline.run.revolution import revolution_stage
+
+        stages = dataclasses.replace(stages, revolution=revolution_stage(box, stages, options,
+                                                                         log))
     if contact and case.name == "sun_planet":
         from pipeline.run.herringbone import herringbone_stage
 
