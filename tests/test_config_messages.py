@@ -65,6 +65,9 @@ SIGNALS = {  # a valid [dynamics.mesh_stiffness] of each kind
 RELIEFS = {"tip_relief_pinion_um": 10.0, "tip_relief_length_pinion_mm": 2.0,
            "tip_relief_gear_um": 10.0, "tip_relief_length_gear_mm": 2.0}
 WEB = {"web_width_mm": 10.0, "rim_inner_radius_mm": 60.0, "hub_radius_mm": 30.0}
+TOOTH_ERRORS = {"single_pitch_pinion_um": [0.0] * 50, "single_pitch_gear_um": [0.0] * 50,
+                "eccentricity_pinion_um": 5.0, "eccentricity_gear_um": 5.0}
+"""A [contact.errors] table of the z 50/50 pair in which every key acts."""
 
 
 def _with(doc: dict, where: str, values: dict) -> dict:
@@ -114,6 +117,7 @@ CONTEXTS = [
     ("CONTACT", PAIR, "contact", T.CONTACT),
     ("MODIFICATIONS", _with(PAIR, "contact", RELIEFS), "contact", T.MODIFICATIONS),
     ("MODIFICATIONS", _with(PLANETARY, "contact", RELIEFS), "contact", T.MODIFICATIONS),
+    ("ERRORS", _with(PAIR, "contact.errors", TOOTH_ERRORS), "contact.errors", T.ERRORS),
     *[("FE", _with(PAIR, "contact", {"compliance": c}), "fe", _fe_keys(c))
       for c in ("analytical", "fe2d", "fe3d")],
     ("GROOVE", _with(SUN_GROOVE, "groove", {"coupling": "tooth_forces"}), "groove", T.GROOVE),
