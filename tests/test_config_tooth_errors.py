@@ -85,4 +85,6 @@ def test_run_writes_the_revolution(tmp_path):
     rev = json.loads((out / "summary.json").read_text())["meshes"]["mesh"]["revolution"]
     assert rev["mesh_cycles"] == 20 and rev["positions"] == 120
     assert rev["first_order_amplitude_m"] == pytest.approx(5e-6, rel=1e-9)
-    assert "revolution" in (out / "report.html").read_text()
+    report = json.loads((out / "report.json").read_text())
+    assert "revolution" in str(report)
+    assert "Full revolution with tooth errors" in (out / "report.html").read_text()

@@ -20,8 +20,8 @@ import warnings
 
 import numpy as np
 import pytest
-
 from gearsets import spur
+
 from pipeline.contact.analysis import analytical_compliance, line_of_action_load
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions

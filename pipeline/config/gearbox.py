@@ -59,17 +59,17 @@ from pipeline.config.schema import (
 )
 from pipeline.config.shafts import shaft_layout
 from pipeline.config.signals import signal_from_table
-from pipeline.config.tooth_errors import tooth_errors
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
+from pipeline.config.tooth_errors import tooth_errors
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
 from pipeline.contact.options import ContactOptions
-from pipeline.contact.tooth_errors import ToothErrors
 from pipeline.contact.separations import (
     FlankModifications,
     meshing_pairs,
     reach_in_pitches,
 )
+from pipeline.contact.tooth_errors import ToothErrors
 from pipeline.dynamics.options import (
     PairDynamicsOptions,
     PlanetaryDynamicsOptions,

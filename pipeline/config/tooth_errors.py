@@ -13,9 +13,10 @@ through a whole revolution (:mod:`pipeline.contact.revolution`)::
     span = "hunting"     # LCM(z1, z2) mesh cycles; "pinion" / "gear": one revolution
 
 Signs, tooth numbering and how each error becomes a gap: :mod:`pipeline.contact.tooth_errors`.
-Every key left out is zero. A phase without its eccentricity, errors on a planetary set
-or on a pair on shafts (the revolution does not take their deflection), and ``[contact] pitch_errors_um`` beside this table (per tooth pair of one mesh cycle: the
-per-tooth errors replace it) are refused.
+Every key left out is zero. Refused: a phase without its eccentricity; errors on a
+planetary set, or on a pair on shafts (the revolution does not take their deflection);
+``[contact] pitch_errors_um`` beside this table (it offsets the tooth pairs of one mesh
+cycle: the per-tooth errors replace it).
 """
 
 from __future__ import annotations

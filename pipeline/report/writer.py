@@ -10,7 +10,8 @@ planetary set):
 
 * ``report.html`` - the self-contained report (:mod:`pipeline.report.html`); the
   sun-planet mesh of a herringbone set solved through its groove gets a section with both
-  halves (:mod:`pipeline.report.herringbone_section`);
+  halves (:mod:`pipeline.report.herringbone_section`), a pair with ``[contact.errors]`` one
+  on the contact through the revolution (:mod:`pipeline.report.revolution_section`);
 * ``report.json`` - every number of it, by section and key, with labels and units;
 * ``report.csv`` - the same numbers as rows ``section,key,column,quantity,value,unit``;
 * ``report_cycle.csv`` - per mesh position: TE, mesh stiffness, load factors, load
@@ -164,6 +165,10 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
                                             0.0 if peak is None else peak["share"]))
     if st.shafts is not None:
         sections.append(_shaft_section(box, st, dist, actual, op, fig, title))
+    if st.revolution is not None:
+        from pipeline.report.revolution_section import revolution_figures, revolution_section
+
+        sections.append(revolution_section(st.revolution, revolution_figures(out, prefix)))
     if halves is not None:
         sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, out,
                                              prefix, fig))

@@ -60,7 +60,8 @@ def revolution_stage(box: Gearbox, stages: MeshStages, options: RunOptions,
 
     def build() -> LoadedRevolution:
         source = compliance_source(actual, case.operation, box.contact, box.stiffness,
-                                   box.fe_source, cache=options.cache, model=stages.stiffness.model,
+                                   box.fe_source, cache=options.cache,
+                                   model=stages.stiffness.model,
                                    show_progress=options.show_progress)
         c = box.contact
         return loaded_revolution(source, line_of_action_load(actual, case.operation),

@@ -75,7 +75,7 @@ def plot_revolution_spectrum(spectrum: Spectrum, gear_teeth: int, title: str,
     for i in np.argsort(a)[::-1]:
         if a[i] <= floor * 10 or len(labelled) == _LABELLED:
             break
-        if any(abs(o[i] - x) < 0.04 * z1 for x in labelled):
+        if any(abs(o[i] - x) < 0.04 * 4.5 * z1 for x in labelled):
             continue  # a neighbour's label is already there
         labelled.append(float(o[i]))
         ax.annotate(_peak_label(float(o[i]), z1, ratio), (o[i], a[i]), fontsize=7,

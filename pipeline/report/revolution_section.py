@@ -1,0 +1,83 @@
+"""The full-revolution section of a mesh report: the loaded contact with each tooth's
+errors through the hunting cycle or a revolution (:mod:`pipeline.contact.revolution`)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from pipeline.report.content import quantity
+from pipeline.report.model import Figure, Section
+
+FIGURES = (
+    ("revolution_te.png", "Loaded static transmission error over the span, beside the "
+     "error-free mesh cycle repeated and the runouts' gap"),
+    ("revolution_spectrum.png", "Its amplitude spectrum against the order per pinion "
+     "revolution: mesh orders n z1 and the sidebands and ghost orders of the errors"),
+    ("revolution_worst_pair.png", "The tooth pair with the largest Hertz pressure along the "
+     "path, against the range of every other pair"),
+)
+
+
+def revolution_figures(out: Path, prefix: str) -> list[Figure]:
+    """The revolution's figures the run wrote into ``out``
+    (:mod:`pipeline.cli.revolution_files`)."""
+    return [Figure(f"{prefix}{file}", caption) for file, caption in FIGURES
+            if (out / f"{prefix}{file}").is_file()]
+
+
+def _errors_rows(errors: Any) -> list:
+    rows = []
+    for who in ("pinion", "gear"):
+        g = getattr(errors, who)
+        if g.pitch_deviations:
+            dev = [abs(v) for v in g.pitch_deviations]
+            rows.append(quantity(f"{who}_f_pt_max", f"{who}: largest single pitch deviation "
+                                 "|f_pt|", "um", max(dev) * 1e6))
+        if g.eccentricity:
+            rows.append(quantity(f"{who}_eccentricity", f"{who}: eccentricity e (phase "
+                                 f"{math.degrees(g.eccentricity_phase):.4g} deg)", "um",
+                                 g.eccentricity * 1e6))
+    return rows
+
+
+def revolution_section(stage: Any, figures: list[Figure]) -> Section:
+    """The :class:`pipeline.run.revolution.RevolutionStage` of a pair with its figures."""
+    s = stage.summary()
+    worst = s["worst_pair"]
+    sideband = s["largest_sideband_order"]
+    rows = [
+        *_errors_rows(stage.errors),
+        quantity("span", f"span ({s['span']}): mesh cycles x positions", "",
+                 f"{s['mesh_cycles']} x {s['positions'] // s['mesh_cycles']}"),
+        quantity("te_peak_to_peak", "transmission error over the span, peak to peak", "um",
+                 s["transmission_error_peak_to_peak_m"] * 1e6),
+        quantity("first_order", "amplitude at order 1 (once per pinion revolution)", "um",
+                 s["first_order_amplitude_m"] * 1e6),
+        quantity("mesh_order", "amplitude at the mesh order z1", "um",
+                 s["mesh_order_amplitude_m"] * 1e6),
+        quantity("largest_sideband", "largest sideband (order >= z1 / 2, not a mesh order)",
+                 "um", s["largest_sideband_amplitude_m"] * 1e6),
+        quantity("largest_sideband_order", "... at order per pinion revolution", "-",
+                 None if sideband != sideband else sideband),
+        quantity("worst_pair", "worst tooth pair (pinion tooth / gear tooth)", "",
+                 f"{worst['pinion_tooth']} / {worst['gear_tooth']}"),
+        quantity("worst_pressure", "its largest Hertz pressure", "MPa",
+                 worst["pressure_Pa"] * 1e-6),
+    ]
+    notes = (
+        "Every tooth pair carries the gap of its two teeth's cumulative pitch deviations "
+        "(F_p = sum of f_pt, ISO 1328-1, along the line of action F_p cos alpha_t) and of "
+        "both eccentricities at the instant (e sin(phi + theta) of each gear, the same for "
+        "every pair on the line of action); teeth are numbered in the order they come into "
+        "mesh, tooth 0 of both gears forming the first pair.",
+        "A runout alone is a rigid offset of all pairs in mesh: it adds e sin(phi + theta) "
+        "to the transmission error and leaves the loads, hence the mesh orders, unchanged "
+        "(no sidebands at first order); the shift of the eccentric gear's tip circle along "
+        "the path and the change of centre distance, which modulate the mesh by about e / "
+        "p_bt, are left out. Sidebands come from pitch deviations, which differ from pair "
+        "to pair and redistribute the load.",
+    )
+    return Section("revolution", "Full revolution with tooth errors", tuple(rows),
+                   figures=tuple(figures), notes=notes)
