@@ -102,18 +102,45 @@ def test_pinion_runout_adds_e_sin_and_no_sidebands(load_share):
 def test_gear_runout_turns_with_the_gear():
     """A gear runout on a 20/30 pair: order z1 / z2 = 2/3 per pinion revolution (the gear
     turns by theta_1 r_b1 / r_b2), amplitude e, over the hunting cycle of LCM(20, 30) = 60
-    mesh cycles (3 pinion revolutions, 2 gear revolutions)."""
+    mesh cycles (3 pinion revolutions, 2 gear revolutions). At 10 % load no tip corner
+    carries load (there the gear's turn would act through its lever, not as a common gap)."""
     src = _source(20, 30)
     load = line_of_action_load(src.pair, OPERATION) * 0.1
     e, phi = 6e-6, -1.0
     rev = loaded_revolution(src, load, _errors("hunting", eccentricity_gear=e,
                                                eccentricity_phase_gear=phi), positions=6)
     assert rev.mesh_cycles == 60 and rev.pinion_revolutions == 3.0
+    assert rev.contact.tip_contact_peak() is None
     cyc = _cycle(src, load, 6)
     d = rev.transmission_error - np.tile(cyc.transmission_error, 60)
     theta2 = rev.contact.pinion_angle * 20 / 30
     assert np.abs(d - e * np.sin(phi + theta2)).max() < ROUND_OFF
     assert rev.spectrum().at(2.0 / 3.0) == pytest.approx(e, rel=1e-9)
+
+
+@pytest.mark.parametrize("driver", ["pinion", "gear"])
+def test_helical_pair_repeats_its_mesh_cycle(driver):
+    """A helical 19/21 pair (beta 15 deg, 10 slices: pairs k = -2 .. 3 touch, those behind
+    through the far face end) driven by either gear: without errors one pinion revolution
+    repeats the mesh cycle; a runout of the driving gear is a common gap, so it adds exactly
+    e sin(phi + theta) of that gear (tip corners included: the driver's turn is the
+    approach)."""
+    op = OperatingPoint(torque=340.0, speed=100.0, driver=driver)
+    pair = GearPair(spur(19, "pinion", helix_angle=math.radians(15), hand="right"),
+                    spur(21, "gear", helix_angle=math.radians(15), hand="left"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        src = analytical_compliance(pair, op, ContactOptions(slices=10))
+        load = line_of_action_load(pair, op)
+        cyc = loaded_mesh_cycle(src, load, None, "weber", 4, driver=driver)
+    rev = loaded_revolution(src, load, ToothErrors(span="pinion"), positions=4, driver=driver)
+    assert np.abs(rev.transmission_error.reshape(19, 4) - cyc.transmission_error).max() \
+        < ROUND_OFF
+    key = f"eccentricity_{driver}"
+    rev = loaded_revolution(src, load, _errors(**{key: 5e-6}), positions=4, driver=driver)
+    theta = rev.contact.pinion_angle * (1.0 if driver == "pinion" else 19 / 21)
+    d = rev.transmission_error - np.tile(cyc.transmission_error, 19)
+    assert np.abs(d - 5e-6 * np.sin(theta)).max() < ROUND_OFF
 
 
 def _on_path(pair, s0, k):

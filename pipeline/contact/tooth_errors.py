@@ -51,11 +51,15 @@ the gap
 with ``theta_1 = (s0 - s0_first) / r_b1`` and ``theta_2 = (s0 - s0_first) / r_b2`` for
 the unrolled roll coordinate ``s0``. ``phi_g = 90 deg``: at the first position the teeth
 of gear ``g`` lie ``e_g`` behind along the line of action (the gap is largest). This is
-the first-order effect; the eccentricity also moves the gear's tip circle along the path
-of contact by ``g_g`` (the end of the path where that gear's tip leaves or enters shifts,
-changing the contact ratio by ``g_g / p_bt``) and the centre distance by the component
-across the line of action; both are left out (they modulate the mesh by a relative
-``e / p_bt``, about 0.2 % for 10 um on the demo pair). A measured cumulative pitch
+the first-order gap. Left out are the eccentricity's two effects on the path of contact:
+the translation moves the gear's tip circle along the line of action by ``g_g`` (the end
+of the path where that gear's tip enters or leaves shifts by ``g_g``), and its component
+along the line of centres changes the centre distance by ``delta_a``, which moves the
+start of the path (``T1 T2`` grows by ``delta_a / sin(alpha_wt)``). Both change the contact
+ratio by about ``e / p_bt`` once per revolution (0.1 % for 10 um on the demo pair, ``p_bt
+= 8.9 mm``) and so modulate the mesh harmonics; without them a runout leaves the loads
+unchanged (a gap common to every pair on the path of contact; at a tip corner it acts
+through the lever below) and adds ``g_g`` to the transmission error, with no sidebands. A measured cumulative pitch
 deviation of an eccentric gear already contains its eccentricity's sinusoid: give one or
 the other.
 

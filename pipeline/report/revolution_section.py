@@ -74,10 +74,11 @@ def revolution_section(stage: Any, figures: list[Figure]) -> Section:
         "mesh, tooth 0 of both gears forming the first pair.",
         "A runout alone is a rigid offset of all pairs in mesh: it adds e sin(phi + theta) "
         "to the transmission error and leaves the loads, hence the mesh orders, unchanged "
-        "(no sidebands at first order); the shift of the eccentric gear's tip circle along "
-        "the path and the change of centre distance, which modulate the mesh by about e / "
-        "p_bt, are left out. Sidebands come from pitch deviations, which differ from pair "
-        "to pair and redistribute the load.",
+        "(no sidebands at first order). Left out: the shift of the eccentric gear's tip "
+        "circle along the path and the change of centre distance, which change the contact "
+        "ratio by about e / p_bt once per revolution and would modulate the mesh. Sidebands "
+        "here come from pitch deviations, which differ from pair to pair and redistribute "
+        "the load.",
     )
     return Section("revolution", "Full revolution with tooth errors", tuple(rows),
                    figures=tuple(figures), notes=notes)
