@@ -59,9 +59,9 @@ start of the path (``T1 T2`` grows by ``delta_a / sin(alpha_wt)``). Both change 
 ratio by about ``e / p_bt`` once per revolution (0.1 % for 10 um on the demo pair, ``p_bt
 = 8.9 mm``) and so modulate the mesh harmonics; without them a runout leaves the loads
 unchanged (a gap common to every pair on the path of contact; at a tip corner it acts
-through the lever below) and adds ``g_g`` to the transmission error, with no sidebands. A measured cumulative pitch
-deviation of an eccentric gear already contains its eccentricity's sinusoid: give one or
-the other.
+through the lever below) and adds ``g_g`` to the transmission error, with no sidebands.
+A measured cumulative pitch deviation of an eccentric gear already contains its
+eccentricity's sinusoid: give one or the other.
 
 Beyond the path of contact a pair touches at a tip corner along the mate's flank normal
 (:mod:`pipeline.geometry.tip_contact`), off the line of action: turning gear ``g`` by
