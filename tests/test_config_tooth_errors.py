@@ -78,7 +78,8 @@ def test_run_writes_the_revolution(tmp_path):
     out = tmp_path / "out"
     assert cli(["run", str(path), "--out", str(out), "--no-cache", "--json"]) == 0
     for name in ("revolution_te.csv", "revolution_te.png", "revolution_spectrum.csv",
-                 "revolution_spectrum.png", "revolution_worst_pair.png"):
+                 "revolution_spectrum.png", "revolution_worst_pair.png",
+                 "revolution_worst_pair_load_map.png"):
         assert (out / name).is_file(), name
     head = (out / "revolution_te.csv").read_text().splitlines()[0]
     assert "transmission_error [m]" in head and "pinion_angle [rad]" in head

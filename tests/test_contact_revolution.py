@@ -174,6 +174,11 @@ def test_a_proud_tooth_shows_once_per_revolution_by_its_offset_at_light_load():
     assert np.ptp(np.flatnonzero(meshing)) < 2 * m  # once per revolution, in one passage
     assert np.abs(d[meshing] - offset).max() < 0.01 * abs(offset)
     assert np.abs(d[~meshing]).max() < 0.01 * abs(offset)
+    # its passage: the points of that tooth pair only, each position's share of the 1 N
+    one = rev.pair_cycle(3, 3)
+    assert set(np.unique(rev.point_teeth()[0][rev.pair_points(3, 3)])) == {3}
+    loaded = np.unique(one.point_position[one.point_load > 0])
+    assert np.array_equal(loaded, np.flatnonzero(meshing))
 
 
 def test_sinusoidal_pitch_deviation_sidebands_match_the_rigid_body_estimate():

@@ -9,7 +9,8 @@ contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 their deflection lines (``shaft_deflection.csv``) and the misalignment across the face
 (``shaft_face.csv``); a pair with ``[contact.errors]`` the contact through the revolution
 (``revolution_te.csv/png``, ``revolution_spectrum.csv/png``,
-``revolution_worst_pair.png``; :mod:`pipeline.cli.revolution_files`); a herringbone sun with a
+``revolution_worst_pair.png``, ``revolution_worst_pair_load_map.png``;
+:mod:`pipeline.cli.revolution_files`); a herringbone sun with a
 ``[groove]`` table adds ``sun_planet_herringbone.csv`` and the left/right sun-flank load
 maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynamics
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
@@ -82,7 +83,8 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
     if st.revolution is not None:
         from pipeline.cli.revolution_files import write_revolution
 
-        files += write_revolution(st.revolution, st.contact, title, out, prefix, figures)
+        files += write_revolution(st.revolution, st.contact, pair, opts, title, out, prefix,
+                                  figures)
     if st.herringbone is not None:
         from pipeline.cli.herringbone_files import write_herringbone
 

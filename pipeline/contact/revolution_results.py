@@ -13,6 +13,7 @@ divides the span comes out at its exact amplitude.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -133,6 +134,15 @@ class LoadedRevolution:
         """Mask of the candidate points of the tooth pair of the given teeth."""
         t1, t2 = self.point_teeth()
         return (t1 == pinion_tooth) & (t2 == gear_tooth)
+
+    def pair_cycle(self, pinion_tooth: int, gear_tooth: int) -> LoadedMeshCycle:
+        """``contact`` with only the candidate points of the tooth pair of the given teeth:
+        its passage through the mesh, for a load map of that pair
+        (:func:`pipeline.contact.loadmap.flank_load_map`)."""
+        keep = self.pair_points(pinion_tooth, gear_tooth)
+        c = self.contact
+        return dataclasses.replace(c, **{f.name: getattr(c, f.name)[keep] for f in fields(c)
+                                         if f.name.startswith("point_")})
 
     def summary(self) -> dict[str, Any]:
         """TE peak to peak, mesh-order and once-per-revolution amplitudes, the largest

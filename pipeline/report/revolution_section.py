@@ -17,6 +17,8 @@ FIGURES = (
      "revolution: mesh orders n z1 and the sidebands and ghost orders of the errors"),
     ("revolution_worst_pair.png", "The tooth pair with the largest Hertz pressure along the "
      "path, against the range of every other pair"),
+    ("revolution_worst_pair_load_map.png", "Load map of that tooth pair: unit load over the "
+     "face and the pinion's contact radius through its passage"),
 )
 
 
