@@ -18,6 +18,9 @@ the loaded approach and the mesh stiffness.
   crowning, slope deviation and pitch errors (:mod:`.separations`).
 - :func:`loaded_mesh_cycle` - a mesh cycle from a compliance source, warm-started:
   loads, load sharing, transmission error, mesh stiffness, unit loads (:mod:`.ltca`).
+- :func:`loaded_revolution` - through the hunting cycle or a revolution, every tooth pair
+  with its teeth's pitch deviations and both runouts (:class:`ToothErrors`,
+  :mod:`.tooth_errors`; result :class:`LoadedRevolution`, :mod:`.revolution_results`).
 - A herringbone sun-planet mesh, both helical halves through the sun's relief groove
   (:mod:`.herringbone`, result :mod:`.herringbone_results`, the groove condensed to the
   flank DOFs :mod:`.groove_flank`, left/right load maps :mod:`.herringbone_maps`).
@@ -55,9 +58,12 @@ from pipeline.contact.hertz import (
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.results import ContactSolution, ContactSweep, LoadedMeshCycle
+from pipeline.contact.revolution import loaded_revolution
+from pipeline.contact.revolution_results import LoadedRevolution
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints, SliceCompliance
 from pipeline.contact.sweep import solve_positions
+from pipeline.contact.tooth_errors import GearErrors, ToothErrors
 
 # FE sources are imported on first use: they pull in scikit-fem and Gmsh (seconds)
 _FE_EXPORTS = {"FE2DCompliance": "pipeline.contact.fe2d_source",
@@ -77,4 +83,5 @@ __all__ = [
     "contact_modulus", "effective_radius", "hertz_half_width", "hertz_max_pressure",
     "initial_separations", "loaded_mesh_cycle", "solve_contact", "solve_positions",
     "LoadDistribution", "load_distribution",
+    "GearErrors", "LoadedRevolution", "ToothErrors", "loaded_revolution",
 ]

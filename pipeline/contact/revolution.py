@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pipeline.contact.complementarity import solve_contact
+from pipeline.contact.hertz import LocalCompliance
 from pipeline.contact.ltca import (
     LOCAL_MODELS,
     along_line_of_action,
@@ -66,7 +67,7 @@ class _Phase:
 
     points: ContactPoints
     G: np.ndarray
-    hertz: object
+    hertz: LocalCompliance | None
     lever: np.ndarray
     eps: np.ndarray
     c_lin: np.ndarray | None
@@ -101,16 +102,19 @@ def _phase(source: ComplianceSource, s0: float, mods: FlankModifications, local:
     return _Phase(pts, Gt, hertz, lever, eps, c_lin, (tc.lever_pinion, tc.lever_gear))
 
 
-def revolution_size(errors: ToothErrors, pair, positions: int) -> tuple[int, int]:
-    """(mesh cycles, positions in all) of the span, refused above :data:`MAX_POSITIONS`."""
+def revolution_size(errors: ToothErrors, pair: GearPair, positions: int) -> tuple[int, int]:
+    """(mesh cycles, positions in all) of the span, refused above :data:`MAX_POSITIONS`
+    (the message names the shorter spans when there are any)."""
     cycles = errors.mesh_cycles(pair)
     total = cycles * positions
     if total > MAX_POSITIONS:
+        z = {"pinion": pair.pinion.teeth, "gear": pair.gear.teeth}
+        shorter = [f'"{k}" ({n} mesh cycles)' for k, n in z.items() if n < cycles]
         raise InputError(
             f"contact.errors.span = \"{errors.span}\" is {cycles} mesh cycles x "
             f"contact.positions = {positions} = {total} contact solves, more than "
-            f"{MAX_POSITIONS} (minutes of solves each 1e4): give span = \"pinion\" or \"gear\" "
-            "(one revolution) or fewer positions per mesh cycle")
+            f"{MAX_POSITIONS} (about 4 min): give fewer positions per mesh cycle"
+            + (f" or span = {' or '.join(shorter)}, one revolution" if shorter else ""))
     return cycles, total
 
 
