@@ -89,3 +89,13 @@ def test_run_writes_the_revolution(tmp_path):
     report = json.loads((out / "report.json").read_text())
     assert "revolution" in str(report)
     assert "Full revolution with tooth errors" in (out / "report.html").read_text()
+
+
+def test_contact_command_says_the_errors_act_in_run(tmp_path, capsys):
+    text = DEMO_PAIR + ("[contact]\ncompliance = \"analytical\"\npositions = 4\n"
+                        "[contact.errors]\neccentricity_gear_um = 1.0\n")
+    path = tmp_path / "box.toml"
+    path.write_text(text, encoding="utf-8")
+    assert cli(["contact", str(path), "--out", str(tmp_path / "out"), "--json"]) == 0
+    assert ("[contact.errors] acts in gearpipe run (the contact through the revolution); "
+            "gearpipe contact solves one mesh cycle without them") in capsys.readouterr().err

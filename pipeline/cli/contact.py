@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -34,6 +35,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.io import write_csv, write_json
 from pipeline.output_folder import staged_output
 from pipeline.stiffness.mesh import stiffness_at
+from pipeline.validation import InputWarning
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 
 
@@ -77,6 +79,10 @@ def contact_title(name: str, cyc: LoadedMeshCycle, pair: GearPair, opts: Contact
 
 def run(args: argparse.Namespace) -> int:
     box = load(args)
+    if box.errors is not None:
+        warnings.warn("[contact.errors] acts in gearpipe run (the contact through the "
+                      "revolution); gearpipe contact solves one mesh cycle without them",
+                      InputWarning, stacklevel=2)
     pair, opts = box.actual_pair, box.contact
     target = output_dir(args, "contact")
     slices = analytical_compliance(pair, box.operation, opts, box.stiffness,

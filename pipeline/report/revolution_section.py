@@ -81,6 +81,8 @@ def revolution_section(stage: Any, figures: list[Figure]) -> Section:
         "ratio by about e / p_bt once per revolution and would modulate the mesh. Sidebands "
         "here come from pitch deviations, which differ from pair to pair and redistribute "
         "the load.",
+        "The other sections, and the dynamics excited by the contact, use the mesh cycle "
+        "without these errors.",
     )
     return Section("revolution", "Full revolution with tooth errors", tuple(rows),
                    figures=tuple(figures), notes=notes)
