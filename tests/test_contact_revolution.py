@@ -91,6 +91,7 @@ def test_pinion_runout_adds_e_sin_and_no_sidebands(load_share):
     d = rev.transmission_error - np.tile(cyc.transmission_error, 50)
     assert np.abs(d - e * np.sin(phi + theta)).max() < ROUND_OFF
     sp = rev.spectrum()
+    assert sp.at(0.0) == pytest.approx(rev.transmission_error.mean(), rel=1e-12)
     assert sp.at(1.0) == pytest.approx(e, rel=1e-9)
     mesh = sp.at(50.0)
     assert mesh > 1e-8

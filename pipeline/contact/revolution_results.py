@@ -6,9 +6,10 @@ Orders are per revolution of the pinion (as in the dynamics' spectra,
 modulation of the pinion puts sidebands at ``n z1 +- 1``, of the gear at
 ``n z1 +- z1 / z2``. The spectrum is the one-sided amplitude of the discrete Fourier
 transform of the transmission error over the span (``R = N / z1`` pinion revolutions,
-``N m`` equally spaced samples): ``A(o) = 2 |X_q| / (N m)`` at order ``o = q / R`` (``A =
-|X_0| / (N m)`` at order 0 is left out: the mean). A sinusoid of order ``o`` whose period
-divides the span comes out at its exact amplitude.
+``N m`` equally spaced samples): ``A(o) = 2 |X_q| / (N m)`` at order ``o = q / R`` (the
+Nyquist bin, without a mirror, ``|X_q| / (N m)``); order 0 holds the signed mean, as in
+the dynamics' DTE spectrum (:meth:`pipeline.dynamics.results.Response.dte_spectrum`). A
+sinusoid of order ``o`` whose period divides the span comes out at its exact amplitude.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ class Spectrum:
     Attributes
     ----------
     order : (q,) orders per pinion revolution, from 0 (the mean's bin) in steps of 1 / R.
-    amplitude : (q,) amplitudes, m (0 at order 0).
+    amplitude : (q,) amplitudes, m (order 0: the signed mean).
     mesh_order : z1, the first mesh order.
     """
 
@@ -106,7 +107,7 @@ class LoadedRevolution:
         te = self.transmission_error
         x = np.fft.rfft(te - te.mean()) / te.size
         amp = 2.0 * np.abs(x)
-        amp[0] = 0.0
+        amp[0] = te.mean()
         if te.size % 2 == 0:
             amp[-1] *= 0.5  # the Nyquist bin has no mirror
         order = np.arange(amp.size) / self.pinion_revolutions
@@ -178,8 +179,10 @@ class LoadedRevolution:
         }
 
     def spectrum_columns(self) -> dict[str, np.ndarray]:
+        """The spectrum as CSV columns: order per pinion revolution (-) and amplitude (m;
+        order 0: the signed mean)."""
         sp = self.spectrum()
-        return {"order_per_pinion_revolution [-]": sp.order, "amplitude [m]": sp.amplitude}
+        return {"pinion_order [-]": sp.order, "transmission_error_amplitude [m]": sp.amplitude}
 
 
 def revolution_arrays(rev: LoadedRevolution) -> dict[str, np.ndarray]:
