@@ -3,10 +3,10 @@
 ``revolution_te.csv`` (per position: pinion angle, mesh cycle, roll coordinate, TE, the
 runouts' gap, mesh stiffness, largest unit load, residual; SI with units in the headers)
 and ``revolution_te.png``; ``revolution_spectrum.csv`` (order per pinion revolution,
-amplitude in m, order 0 the mean) and ``revolution_spectrum.png``; ``revolution_worst_pair.png`` (the tooth
-pair with the largest Hertz pressure along the path, against every other pair) and
-``revolution_worst_pair_load_map.png`` (its unit load over the flank through its passage,
-as the mesh cycle's ``load_map_2d.png``).
+amplitude in m, order 0 the mean) and ``revolution_spectrum.png``;
+``revolution_worst_pair.png`` (the tooth pair with the largest Hertz pressure along the
+path, against every other pair) and ``revolution_worst_pair_load_map.png`` (its unit load
+over the flank through its passage, as the mesh cycle's ``load_map_2d.png``).
 """
 
 from __future__ import annotations
