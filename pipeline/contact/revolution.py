@@ -47,7 +47,7 @@ from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.revolution_results import LoadedRevolution
 from pipeline.contact.separations import FlankModifications, initial_separations
 from pipeline.contact.source import ComplianceSource, ContactPoints, candidate_range
-from pipeline.contact.tooth_errors import ToothErrors, pitch_gaps, runout_gaps
+from pipeline.contact.tooth_errors import ToothErrors, pitch_gaps, runout_gaps, tooth_offsets
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
 from pipeline.progress import progress
@@ -74,10 +74,12 @@ class _Phase:
     levers: tuple[np.ndarray, np.ndarray]
 
     def error_gaps(self, pair: GearPair, errors: ToothErrors, cycle: int,
-                   runout: tuple[float, float]) -> np.ndarray:
+                   runout: tuple[float, float],
+                   offsets: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
         """Gaps of the points from both gears' errors in mesh cycle ``cycle`` (m, along
-        each point's contact normal), with the runout gaps ``runout`` of the instant."""
-        g1, g2 = pitch_gaps(pair, errors, cycle, self.points.pair)
+        each point's contact normal), with the runout gaps ``runout`` of the instant and the
+        teeth's pitch ``offsets`` (:func:`~pipeline.contact.tooth_errors.tooth_offsets`)."""
+        g1, g2 = pitch_gaps(pair, errors, cycle, self.points.pair, offsets)
         return (g1 + runout[0]) * self.levers[0] + (g2 + runout[1]) * self.levers[1]
 
 
@@ -181,12 +183,13 @@ def loaded_revolution(
     cycle_of = np.repeat(np.arange(cycles), m)
     roll = cycle_of * pair.base_pitch + np.tile(s0 - s0[0], cycles)
     runout = runout_gaps(pair, errors, roll)
+    offsets = tooth_offsets(pair, errors)
     record = CycleRecorder(pair, total, source.tip_contact)
     prev = None
     for i in progress(range(total), "revolution contact", total=total, enabled=show_progress):
         c, ph = int(cycle_of[i]), phases[i % m]
         label = f"mesh cycle {c}, position {i % m} (s0 = {s0[i % m] * 1e3:.6g} mm)"
-        eps = ph.eps + ph.error_gaps(pair, errors, c, (runout[0][i], runout[1][i]))
+        eps = ph.eps + ph.error_gaps(pair, errors, c, (runout[0][i], runout[1][i]), offsets)
         eps_t = eps / ph.lever
         keys = _keys(c, ph.points)
         sol = solve_contact(ph.G, eps_t, load, ph.hertz, tol=tol, max_iter=max_iter,

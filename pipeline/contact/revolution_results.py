@@ -9,7 +9,9 @@ transform of the transmission error over the span (``R = N / z1`` pinion revolut
 ``N m`` equally spaced samples): ``A(o) = 2 |X_q| / (N m)`` at order ``o = q / R`` (the
 Nyquist bin, without a mirror, ``|X_q| / (N m)``); order 0 holds the signed mean, as in
 the dynamics' DTE spectrum (:meth:`pipeline.dynamics.results.Response.dte_spectrum`). A
-sinusoid of order ``o`` whose period divides the span comes out at its exact amplitude.
+sinusoid of order ``o`` whose period divides the span comes out at its exact amplitude: the
+hunting cycle resolves both gears' orders, one revolution of a gear that gear's (the other
+gear's orders ``k z1 / z2`` fall between the bins unless ``z2`` divides ``k z1``).
 """
 
 from __future__ import annotations

@@ -192,15 +192,24 @@ def pair_teeth(pair: GearPair, cycle: np.ndarray, k: np.ndarray) -> tuple[np.nda
     return np.mod(n, pair.pinion.teeth), np.mod(n, pair.gear.teeth)
 
 
-def pitch_gaps(pair: GearPair, errors: ToothErrors, cycle: int | np.ndarray,
-               k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Gaps along the line of action of tooth pair ``k`` in mesh cycle ``cycle`` from the
-    cumulative pitch deviations of its pinion tooth and of its gear tooth, m: ``F_p,1
-    cos(alpha_t)`` and ``F_p,2 cos(alpha_t)`` (module docstring)."""
-    i1, i2 = pair_teeth(pair, cycle, k)
+def tooth_offsets(pair: GearPair, errors: ToothErrors) -> tuple[np.ndarray, np.ndarray]:
+    """Gap along the line of action of each pinion tooth and each gear tooth from its
+    cumulative pitch deviation, m, shapes (z1,) and (z2,): ``F_p cos(alpha_t)`` (module
+    docstring)."""
     cos_at = pair.pinion.base_radius / pair.pinion.reference_radius
-    return (errors.pinion.cumulative(pair.pinion.teeth)[i1] * cos_at,
-            errors.gear.cumulative(pair.gear.teeth)[i2] * cos_at)
+    return (errors.pinion.cumulative(pair.pinion.teeth) * cos_at,
+            errors.gear.cumulative(pair.gear.teeth) * cos_at)
+
+
+def pitch_gaps(pair: GearPair, errors: ToothErrors, cycle: int | np.ndarray,
+               k: np.ndarray, offsets: tuple[np.ndarray, np.ndarray] | None = None
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """Gaps along the line of action of tooth pair ``k`` in mesh cycle ``cycle`` from the
+    cumulative pitch deviations of its pinion tooth and of its gear tooth, m
+    (``offsets``: :func:`tooth_offsets`, computed when None)."""
+    i1, i2 = pair_teeth(pair, cycle, k)
+    o1, o2 = tooth_offsets(pair, errors) if offsets is None else offsets
+    return o1[i1], o2[i2]
 
 
 def runout_gaps(pair: GearPair, errors: ToothErrors,
