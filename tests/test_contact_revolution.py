@@ -182,6 +182,34 @@ def test_a_proud_tooth_shows_once_per_revolution_by_its_offset_at_light_load():
     assert np.array_equal(loaded, np.flatnonzero(meshing))
 
 
+def test_a_low_gear_tooth_shows_only_where_its_pair_meshes_alone():
+    """Gear tooth 5 lies 4 um back (f_pt,5 = +4 um, f_pt,6 = -4 um: material removed). At
+    light load its pair carries load only where no other pair is on the path (single
+    contact): there the TE rises by 4 cos(alpha_t) um, in double contact the other pair
+    takes the 1 N and the TE is the error-free one (to P / k, a few nm)."""
+    src = _source(tip_contact=False)
+    pair, m = src.pair, 10
+    f = np.zeros(50)
+    f[5], f[6] = 4e-6, -4e-6
+    rev = loaded_revolution(src, 1.0, _errors(pitch_deviations_gear=tuple(f)), positions=m)
+    cyc = _cycle(src, 1.0, m)
+    d = rev.transmission_error - np.tile(cyc.transmission_error, 50)
+    offset = 4e-6 * pair.gear.base_radius / pair.gear.reference_radius
+    s0 = pair.mesh_cycle(m)
+    mine, others = np.zeros((50, m), bool), np.zeros((50, m), int)
+    for c in range(50):
+        for k in pair.pair_indices(False):
+            on = _on_path(pair, s0, k)
+            if pair_teeth(pair, c, k)[1] == 5:
+                mine[c] |= on
+            else:
+                others[c] += on
+    alone = (mine & (others == 0)).ravel()
+    assert 2 <= alone.sum() <= 8  # single contact: (2 - epsilon_alpha) of a cycle
+    assert np.abs(d[alone] - offset).max() < 0.01 * offset
+    assert np.abs(d[~alone]).max() < 0.01 * offset
+
+
 def test_sinusoidal_pitch_deviation_sidebands_match_the_rigid_body_estimate():
     """A once-per-revolution cumulative pitch deviation of the pinion (an index error of the
     cutting machine: F_p,i = A sin(2 pi i / z1), A = 8 um) changes the spacing of
