@@ -261,6 +261,13 @@ def test_errors_are_refused_when_they_cannot_act():
     with pytest.raises(InputError, match=r"9797 mesh cycles x contact.positions = 60"):
         revolution_size(ToothErrors(span="hunting"), big, 60)
     assert revolution_size(ToothErrors(span="gear"), big, 60) == (101, 6060)
+    helical = GearPair(spur(97, "pinion", helix_angle=0.3, hand="right"),
+                       spur(101, "gear", helix_angle=0.3, hand="left"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fine = analytical_compliance(helical, OPERATION, ContactOptions(slices=100))
+    with pytest.raises(InputError, match=r"keep about \d+ point records, more than 10000000"):
+        loaded_revolution(fine, 1.0, ToothErrors(span="gear"), positions=400)
 
 
 def test_cache_arrays_round_trip_exactly():

@@ -57,6 +57,9 @@ from pipeline.validation import InputError, check_choice, check_range
 MAX_POSITIONS = 100_000
 """Most positions of a full-revolution contact (mesh cycles x positions per cycle): about
 4 min of solves for a spur pair at 2.3 ms each (``workflows/benchmarks/bench_revolution.py``)."""
+MAX_POINT_RECORDS = 10_000_000
+"""Most candidate points over all positions: the result keeps 12 numbers per point (about
+1 GB at this many)."""
 
 
 @dataclass(frozen=True)
@@ -179,7 +182,16 @@ def loaded_revolution(
     m = s0.size
     cycles, total = revolution_size(errors, pair, m)
     c_hertz = hertz_compliance(pair.pinion, pair.gear)
-    phases = [_phase(source, float(s), mods, local, driver, c_hertz) for s in s0]
+    first = _phase(source, float(s0[0]), mods, local, driver, c_hertz)
+    records = total * len(first.points)  # refused before the other phases are built
+    if records > MAX_POINT_RECORDS:
+        raise InputError(
+            f"contact.errors.span = \"{errors.span}\": {cycles} mesh cycles of {m} positions "
+            f"with {len(first.points)} candidate points each keep about {records} point "
+            f"records, more than {MAX_POINT_RECORDS} (about 1 GB): give fewer "
+            "contact.positions or contact.slices, or a shorter span")
+    phases = [first] + [_phase(source, float(s), mods, local, driver, c_hertz)
+                        for s in s0[1:]]
     cycle_of = np.repeat(np.arange(cycles), m)
     roll = cycle_of * pair.base_pitch + np.tile(s0 - s0[0], cycles)
     runout = runout_gaps(pair, errors, roll)
