@@ -10,9 +10,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import Cells, json_value
 
 from pipeline.cli import main as cli
 from pipeline.config import gearbox_from_dict, load_gearbox
+from pipeline.report.model import format_value
 from pipeline.validation import InputError
 from workflows.default_case import DEMO_PAIR
 
@@ -86,9 +88,27 @@ def test_run_writes_the_revolution(tmp_path):
     rev = json.loads((out / "summary.json").read_text())["meshes"]["mesh"]["revolution"]
     assert rev["mesh_cycles"] == 20 and rev["positions"] == 120
     assert rev["first_order_amplitude_m"] == pytest.approx(5e-6, rel=1e-9)
-    report = json.loads((out / "report.json").read_text())
-    assert "revolution" in str(report)
-    assert "Full revolution with tooth errors" in (out / "report.html").read_text()
+    # the report's section: its numbers the summary's, each shown as the JSON has it, its
+    # four figures embedded
+    section = json.loads((out / "report.json").read_text())["sections"]["revolution"]
+    q = section["quantities"]
+    assert q["te_peak_to_peak"]["value"] == pytest.approx(
+        rev["transmission_error_peak_to_peak_m"] * 1e6, rel=1e-12)
+    assert q["first_order"]["value"] == pytest.approx(5.0, rel=1e-9)
+    assert q["worst_pair"]["value"] == (f"{rev['worst_pair']['pinion_tooth']} / "
+                                        f"{rev['worst_pair']['gear_tooth']}")
+    html = (out / "report.html").read_text(encoding="utf-8")
+    cells = Cells()
+    cells.feed(html)
+    data = {"sections": {"revolution": section}}
+    shown = [(k, t) for k, t in cells.cells if k is not None and k.startswith("revolution.")]
+    assert len(shown) == len(q)
+    for key, text in shown:
+        assert text == format_value(json_value(data, key)), key
+    assert [f["file"] for f in section["figures"]] == [
+        "revolution_te.png", "revolution_spectrum.png", "revolution_worst_pair.png",
+        "revolution_worst_pair_load_map.png"]
+    assert html.count("data:image/png;base64,") >= 4
 
 
 def test_contact_command_says_the_errors_act_in_run(tmp_path, capsys):
