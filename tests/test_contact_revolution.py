@@ -175,6 +175,9 @@ def test_a_proud_tooth_shows_once_per_revolution_by_its_offset_at_light_load():
     assert np.ptp(np.flatnonzero(meshing)) < 2 * m  # once per revolution, in one passage
     assert np.abs(d[meshing] - offset).max() < 0.01 * abs(offset)
     assert np.abs(d[~meshing]).max() < 0.01 * abs(offset)
+    # a spur pair's points lie at its roll coordinate s0_j + k p_bt
+    assert rev.base_pitch == pytest.approx(pair.base_pitch, rel=1e-12)
+    assert np.allclose(rev.pair_roll(), rev.contact.point_s, rtol=0, atol=1e-12)
     # its passage: the points of that tooth pair only, each position's share of the 1 N
     one = rev.pair_cycle(3, 3)
     assert set(np.unique(rev.point_teeth()[0][rev.pair_points(3, 3)])) == {3}

@@ -52,7 +52,7 @@ from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
 from pipeline.progress import progress
 from pipeline.stiffness.tooth import hertz_compliance
-from pipeline.validation import InputError, check_choice, check_range
+from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 MAX_POSITIONS = 100_000
 """Most positions of a full-revolution contact (mesh cycles x positions per cycle): about
@@ -178,7 +178,8 @@ def loaded_revolution(
                          "(single_pitch_pinion_um, single_pitch_gear_um) instead")
     pair = source.pair
     errors.check_pair(pair)
-    s0 = mesh_positions(pair, positions)
+    check_int_range("contact.positions", positions, 1, 1_000_000)
+    s0 = mesh_positions(pair, int(positions))
     m = s0.size
     cycles, total = revolution_size(errors, pair, m)
     c_hertz = hertz_compliance(pair.pinion, pair.gear)

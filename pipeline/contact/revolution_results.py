@@ -17,6 +17,7 @@ gear's orders ``k z1 / z2`` fall between the bins unless ``z2`` divides ``k z1``
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -120,6 +121,19 @@ class LoadedRevolution:
         c = self.cycle_index[self.contact.point_position]
         n = c - self.contact.point_pair
         return np.mod(n, int(self.teeth[0])), np.mod(n, int(self.teeth[1]))
+
+    @property
+    def base_pitch(self) -> float:
+        """p_bt, m: the span's positions are ``p_bt / m`` apart."""
+        s0 = self.contact.s0
+        return float(s0[1] - s0[0]) * self.positions_per_cycle if s0.size > 1 else math.nan
+
+    def pair_roll(self) -> np.ndarray:
+        """Roll coordinate at z = 0 of every candidate point's tooth pair in its own mesh
+        cycle, ``s0_j + k p_bt``, m (flat, like ``contact.point_*``)."""
+        c = self.cycle_index[self.contact.point_position]
+        return (self.contact.s0[self.contact.point_position]
+                + (self.contact.point_pair - c) * self.base_pitch)
 
     def worst_pair(self) -> dict[str, Any]:
         """The tooth pair with the largest Hertz pressure over the span: its pinion and gear

@@ -42,6 +42,10 @@ def _peak_label(order: float, z1: int, ratio: float) -> str:
     """``"2 z1"``, ``"z1 + 1"``, ``"z1 - z1/z2"`` or the order itself."""
     n = int(round(order / z1))
     rest = order - n * z1
+    if n == 0 and ratio != 1.0:  # the gear's own orders: k turns of the gear per z2 / z1
+        for k in (1, 2, 3):
+            if abs(order - k * ratio) < 1e-9:
+                return f"{k if k > 1 else ''} z1/z2".strip()
     head = "z1" if n == 1 else f"{n} z1"
     if n >= 1 and abs(rest) < 1e-9:
         return head
@@ -103,8 +107,8 @@ def plot_worst_pair(rev: LoadedRevolution, title: str, fig: Figure | None = None
     pressure = np.zeros(groups.size)
     np.maximum.at(pressure, inv, c.point_pressure)
     load = np.bincount(inv, weights=c.point_normal_load, minlength=groups.size)
-    s = np.full(groups.size, np.inf)  # a helical pair's contact line: its smallest s
-    np.minimum.at(s, inv, c.point_s)
+    s = np.zeros(groups.size)  # the pair's roll coordinate at z = 0 (one per group)
+    s[inv] = rev.pair_roll()
     gid = pair_id[np.unique(inv, return_index=True)[1]]
     chosen = gid == worst["pinion_tooth"] * int(rev.teeth[1]) + worst["gear_tooth"]
     grid = np.unique(np.round(s * 1e9)) * 1e-9
@@ -123,8 +127,8 @@ def plot_worst_pair(rev: LoadedRevolution, title: str, fig: Figure | None = None
                label=f"pinion tooth {worst['pinion_tooth']} / gear tooth {worst['gear_tooth']}")
         a.set_ylabel(f"{label} [{unit}]")
         a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax[1].set_xlabel("roll coordinate s of the pair along the line of action [mm] (a helical "
-                     "pair: the smallest over its contact line)")
+    ax[1].set_xlabel("roll coordinate s0 + k p_bt of the pair along the line of action [mm] "
+                     "(at z = 0)")
     ax[0].set_title(f"the worst tooth pair: largest pressure {worst['pressure_Pa'] * 1e-6:.4g} "
                     "MPa over the span", fontsize=9)
     fig.suptitle(title, fontsize=10)
