@@ -55,8 +55,9 @@ from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 MAX_POSITIONS = 100_000
-"""Most positions of a full-revolution contact (mesh cycles x positions per cycle): about
-4 min of solves for a spur pair at 2.3 ms each (``workflows/benchmarks/bench_revolution.py``)."""
+"""Most positions of a full-revolution contact (mesh cycles x positions per cycle): 1.5 to
+3.5 min for the demo pair at the 0.9-2.1 ms per position of
+``workflows/benchmarks/bench_revolution.py`` (2 shared cores)."""
 MAX_POINT_RECORDS = 10_000_000
 """Most candidate points over all positions: the result keeps 12 numbers per point (about
 1 GB at this many)."""
@@ -118,7 +119,7 @@ def revolution_size(errors: ToothErrors, pair: GearPair, positions: int) -> tupl
         raise InputError(
             f"contact.errors.span = \"{errors.span}\" is {cycles} mesh cycles x "
             f"contact.positions = {positions} = {total} contact solves, more than "
-            f"{MAX_POSITIONS} (about 4 min): give fewer positions per mesh cycle"
+            f"{MAX_POSITIONS} (minutes of solves): give fewer positions per mesh cycle"
             + (f" or span = {' or '.join(shorter)}, one revolution" if shorter else ""))
     return cycles, total
 
