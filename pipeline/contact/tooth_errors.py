@@ -49,7 +49,11 @@ the gap
     g_g(theta_g) = e_g cos(phi_g + theta_g - 90 deg) = e_g sin(phi_g + theta_g),
 
 with ``theta_1 = (s0 - s0_first) / r_b1`` and ``theta_2 = (s0 - s0_first) / r_b2`` for
-the unrolled roll coordinate ``s0``. ``phi_g = 90 deg``: at the first position the teeth
+the unrolled roll coordinate ``s0``. Angles, like the tooth numbers, grow with the roll
+coordinate: with the pinion driving that is the sense of rotation in time; with the gear
+driving the mesh runs through ``s`` backwards in time (the pair ``k = 0`` is the one about
+to leave), so the revolution is read backwards and "the sense of rotation" above is the
+one in which ``s`` grows. ``phi_g = 90 deg``: at the first position the teeth
 of gear ``g`` lie ``e_g`` behind along the line of action (the gap is largest). This is
 the first-order gap. Left out are the eccentricity's two effects on the path of contact:
 the translation moves the gear's tip circle along the line of action by ``g_g`` (the end
