@@ -57,7 +57,7 @@ from pipeline.config.schema import (
     restated,
     unknown,
 )
-from pipeline.config.shafts import shaft_layout
+from pipeline.config.shafts import pin_layout, shaft_layout
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
@@ -140,7 +140,10 @@ class Gearbox:
         or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
     rating : the ISO 6336 rating's inputs (``[rating]``), or ``None`` (no rating).
-    shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout).
+    shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout); a planet's
+        is its pin.
+    planet_bearing_stiffness : radial stiffness of the bearing between a planet and its pin
+        (``[planet.shaft]``), N/m; ``inf``: rigid.
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -163,6 +166,7 @@ class Gearbox:
     lumped: DynamicModel | None = None
     rating: RatingOptions | None = None
     shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
+    planet_bearing_stiffness: float = math.inf
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -545,10 +549,14 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone:
 
 
 def _shafts(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]
-            ) -> dict[str, tuple[str, ShaftLayout]]:
-    """``[<gear>.shaft]`` of each gear that has one (:mod:`pipeline.config.shafts`); a ring
-    has none (it is the housing's)."""
-    out = {}
+            ) -> tuple[dict[str, tuple[str, ShaftLayout]], float]:
+    """``[<gear>.shaft]`` of each gear that has one (:mod:`pipeline.config.shafts`) and the
+    radial stiffness of a planet's bearing on its pin (N/m, ``inf`` rigid); a ring has none
+    (it is the housing's); a planet's is its pin (:func:`~pipeline.config.shafts.pin_layout`).
+    The shafts of a planetary set are built for spur gears only
+    (:mod:`pipeline.run.planetary_shafts`)."""
+    out: dict[str, tuple[str, ShaftLayout]] = {}
+    k_planet = math.inf
     for role, gear in gears.items():
         table = doc[role].get("shaft") if isinstance(doc[role], Mapping) else None
         if table is None:
@@ -556,8 +564,17 @@ def _shafts(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]
         if gear.internal:
             raise InputError(f"[{role}.shaft]: an internal gear is held by the housing, not a "
                              "shaft")
-        out[role] = shaft_layout(table, gear, f"{role}.shaft")
-    return out
+        if role in ("sun", "planet") and (gear.herringbone or gear.is_helical):
+            kind = "herringbone" if gear.herringbone else "helical"
+            raise InputError(f"[{role}.shaft]: shafts and pins of a {kind} planetary set are "
+                             "not built (its axial forces on the sun and the pins); they take "
+                             "spur sets")
+        if role == "planet":
+            model, layout, k_planet = pin_layout(table, gear, "planet.shaft")
+            out[role] = (model, layout)
+        else:
+            out[role] = shaft_layout(table, gear, f"{role}.shaft")
+    return out, k_planet
 
 
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
@@ -609,6 +626,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
     contact = contact_options_from_table(doc.get("contact"))
+    shafts, k_planet = _shafts(doc, gears)
     fe = _fe(doc, contact)
     operation = _operation(doc)
     box = Gearbox(
@@ -626,7 +644,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                            kind == "planetary" and gears["sun"].herringbone),
         rating=rating_options(doc, kind, roles,
                               frozenset(r for r, g in gears.items() if g.internal)),
-        shafts=_shafts(doc, gears),
+        shafts=shafts,
+        planet_bearing_stiffness=k_planet,
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
@@ -639,6 +658,15 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         raise InputError("dynamics.bearing_stiffness_N_per_m changes nothing: both gears sit "
                          "on shafts ([pinion.shaft], [gear.shaft]), whose bearings and "
                          "bending give the dynamic model's supports")
+    if box.kind == "planetary":
+        for role in ("sun", "planet"):
+            key = f"{role}_bearing_stiffness_N_per_m"
+            if role in box.shafts and key in doc.get("dynamics", {}):
+                what = ("the sun sits on [sun.shaft], whose bearings and bending" if
+                        role == "sun" else "the planets sit on pins ([planet.shaft]), whose "
+                        "supports, bending and planet bearing")
+                raise InputError(f"dynamics.{key} changes nothing: {what} give the dynamic "
+                                 f"model's {role} support")
     _check_groove_sources(box, doc)
     _check_relief_lengths(box, doc)
     _check_fe3d_meshes(box, doc)

@@ -300,9 +300,20 @@ SHAFT_SEGMENT = (
 SHAFT_BEARING = (
     Key("position_mm", N, required=True),
     Key("radial_stiffness_N_per_m", N, help="left out: rigid"),
-    Key("tilting_stiffness_Nm_per_rad", N),
+    Key("tilting_stiffness_Nm_per_rad", "number_or_string", choices=("rigid",),
+        help='"rigid": clamped (a cantilevered shaft or pin); left out: 0, free to tilt'),
     Key("axial", B, help="this bearing locates the shaft axially"),
 )
+PLANET_PIN = (
+    Key("model", S, choices=("beam",), help="a planet's pin is a Timoshenko beam"),
+    Key("gear_position_mm", N, required=True, help="the planet's mid-face on its pin"),
+    Key("planet_bearing_radial_stiffness_N_per_m", N,
+        help="the bearing between the planet and its pin; left out: rigid"),
+)
+"""Keys of ``[planet.shaft]``: the planet's pin (:func:`pipeline.config.shafts.pin_layout`);
+its ``[[segments]]`` and ``[[bearings]]`` (the pin's supports in the carrier) as a shaft's."""
+PIN_ONLY = ("planet_bearing_radial_stiffness_N_per_m",)
+"""Keys of ``[planet.shaft]`` that a shaft's table has not."""
 
 EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (

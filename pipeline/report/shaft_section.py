@@ -47,3 +47,56 @@ def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
              "solved again until the line load changes by less than 1e-3.",)
     return Section("shafts", "Shafts and bearings", tuple(rows), figures=tuple(figures),
                    notes=notes)
+
+
+def planetary_shaft_section(stage: Any, figures: Sequence[Figure]) -> Section:
+    """The :class:`pipeline.run.planetary_shafts.PlanetaryMeshShafts` of one mesh of a
+    planetary set: its misalignment and K_Hbeta with and without the shafts, the sun's and
+    the planet pin's deflection."""
+    k_rigid, k_shafts = stage.system.k_hbeta[stage.name]
+    rows = [
+        quantity("misalignment", "misalignment from the sun and the pins across the face",
+                 "um", float(np.ptp(stage.gap)) * 1e6),
+        quantity("approach", "rigid approach of the gears (adds to the TE only)", "um",
+                 stage.approach * 1e6),
+        quantity("K_Hbeta_rigid", "K_Hbeta on rigid supports", "-", k_rigid),
+        quantity("K_Hbeta_shafts", "K_Hbeta with the sun's shaft and the pins", "-", k_shafts),
+        quantity("iterations", "fixed-point iterations over both meshes (line loads to 1e-3)",
+                 "-", stage.iterations),
+    ]
+    sun, pin = stage.system.sun, stage.system.pin
+    if sun is not None and stage.name == "sun_planet":
+        twist = sun.displacement[:, 5] * sun.base_radius
+        rows += [
+            quantity("sun_net_force", "sun: net transverse force of all its meshes", "N",
+                     sun.net_force),
+            quantity("sun_twist", "sun: twist at the base circle across the face", "um",
+                     float(np.ptp(twist)) * 1e6),
+            quantity("sun_misalignment_max", "sun: largest misalignment it opens at a planet",
+                     "um", float(max(np.ptp(r) for r in sun.retreats)) * 1e6),
+        ]
+    if pin is not None:
+        d = pin.displacement
+        rows += [
+            quantity("pin_tangential", "planet pin: seat deflection along the orbit's tangent",
+                     "um", float(d[:, 0].mean()) * 1e6),
+            quantity("pin_radial", "planet pin: seat deflection radially out", "um",
+                     float(d[:, 1].mean()) * 1e6),
+            quantity("pin_tilt", "planet pin: seat tilt", "mrad",
+                     float(np.hypot(d[0, 3], d[0, 4])) * 1e3),
+            quantity("planet_retreat", "planet: retreat across the face along this mesh", "um",
+                     float(np.ptp(pin.retreats[stage.name])) * 1e6),
+        ]
+        if pin.solution is not None:
+            for i, row in enumerate(pin.solution.reactions):
+                rows.append(quantity(f"pin_support_{i}", f"planet pin: support {i} radial "
+                                     "reaction", "N", float(np.hypot(row[0], row[1]))))
+    notes = ("The sun's shaft carries every sun-planet mesh (each the first turned by the "
+             "planets' angle: with equally spaced planets the forces cancel and the twist "
+             "across the face remains); each planet turns freely on its pin, a Timoshenko "
+             "beam in the carrier loaded by both of its meshes' forces along their lines of "
+             "action; ring and carrier rigid. The gaps (means taken out) are added to both "
+             "meshes' flank modifications and both contacts solved again until neither line "
+             "load changes by more than 1e-3.",)
+    return Section("shafts", "Sun shaft and planet pins", tuple(rows),
+                   figures=tuple(figures), notes=notes)

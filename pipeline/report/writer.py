@@ -194,6 +194,8 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
 
     stage = st.shafts
     rigid = load_distribution(stage.rigid, pair, op)
+    if box.kind == "planetary":
+        return _planetary_shaft_section(box, st, rigid, dist, fig, title)
     shafts = []
     for role, r in zip(("pinion", "gear"), stage.retreats, strict=True):
         if r is None or r.solution is None:
@@ -208,6 +210,27 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
             stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title,
             stage.mesh is not None and stage.mesh.reversed)
     return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
+
+
+def _planetary_shaft_section(box: Any, st: Any, rigid: LoadDistribution,
+                             dist: LoadDistribution, fig, title: str):
+    """The shafts section of one mesh of a planetary set with its figure."""
+    from pipeline.report.shaft_section import planetary_shaft_section
+    from pipeline.viz.shafts import plot_planetary_shaft_deflection
+
+    stage = st.shafts
+    role = {"sun": ("sun", "bearings"), "planet pin": ("planet", "supports in the carrier")}
+    shafts = []
+    for name, z, line in stage.deflection_lines():
+        lay = box.shafts[role[name][0]][1]
+        shafts.append((name, z, line, lay.seat, np.array([b.position for b in lay.bearings]),
+                       role[name][1]))
+    f = fig("report_shafts.png", "The sun's and the planet pin's retreat along this mesh's "
+            "line of action and the line load across the face with and without it",
+            plot_planetary_shaft_deflection, shafts, stage.z,
+            np.interp(stage.z, rigid.z, rigid.cycle_mean),
+            np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title)
+    return planetary_shaft_section(stage, [f])
 
 
 def _rating_sections(stage: Any, name: str, fig, title: str, internal: bool) -> list:

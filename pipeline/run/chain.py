@@ -71,6 +71,7 @@ from pipeline.validation import InputError
 
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
+    from pipeline.run.planetary_shafts import PlanetaryMeshShafts
     from pipeline.run.shafts import ShaftStage
 
 
@@ -137,7 +138,10 @@ class MeshStages:
         halves through the groove (:class:`pipeline.run.herringbone.HerringboneStage`), or
         ``None``.
     shafts : a pair on shafts: the contact solved with their deflection
-        (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle), or None.
+        (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle); a
+        planetary set with a sun's shaft or planets' pins: this mesh's view of both meshes
+        solved together (:class:`pipeline.run.planetary_shafts.PlanetaryMeshShafts`); or
+        None.
     """
 
     case: MeshCase
@@ -146,7 +150,7 @@ class MeshStages:
     contact: LoadedMeshCycle | None
     compliance: str
     herringbone: HerringboneStage | None = None
-    shafts: ShaftStage | None = None
+    shafts: ShaftStage | PlanetaryMeshShafts | None = None
 
     def summary(self) -> dict[str, Any]:
         """Contact ratios, stiffness and contact figures of this mesh (SI; keys carry units)."""
@@ -256,6 +260,14 @@ def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = T
     ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
-    return {case.name: static_stages(box, case, options, log, contact,
-                                     None if prebuilt is None else prebuilt[case.name])
-            for case in mesh_cases(box)}
+    out = {case.name: static_stages(box, case, options, log, contact,
+                                    None if prebuilt is None else prebuilt[case.name])
+           for case in mesh_cases(box)}
+    if contact and box.kind == "planetary" and box.shafts:
+        from pipeline.run.planetary_shafts import planetary_shaft_stage
+
+        sh = planetary_shaft_stage(box, out, options, log)  # both meshes together
+        if sh is not None:
+            out = {name: dataclasses.replace(st, contact=sh.cycles[name], shafts=sh.mesh(name))
+                   for name, st in out.items()}
+    return out

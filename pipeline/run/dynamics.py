@@ -11,6 +11,7 @@ elastic mesh force k (delta - e) over the mean mesh force
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -147,7 +148,8 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     ``[dynamics.sun_mesh_stiffness]`` / ``ring_mesh_stiffness`` replaces it); a
     ``[lumped_model]``: that model. Returns (model, excitation name). A pair's gears on
     shafts are supported by them (:func:`pipeline.run.shafts.support_stiffness`; the 3D
-    superelement read from or written to ``cache``).
+    superelement read from or written to ``cache``); a planetary set's sun on its shaft and
+    planets on pins likewise (:func:`pipeline.run.planetary_shafts.support_stiffness`).
     """
     from pipeline.dynamics.models import planetary_gears as pg
     from pipeline.dynamics.models.spur_pair import spur_pair_model
@@ -157,6 +159,14 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     opts = dynamics_options(box)
     friction = box.stiffness.friction_model
     if box.kind == "planetary":
+        if box.shafts:  # the sun's shaft and the planets' pins support them
+            from pipeline.run.planetary_shafts import support_stiffness as planetary_supports
+
+            k_sun, k_planet = planetary_supports(box, cache)
+            opts = dataclasses.replace(
+                opts, **{k: v for k, v in (("sun_bearing_stiffness", k_sun),
+                                           ("planet_bearing_stiffness", k_planet))
+                         if v is not None})
         excitations = [excitation_from_signal(given) if given is not None
                        else mesh_excitation(meshes[name], friction, opts.excitation)
                        for name, given in (("sun_planet", opts.sun_mesh_stiffness),

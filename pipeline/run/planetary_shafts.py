@@ -1,0 +1,448 @@
+"""The shafts of a planetary set in a run: the sun's shaft and the planets' pins deflect under
+both meshes, and both loaded contacts are solved again with the misalignment they open.
+
+What is modelled (spur sets; a helical or herringbone set with shafts is refused where the
+file is read, :func:`pipeline.config.gearbox._shafts`):
+
+* the sun on its own shaft (``[sun.shaft]``, beam or 3D superelement) loaded by all ``N``
+  sun-planet meshes at once, each the first one turned by ``psi_n - psi_0`` about the sun's
+  axis (:func:`pipeline.shaft.misalignment.rotated_unit_loads`). With equally spaced planets
+  their forces cancel and only the moments about the axis remain, so what opens a
+  misalignment is the sun's twist across its face (an ``"integral"`` seat: a sun cut on its
+  shaft; a rigid seat turns as a whole and opens none); the run does not assume the
+  cancellation: it loads the sun's model with every mesh and reports the net transverse
+  force (zero to round-off for equal spacing). With unequal spacing the meshes see different
+  gaps; the contact, which stands for every planet, takes the planet whose gap varies most
+  across the face, and the others' are reported;
+* each planet on its pin (``[planet.shaft]``, a Timoshenko beam in the carrier's cheeks:
+  :func:`pipeline.config.shafts.pin_layout`), loaded by the sun-planet and the planet-ring
+  line loads along their lines of action at their transverse operating pressure angles
+  (:func:`pipeline.shaft.misalignment.planet_unit_loads`); the planet turns freely on its
+  pin (no torque on the pin) and moves with the pin's seat as a rigid body; its bearing's
+  radial give (``planet_bearing_radial_stiffness_N_per_m``) moves it uniformly, an approach
+  only. Every planet's pin is the same and loaded alike, so one pin stands for all;
+* the ring held by the housing and the carrier rigid.
+
+The gap of the sun-planet mesh is the sun's retreat plus the planet's along that mesh, the
+planet-ring mesh's the planet's alone (:func:`pipeline.shaft.misalignment.body_retreats`);
+each face's points are centred on its gear's seat (``gear_position + z - b / 2``, ``z`` the
+contact's face position over the mesh's face width ``b``). The fixed point is the pair's
+(:mod:`pipeline.run.shafts`) over both meshes together: start from the uniform line loads,
+load the sun and the pin with both, solve both contacts with the gaps (mean taken out) as
+``FlankModifications.lead_gap``, and repeat until neither line load changes by more than
+:data:`~pipeline.run.shafts.TOLERANCE` (largest change over the largest value, the larger of
+the two meshes); after :data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the
+iteration and the change.
+
+Dynamics (:func:`support_stiffness`): the sun's support is its shaft at the seat's centre
+(bearings and bending in series, ``1 / C_yy``), a planet's the pin's at its seat in series
+with the planet bearing, ``1 / (C_yy + 1 / k_pb)``; they replace ``[dynamics]``
+``sun_bearing_stiffness_N_per_m`` and ``planet_bearing_stiffness_N_per_m``, which are then
+refused.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from pipeline.config import Gearbox
+from pipeline.contact.analysis import analyse_contact, line_of_action_load
+from pipeline.contact.compliance import compliance_source
+from pipeline.contact.distribution import load_distribution
+from pipeline.contact.results import LoadedMeshCycle
+from pipeline.progress import Steps
+from pipeline.run.shafts import MAX_ITERATIONS, TOLERANCE
+from pipeline.shaft.beam import BeamShaft
+from pipeline.shaft.misalignment import (
+    body_retreats,
+    planet_unit_loads,
+    rotated_unit_loads,
+    unit_loads,
+)
+from pipeline.shaft.model import PointLoad, ShaftModel, ShaftSolution
+from pipeline.validation import InputError
+
+MESHES = ("sun_planet", "planet_ring")
+
+
+@dataclass(frozen=True)
+class SunDeflection:
+    """The sun's shaft under every sun-planet mesh.
+
+    Attributes
+    ----------
+    solution : deflection line and bearing reactions, in the frame of the first planet's
+        mesh (``y`` along its line of action away from the planet).
+    displacement : (n, 6) at the face points (m, rad).
+    retreats : (N, n) each planet's sun-planet flank retreat, m.
+    planet : the planet whose gap the contact takes (largest variation across the face).
+    net_force : the net transverse force of all meshes on the sun, N (0 for equal spacing).
+    base_radius : the sun's, m.
+    direction : (6,) that planet's mesh's unit load: its retreat is ``direction . (u,
+        theta)`` at any section of the seat (N/N, N m/N).
+    """
+
+    solution: ShaftSolution | None
+    displacement: np.ndarray
+    retreats: np.ndarray
+    planet: int
+    net_force: float
+    base_radius: float
+    direction: np.ndarray
+
+
+@dataclass(frozen=True)
+class PinDeflection:
+    """A planet's pin under both of its meshes (frame: ``x`` along the orbit's tangent,
+    ``y`` radially out).
+
+    Attributes
+    ----------
+    solution : the pin's deflection line and the reactions of its supports.
+    displacement : (n, 6) at the planet's face points, m, rad.
+    retreats : the planet's flank retreat (n,) along each mesh, by mesh name, m.
+    bearing : the planet bearing's uniform retreat along each mesh, m (0: rigid).
+    directions : (6,) each mesh's unit load on the pin, by mesh name.
+    """
+
+    solution: ShaftSolution | None
+    displacement: np.ndarray
+    retreats: Mapping[str, np.ndarray]
+    bearing: Mapping[str, float]
+    directions: Mapping[str, np.ndarray]
+
+
+@dataclass(frozen=True)
+class PlanetaryShafts:
+    """Both meshes of a planetary set solved with the sun's and the pins' deflection.
+
+    Attributes
+    ----------
+    z : face positions of each mesh, (n,) m, by mesh name.
+    cycles : the loaded contact with the shafts, by mesh name; rigid : on rigid supports.
+    gaps : (n,) the misalignment each mesh's gap opens across its face (mean out), m.
+    approaches : each gap's mean, m.
+    line_loads : the cycle-mean line loads (n,) N/m the last gaps were computed with.
+    k_hbeta : (rigid, with the shafts) K_Hbeta of each mesh, -.
+    sun, pin : the sun's and the pin's deflection (None without that shaft).
+    iterations, change : fixed-point iterations and the last relative change.
+    """
+
+    z: Mapping[str, np.ndarray]
+    cycles: Mapping[str, LoadedMeshCycle]
+    rigid: Mapping[str, LoadedMeshCycle]
+    gaps: Mapping[str, np.ndarray]
+    approaches: Mapping[str, float]
+    line_loads: Mapping[str, np.ndarray]
+    k_hbeta: Mapping[str, tuple[float, float]]
+    sun: SunDeflection | None
+    pin: PinDeflection | None
+    iterations: int
+    change: float
+
+    def mesh(self, name: str) -> PlanetaryMeshShafts:
+        """What mesh ``name`` of the run keeps (:class:`PlanetaryMeshShafts`)."""
+        return PlanetaryMeshShafts(name, self)
+
+
+@dataclass(frozen=True)
+class PlanetaryMeshShafts:
+    """One mesh's view of :class:`PlanetaryShafts` (the run's ``MeshStages.shafts``)."""
+
+    name: str
+    system: PlanetaryShafts
+
+    @property
+    def cycle(self) -> LoadedMeshCycle:
+        return self.system.cycles[self.name]
+
+    @property
+    def rigid(self) -> LoadedMeshCycle:
+        return self.system.rigid[self.name]
+
+    @property
+    def z(self) -> np.ndarray:
+        return self.system.z[self.name]
+
+    @property
+    def gap(self) -> np.ndarray:
+        return self.system.gaps[self.name]
+
+    @property
+    def approach(self) -> float:
+        return self.system.approaches[self.name]
+
+    @property
+    def iterations(self) -> int:
+        return self.system.iterations
+
+    def deflection_lines(self) -> list[tuple[str, np.ndarray, np.ndarray]]:
+        """(name, z m, retreat m) along each shaft that moves this mesh's flanks: the
+        retreat along this mesh's line of action of every section, ``L . (u, theta)`` (the
+        sun's with its twist at the base circle), over the whole shaft."""
+        out = []
+        sun, pin = self.system.sun, self.system.pin
+        if sun is not None and sun.solution is not None and self.name == "sun_planet":
+            sol = sun.solution
+            out.append(("sun", sol.z, np.c_[sol.displacement, sol.rotation] @ sun.direction))
+        if pin is not None and pin.solution is not None:
+            sol = pin.solution
+            out.append(("planet pin", sol.z,
+                        np.c_[sol.displacement, sol.rotation] @ pin.directions[self.name]))
+        return out
+
+    def summary(self) -> dict[str, Any]:
+        """This mesh's misalignment and K_Hbeta with and without the shafts, the sun's and
+        the pin's deflection (SI; keys carry units)."""
+        s = self.system
+        k_rigid, k_shafts = s.k_hbeta[self.name]
+        out: dict[str, Any] = {
+            "iterations": s.iterations, "last_change": s.change,
+            "misalignment_across_face_m": float(np.ptp(self.gap)),
+            "rigid_approach_m": self.approach,
+            "k_hbeta_rigid": k_rigid, "k_hbeta_shafts": k_shafts,
+        }
+        if s.sun is not None and self.name == "sun_planet":
+            sun = s.sun
+            out["sun"] = {
+                "net_transverse_force_N": sun.net_force,
+                "seat_translation_max_m": float(np.hypot(sun.displacement[:, 0],
+                                                         sun.displacement[:, 1]).max()),
+                "seat_twist_at_base_circle_m": [
+                    float(v * sun.base_radius) for v in (sun.displacement[:, 5].min(),
+                                                         sun.displacement[:, 5].max())],
+                "misalignment_by_planet_m": [float(np.ptp(r)) for r in sun.retreats],
+                "planet_in_contact": sun.planet,
+                "bearing_reactions_N": [[float(v) for v in row[:3]]
+                                        for row in sun.solution.reactions],
+                "torque_reaction_Nm": sun.solution.torque_reaction,
+            }
+        if s.pin is not None:
+            pin = s.pin
+            d = pin.displacement
+            out["planet_pin"] = {
+                "seat_deflection_tangential_radial_m": [float(d[:, 0].mean()),
+                                                        float(d[:, 1].mean())],
+                "seat_tilt_rad": [float(d[0, 3]), float(d[0, 4])],
+                "planet_retreat_across_face_m": float(np.ptp(pin.retreats[self.name])),
+                "planet_bearing_retreat_m": pin.bearing[self.name],
+                "support_reactions_N": [[float(v) for v in row[:3]]
+                                        for row in pin.solution.reactions],
+            }
+        return out
+
+
+def face_points(lay: Any, face_width: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(z, points): the contact's ``n`` face-slice centres ``z`` over ``face_width`` (m) and
+    where they lie on a shaft of layout ``lay``, centred on its seat (m)."""
+    z = (np.arange(n) + 0.5) * face_width / n
+    return z, lay.gear_position + z - 0.5 * face_width
+
+
+def _model(spec: tuple[str, Any], points: np.ndarray, cache: Any = None) -> ShaftModel:
+    """The model a ``[<gear>.shaft]`` names, the beam with nodes at ``points`` (m)."""
+    model, layout = spec
+    if model == "fe3d":
+        from pipeline.shaft.fe3d import Fe3dShaft
+
+        return Fe3dShaft(layout) if cache is None else Fe3dShaft(layout, cache=cache)
+    return BeamShaft(layout, extra_nodes=tuple(float(p) for p in points))
+
+
+def sun_unit_loads(base_radius: float, angles: Sequence[float], n: int) -> list[np.ndarray]:
+    """Each sun-planet mesh's unit loads (n, 6) on the sun in the first mesh's frame: the
+    pair's ``(0, 1, 0, 0, 0, r_b)`` turned by ``psi_k - psi_0`` (module docstring)."""
+    base = unit_loads(base_radius, n)
+    return [rotated_unit_loads(base, float(a - angles[0])) for a in angles]
+
+
+@dataclass(frozen=True)
+class _System:
+    """The shafts' models and unit loads, built once per fixed point."""
+
+    z: Mapping[str, np.ndarray]
+    widths: Mapping[str, float]
+    sun: tuple[ShaftModel, np.ndarray, np.ndarray, list[np.ndarray], float] | None
+    pin: tuple[ShaftModel, np.ndarray, np.ndarray, dict[str, np.ndarray],
+               dict[str, np.ndarray]] | None
+    k_bearing: float
+
+    def forces(self, w: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Each mesh's force per face slice (n,), N, from its line load (N/m)."""
+        return {m: np.asarray(w[m]) * self.widths[m] / w[m].size for m in MESHES}
+
+    def deflect(self, w: Mapping[str, np.ndarray]
+                ) -> tuple[dict[str, np.ndarray], SunDeflection | None, PinDeflection | None]:
+        """The gaps (n,) of both meshes (m, mean kept) under line loads ``w`` and the sun's
+        and the pin's deflection (their ``solution`` not yet computed: None)."""
+        f = self.forces(w)
+        gaps = {m: np.zeros(self.z[m].size) for m in MESHES}
+        pin = None
+        if self.pin is not None:
+            _, points, c, units, index = self.pin
+            loads = [np.zeros(points.size) for _ in MESHES]
+            for i, m in enumerate(MESHES):
+                loads[i][index[m]] = f[m]
+            d, ret = body_retreats(c, [units[m] for m in MESHES], loads)
+            net = sum(units[m][0, :2] * f[m].sum() for m in MESHES)
+            bearing = {m: (0.0 if math.isinf(self.k_bearing)
+                           else float(units[m][0, :2] @ net) / self.k_bearing) for m in MESHES}
+            retreats = {m: ret[i][index[m]] + bearing[m] for i, m in enumerate(MESHES)}
+            for m in MESHES:
+                gaps[m] = gaps[m] + retreats[m]
+            pin = PinDeflection(None, d[index["sun_planet"]], retreats, bearing,
+                                {m: units[m][0] for m in MESHES})
+        sun = None
+        if self.sun is not None:
+            _, _, c, units, rb = self.sun
+            fs = f["sun_planet"]
+            d, ret = body_retreats(c, units, [fs] * len(units))
+            ret = np.array(ret)
+            k = int(np.argmax([np.ptp(r + gaps["sun_planet"]) for r in ret]))
+            net = float(np.hypot(*sum(u[:, :2].T @ fs for u in units)))
+            gaps["sun_planet"] = gaps["sun_planet"] + ret[k]
+            sun = SunDeflection(None, d, ret, k, net, rb, units[k][0])
+        return gaps, sun, pin
+
+    def solved(self, w: Mapping[str, np.ndarray], sun: SunDeflection | None,
+               pin: PinDeflection | None) -> tuple[SunDeflection | None, PinDeflection | None]:
+        """``sun`` and ``pin`` with their shafts' solutions (deflection lines, reactions)
+        under ``w``."""
+        f = self.forces(w)
+        if sun is not None:
+            model, points, _, units, _ = self.sun
+            fs = f["sun_planet"]
+            total = sum(u * fs[:, None] for u in units)
+            sun = dataclasses.replace(sun, solution=model.solve(_point_loads(points, total)))
+        if pin is not None:
+            model, points, _, units, index = self.pin
+            total = np.zeros((points.size, 6))
+            for m in MESHES:
+                total[index[m]] += units[m][index[m]] * f[m][:, None]
+            pin = dataclasses.replace(pin, solution=model.solve(_point_loads(points, total)))
+        return sun, pin
+
+
+def _point_loads(points: np.ndarray, loads: np.ndarray) -> list[PointLoad]:
+    return [PointLoad(float(p), tuple(float(v) for v in row[:3]),
+                      tuple(float(v) for v in row[3:])) for p, row in zip(points, loads,
+                                                                          strict=True)]
+
+
+def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any = None
+                 ) -> _System:
+    """The sun's and the pin's models, flexibilities and unit loads of a planetary set whose
+    meshes have face widths ``widths`` (m) and ``n`` face slices each."""
+    ps = box.planetary
+    z, sun, pin = {}, None, None
+    for m in MESHES:
+        z[m] = (np.arange(n) + 0.5) * widths[m] / n
+    if "sun" in box.shafts:
+        spec = box.shafts["sun"]
+        _, points = face_points(spec[1], widths["sun_planet"], n)
+        model = _model(spec, points, cache)
+        rb = ps.sun.base_radius
+        sun = (model, points, model.flexibility(points),
+               sun_unit_loads(rb, tuple(ps.angles), n), rb)
+    if "planet" in box.shafts:
+        spec = box.shafts["planet"]
+        per_mesh = {m: face_points(spec[1], widths[m], n)[1] for m in MESHES}
+        points = np.unique(np.round(np.concatenate(list(per_mesh.values())), 12))
+        index = {m: np.searchsorted(points, np.round(per_mesh[m], 12)) for m in MESHES}
+        model = _model(spec, points)
+        angles = (ps.sun_planet.operating_pressure_angle,
+                  ps.planet_ring.operating_pressure_angle)
+        unit = dict(zip(MESHES, planet_unit_loads(angles, points.size), strict=True))
+        pin = (model, points, model.flexibility(points), unit, index)
+    return _System(z, widths, sun, pin, box.planet_bearing_stiffness)
+
+
+def planetary_shaft_stage(box: Gearbox, stages: Mapping[str, Any], options: Any,
+                          log: Steps) -> PlanetaryShafts | None:
+    """Both meshes' contacts with the sun's and the pins' deflection (module docstring), one
+    timed step; None for a set without shafts or without contact."""
+    if box.kind != "planetary" or not box.shafts:
+        return None
+    if any(stages[m].contact is None for m in MESHES):
+        return None
+    pairs = {m: stages[m].stiffness.actual for m in MESHES}
+    ops = {m: stages[m].case.operation for m in MESHES}
+    n = box.contact.slices
+    system = build_system(box, {m: pairs[m].face_width for m in MESHES}, n, options.cache)
+    w = {m: np.full(n, line_of_action_load(pairs[m], ops[m]) / pairs[m].face_width)
+         for m in MESHES}
+    rigid_k = {m: load_distribution(stages[m].contact, pairs[m], ops[m]).k_hbeta
+               for m in MESHES}
+    sources: dict[str, Any] = {}
+    cycles, dists = {}, {}
+    change, iteration = math.inf, 0
+    with log.step("sun and pin deflection and loaded contact", announce=True) as note:
+        while change >= TOLERANCE:
+            iteration += 1
+            if iteration > MAX_ITERATIONS:
+                raise InputError(f"shafts: the line load still changes by {change:.3g} "
+                                 f"(relative) after iteration {MAX_ITERATIONS}; the sun, the "
+                                 "pins and the meshes do not settle")
+            gaps, sun, pin = system.deflect(w)
+            used = w
+            w_new, change = {}, 0.0
+            for m in MESHES:
+                cycles[m], dists[m] = _contact(box, stages[m], gaps[m], system.z[m],
+                                               sources, options)
+                w_new[m] = np.interp(system.z[m], dists[m].z, dists[m].cycle_mean)
+                change = max(change, float(np.abs(w_new[m] - w[m]).max()
+                                           / np.abs(w_new[m]).max()))
+            w = w_new
+        sun, pin = system.solved(used, sun, pin)
+        note["text"] = (f"{iteration} iterations; misalignment "
+                        + ", ".join(f"{m} {np.ptp(gaps[m]) * 1e6:.3g} um (K_Hbeta "
+                                    f"{dists[m].k_hbeta:.3f})" for m in MESHES))
+    return PlanetaryShafts(
+        z=system.z, cycles=cycles, rigid={m: stages[m].contact for m in MESHES},
+        gaps={m: gaps[m] - gaps[m].mean() for m in MESHES},
+        approaches={m: float(gaps[m].mean()) for m in MESHES}, line_loads=used,
+        k_hbeta={m: (rigid_k[m], dists[m].k_hbeta) for m in MESHES}, sun=sun, pin=pin,
+        iterations=iteration, change=change)
+
+
+def _contact(box: Gearbox, stages: Any, gap: np.ndarray, z: np.ndarray,
+             sources: dict[str, Any], options: Any) -> tuple[LoadedMeshCycle, Any]:
+    """One mesh's loaded contact with ``gap`` (mean taken out) as its lead gap, and its load
+    distribution; its compliance source built once into ``sources``."""
+    pair, op = stages.stiffness.actual, stages.case.operation
+    mods = dataclasses.replace(box.contact.modifications,
+                               lead_gap=tuple(zip(z.tolist(), (gap - gap.mean()).tolist(),
+                                                  strict=True)))
+    opts = dataclasses.replace(box.contact, modifications=mods)
+    name = stages.case.name
+    if name not in sources:
+        sources[name] = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
+                                          cache=options.cache, model=stages.stiffness.model)
+    cycle = analyse_contact(sources[name], op, opts)
+    return cycle, load_distribution(cycle, pair, op)
+
+
+def support_stiffness(box: Gearbox, cache: Any = None) -> tuple[float | None, float | None]:
+    """The sun's and a planet's support stiffness from their shafts (N/m; None without one):
+    the sun's ``1 / C_yy`` of its seat's centre (bearings and bending in series, the seat
+    free to tilt), a planet's pin the same in series with the planet bearing,
+    ``1 / (C_yy + 1 / k_pb)``; the 3D superelement read from or written to ``cache``."""
+    out: list[float | None] = []
+    for role in ("sun", "planet"):
+        spec = box.shafts.get(role)
+        if spec is None:
+            out.append(None)
+            continue
+        lay = spec[1]
+        model = _model(spec, np.array([]), cache if role == "sun" else None)
+        c = float(model.flexibility(np.array([lay.gear_position]))[1, 1])
+        if role == "planet":
+            c += 1.0 / box.planet_bearing_stiffness
+        out.append(1.0 / c)
+    return out[0], out[1]
