@@ -253,3 +253,42 @@ def test_helical_and_herringbone_sets_with_shafts_are_refused():
     with pytest.raises(InputError, match=r"^\[planet.shaft\]: shafts and pins of a "
                                          r"herringbone planetary set"):
         gearbox_from_text(herring)
+
+
+@pytest.mark.filterwarnings(WARN)
+def test_fixed_point_that_does_not_settle_is_one_line(tmp_path, monkeypatch):
+    """Allowed one iteration, the example's fixed point (which needs 4) stops with one line
+    naming the iteration and the change."""
+    import pipeline.run.planetary_shafts as ps
+
+    monkeypatch.setattr(ps, "MAX_ITERATIONS", 1)
+    with pytest.raises(InputError, match=r"^shafts: the line load still changes by [0-9.e-]+ "
+                                         r"\(relative\) after iteration 1; the sun, the pins "
+                                         r"and the meshes do not settle$"):
+        mesh_stages(gearbox_from_text(TEXT), RunOptions(show_progress=False,
+                                                        cache=Cache(tmp_path)),
+                    Steps("", enabled=False))
+
+
+@pytest.mark.filterwarnings(WARN)
+def test_unequally_spaced_planets_bend_the_sun(tmp_path):
+    """Planets at 0, 87, 180 and 273 deg on a sun with a rigid seat and no pins: the meshes'
+    forces no longer cancel. The net force is P |sum (-sin psi, cos psi)| summed over the
+    face (P b the mesh force per planet, the final line loads': 1e-9), each planet sees its
+    own misalignment, and the contact takes the largest."""
+    text = TEXT.replace(PIN, "").replace('hub = "integral"', 'hub = "rigid"').replace(
+        "planets = 4", "planets = 4\nplanet_angles_deg = [0.0, 87.0, 180.0, 273.0]")
+    meshes = mesh_stages(gearbox_from_text(text), RunOptions(show_progress=False,
+                                                             cache=Cache(tmp_path)),
+                         Steps("", enabled=False))
+    system = meshes["sun_planet"].shafts.system
+    sun = system.sun
+    psi = np.radians([0.0, 87.0, 180.0, 273.0])
+    force = system.line_loads["sun_planet"].sum() * 0.030 / system.z["sun_planet"].size
+    unit = np.hypot(np.sin(psi).sum(), np.cos(psi).sum())
+    assert sun.net_force == pytest.approx(force * unit, rel=1e-9)
+    spread = [np.ptp(r) for r in sun.retreats]
+    print("misalignment by planet (um):", np.round(np.array(spread) * 1e6, 4))
+    assert np.ptp(spread) > 0.05 * max(spread)
+    assert sun.planet == int(np.argmax(spread))
+    assert np.ptp(system.gaps["sun_planet"]) == pytest.approx(max(spread), rel=1e-12)

@@ -42,7 +42,9 @@ halves.
 ``gearpipe modes|response|sweep`` on a planetary file build these models. Supports, groove
 and damping are ``[dynamics]`` keys (``sun_bearing_stiffness_N_per_m``,
 ``ring_torsional_stiffness_Nm_per_rad``, ``groove_torsional_stiffness_Nm_per_rad``, ...:
-``wind_turbine_herringbone_planetary.toml`` lists them); with a ``[groove]`` table and
+``wind_turbine_herringbone_planetary.toml`` lists them; a sun on its shaft and planets on
+pins give the sun's and the planets' bearing stiffness instead,
+:func:`pipeline.run.planetary_shafts.support_stiffness`); with a ``[groove]`` table and
 ``excitation = "contact"`` the groove is its FE and a typed groove stiffness is refused.
 Checks: a z 40/20/80 set at 24.6 deg with Lin and Parker's parameters has their Table 2;
 ``wind_turbine_herringbone_planetary.toml`` with the hand-built model's parameters has its
