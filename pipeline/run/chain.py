@@ -22,7 +22,8 @@ takes from the one before:
 For a planetary set the two meshes are one sun-planet and one planet-ring mesh (for a
 herringbone set one helical half at half the load), ``[operation]`` giving the sun's torque
 and speed with the ring fixed; with a sun's shaft or planets' pins both contacts are then
-solved again together with their deflection (:mod:`pipeline.run.planetary_shafts`). The dynamic factor is the largest over the mean mesh force.
+solved again together with their deflection (:mod:`pipeline.run.planetary_shafts`). The
+dynamic factor is the largest over the mean mesh force.
 ``gearpipe modes|response|sweep`` build the dynamic model the same way.
 
 Cached by content hash (``meshes/`` of a checkout; ``--cache-dir`` moves it,
