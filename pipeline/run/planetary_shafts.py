@@ -263,15 +263,68 @@ def sun_unit_loads(base_radius: float, angles: Sequence[float], n: int) -> list[
 
 
 @dataclass(frozen=True)
+class LoadedShaft:
+    """A shaft (the sun's, a pin) with the meshes that load it, built once per fixed point.
+
+    Attributes
+    ----------
+    model : the shaft's model.
+    points : (p,) the shaft positions of every face point of its meshes, m.
+    flexibility : (6p, 6p) the model's flexibility there.
+    cases : per load case ``(mesh name, unit loads (n, 6), index (n,) of the mesh's face
+        points in ``points``)``: the sun has one case per planet (all "sun_planet"), a pin
+        one per mesh.
+    """
+
+    model: ShaftModel
+    points: np.ndarray
+    flexibility: np.ndarray
+    cases: tuple[tuple[str, np.ndarray, np.ndarray], ...]
+
+    def loads(self, forces: Mapping[str, np.ndarray]) -> list[np.ndarray]:
+        """Each case's force (p,) on the shaft's points from its mesh's slice forces, N."""
+        out = []
+        for mesh, _, index in self.cases:
+            f = np.zeros(self.points.size)
+            f[index] = forces[mesh]
+            out.append(f)
+        return out
+
+    def units(self) -> list[np.ndarray]:
+        """Each case's unit loads (p, 6) on the shaft's points (zero off its mesh's)."""
+        out = []
+        for _, unit, index in self.cases:
+            u = np.zeros((self.points.size, 6))
+            u[index] = unit
+            out.append(u)
+        return out
+
+    def deflect(self, forces: Mapping[str, np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        """(d, retreats): the displacements (p, 6) under every case and each case's retreat
+        (n,) at its mesh's face points (:func:`~pipeline.shaft.misalignment.body_retreats`),
+        m."""
+        d, ret = body_retreats(self.flexibility, self.units(), self.loads(forces))
+        return d, [r[index] for r, (_, _, index) in zip(ret, self.cases, strict=True)]
+
+    def solve(self, forces: Mapping[str, np.ndarray]) -> ShaftSolution:
+        """The shaft's deflection line and reactions under every case."""
+        total = sum(u * f[:, None] for u, f in zip(self.units(), self.loads(forces),
+                                                    strict=True))
+        return self.model.solve([PointLoad(float(p), tuple(float(v) for v in row[:3]),
+                                           tuple(float(v) for v in row[3:]))
+                                 for p, row in zip(self.points, total, strict=True)])
+
+
+@dataclass(frozen=True)
 class _System:
-    """The shafts' models and unit loads, built once per fixed point."""
+    """The sun's and the pin's loaded shafts of a planetary set and its meshes' faces."""
 
     z: Mapping[str, np.ndarray]
     widths: Mapping[str, float]
-    sun: tuple[ShaftModel, np.ndarray, np.ndarray, list[np.ndarray], float] | None
-    pin: tuple[ShaftModel, np.ndarray, np.ndarray, dict[str, np.ndarray],
-               dict[str, np.ndarray]] | None
+    sun: LoadedShaft | None
+    pin: LoadedShaft | None
     k_bearing: float
+    base_radius: float
 
     def forces(self, w: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Each mesh's force per face slice (n,), N, from its line load (N/m)."""
@@ -285,29 +338,28 @@ class _System:
         gaps = {m: np.zeros(self.z[m].size) for m in MESHES}
         pin = None
         if self.pin is not None:
-            _, points, c, units, index = self.pin
-            loads = [np.zeros(points.size) for _ in MESHES]
-            for i, m in enumerate(MESHES):
-                loads[i][index[m]] = f[m]
-            d, ret = body_retreats(c, [units[m] for m in MESHES], loads)
-            net = sum(units[m][0, :2] * f[m].sum() for m in MESHES)
+            d, ret = self.pin.deflect(f)
+            directions = {m: unit[0] for m, unit, _ in self.pin.cases}
+            net = sum(directions[m][:2] * f[m].sum() for m in MESHES)
             bearing = {m: (0.0 if math.isinf(self.k_bearing)
-                           else float(units[m][0, :2] @ net) / self.k_bearing) for m in MESHES}
-            retreats = {m: ret[i][index[m]] + bearing[m] for i, m in enumerate(MESHES)}
+                           else float(directions[m][:2] @ net) / self.k_bearing)
+                       for m in MESHES}
+            retreats = {m: r + bearing[m] for (m, _, _), r in zip(self.pin.cases, ret,
+                                                                   strict=True)}
             for m in MESHES:
                 gaps[m] = gaps[m] + retreats[m]
-            pin = PinDeflection(None, d[index["sun_planet"]], retreats, bearing,
-                                {m: units[m][0] for m in MESHES})
+            index = self.pin.cases[0][2]
+            pin = PinDeflection(None, d[index], retreats, bearing, directions)
         sun = None
         if self.sun is not None:
-            _, _, c, units, rb = self.sun
-            fs = f["sun_planet"]
-            d, ret = body_retreats(c, units, [fs] * len(units))
+            d, ret = self.sun.deflect(f)
             ret = np.array(ret)
             k = int(np.argmax([np.ptp(r + gaps["sun_planet"]) for r in ret]))
-            net = float(np.hypot(*sum(u[:, :2].T @ fs for u in units)))
+            net = float(np.hypot(*sum(unit[:, :2].T @ f["sun_planet"]
+                                      for _, unit, _ in self.sun.cases)))
             gaps["sun_planet"] = gaps["sun_planet"] + ret[k]
-            sun = SunDeflection(None, d, ret, k, net, rb, units[k][0])
+            sun = SunDeflection(None, d, ret, k, net, self.base_radius,
+                                self.sun.cases[k][1][0])
         return gaps, sun, pin
 
     def solved(self, w: Mapping[str, np.ndarray], sun: SunDeflection | None,
@@ -316,51 +368,38 @@ class _System:
         under ``w``."""
         f = self.forces(w)
         if sun is not None:
-            model, points, _, units, _ = self.sun
-            fs = f["sun_planet"]
-            total = sum(u * fs[:, None] for u in units)
-            sun = dataclasses.replace(sun, solution=model.solve(_point_loads(points, total)))
+            sun = dataclasses.replace(sun, solution=self.sun.solve(f))
         if pin is not None:
-            model, points, _, units, index = self.pin
-            total = np.zeros((points.size, 6))
-            for m in MESHES:
-                total[index[m]] += units[m][index[m]] * f[m][:, None]
-            pin = dataclasses.replace(pin, solution=model.solve(_point_loads(points, total)))
+            pin = dataclasses.replace(pin, solution=self.pin.solve(f))
         return sun, pin
-
-
-def _point_loads(points: np.ndarray, loads: np.ndarray) -> list[PointLoad]:
-    return [PointLoad(float(p), tuple(float(v) for v in row[:3]),
-                      tuple(float(v) for v in row[3:])) for p, row in zip(points, loads,
-                                                                          strict=True)]
 
 
 def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any = None
                  ) -> _System:
-    """The sun's and the pin's models, flexibilities and unit loads of a planetary set whose
-    meshes have face widths ``widths`` (m) and ``n`` face slices each."""
+    """The sun's and the pin's loaded shafts of a planetary set whose meshes have face
+    widths ``widths`` (m) and ``n`` face slices each."""
     ps = box.planetary
-    z, sun, pin = {}, None, None
-    for m in MESHES:
-        z[m] = (np.arange(n) + 0.5) * widths[m] / n
+    z = {m: (np.arange(n) + 0.5) * widths[m] / n for m in MESHES}
+    sun = pin = None
     if "sun" in box.shafts:
         spec = box.shafts["sun"]
         _, points = face_points(spec[1], widths["sun_planet"], n)
         model = _model(spec, points, cache)
-        rb = ps.sun.base_radius
-        sun = (model, points, model.flexibility(points),
-               sun_unit_loads(rb, tuple(ps.angles), n), rb)
+        index = np.arange(n)
+        sun = LoadedShaft(model, points, model.flexibility(points),
+                          tuple(("sun_planet", u, index) for u in
+                                sun_unit_loads(ps.sun.base_radius, tuple(ps.angles), n)))
     if "planet" in box.shafts:
         spec = box.shafts["planet"]
-        per_mesh = {m: face_points(spec[1], widths[m], n)[1] for m in MESHES}
-        points = np.unique(np.round(np.concatenate(list(per_mesh.values())), 12))
-        index = {m: np.searchsorted(points, np.round(per_mesh[m], 12)) for m in MESHES}
+        per_mesh = {m: np.round(face_points(spec[1], widths[m], n)[1], 12) for m in MESHES}
+        points = np.unique(np.concatenate(list(per_mesh.values())))
         model = _model(spec, points)
         angles = (ps.sun_planet.operating_pressure_angle,
                   ps.planet_ring.operating_pressure_angle)
-        unit = dict(zip(MESHES, planet_unit_loads(angles, points.size), strict=True))
-        pin = (model, points, model.flexibility(points), unit, index)
-    return _System(z, widths, sun, pin, box.planet_bearing_stiffness)
+        pin = LoadedShaft(model, points, model.flexibility(points),
+                          tuple((m, u, np.searchsorted(points, per_mesh[m])) for m, u in
+                                zip(MESHES, planet_unit_loads(angles, n), strict=True)))
+    return _System(z, widths, sun, pin, box.planet_bearing_stiffness, ps.sun.base_radius)
 
 
 def planetary_shaft_stage(box: Gearbox, stages: Mapping[str, Any], options: Any,
