@@ -196,3 +196,23 @@ def test_integral_sun_twist_under_four_planets_is_the_closed_form():
         np.testing.assert_allclose(r, sun.retreats[0], rtol=1e-12)
     np.testing.assert_allclose(gaps["sun_planet"], sun.retreats[0], rtol=1e-15)
     assert not gaps["planet_ring"].any()
+
+
+def test_planet_bearing_adds_an_approach_only():
+    """The example's pin with a planet bearing of 5e8 N/m: under uniform line loads P / b on
+    both meshes (P = 2217 N) the planet moves by the net force 2 P cos(20 deg) along the
+    tangent over k_pb, so each mesh's gap grows by e_m . F_net / k_pb = 2 P cos^2(20 deg) /
+    k_pb = 7.83 um uniformly (1e-12) and its variation across the face is unchanged
+    (1e-12)."""
+    box = load_gearbox(EXAMPLE)
+    b, n, p = 0.030, 10, 2217.0
+    w = {m: np.full(n, p / b) for m in MESHES}
+    rigid, _, _ = build_system(box, {m: b for m in MESHES}, n).deflect(w)
+    soft_box = dataclasses.replace(box, planet_bearing_stiffness=5.0e8)
+    soft, _, pin = build_system(soft_box, {m: b for m in MESHES}, n).deflect(w)
+    alpha = box.planetary.sun_planet.operating_pressure_angle
+    extra = 2 * p * math.cos(alpha) ** 2 / 5.0e8
+    for m in MESHES:
+        assert pin.bearing[m] == pytest.approx(extra, rel=1e-12)
+        np.testing.assert_allclose(soft[m] - rigid[m], extra, rtol=1e-12)
+    assert extra == pytest.approx(7.83e-6, rel=1e-3)

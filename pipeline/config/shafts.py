@@ -28,7 +28,10 @@ alone is a cantilevered, flexpin-like pin) and ``planet_bearing_radial_stiffness
 its pin, so the pin carries no torque (``torque_position_mm`` and ``hub`` are refused) and
 the planet with its bearing moves as one rigid body with the pin's seat (the bearing's
 radial give, uniform across the face, adds to the approach and to the dynamics' planet
-support, not to the misalignment).
+support, not to the misalignment). The sun's and the pins' positions run from the same end
+of the gearbox: whether a pin's clamped cheek is at the sun's coupling end or at the other
+decides whether the pin's tilt adds to the sun's twist across the face or offsets it. Every
+planet has the same pin. Shafts of helical and herringbone planetary sets are refused.
 
 The seat is the gear's face width. Both shafts' positions run the same way along the axes
 (from the same end of the gearbox); the pinion's mesh torque is taken about the direction

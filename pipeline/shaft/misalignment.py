@@ -92,7 +92,11 @@ exactly, and is the gearbox turned end for end (the mirrored shaft gives the sam
 1e-12); a rigid seat at mid-span tilts by the axial force's moment over its closed-form
 tilting stiffness (1e-9, its axial terms too); ``beta_b = 0`` is the spur result bit for
 bit. The demo pair at 15 deg on a straddle-mounted pinion opens 0.32 um (K_Hbeta 1.016;
-the spur pair 0) through its fixed point, to 1e-9 of the closed form.
+the spur pair 0) through its fixed point, to 1e-9 of the closed form. The planetary
+functions (block at the end; tests/test_shaft_planetary_loads.py): equally spaced sun meshes
+cancel (1e-14), a planet's two forces drive the carrier with ``T_s (1 + z_r / z_s)``
+(1e-12), a cantilevered pin's retreats are Roark's with the shear term (1e-9), an integral
+sun's twist is ``sum T_k min(z, z_k) / (G J)`` (1e-9).
 
 Face positions: functions here take and return the contact's face coordinate ``zeta`` (m
 from the face's first end, :attr:`LoadedMeshCycle.point_z`); the shaft's face point is at
