@@ -126,6 +126,7 @@ CONTEXTS = [
     ("RATING_PINION_SHAFT", _with(PAIR, "rating", {"pinion_shaft": SHAFT}),
      "rating.pinion_shaft", T.RATING_PINION_SHAFT),
     ("SHAFT", _with(PAIR, "pinion", {"shaft": SHAFT_TABLE}), "pinion.shaft", T.SHAFT),
+    ("PLANET_PIN", _doc("shaft_planetary.toml"), "planet.shaft", T.PLANET_PIN),
     ("DYNAMICS", PAIR, "dynamics", T.DYNAMICS),
     ("DYNAMICS_PLANETARY", _with(PLANETARY, "dynamics", {"excitation": "analytical"}), "dynamics",
      T.DYNAMICS_PLANETARY),

@@ -317,7 +317,9 @@ def shaft_gap(models: Sequence[ShaftModel | None], base_radii: Sequence[float],
 # * the sun in the mesh frame of its first planet's mesh (the pair sun-planet, the sun the
 #   pinion): mesh n is that mesh turned by ``psi_n - psi_0`` about the sun's axis, so its
 #   unit load is ``(0, 1, 0, 0, 0, r_b)`` turned by that angle (:func:`rotated_unit_loads`);
-#   with equally spaced planets the forces cancel and the moments about the axis add;
+#   with equally spaced planets the forces cancel and the moments about the axis add (which
+#   way the angles count changes no gap of a spur set: a round shaft's bending, mirrored
+#   with the forces, and its torsion are uncoupled);
 # * a planet turns freely on its pin (the planet bearing carries no torque), so a pin is
 #   loaded by forces only, in a frame with ``x`` along the tangent of the planet's orbit in
 #   the sense the sun pushes the planet and ``y`` radially outward from the sun's axis: the
