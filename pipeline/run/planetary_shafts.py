@@ -229,7 +229,7 @@ class PlanetaryMeshShafts:
             out["planet_pin"] = {
                 "seat_deflection_tangential_radial_m": [float(d[:, 0].mean()),
                                                         float(d[:, 1].mean())],
-                "seat_tilt_rad": [float(d[0, 3]), float(d[0, 4])],
+                "seat_tilt_about_tangent_radius_rad": [float(d[0, 3]), float(d[0, 4])],
                 "planet_retreat_across_face_m": float(np.ptp(pin.retreats[self.name])),
                 "planet_bearing_retreat_m": pin.bearing[self.name],
                 "support_reactions_N": [[float(v) for v in row[:3]]

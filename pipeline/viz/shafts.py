@@ -41,14 +41,15 @@ def plot_planetary_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.n
     """One mesh of a planetary set: a panel per shaft that moves its flanks, ``(name, z m,
     retreat m, (seat start, end) m, support positions m, the supports' name)``, each
     section's retreat along the mesh's line of action in um over mm on its own scale (the
-    sun's wind-up from its torque point dwarfs a pin's bending), the seat shaded; then the
-    line load panel of :func:`plot_shaft_deflection`."""
+    sun's wind-up from its torque point dwarfs a pin's bending), the seat shaded, the sun in
+    C0 and a pin in C1 in every mesh's figure; then the line load panel of
+    :func:`plot_shaft_deflection`."""
     n = len(shafts) + 1
     fig = new_figure((4.2 * n, 3.6), "constrained")
     for i, s in enumerate(shafts):
         ax = fig.add_subplot(1, n, i + 1)
         _shaft_panel(ax, [s], "retreat along the line of action",
-                     f"{s[0]} (the seat shaded)", colour=i)
+                     f"{s[0]} (the seat shaded)", colour=0 if s[0] == "sun" else 1)
     _line_load_panel(fig.add_subplot(1, n, n), z_face, rigid, coupled, gap, False)
     fig.suptitle(title, fontsize=9)
     return fig
