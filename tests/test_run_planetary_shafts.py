@@ -327,3 +327,27 @@ def test_beam_sun_twist_needs_a_journal_of_the_seat_s_diameter(tmp_path):
     print("80 mm journals: beam", step_beam, "fe3d", step_fe3d)
     assert step_beam == pytest.approx(beam, rel=1e-9)
     assert step_fe3d < 0.5 * step_beam
+
+
+def test_example_header_says_what_the_file_sets():
+    """The example's header: z 40/20/80, m 3 mm, 20 deg, b 30 mm, 4 planets, the sun on a
+    shaft of its root diameter 112.5 mm, a 35 mm pin clamped at its first end with the
+    planet's face 15 to 45 mm from it, 500 N m at 1000 rpm."""
+    header = " ".join(line for line in TEXT.splitlines() if line.startswith("#"))
+    box = gearbox_from_text(TEXT)
+    ps = box.planetary
+    assert "z 40/20/80" in header and "4 planets" in header and "112.5 mm" in header
+    assert (ps.sun.teeth, ps.planet.teeth, ps.ring.teeth, ps.n_planets) == (40, 20, 80, 4)
+    assert {g.module for g in (ps.sun, ps.planet, ps.ring)} == {0.003}
+    assert {g.face_width for g in (ps.sun, ps.planet, ps.ring)} == {0.030}
+    sun = box.shafts["sun"][1]
+    assert 2 * ps.sun.root_radius == pytest.approx(0.1125, rel=1e-12)
+    assert [s.outer_diameter for s in sun.segments] == pytest.approx([0.1125])
+    pin = box.shafts["planet"][1]
+    assert pin.segments[0].outer_diameter == pytest.approx(0.035)
+    assert pin.seat == pytest.approx((0.015, 0.045))
+    (clamp,) = pin.bearings
+    assert clamp.position == 0.0 and clamp.tilting_stiffness == math.inf
+    assert clamp.radial_stiffness == math.inf and box.planet_bearing_stiffness == math.inf
+    assert box.operation.torque == pytest.approx(500.0)
+    assert box.operation.speed == pytest.approx(1000.0 * math.pi / 30)
