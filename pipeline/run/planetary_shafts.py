@@ -325,7 +325,7 @@ class LoadedShaft:
 
 
 @dataclass(frozen=True)
-class _System:
+class ShaftSystem:
     """The sun's and the pin's loaded shafts of a planetary set and its meshes' faces."""
 
     z: Mapping[str, np.ndarray]
@@ -384,7 +384,7 @@ class _System:
 
 
 def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any = None
-                 ) -> _System:
+                 ) -> ShaftSystem:
     """The sun's and the pin's loaded shafts of a planetary set whose meshes have face
     widths ``widths`` (m) and ``n`` face slices each."""
     ps = box.planetary
@@ -408,7 +408,7 @@ def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any =
         pin = LoadedShaft(model, points, model.flexibility(points),
                           tuple((m, u, np.searchsorted(points, per_mesh[m])) for m, u in
                                 zip(MESHES, planet_unit_loads(angles, n), strict=True)))
-    return _System(z, widths, sun, pin, box.planet_bearing_stiffness, ps.sun.base_radius)
+    return ShaftSystem(z, widths, sun, pin, box.planet_bearing_stiffness, ps.sun.base_radius)
 
 
 def planetary_shaft_stage(box: Gearbox, stages: Mapping[str, Any], options: Any,
