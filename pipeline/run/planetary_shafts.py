@@ -326,7 +326,16 @@ class LoadedShaft:
 
 @dataclass(frozen=True)
 class ShaftSystem:
-    """The sun's and the pin's loaded shafts of a planetary set and its meshes' faces."""
+    """The sun's and the pin's loaded shafts of a planetary set and its meshes' faces.
+
+    Attributes
+    ----------
+    z : each mesh's face positions (n,), m, by mesh name.
+    widths : each mesh's face width, m.
+    sun, pin : the loaded shafts (:class:`LoadedShaft`), None without one.
+    k_bearing : the planet bearing's radial stiffness, N/m (``inf``: rigid).
+    base_radius : the sun's base radius, m.
+    """
 
     z: Mapping[str, np.ndarray]
     widths: Mapping[str, float]
