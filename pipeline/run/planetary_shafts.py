@@ -29,8 +29,9 @@ the example's (112.5 mm, integral seat, four planets at a uniform 74 N/mm) twist
 0.32 um across the face at the base circle in the beam and 0.27 um in the 3D
 superelement. On a smaller journal the sun's body is a disc whose rim twists far less than
 its sections would (the torque crosses the disc towards the journal): on 80 mm journals
-0.32 um (beam) against 0.10 um (3D), on 50 mm journals against 0.005 um. Give such a sun
-``model = "fe3d"`` (tests/test_run_planetary_shafts.py measures these).
+0.32 um (beam) against 0.10 um (3D; tests/test_run_planetary_shafts.py measures both
+cases), on 50 mm journals against 0.005 um (measured once, in a run). Give such a sun
+``model = "fe3d"``.
 
 The gap of the sun-planet mesh is the sun's retreat plus the planet's along that mesh, the
 planet-ring mesh's the planet's alone (:func:`pipeline.shaft.misalignment.body_retreats`);
