@@ -12,11 +12,13 @@ import numpy as np
 from pipeline.report.content import quantity
 from pipeline.report.model import Figure, Section
 
+MODEL_NAMES = {"beam": "Timoshenko beam", "fe3d": "3D FE superelement"}
+
 
 def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
-                  figures: Sequence[Figure]) -> Section:
+                  figures: Sequence[Figure], models: Mapping[str, str]) -> Section:
     """The :class:`pipeline.run.shafts.ShaftStage` of a pair, K_Hbeta on rigid supports and
-    with the shafts (-)."""
+    with the shafts (-); ``models``: each shaft's model by gear ("beam", "fe3d")."""
     rows = [
         quantity("misalignment", "misalignment from the shafts across the face", "um",
                  float(np.ptp(stage.gap)) * 1e6),
@@ -37,7 +39,8 @@ def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
         for i, row in enumerate(r.solution.reactions):
             rows.append(quantity(f"{role}_bearing_{i}", f"{role}: bearing {i} radial reaction",
                                  "N", float(np.hypot(row[0], row[1]))))
-    notes = ("Each shaft is a Timoshenko beam in its mesh frame (y along the line of action, "
+    used = ", ".join(f"{role}: {MODEL_NAMES[m]}" for role, m in models.items())
+    notes = (f"Each shaft ({used}) is solved in its mesh frame (y along the line of action, "
              "away from the mate): the line load loads it as forces and moments F r_b across "
              "the seat, and the flank retreats by u_y + r_b theta_z; a helical mesh adds its "
              "axial force a F (a = -h tan beta_b, h = +1 for a right hand) and its moments "

@@ -209,7 +209,8 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
             "load across the face with and without it", plot_shaft_deflection, shafts,
             stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title,
             stage.mesh is not None and stage.mesh.reversed)
-    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
+    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f],
+                         {role: spec[0] for role, spec in box.shafts.items()})
 
 
 def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], fig, title: str):
