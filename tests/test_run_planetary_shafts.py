@@ -124,6 +124,25 @@ def test_example_report_has_the_shafts_section(example):
     assert "sun_twist" in rows and "pin_tilt" in rows
 
 
+def test_example_writes_the_shafts_tables(example):
+    """shaft_face.csv of each mesh: the gap is the sun's and the planet's retreats with the
+    mean taken out (the sun's only in the sun-planet mesh; to 1e-7 of its range, the file's
+    digits), its range the summary's misalignment; shaft_deflection.csv starts at the pin's
+    clamp with zero motion."""
+    out, summary = example
+    for mesh, parts in (("sun_planet", ("sun_retreat_m", "planet_retreat_m")),
+                        ("planet_ring", ("planet_retreat_m",))):
+        face = np.genfromtxt(out / f"{mesh}_shaft_face.csv", delimiter=",", names=True)
+        total = sum(face[p] for p in parts)
+        span = np.ptp(face["gap_m"])
+        np.testing.assert_allclose(face["gap_m"], total - total.mean(), atol=1e-7 * span)
+        assert span == pytest.approx(summary["meshes"][mesh]["shafts"][
+            "misalignment_across_face_m"], rel=1e-7)
+    lines = (out / "planet_ring_shaft_deflection.csv").read_text().splitlines()
+    assert lines[0].startswith("shaft,z_m,u_x_m,u_y_m")
+    assert lines[1] == "planet pin,0,0,0,0,0,0,0,0"
+
+
 @pytest.mark.filterwarnings(WARN)
 def test_straddled_symmetric_pin_and_rigid_sun_seat_change_nothing(tmp_path):
     """The pin on supports in both cheeks with the planet midway and the sun's seat a rigid

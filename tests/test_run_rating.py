@@ -12,6 +12,8 @@ the study KPIs carry its numbers.
 from __future__ import annotations
 
 import math
+import tomllib
+from pathlib import Path
 
 import pytest
 
@@ -23,6 +25,7 @@ from pipeline.run.runner import run_pipeline
 from pipeline.validation import InputError
 from workflows.default_case import DEMO_PAIR
 
+WORKFLOWS = Path(__file__).resolve().parents[1] / "workflows"
 FAST = '[contact]\ncompliance = "analytical"\npositions = 24\n'
 
 PLANETARY = """
@@ -313,3 +316,56 @@ def test_a_web_acts_in_the_rating_beside_given_mass_and_inertia(tmp_path):
     text = DEMO_PAIR.replace("bore_radius_mm = 21.0\n", web, 1) + FAST + "[rating]\n"
     r = _run(text, tmp_path)
     assert r.rating.meshes["mesh"].rating.blank_factor < 1.0
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_a_pair_on_shafts_is_rated_with_the_systems_k_hbeta(tmp_path):
+    """The overhung-pinion example (workflows/configs/shaft_overhung_pinion.toml), whose
+    ``[rating]`` leaves ``face_load_factor`` out: the rating takes the K_Hbeta of the
+    contact solved with the shaft's deflection (the shaft stage's cycle, to 1e-9), says so,
+    and it is not the rigid contact's (1.000 for this aligned spur pair). Rated again
+    with the rigid contact's K_Hbeta given, sigma_H scales as sqrt(K_Hbeta K_Halpha)
+    (ISO 6336-2 Eq. (2)-(3); nothing else changes, 1e-9) and S_H inversely. Given
+    ``"method_c"`` the file is rated by method C; a ``[rating.pinion_shaft]`` beside the
+    shaft model changes method C's K_Hbeta shown beside, not the one used."""
+    from pipeline.contact.distribution import load_distribution
+
+    text = (WORKFLOWS / "configs" / "shaft_overhung_pinion.toml").read_text()
+    assert "face_load_factor" not in tomllib.loads(text)["rating"]
+    r = run_pipeline(gearbox_from_text(text),
+                     RunOptions(show_progress=False, cache=Cache(tmp_path)))
+    st = r.meshes["mesh"]
+    pair, op = st.stiffness.actual, st.case.operation
+    system = load_distribution(st.shafts.cycle, pair, op).k_hbeta
+    rigid = load_distribution(st.shafts.rigid, pair, op).k_hbeta
+    m = r.rating.meshes["mesh"]
+    assert m.rating.k_hbeta == pytest.approx(system, rel=1e-9)
+    assert m.k_hbeta_source == "loaded contact with the shafts' deflection"
+    assert system > 1.05 and rigid == pytest.approx(1.0, abs=1e-3)
+
+    given = gearbox_from_text(text.replace("[rating]", f"[rating]\nface_load_factor = {rigid!r}",
+                                           1))
+    g = run_pipeline(given, RunOptions(show_progress=False, cache=Cache(tmp_path))
+                     ).rating.meshes["mesh"]
+    assert g.k_hbeta_source == "given"
+    a, b = m.rating, g.rating
+    scale = math.sqrt(a.k_hbeta * a.transverse.k_halpha / (b.k_hbeta * b.transverse.k_halpha))
+    for k in range(2):
+        assert a.contact.stress[k] / b.contact.stress[k] == pytest.approx(scale, rel=1e-9)
+        assert b.pitting[k].safety / a.pitting[k].safety == pytest.approx(scale, rel=1e-9)
+    assert a.pitting[0].safety < b.pitting[0].safety
+
+    c = gearbox_from_text(text.replace("[rating]", '[rating]\nface_load_factor = "method_c"',
+                                       1))
+    assert c.rating.face_load_factor == "method_c"
+    assert gearbox_from_text(text).rating.face_load_factor == "contact"
+
+    # method C's own pinion shaft beside the shaft model: shown, not used (its f_sh carries
+    # the offset term of a 40 mm span, s = 10 mm, K' = 1.33)
+    both = text + ("[rating.pinion_shaft]\nspan_mm = 40.0\noffset_mm = 10.0\n"
+                   'shaft_diameter_mm = 35.0\narrangement = "c"\n')
+    d = run_pipeline(gearbox_from_text(both),
+                     RunOptions(show_progress=False, cache=Cache(tmp_path))).rating.meshes["mesh"]
+    assert d.rating.k_hbeta == pytest.approx(system, rel=1e-9)
+    assert d.rating.face_load.offset_term > 0.0
+    assert d.rating.face_load.k_hbeta != pytest.approx(m.rating.face_load.k_hbeta, rel=1e-3)

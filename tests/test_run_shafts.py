@@ -162,6 +162,19 @@ def test_report_shows_the_shafts(tmp_path):
     assert (out / "report_shafts.png").is_file()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["meshes"]["mesh"]["shafts"]["iterations"] >= 2
+    # the CSVs: the deflection line through the bearings (rigid: zero there) and the
+    # misalignment across the face, its spread the report's
+    line = np.genfromtxt(out / "shaft_deflection.csv", delimiter=",", names=True,
+                         dtype=None, encoding="utf-8")
+    at = {round(float(z), 6): u for z, u in zip(line["z_m"], line["u_y_line_of_action_m"],
+                                                strict=True)}
+    assert at[0.02] == 0.0 and at[0.04] == 0.0
+    assert abs(at[0.07]) > abs(at[0.05]) > 0.0
+    face = np.genfromtxt(out / "shaft_face.csv", delimiter=",", names=True)
+    assert np.ptp(face["gap_m"]) * 1e6 == pytest.approx(rows["misalignment"]["value"],
+                                                        rel=1e-6)
+    assert face["pinion_retreat_m"] == pytest.approx(
+        face["pinion_translation_m"] + face["pinion_twist_at_base_circle_m"], rel=1e-9)
 
 
 def test_dynamics_take_the_shafts_support(tmp_path):
@@ -193,3 +206,57 @@ def test_dynamics_take_the_shafts_support(tmp_path):
                         + "[operation]")
     with pytest.raises(InputError, match="bearing_stiffness_N_per_m changes nothing"):
         gearbox_from_text(both)
+
+
+def _helical(pinion_hand: str, gear_hand: str) -> str:
+    text = DEMO_PAIR.replace("face_width_mm = 20.0", "face_width_mm = 20.0\nhelix_angle_deg = "
+                             f"15.0\nhand = \"{pinion_hand}\"", 1)
+    return text.replace("face_width_mm = 20.0\nbore", "face_width_mm = 20.0\nhelix_angle_deg "
+                        f"= 15.0\nhand = \"{gear_hand}\"\nbore", 1)
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_the_other_rotation_is_the_mirror_image(tmp_path):
+    """The pinion turning counterclockwise loads the other flanks: the mirror image, in the
+    plane through both axes, of the gearbox turning clockwise with every hand reversed
+    (pipeline.shaft.misalignment, The other rotation). A right-hand pinion on an overhung
+    shaft turning counterclockwise opens the same gap as a left-hand one turning clockwise
+    (to 1e-12 of its range), its deflection along the line of action is the same and its
+    u_x, theta_y, theta_z and torque reaction the negatives; the gear driving is the
+    pinion's other rotation (the torque picks the flank); a spur pair's gap is the same
+    either way and its twist reverses."""
+    shaft = _shaft(100.0, (20.0, 60.0))
+    rotation = '[operation]\npinion_rotation = "counterclockwise"\n'
+
+    def stage(text: str):
+        box = gearbox_from_text(text.replace("[gear]", shaft + "[gear]") + FAST)
+        r = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
+        return r.meshes["mesh"].shafts
+
+    ccw = stage(_helical("right", "left").replace("[operation]\n", rotation))
+    mirror = stage(_helical("left", "right"))
+    assert ccw.reflected and not mirror.reflected
+    assert np.ptp(ccw.gap) > 1e-7
+    assert ccw.gap == pytest.approx(mirror.gap, abs=1e-12 * np.ptp(ccw.gap))
+    a, b = ccw.retreats[0].solution, mirror.retreats[0].solution
+    flip = np.array([-1.0, 1.0, 1.0])
+    assert a.displacement == pytest.approx(b.displacement * flip, abs=1e-12)
+    assert a.rotation == pytest.approx(b.rotation * -flip, abs=1e-12)
+    assert a.torque_reaction == pytest.approx(-b.torque_reaction, rel=1e-12)
+    spur_cw = stage(DEMO_PAIR)
+    spur_ccw = stage(DEMO_PAIR.replace("[operation]\n", rotation))
+    assert spur_ccw.gap == pytest.approx(spur_cw.gap, abs=1e-15)
+    assert spur_ccw.retreats[0].solution.rotation[:, 2] == pytest.approx(
+        -spur_cw.retreats[0].solution.rotation[:, 2], abs=1e-15)
+    driven = '[operation]\ndriver = "gear"\n'
+    assert stage(DEMO_PAIR.replace("[operation]\n", driven)).reflected
+    assert not stage(DEMO_PAIR.replace("[operation]\n", driven + rotation[12:])).reflected
+
+
+def test_the_rotation_needs_shafts():
+    """The pinion's sense of rotation only picks the flanks that load its shafts: without a
+    shaft it is refused in one line."""
+    with pytest.raises(InputError, match=r'operation.pinion_rotation = "counterclockwise" '
+                                         r"sets which flanks load a pair's shafts"):
+        gearbox_from_text(DEMO_PAIR.replace("[operation]\n", '[operation]\npinion_rotation = '
+                                            '"counterclockwise"\n') + FAST)

@@ -5,7 +5,9 @@ Runs :func:`pipeline.run.runner.run_pipeline` and writes, to ``results/<file ste
 the analytical stiffness (``mesh_stiffness.csv/png``), the loaded
 contact cycle on the chosen compliance source (``contact_cycle.csv/png``,
 ``contact_points.csv``) and its load maps (``load_map_2d.png``, ``load_map.vtu``,
-``load_map.png``) - prefixed by the mesh name for a planetary set; a herringbone sun with a
+``load_map.png``) - prefixed by the mesh name for a planetary set; gears on shafts add
+their deflection lines (``shaft_deflection.csv``) and the misalignment across the face
+(``shaft_face.csv``); a herringbone sun with a
 ``[groove]`` table adds ``sun_planet_herringbone.csv`` and the left/right sun-flank load
 maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynamics
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
@@ -69,6 +71,12 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
                        st.case.operation, box.stiffness.foundation_correction)
     files += write_contact(st.contact, pair, opts, ref.total,
                            contact_title(name, st.contact, pair, opts), out, prefix, figures)
+    if st.shafts is not None:
+        from pipeline.io import write_csv
+
+        files += [write_csv(out / f"{prefix}shaft_deflection.csv",
+                            st.shafts.deflection_columns()),
+                  write_csv(out / f"{prefix}shaft_face.csv", st.shafts.face_columns())]
     if st.herringbone is not None:
         from pipeline.cli.herringbone_files import write_herringbone
 

@@ -144,6 +144,9 @@ class Gearbox:
         is its pin.
     planet_bearing_stiffness : radial stiffness of the bearing between a planet and its pin
         (``[planet.shaft]``), N/m; ``inf``: rigid.
+    pinion_rotation : "clockwise" or "counterclockwise", the pinion's sense of rotation seen
+        from the end its shafts' positions grow towards (``[operation] pinion_rotation``;
+        with the driver it picks the flanks that load the shafts).
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -167,6 +170,7 @@ class Gearbox:
     rating: RatingOptions | None = None
     shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
     planet_bearing_stiffness: float = math.inf
+    pinion_rotation: str = "clockwise"
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -377,8 +381,14 @@ def _stiffness(doc: Mapping[str, Any]) -> StiffnessOptions:
     return opts
 
 
-def _operation(doc: Mapping[str, Any]) -> OperatingPoint:
-    return build(OperatingPoint, doc.get("operation", {}), T.OPERATION, "operation")
+def _operation(doc: Mapping[str, Any]) -> tuple[OperatingPoint, str]:
+    """``[operation]``: the operating point and the pinion's sense of rotation (which flanks
+    its shafts load, :mod:`pipeline.shaft.misalignment`)."""
+    table = doc.get("operation", {})
+    values = read_table(table, T.OPERATION, "operation")
+    rotation = values.pop("pinion_rotation", "clockwise")
+    with restated("operation", T.OPERATION, table):
+        return OperatingPoint(**values), rotation
 
 
 def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOptions:
@@ -628,7 +638,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
     contact = contact_options_from_table(doc.get("contact"))
     shafts, k_planet = _shafts(doc, gears)
     fe = _fe(doc, contact)
-    operation = _operation(doc)
+    operation, rotation = _operation(doc)
     box = Gearbox(
         name=str(doc.get("name", name)),
         kind=kind,
@@ -646,6 +656,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                               frozenset(r for r, g in gears.items() if g.internal)),
         shafts=shafts,
         planet_bearing_stiffness=k_planet,
+        pinion_rotation=rotation,
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
@@ -667,6 +678,15 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                         "supports, bending and planet bearing")
                 raise InputError(f"dynamics.{key} changes nothing: {what} give the dynamic "
                                  f"model's {role} support")
+    if "pinion_rotation" in doc.get("operation", {}) and not (box.kind == "pair"
+                                                              and box.shafts):
+        raise InputError(f'operation.pinion_rotation = "{rotation}" sets which flanks load '
+                         "a pair's shafts; this file has no [pinion.shaft] or [gear.shaft]")
+    for key, role, what in (("drive_inertia_kgm2", "pinion", "motor"),
+                            ("load_inertia_kgm2", "gear", "driven machine")):
+        if key in doc.get("dynamics", {}) and role not in box.shafts:
+            raise InputError(f"dynamics.{key} needs [{role}.shaft]: the {what} is tied to the "
+                             f"{role} by its shaft's torsion")
     _check_groove_sources(box, doc)
     _check_relief_lengths(box, doc)
     _check_fe3d_meshes(box, doc)

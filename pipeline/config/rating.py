@@ -8,6 +8,14 @@ given (``sigma_Hlim_MPa``, ``sigma_Flim_MPa``): a value given replaces the table
 keys that would then select nothing (quality, hardness, core hardness) are refused. The
 material also sets the gear's classes (running-in, life lines, size factor). A kind whose
 lines are constant (case-hardened, nitrided) needs no hardness.
+
+Where K_Hbeta comes from (``face_load_factor``) when the file does not say: a pair whose
+pinion or gear sits on a shaft (``[pinion.shaft]``, ``[gear.shaft]``) takes the loaded
+contact's, which the run solves with the shafts' deflection (:mod:`pipeline.run.shafts`),
+as a system-deflection rating (KISSsoft, MASTA) takes the shaft model's; every other file
+takes ISO 6336-1 method C's. The rating shows the other sources beside the one used, so a
+``[rating.pinion_shaft]`` (method C's own picture of the pinion's shaft) next to a
+``[pinion.shaft]`` is shown as method C's K_Hbeta beside the system's, not used.
 """
 
 from __future__ import annotations
@@ -139,6 +147,8 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...],
     if kind == "pair" and values.get("load_sharing") is not None:
         raise InputError(f"rating.load_sharing = {table['load_sharing']!r} applies to a "
                          "planetary set (K_gamma of its planets); a pair carries all the load")
+    if "face_load_factor" not in table and kind == "pair" and on_shafts(doc, roles):
+        values["face_load_factor"] = "contact"
     gears = {role: gear_rating(table[role], f"rating.{role}", role in internal)
              for role in roles if role in table}
     shaft = None
@@ -150,6 +160,11 @@ def rating_options(doc: Mapping[str, Any], kind: str, roles: tuple[str, ...],
                      shaft=shaft)
     with restated("rating", T.RATING, table):
         return RatingOptions(**values, gears=gears, method_c=method_c, spectrum=spectrum)
+
+
+def on_shafts(doc: Mapping[str, Any], roles: tuple[str, ...]) -> bool:
+    """True when a gear of ``roles`` sits on a shaft (a ``[<gear>.shaft]`` table)."""
+    return any(isinstance(doc.get(r), Mapping) and "shaft" in doc[r] for r in roles)
 
 
 def _spectrum(rows: Any) -> LoadSpectrum | None:

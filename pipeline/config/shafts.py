@@ -34,11 +34,11 @@ decides whether the pin's tilt adds to the sun's twist across the face or offset
 planet has the same pin. Shafts of helical and herringbone planetary sets are refused.
 
 The seat is the gear's face width. Both shafts' positions run the same way along the axes
-(from the same end of the gearbox); the pinion's mesh torque is taken about the direction
-of increasing positions (the pinion, driving, turns clockwise seen from the end with the
-larger positions), which sets the sense of a helical mesh's axial force
-(:mod:`pipeline.shaft.misalignment`): for the opposite rotation, give the positions from
-the other end. Every refusal names the key as written, with the index
+(from the same end of the gearbox); ``[operation] pinion_rotation`` ("clockwise", the
+default, or "counterclockwise") is the pinion's sense of rotation seen from the end the
+positions grow towards: with the driver it picks the loaded flanks, which set the sense of
+a helical mesh's axial force and of the shafts' twist (:mod:`pipeline.shaft.misalignment`,
+The other rotation). Every refusal names the key as written, with the index
 of a segment or bearing (``pinion.shaft.bearings[1].position_mm``).
 """
 

@@ -126,10 +126,14 @@ PLANETARY = (
                                       "meshes (default: from the profile shifts)"),
 )
 
+ROTATIONS = ("clockwise", "counterclockwise")
 OPERATION = (
     Key("torque_Nm", N, help="torque on the driving gear"),
     Key("speed_rpm", N, help="speed of the driving gear"),
     Key("driver", S, choices=("pinion", "gear")),
+    Key("pinion_rotation", S, choices=ROTATIONS,
+        help="the pinion's sense of rotation seen from the end its shafts' positions grow "
+             "towards (gears on shafts)"),
 )
 
 STIFFNESS = (
@@ -324,6 +328,11 @@ DYNAMICS = (
     Key("excitation", S, choices=EXCITATIONS,
         help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
     Key("friction", B),
+    Key("drive_inertia_kgm2", N,
+        help="the motor's inertia at the pinion shaft's torque point (needs [pinion.shaft])"),
+    Key("load_inertia_kgm2", N,
+        help="the driven machine's inertia at the gear shaft's torque point (needs "
+             "[gear.shaft])"),
 )
 """Keys of ``[dynamics]`` for a gear pair (:class:`PairDynamicsOptions`)."""
 DYNAMICS_SUBTABLES = ("mesh_stiffness", "response", "sweep")

@@ -30,7 +30,8 @@ class BodyPlace:
     centre : (x, y) of the body's axis, m.
     radius : radius of the drawn circle (base circle, carrier circle), m.
     frame_angle : rad, direction of the body's own x axis (planets: radial).
-    role : "sun", "planet", "ring", "carrier", "pinion", "gear" or "body".
+    role : "sun", "planet", "ring", "carrier", "pinion", "gear", "drive" (a motor behind
+        the pinion's shaft), "load" (a driven machine behind the gear's) or "body".
     side : "L" or "R" for a half of a herringbone member, else "".
     spin : +1 when the body's positive ``theta`` turns it counterclockwise in the
         drawing, -1 clockwise (a pair's gear).
@@ -105,8 +106,15 @@ def _pair(model) -> ModelLayout:
     else:
         gear = BodyPlace("gear", (t1t2, -(rp + rg)), rg, 0.0, "gear", spin=-1)
         line = ((0.0, -rp), (t1t2, -rp))
-    return ModelLayout((BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"), gear),
-                       line_of_action=line if t1t2 else None)
+    places = [BodyPlace("pinion", (0.0, 0.0), rp, 0.0, "pinion"), gear]
+    # a motor or driven machine behind a gear's shaft: drawn beside its gear, away from the
+    # mesh, turning with it
+    if getattr(model, "drive", None) is not None:
+        places.append(BodyPlace("drive", (-2.2 * rp, 0.0), 0.6 * rp, 0.0, "drive"))
+    if getattr(model, "load", None) is not None:
+        places.append(BodyPlace("load", (gear.centre[0] + 2.2 * rg, gear.centre[1]), 0.6 * rg,
+                                0.0, "load", spin=gear.spin))
+    return ModelLayout(tuple(places), line_of_action=line if t1t2 else None)
 
 
 def _grid(bodies: tuple[Body, ...]) -> ModelLayout:
@@ -128,6 +136,6 @@ def model_layout(model) -> ModelLayout:
     names = {b.name for b in bodies}
     if hasattr(model, "carrier_radius") and hasattr(model, "angles"):
         return _planetary(model, bodies)
-    if hasattr(model, "base_radius_pinion") and names <= {"pinion", "gear"}:
+    if hasattr(model, "base_radius_pinion") and names <= {"pinion", "gear", "drive", "load"}:
         return _pair(model)
     return _grid(bodies)

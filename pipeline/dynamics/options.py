@@ -181,6 +181,10 @@ class PairDynamicsOptions:
     mesh_stiffness : an explicit k(tau) over one mesh period (N/m) replacing the derived
         one, or ``None``.
     friction : include the friction stiffness and torques of the stiffness stage.
+    drive_inertia : kg m^2 of the motor at the pinion shaft's torque point, in (0, 1e6],
+        or None (the input torque acts on the pinion); needs the pinion on a shaft.
+    load_inertia : kg m^2 of the driven machine at the gear shaft's torque point, in
+        (0, 1e6], or None; needs the gear on a shaft.
     """
 
     dofs: str = "lateral_torsional"
@@ -190,11 +194,17 @@ class PairDynamicsOptions:
     excitation: str = "analytical"
     mesh_stiffness: PeriodicSignal | None = None
     friction: bool = True
+    drive_inertia: float | None = None
+    load_inertia: float | None = None
     response: ResponseOptions = field(default_factory=ResponseOptions)
     sweep: SweepOptions = field(default_factory=SweepOptions)
 
     def __post_init__(self) -> None:
         check_choice("dynamics.dofs", self.dofs, ("lateral_torsional", "torsional"))
+        for name in ("drive_inertia", "load_inertia"):
+            if getattr(self, name) is not None:
+                check_range(f"dynamics.{name}", getattr(self, name), 0.0, 1e6, lo_open=True,
+                            unit="kg m^2")
         check_range("dynamics.bearing_stiffness", self.bearing_stiffness, 0.0, 1e14, unit="N/m")
         check_range("dynamics.bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
         check_range("dynamics.damping_ratio", self.damping_ratio, 0.0, 1.0)

@@ -20,6 +20,26 @@ those of ISO 6336-1:2006.
   helical) for one power path; with ``k`` per cent of the power through this mesh ``B* =
   1 + 2 (100 - k) / k`` (``0.5 + (200 - k) / k`` double helical). Valid for ``s / l <=
   0.3``, a steel shaft of constant diameter with a bore under half of it (else a warning).
+* What Eq. (57) assumes, against the beam shaft of :mod:`pipeline.shaft` (rigid bearings,
+  the face's uniform load, the misalignment as the rise of the least-squares line through
+  the gap in the plane of action; ``tests/test_shaft_iso_fsh.py``): the bracket's ``-0.3``
+  and ``+0.3`` leave ``0.7 x 0.023 = 0.0161`` um mm/N to cancel, which is a body of
+  diameter ``d1`` twisted by its own face load and read at the reference circle, ``4 / (pi
+  G)`` = 0.01607 (the beam reads it along the line of action: ``cos(alpha)`` of it); the
+  other 0.3 stays whatever the bending does (a pinion at mid-span bows symmetrically and
+  tilts by nothing). The ``K'`` term is a shaft of ``d_sh`` bent by the face's load at ``s``
+  from mid-span, ``F s (l^2 - 4 s^2) / (6 E I l)``: the unstiffened 0.8 is its small-``s``
+  slope to 5 %, without the ``1 - 4 (s / l)^2`` (0.64 at ``s / l = 0.3``). Figure 13's
+  ``a`` and ``b`` differ in sign only: bending tilts the face the way torsion does (load
+  at the face end nearest the torque, ``K' > 0``) when the pinion sits off-centre towards
+  the torque's end. The stiffened ``K'`` takes 40 % off, where a body of ``1.5 d_sh`` over
+  ``b = l / 10`` takes 13 % (an infinitely stiff one 15 %). Read as an overhung pinion
+  (``K'`` the same with and without stiffening, ``s`` its overhang), ``c``'s ``1.33 l s``
+  falls below the beam's ``s (2 l + 3 s) / 6`` (1.3 to 1.5 at ``s / l`` 0.1 to 0.2); ``d``
+  and ``e`` hold more than one pinion on a plain shaft (the figure's sketches were not at
+  hand). Computed over ISO for a plain shaft of ``d1``: 0.66 at ``s = 0``, 0.87 to 0.60 for
+  ``a``, ``b`` at ``s / l`` 0.05 to 0.3: Eq. (57) errs on the safe side between the
+  bearings, not for an overhung or a stiffened pinion.
 * Mesh misalignment from manufacture ``f_ma``: given, or from the helix slope deviations
   ``f_Hbeta`` of the two gears (ISO 1328-1 tolerances, :mod:`.accuracy`) as their root sum
   of squares (``"rss"``) or the larger (``"larger"``) (:data:`F_MA_RULES`).

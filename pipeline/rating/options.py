@@ -16,7 +16,9 @@ Each default is a value the user may rely on and the README states:
   modification and ``f_ma`` from both gears' ``f_Hbeta``; ``[rating.pinion_shaft]`` the
   pinion's or sun's shaft, default a pinion at mid-span), ``"contact"`` from the loaded
   contact's line load (the largest over the mean of the cycle-mean line load across the
-  face), or a number; the other two are shown beside the one used;
+  face), or a number; the other two are shown beside the one used. A pair on shafts
+  (``[pinion.shaft]``, ``[gear.shaft]``) defaults to ``"contact"``: its contact is solved
+  with the shafts' deflection (:mod:`pipeline.config.rating`);
 * ``load_sharing`` K_gamma: 1 for a pair; for a planetary set the value for its number of
   planets (:data:`PLANET_LOAD_SHARING`), a number, or ``"computed"``: the largest planet's
   mean mesh force over the mean of all planets in the dynamic model;

@@ -68,9 +68,11 @@ def rating_load_section(m) -> Section:
                  f"{ISO1} method B"),
     ]
     notes = [
-        f"K_Hbeta used: {m.k_hbeta_source} ([rating] face_load_factor); the others are shown "
-        "beside it. The loaded contact's K_Hbeta holds what the contact model holds: on "
-        "rigid supports an aligned pair gives about 1 unless the misalignment is given "
+        f"K_Hbeta used: {m.k_hbeta_source} ([rating] face_load_factor; a pair on shafts "
+        "takes the contact's unless told); the others are shown beside it. The loaded "
+        "contact's K_Hbeta holds what the contact model holds: with [<gear>.shaft] the "
+        "shafts' deflection, on rigid supports an aligned pair gives about 1 unless the "
+        "misalignment is given "
         "([contact] slope_deviation_um); method C estimates the shaft's deflection and the "
         "manufacturing misalignment from the accuracy grade.",
     ]

@@ -1,9 +1,10 @@
-"""The shafts section of a mesh report: their deflection, the misalignment it opens across
-the face and the line load with and without it."""
+"""The shafts sections of a mesh report: their deflection, the misalignment it opens across
+the face and the line load with and without it; the dynamics with the shafts beside the
+same on rigid supports."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -11,11 +12,13 @@ import numpy as np
 from pipeline.report.content import quantity
 from pipeline.report.model import Figure, Section
 
+MODEL_NAMES = {"beam": "Timoshenko beam", "fe3d": "3D FE superelement"}
+
 
 def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
-                  figures: Sequence[Figure]) -> Section:
+                  figures: Sequence[Figure], models: Mapping[str, str]) -> Section:
     """The :class:`pipeline.run.shafts.ShaftStage` of a pair, K_Hbeta on rigid supports and
-    with the shafts (-)."""
+    with the shafts (-); ``models``: each shaft's model by gear ("beam", "fe3d")."""
     rows = [
         quantity("misalignment", "misalignment from the shafts across the face", "um",
                  float(np.ptp(stage.gap)) * 1e6),
@@ -36,7 +39,8 @@ def shaft_section(stage: Any, k_rigid: float, k_coupled: float,
         for i, row in enumerate(r.solution.reactions):
             rows.append(quantity(f"{role}_bearing_{i}", f"{role}: bearing {i} radial reaction",
                                  "N", float(np.hypot(row[0], row[1]))))
-    notes = ("Each shaft is a Timoshenko beam in its mesh frame (y along the line of action, "
+    used = ", ".join(f"{role}: {MODEL_NAMES[m]}" for role, m in models.items())
+    notes = (f"Each shaft ({used}) is solved in its mesh frame (y along the line of action, "
              "away from the mate): the line load loads it as forces and moments F r_b across "
              "the seat, and the flank retreats by u_y + r_b theta_z; a helical mesh adds its "
              "axial force a F (a = -h tan beta_b, h = +1 for a right hand) and its moments "
@@ -99,4 +103,36 @@ def planetary_shaft_section(stage: Any, figures: Sequence[Figure]) -> Section:
              "meshes' flank modifications and both contacts solved again until neither line "
              "load changes by more than 1e-3.",)
     return Section("shafts", "Sun shaft and planet pins", tuple(rows),
+                   figures=tuple(figures), notes=notes)
+
+
+def shaft_dynamics_section(summary: Mapping[str, Any], figures: Sequence[Figure]) -> Section:
+    """Natural frequencies and the sweep's largest dynamic factor with the shafts and on
+    rigid supports, from the run's dynamics summary
+    (:meth:`pipeline.run.dynamics.DynamicsStages.summary` with its ``without_shafts``)."""
+    rigid = summary["without_shafts"]
+    with_fn = summary["natural_frequencies_Hz"]
+    rigid_fn = rigid["natural_frequencies_Hz"]
+    rows = [quantity(f"mode_{i + 1}", f"elastic mode {i + 1}", "Hz",
+                     with_fn[i] if i < len(with_fn) else None,
+                     rigid_fn[i] if i < len(rigid_fn) else None)
+            for i in range(max(len(with_fn), len(rigid_fn)))]
+    sweep = summary["sweep"]
+    for mesh, k in sweep["max_dynamic_factor"].items():
+        tag = "" if mesh == "mesh" else f" ({mesh})"
+        rows.append(quantity(f"max_dynamic_factor_{mesh}", f"largest dynamic factor over the "
+                             f"sweep{tag}", "-", k, rigid["max_dynamic_factor"][mesh]))
+        rows.append(quantity(f"max_dynamic_factor_at_{mesh}", f"... at mesh frequency{tag}",
+                             "Hz", sweep["max_dynamic_factor_at_Hz"][mesh],
+                             rigid["max_dynamic_factor_at_Hz"][mesh]))
+    notes = ("With the shafts each gear is held at its seat by its shaft (bearings and shaft "
+             "bending in series, 1 / C_yy of the seat flexibility) and, where [dynamics] "
+             "gives a motor's or a driven machine's inertia, tied to it by the shaft's "
+             "torsion between the seat and the torque point (1 / C_theta_z theta_z); its "
+             "mesh is excited by the contact with the shafts' misalignment. On rigid supports: "
+             "the gears' rotations only, no motor or machine, the contact on rigid supports. "
+             "The natural frequencies are the elastic ones up to the cut of the dynamics "
+             "section; a dash: the model has fewer.",)
+    return Section("shaft_dynamics", "Dynamics with the shafts and on rigid supports",
+                   tuple(rows), columns=("with the shafts", "rigid supports"),
                    figures=tuple(figures), notes=notes)

@@ -175,6 +175,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         summary = result.dynamics.summary()
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
+        if result.dynamics.without_shafts is not None:
+            sections.append(_shaft_dynamics_section(result.dynamics, summary, fig, title))
     if result.rating is not None:
         sections += _rating_sections(result.rating, name, fig, title, actual.gear.internal)
     run_s = result.log.summary()["total_s"]
@@ -209,7 +211,23 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
             "load across the face with and without it", plot_shaft_deflection, shafts,
             stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title,
             stage.mesh is not None and stage.mesh.reversed)
-    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
+    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f],
+                         {role: spec[0] for role, spec in box.shafts.items()})
+
+
+def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], fig, title: str):
+    """The dynamics with the shafts and on rigid supports, with the figure of both sweeps."""
+    from pipeline.report.shaft_section import shaft_dynamics_section
+    from pipeline.viz.shafts import plot_shaft_dynamics
+
+    sweep, rigid = dynamics.sweep, dynamics.without_shafts
+    f = fig("report_shaft_dynamics.png", "Dynamic factor over mesh frequency with the shafts "
+            "and on rigid supports, with the natural frequencies of each",
+            plot_shaft_dynamics, sweep.frequencies, sweep.dynamic_factor[0],
+            rigid.sweep.dynamic_factor[0], summary["natural_frequencies_Hz"],
+            summary["without_shafts"]["natural_frequencies_Hz"],
+            dynamics.operating.mesh_frequency, title)
+    return shaft_dynamics_section(summary, [f])
 
 
 def _planetary_shaft_section(box: Any, st: Any, rigid: LoadDistribution,

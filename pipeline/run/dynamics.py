@@ -42,8 +42,37 @@ from pipeline.dynamics.operating import (
     system_operating_frequency,
 )
 from pipeline.dynamics.options import PairDynamicsOptions, PlanetaryDynamicsOptions
-from pipeline.dynamics.sweep import SweepResult
+from pipeline.dynamics.sweep import SweepResult, mesh_force_sweep
 from pipeline.progress import Steps
+
+
+@dataclass(frozen=True)
+class WithoutShafts:
+    """The dynamics of a pair on shafts solved again without them, for comparison: the
+    gears on rigid supports (their rotations only), no motor or driven machine, the
+    contact on rigid supports as the excitation, the same sweep frequencies.
+
+    Attributes
+    ----------
+    modes : natural frequencies (Hz) and mode shapes.
+    sweep : mesh force and dynamic factor against the same mesh frequencies.
+    """
+
+    modes: ModalResult
+    sweep: SweepResult
+
+    def summary(self, cut: float) -> dict[str, Any]:
+        """Elastic natural frequencies up to ``cut`` (Hz) and the sweep's largest dynamic
+        factor and where (Hz)."""
+        fn = self.modes.frequencies
+        listed = [float(f) for f in fn[elastic_modes(fn)] if f <= cut]
+        df = self.sweep.dynamic_factor
+        k = np.argmax(df, axis=1)
+        return {"natural_frequencies_Hz": listed,
+                "max_dynamic_factor": {m: float(df[i, k[i]])
+                                       for i, m in enumerate(self.sweep.mesh_names)},
+                "max_dynamic_factor_at_Hz": {m: float(self.sweep.frequencies[k[i]])
+                                             for i, m in enumerate(self.sweep.mesh_names)}}
 
 
 @dataclass(frozen=True)
@@ -61,6 +90,8 @@ class DynamicsStages:
     sweep_given : True when the file gives an end of the sweep range, False when the
         range is the default around the operating point
         (:func:`pipeline.dynamics.options.default_sweep_range`).
+    without_shafts : a pair on shafts: the same dynamics without them (:class:`WithoutShafts`),
+        else None.
     """
 
     model: DynamicModel
@@ -70,6 +101,7 @@ class DynamicsStages:
     sweep: SweepResult
     operating: OperatingFrequency
     sweep_given: bool = False
+    without_shafts: WithoutShafts | None = None
 
     def summary(self) -> dict[str, Any]:
         """Operating mesh frequency (Hz) and speeds (rpm); the elastic natural frequencies
@@ -94,7 +126,7 @@ class DynamicsStages:
         listed, cut = modes_that_matter(fn, self.operating.mesh_frequency,
                                         float(sw.frequencies[-1]))
         elastic = elastic_modes(fn)
-        return {
+        out = {
             "excitation": self.excitation,
             "coordinates": len(self.modes.dof_names),
             "independent_dofs": int(fn.size),
@@ -114,6 +146,9 @@ class DynamicsStages:
                       "max_dynamic_factor_at_Hz": {m: float(sw.frequencies[k[i]])
                                                    for i, m in enumerate(sw.mesh_names)}},
         }
+        if self.without_shafts is not None:
+            out["without_shafts"] = self.without_shafts.summary(cut)
+        return out
 
 
 def dynamics_options(box: Gearbox) -> PairDynamicsOptions | PlanetaryDynamicsOptions:
@@ -147,9 +182,11 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     herringbone variant) with one sun-planet and one planet-ring excitation (an explicit
     ``[dynamics.sun_mesh_stiffness]`` / ``ring_mesh_stiffness`` replaces it); a
     ``[lumped_model]``: that model. Returns (model, excitation name). A pair's gears on
-    shafts are supported by them (:func:`pipeline.run.shafts.support_stiffness`; the 3D
-    superelement read from or written to ``cache``); a planetary set's sun on its shaft and
-    planets on pins likewise (:func:`pipeline.run.planetary_shafts.support_stiffness`).
+    shafts are supported by them and, with ``[dynamics] drive_inertia_kgm2`` /
+    ``load_inertia_kgm2``, tied by their torsion to the motor and the driven machine
+    (:func:`pipeline.run.shafts.support_stiffness`; the 3D superelement read from or written
+    to ``cache``); a planetary set's sun on its shaft and planets on pins are supported by
+    them (:func:`pipeline.run.planetary_shafts.support_stiffness`).
     """
     from pipeline.dynamics.models import planetary_gears as pg
     from pipeline.dynamics.models.spur_pair import spur_pair_model
@@ -194,13 +231,13 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     excitation = None
     if opts.mesh_stiffness is None or opts.friction:
         excitation = mesh_excitation(stages, friction, opts.excitation)
-    supports = (None, None)
+    supports = torsion = (None, None)
     if box.shafts:
         from pipeline.run.shafts import support_stiffness
 
-        supports = support_stiffness(box, cache)
+        supports, torsion = support_stiffness(box, cache)
     model = spur_pair_model(stages.stiffness.actual, (box.bodies["pinion"], box.bodies["gear"]),
-                            box.operation, opts, excitation, supports)
+                            box.operation, opts, excitation, supports, torsion)
     return model, opts.excitation
 
 
@@ -235,5 +272,24 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: Steps) -> Dynamics
         note["text"] = (f"{sweep.frequencies.size} speeds, {sweep.frequencies[0]:.4g}-"
                         f"{sweep.frequencies[-1]:.4g} Hz (operating mesh frequency "
                         f"{operating.mesh_frequency:.4g} Hz)")
+    without = None
+    if box.kind == "pair" and box.shafts and "mesh" in meshes:
+        with log.step("modes and sweep on rigid supports (without the shafts)"):
+            without = without_shafts(box, meshes["mesh"], sweep)
     return DynamicsStages(model, excitation, modes, response, sweep, operating,
-                          opts.sweep.given)
+                          opts.sweep.given, without)
+
+
+def without_shafts(box: Gearbox, stages: Any, sweep: SweepResult) -> WithoutShafts:
+    """The pair's dynamics without its shafts (:class:`WithoutShafts`) over the frequencies
+    of ``sweep``; ``stages`` the pair's static stages with their shaft stage."""
+    opts = dynamics_options(box)
+    plain = dataclasses.replace(box, shafts={}, dynamics=dataclasses.replace(
+        opts, dofs="torsional", drive_inertia=None, load_inertia=None))
+    rigid = stages if stages.shafts is None else dataclasses.replace(
+        stages, contact=stages.shafts.rigid, shafts=None)
+    model, _ = dynamic_model(plain, {"mesh": rigid})
+    system = model.assembly().assemble()
+    return WithoutShafts(analyse_modes(model),
+                         mesh_force_sweep(system, sweep.frequencies, sweep.method,
+                                          opts.sweep.n_harmonics))

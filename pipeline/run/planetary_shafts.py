@@ -207,6 +207,43 @@ class PlanetaryMeshShafts:
                         np.c_[sol.displacement, sol.rotation] @ pin.directions[self.name]))
         return out
 
+    def deflection_columns(self) -> dict[str, np.ndarray]:
+        """The deflection line of each shaft that moves this mesh's flanks, for
+        ``shaft_deflection.csv``: rows by shaft and position along it, m and rad, in the
+        shaft's frame (the sun's: its first planet's mesh frame, y along that line of action
+        away from the planet; a pin's: x along the orbit's tangent, y radially out; z along
+        the shaft from its first end), with each section's retreat along this mesh's line
+        of action."""
+        sun, pin = self.system.sun, self.system.pin
+        parts = []
+        if sun is not None and sun.solution is not None and self.name == "sun_planet":
+            parts.append(("sun", sun.solution, sun.direction))
+        if pin is not None and pin.solution is not None:
+            parts.append(("planet pin", pin.solution, pin.directions[self.name]))
+        cols: dict[str, Any] = {"shaft": np.concatenate([[n] * s.z.size for n, s, _ in parts]),
+                                "z_m": np.concatenate([s.z for _, s, _ in parts])}
+        for i, name in enumerate(("u_x_m", "u_y_m", "u_z_m")):
+            cols[name] = np.concatenate([s.displacement[:, i] for _, s, _ in parts])
+        for i, name in enumerate(("theta_x_rad", "theta_y_rad", "theta_z_rad")):
+            cols[name] = np.concatenate([s.rotation[:, i] for _, s, _ in parts])
+        cols["retreat_along_line_of_action_m"] = np.concatenate(
+            [np.c_[s.displacement, s.rotation] @ d for _, s, d in parts])
+        return cols
+
+    def face_columns(self) -> dict[str, np.ndarray]:
+        """Across this mesh's face, for ``shaft_face.csv``: the face position, the gap (mean
+        taken out), the sun's retreat at the planet the contact takes and the planet's
+        retreat on its pin (with its bearing's), m; the line load the last gap was computed
+        with, N/m."""
+        s = self.system
+        cols: dict[str, np.ndarray] = {"face_position_m": self.z, "gap_m": self.gap}
+        if s.sun is not None and self.name == "sun_planet":
+            cols["sun_retreat_m"] = s.sun.retreats[s.sun.planet]
+        if s.pin is not None:
+            cols["planet_retreat_m"] = s.pin.retreats[self.name]
+        cols["line_load_N_per_m"] = s.line_loads[self.name]
+        return cols
+
     def summary(self) -> dict[str, Any]:
         """This mesh's misalignment and K_Hbeta with and without the shafts, the sun's and
         the pin's deflection (SI; keys carry units)."""

@@ -8,10 +8,13 @@ Y_M 0.7, K_v the larger of the two meshes', as KISSsoft's ``KV = max(KV12, KV23)
 herringbone mesh as one helical half at half the load (ISO 6336-1: b_B of each half).
 What the standard leaves to the analyst comes from the run where it can:
 
-* the face load factor K_Hbeta: ISO 6336-1 method C's (the default,
-  :mod:`pipeline.rating.face_load`), the loaded contact's (the largest over the mean of the
-  cycle-mean line load across the face, :mod:`pipeline.contact.distribution`) with
-  ``face_load_factor = "contact"``, or the number given; the other two are shown beside;
+* the face load factor K_Hbeta: ISO 6336-1 method C's (:mod:`pipeline.rating.face_load`),
+  the loaded contact's (the largest over the mean of the cycle-mean line load across the
+  face, :mod:`pipeline.contact.distribution`) with ``face_load_factor = "contact"``, or the
+  number given; the other two are shown beside. A pair on shafts solves its contact with
+  the shafts' deflection (:mod:`pipeline.run.shafts`; the mesh's contact is that one,
+  :func:`pipeline.run.chain.static_stages`), so its contact K_Hbeta is the system's, and it
+  is the default there (:mod:`pipeline.config.rating`); method C's the default elsewhere;
 * the gear blank factor C_R of a webbed body (:func:`blank_factor`) and K_v's gear mass of
   a webbed gear from its rim;
 * the planets' load sharing K_gamma: the default for the number of planets
@@ -69,6 +72,16 @@ ROLES = {"mesh": ("pinion", "gear"), "sun_planet": ("sun", "planet"),
 """The gear tables rated in each mesh, (pinion, gear)."""
 
 _SOURCE = {"contact": "loaded contact", "method_c": "ISO 6336-1 method C"}
+SHAFT_CONTACT = "loaded contact with the shafts' deflection"
+"""The K_Hbeta source of a mesh whose contact was solved on its shafts."""
+
+
+def k_hbeta_source(choice: str | float, on_shafts: bool) -> str:
+    """The report's name of where K_Hbeta came from: ``face_load_factor``'s ``choice``, the
+    contact solved with the shafts' deflection when ``on_shafts``."""
+    if choice == "contact" and on_shafts:
+        return SHAFT_CONTACT
+    return _SOURCE.get(choice, "given") if isinstance(choice, str) else "given"
 
 
 @dataclass(frozen=True)
@@ -80,8 +93,10 @@ class MeshRating:
     mesh : "mesh", "sun_planet" or "planet_ring".
     gears : the gear tables rated, (pinion, gear).
     rating : every factor (:class:`~pipeline.rating.pair_rating.PairRating`).
-    k_hbeta_source : "ISO 6336-1 method C", "loaded contact" or "given".
-    k_hbeta_contact : the loaded contact's K_Hbeta (-).
+    k_hbeta_source : "ISO 6336-1 method C", "loaded contact", "loaded contact with the
+        shafts' deflection" (:data:`SHAFT_CONTACT`) or "given".
+    k_hbeta_contact : the loaded contact's K_Hbeta (-; with the shafts' deflection when the
+        pair sits on shafts).
     load_sharing_source : "single mesh", "default for N planets", "given" or "computed".
     k_gamma_computed : K_gamma from the dynamic model's planet forces, or None.
     herringbone_half : rated as one helical half at half the load.
@@ -273,7 +288,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                                  root=root, gears=ROLES[name])
             out[name] = MeshRating(
                 name, ROLES[name], rating,
-                _SOURCE.get(opts.face_load_factor, "given"),
+                k_hbeta_source(opts.face_load_factor, meshes[name].shafts is not None),
                 dist.k_hbeta, sharing, computed, half, dist.hertz_max.value,
                 (None, None) if root is None else (root.pinion.max_stress,
                                                    root.gear.max_stress),

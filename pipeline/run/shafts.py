@@ -20,7 +20,10 @@ For a pair whose gears sit on shafts (``[pinion.shaft]``, ``[gear.shaft]``;
 
 The contact on rigid supports (the run's own cycle) is kept beside the coupled one. The
 face positions ``z`` are the contact's; for a right-hand helical pinion they run against the
-shafts' axial coordinate (:func:`pipeline.shaft.misalignment.seat_points`).
+shafts' axial coordinate (:func:`pipeline.shaft.misalignment.seat_points`). ``[operation]
+pinion_rotation`` and the driver pick the loaded flanks: the pinion driving clockwise seen
+from the end the shafts' positions grow towards is the misalignment module's frame, the
+other way its reflection (a helical mesh's hands reversed in the coupling).
 """
 
 from __future__ import annotations
@@ -63,6 +66,9 @@ class ShaftStage:
         computed with (None: spur).
     line_load : (n,) the line load the last gap was computed with, N/m (the cycle-mean one
         of the iteration before the last).
+    reflected : the other flanks load the shafts (the pinion turning counterclockwise, or
+        the gear driving; :mod:`pipeline.shaft.misalignment`): ``mesh`` is the reflected
+        one (its pinion's hand reversed), the retreats' solutions the real shafts' motion.
     """
 
     cycle: LoadedMeshCycle
@@ -75,6 +81,7 @@ class ShaftStage:
     change: float
     mesh: HelicalMesh | None = None
     line_load: np.ndarray | None = None
+    reflected: bool = False
 
     def summary(self) -> dict[str, Any]:
         """The misalignment, the K_Hbeta with and without the shafts, each shaft's seat
@@ -100,6 +107,42 @@ class ShaftStage:
         return out
 
 
+    def deflection_columns(self) -> dict[str, np.ndarray]:
+        """The deflection line of each shaft, for ``shaft_deflection.csv``: rows by shaft
+        and position along it, in the shaft's mesh frame (y along the line of action, away
+        from the mate; z along the shaft from its first end; :mod:`pipeline.shaft.misalignment`),
+        m and rad."""
+        parts = [(role, r.solution) for role, r in zip(("pinion", "gear"), self.retreats,
+                                                       strict=True)
+                 if r is not None and r.solution is not None]
+        cols: dict[str, Any] = {"shaft": np.concatenate([[role] * s.z.size
+                                                         for role, s in parts]),
+                                "z_m": np.concatenate([s.z for _, s in parts])}
+        for i, name in enumerate(("u_x_m", "u_y_line_of_action_m", "u_z_m")):
+            cols[name] = np.concatenate([s.displacement[:, i] for _, s in parts])
+        for i, name in enumerate(("theta_x_rad", "theta_y_rad", "theta_z_rad")):
+            cols[name] = np.concatenate([s.rotation[:, i] for _, s in parts])
+        return cols
+
+    def face_columns(self) -> dict[str, np.ndarray]:
+        """Across the face, for ``shaft_face.csv``: the contact's face position, the gap the
+        shafts open (mean taken out), each gear's flank retreat and its parts (translation
+        u_y, twist r_b theta_z, a helical mesh's axial terms), m; the line load the last gap
+        was computed with, N/m."""
+        cols: dict[str, np.ndarray] = {"face_position_m": self.z, "gap_m": self.gap}
+        for role, r in zip(("pinion", "gear"), self.retreats, strict=True):
+            if r is None:
+                continue
+            cols[f"{role}_retreat_m"] = r.total
+            cols[f"{role}_translation_m"] = r.translation
+            cols[f"{role}_twist_at_base_circle_m"] = r.twist
+            if r.axial is not None:
+                cols[f"{role}_axial_terms_m"] = r.axial
+        if self.line_load is not None:
+            cols["line_load_N_per_m"] = self.line_load
+        return cols
+
+
 def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) -> Any:
     """The shaft model a ``[<gear>.shaft]`` names: the beam with nodes at the face
     ``points`` (m from the face's first end), or the 3D superelement (cached)."""
@@ -114,22 +157,29 @@ def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) 
     return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
 
 
-def support_stiffness(box: Gearbox, cache: Any = None) -> tuple[float | None, float | None]:
-    """Each gear's support stiffness at its seat's centre from its shaft (N/m; bearings and
-    shaft bending in series, the seat free to tilt: ``1 / C_yy`` of the seat flexibility,
-    the same in x and y for round shafts on round bearings), None without a shaft; the 3D
-    superelement read from or written to ``cache``."""
-    out = []
+def support_stiffness(box: Gearbox, cache: Any = None
+                      ) -> tuple[tuple[float | None, float | None],
+                                 tuple[float | None, float | None]]:
+    """Each gear's support at its seat's centre from its shaft, None without a shaft:
+    ((lateral pinion, gear), (torsional pinion, gear)).
+
+    Lateral: N/m, bearings and shaft bending in series, the seat free to tilt: ``1 / C_yy``
+    of the seat flexibility, the same in x and y for round shafts on round bearings.
+    Torsional: N m/rad, the shaft's torsion between the seat's centre and the torque point,
+    ``1 / C_theta_z theta_z``. The 3D superelement is read from or written to ``cache``.
+    """
+    lateral, torsional = [], []
     for role in ("pinion", "gear"):
         spec = box.shafts.get(role)
         if spec is None:
-            out.append(None)
+            lateral.append(None)
+            torsional.append(None)
             continue
         lay = spec[1]
-        model = _model(spec, np.array([]), cache)
-        c = model.flexibility(np.array([lay.gear_position]))
-        out.append(float(1.0 / c[1, 1]))
-    return out[0], out[1]
+        c = _model(spec, np.array([]), cache).flexibility(np.array([lay.gear_position]))
+        lateral.append(float(1.0 / c[1, 1]))
+        torsional.append(float(1.0 / c[5, 5]))
+    return (lateral[0], lateral[1]), (torsional[0], torsional[1])
 
 
 def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftStage | None:
@@ -142,7 +192,8 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
     models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
-    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch))
+    reflected = (box.pinion_rotation == "counterclockwise") != (op.driver == "gear")
+    mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch), reflected)
             if pair.pinion.is_helical or pair.pinion.herringbone else None)
     flex = [None if m is None else m.flexibility(seat_points(m, z, mesh)) for m in models]
     radii = [pair.pinion.base_radius, pair.gear.base_radius]
@@ -176,8 +227,12 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                 mesh = dataclasses.replace(mesh, roll=mean_roll(cycle, b, n, pair.s_pitch))
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
                         f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
+    if reflected:  # the shafts' motion in the real gearbox (misalignment module docstring)
+        retreats = [r if r is None or r.solution is None
+                    else dataclasses.replace(r, solution=r.solution.reflected())
+                    for r in retreats]
     return ShaftStage(cycle, stages.contact, z, gap - approach, approach,
-                      (retreats[0], retreats[1]), iteration, change, used, loaded)
+                      (retreats[0], retreats[1]), iteration, change, used, loaded, reflected)
 
 
 def mean_roll(cycle: LoadedMeshCycle, face_width: float, n: int, empty: float

@@ -15,8 +15,19 @@ the driver (``OperatingPoint.driver``) it is the reaction to the driving torque
 ``P r_b,driver`` (:func:`pipeline.contact.analysis.line_of_action_load`), on the other gear
 it turns it. This is the project's one loaded flank (the "right" flanks of
 :mod:`pipeline.contact.fe3d_source`): the pinion, driving, turns clockwise seen from
-``+z``; the opposite rotation is the same gearbox turned end for end (its shafts' axial
-coordinates mirrored).
+``+z``.
+
+The other rotation
+------------------
+The pinion turning the other way (or the gear driving: the torque, not the motion, picks
+the flank) loads the other flanks, the mirror image of these in the plane through both
+axes. Reflected in that plane (``x -> -x`` of each mesh frame) the gearbox is the one
+above with every hand reversed: the gap across the face is that of the pinion of the
+other hand on the loaded flank (:meth:`HelicalMesh.of` with ``reflected``), and the
+shaft's motion in the real gearbox is the reflected one with ``u_x``, ``theta_y`` and
+``theta_z`` (and the loads ``F_x``, ``M_y``, ``M_z``) negated
+(:meth:`pipeline.shaft.model.ShaftSolution.reflected`; a round shaft on round bearings is
+its own mirror image). A spur pair's gap is the same either way.
 
 Loads
 -----
@@ -147,16 +158,20 @@ class HelicalMesh:
         object.__setattr__(self, "roll", roll)
 
     @classmethod
-    def of(cls, pair: GearPair, roll: np.ndarray) -> HelicalMesh:
+    def of(cls, pair: GearPair, roll: np.ndarray, reflected: bool = False) -> HelicalMesh:
         """The mesh of an external, spur or helical (not herringbone) ``pair`` with the
-        cycle-mean roll coordinates ``roll`` (m) of its face slices."""
+        cycle-mean roll coordinates ``roll`` (m) of its face slices; ``reflected``: the
+        other flanks loaded (module docstring: the pinion's hand reversed)."""
         if pair.gear.internal and pair.pinion.is_helical:
             raise InputError("shafts: the loads of a helical internal pair on its shafts are "
                              "not built; shafts take external helical pairs")
         if pair.pinion.herringbone:
             raise InputError("shafts: a herringbone pair's two halves on shafts are not built "
                              "(the contact takes one half); shafts take spur and helical pairs")
-        return cls(pair.pinion.base_helix_angle, pair.pinion.hand, pair.t1t2, roll)
+        hand = pair.pinion.hand
+        if reflected:
+            hand = {"right": "left", "left": "right"}.get(hand, hand)
+        return cls(pair.pinion.base_helix_angle, hand, pair.t1t2, roll)
 
     @property
     def reversed(self) -> bool:

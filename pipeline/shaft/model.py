@@ -46,6 +46,16 @@ class ShaftSolution:
     reactions: np.ndarray
     torque_reaction: float
 
+    def reflected(self) -> ShaftSolution:
+        """The solution mirrored in the shaft's ``y``-``z`` plane (``x -> -x``): ``u_x``,
+        ``theta_y``, ``theta_z`` and the loads ``F_x``, ``M_y``, ``M_z`` negated (polar
+        vectors flip their x part, axial vectors their y and z parts)."""
+        u = np.array([-1.0, 1.0, 1.0])
+        theta = np.array([1.0, -1.0, -1.0])
+        return ShaftSolution(self.z, self.displacement * u, self.rotation * theta,
+                             self.reactions * np.concatenate([u, theta]),
+                             -self.torque_reaction)
+
 
 class ShaftModel(Protocol):
     """A shaft model: ``"beam"`` (Timoshenko beam FE) or ``"fe3d"`` (Gmsh + scikit-fem,

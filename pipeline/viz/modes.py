@@ -129,7 +129,7 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
             drawn.add(key)
             ls = ":" if p.role == "carrier" else "-"
             ax.add_patch(Circle(p.centre, p.radius, fill=False, ec="0.6", lw=1.0, ls=ls))
-            if layout.schematic or p.role in ("sun", "pinion", "gear", "planet"):
+            if layout.schematic or p.role in ("sun", "pinion", "gear", "planet", "drive", "load"):
                 label = p.name[:-1] if p.side else p.name
                 ax.annotate(label, p.centre, xytext=(0, -3), textcoords="offset points",
                             ha="center", va="top", fontsize=7, color="0.35")

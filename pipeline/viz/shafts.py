@@ -90,3 +90,31 @@ def _line_load_panel(ax2, z_face, rigid, coupled, gap, face_reversed: bool) -> N
     more = tw.get_legend_handles_labels()
     ax2.legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="lower center")
     ax2.set_title("line load across the face", fontsize=9)
+
+
+def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
+                        rigid: np.ndarray, natural: Sequence[float],
+                        natural_rigid: Sequence[float], mesh_frequency: float,
+                        title: str) -> Figure:
+    """The dynamic factor (-) over mesh frequency (Hz) with the shafts and on rigid
+    supports, with each model's natural frequencies (Hz) marked on its own colour and the
+    operating mesh frequency."""
+    fig = new_figure((7.5, 3.6), "constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    f = np.asarray(frequencies)
+    ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
+    ax.plot(f, rigid, "k--", lw=1.4, label="rigid supports")
+    for fn, colour, ls in ((natural, "C3", ":"), (natural_rigid, "k", "-.")):
+        for x in fn:
+            if f[0] <= x <= f[-1]:
+                ax.axvline(x, color=colour, ls=ls, lw=0.8, alpha=0.6)
+    ax.axvline(mesh_frequency, color="C2", lw=1.2, label="operating mesh frequency")
+    ax.set_xlabel("mesh frequency [Hz]")
+    ax.set_ylabel("dynamic factor (largest elastic / mean mesh force) [-]")
+    ax.set_xlim(f[0], f[-1])
+    ax.grid(alpha=0.3)
+    ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
+    ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, rigid supports")
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=9)
+    return fig

@@ -8,6 +8,12 @@ transmission error is ``delta = x_p - x_g + r_bp theta_p - r_bg theta_g``
 ``c = 2 zeta sqrt(k_mean m_e)``, ``m_e = 1 / (r_bp^2 / I_p + r_bg^2 / I_g)``.
 The pinion carries the input torque T_p, the gear the balancing load
 ``T_g = T_p r_bg / r_bp``.
+
+With drive inertias (gears on shafts, :mod:`pipeline.shaft`): a ``drive`` body (the motor's
+rotor, theta only, turning with the pinion) is tied to the pinion by its shaft's torsional
+stiffness between the seat and the torque point, and takes T_p; a ``load`` body (the driven
+machine, turning with the gear) is tied to the gear the same way and takes -T_g. The
+two-inertia frequency of such a shaft is ``sqrt(k_t (J_1 + J_2) / (J_1 J_2)) / 2 pi``.
 """
 
 from __future__ import annotations
@@ -17,7 +23,7 @@ from dataclasses import dataclass
 
 from pipeline.dynamics.assembly import Assembly
 from pipeline.dynamics.bodies import Body
-from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load
+from pipeline.dynamics.couplings import Bearing, FrictionLoad, GearMesh, Load, TorsionalShaft
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure, friction_direction_measure
 from pipeline.dynamics.mesh_input import MeshExcitation
 from pipeline.dynamics.models.planetary import MAX_SPEED, MAX_TORQUE, check_body_range
@@ -61,6 +67,11 @@ class SpurPairModel:
         and it turns the pinion's way. The equations are those of the external pair: each
         rotation is measured in its gear's own sense of rotation, in which both base
         tangent points move the same way along the line of action.
+    inertia_drive, kt_drive : the motor behind the pinion's shaft, kg m^2, and the shaft's
+        torsional stiffness between it and the pinion, N m/rad; both None: the input
+        torque acts on the pinion.
+    inertia_load, kt_load : the driven machine behind the gear's shaft and its shaft's
+        torsional stiffness, likewise.
     """
 
     mesh_stiffness: PeriodicSignal
@@ -84,6 +95,10 @@ class SpurPairModel:
     torsional_only: bool = False
     t1t2: float | None = None
     gear_internal: bool = False
+    inertia_drive: float | None = None
+    kt_drive: float | None = None
+    inertia_load: float | None = None
+    kt_load: float | None = None
 
     def __post_init__(self) -> None:
         check_int_range("pinion_teeth", self.pinion_teeth, 5, 10_000)
@@ -98,6 +113,25 @@ class SpurPairModel:
                         unit="N/m")
         check_range("bearing_damping", self.bearing_damping, 0.0, 1e9, unit="N s/m")
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0)
+        for name in ("drive", "load"):
+            inertia, k_t = getattr(self, f"inertia_{name}"), getattr(self, f"kt_{name}")
+            if inertia is not None:
+                check_body_range(f"inertia_{name}", inertia)
+            if k_t is not None:
+                check_range(f"kt_{name}", k_t, 0.0, 1e14, lo_open=True, unit="N m/rad")
+            if (inertia is None) != (k_t is None):
+                raise InputError(f"inertia_{name} and kt_{name} go together: the {name} "
+                                 "inertia sits behind a shaft of that torsional stiffness")
+
+    @property
+    def drive(self) -> tuple[float, float] | None:
+        """(inertia kg m^2, torsional stiffness N m/rad) of the motor, or None."""
+        return None if self.inertia_drive is None else (self.inertia_drive, self.kt_drive)
+
+    @property
+    def load(self) -> tuple[float, float] | None:
+        """(inertia kg m^2, torsional stiffness N m/rad) of the driven machine, or None."""
+        return None if self.inertia_load is None else (self.inertia_load, self.kt_load)
 
     @property
     def mesh_period(self) -> float:
@@ -142,11 +176,20 @@ class SpurPairModel:
                         {"x": self.bearing_damping, "y": self.bearing_damping},
                     )
                 )
+        bodies = [p, g]
+        torque_on = {"pinion": "pinion", "gear": "gear"}
+        for name, gear, given in (("drive", "pinion", self.drive), ("load", "gear", self.load)):
+            if given is not None:
+                bodies.append(Body(name, 0.0, given[0], ("theta",)))
+                couplings.append(TorsionalShaft(name, gear, given[1]))
+                torque_on[gear] = name
         loads = [
-            Load("pinion", "theta", self.torque),
-            Load("gear", "theta", -self.torque * self.base_radius_gear / self.base_radius_pinion),
+            Load(torque_on["pinion"], "theta", self.torque),
+            Load(torque_on["gear"], "theta",
+                 -self.torque * self.base_radius_gear / self.base_radius_pinion),
         ]
-        return Assembly((p, g), couplings, loads, period=self.mesh_period, name="spur-pair")
+        return Assembly(tuple(bodies), couplings, loads, period=self.mesh_period,
+                        name="spur-pair")
 
 
 def spur_pair_model(
@@ -156,6 +199,7 @@ def spur_pair_model(
     options: PairDynamicsOptions,
     excitation: MeshExcitation | None = None,
     supports: tuple[float | None, float | None] = (None, None),
+    torsion: tuple[float | None, float | None] = (None, None),
 ) -> SpurPairModel:
     """The lateral-torsional (or torsional) model of a pair, everything derived from geometry.
 
@@ -174,6 +218,9 @@ def spur_pair_model(
         state ``k (x_s - e) = P``), so an explicit ``options.mesh_stiffness`` drops it.
     supports : the pinion's and the gear's support stiffness at the seat from their shafts
         (N/m, :mod:`pipeline.shaft`), or None for ``options.bearing_stiffness``.
+    torsion : the pinion's and the gear's shaft torsional stiffness between the seat and the
+        torque point (N m/rad), or None (no shaft); with ``options.drive_inertia`` /
+        ``options.load_inertia`` they tie the motor and the driven machine to the gears.
     """
     if operation.driver != "pinion":
         raise InputError("operation.driver = 'gear': the pair dynamic model drives the pinion; "
@@ -187,6 +234,14 @@ def spur_pair_model(
         k, te = excitation.stiffness, excitation.transmission_error
     friction = options.friction and excitation is not None and excitation.has_friction
     pb, gb = bodies
+    drives = []
+    for key, inertia, k_t in (("drive_inertia_kgm2", options.drive_inertia, torsion[0]),
+                              ("load_inertia_kgm2", options.load_inertia, torsion[1])):
+        if inertia is not None and k_t is None:
+            shaft = "pinion" if key.startswith("drive") else "gear"
+            raise InputError(f"dynamics.{key} needs [{shaft}.shaft]: the torsional stiffness "
+                             f"between it and the {shaft} is its shaft's")
+        drives.append((inertia, None if inertia is None else k_t))
     return SpurPairModel(
         mesh_stiffness=k,
         pinion_teeth=pair.pinion.teeth,
@@ -210,4 +265,8 @@ def spur_pair_model(
         torsional_only=options.dofs == "torsional",
         t1t2=pair.t1t2,
         gear_internal=pair.gear.internal,
+        inertia_drive=drives[0][0],
+        kt_drive=drives[0][1],
+        inertia_load=drives[1][0],
+        kt_load=drives[1][1],
     )
