@@ -62,7 +62,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.config import Gearbox
-from pipeline.contact.analysis import analyse_contact, line_of_action_load
+from pipeline.contact.analysis import analyse_contact, line_of_action_load, warn_physics
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
@@ -495,6 +495,8 @@ def planetary_shaft_stage(box: Gearbox, stages: Mapping[str, Any], options: Any,
                                            / np.abs(w_new[m]).max()))
             w = w_new
         sun, pin = system.solved(used, sun, pin)
+        for m in MESHES:  # once, for the cycles the fixed point keeps
+            warn_physics(cycles[m])
         note["text"] = (f"{iteration} iterations; misalignment "
                         + ", ".join(f"{m} {np.ptp(gaps[m]) * 1e6:.3g} um (K_Hbeta "
                                     f"{dists[m].k_hbeta:.3f})" for m in MESHES))
@@ -519,7 +521,7 @@ def _contact(box: Gearbox, stages: Any, gap: np.ndarray, z: np.ndarray,
     if name not in sources:
         sources[name] = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                           cache=options.cache, model=stages.stiffness.model)
-    cycle = analyse_contact(sources[name], op, opts)
+    cycle = analyse_contact(sources[name], op, opts, warn=False)
     return cycle, load_distribution(cycle, pair, op)
 
 

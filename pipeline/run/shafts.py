@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.config import Gearbox
-from pipeline.contact.analysis import analyse_contact, line_of_action_load
+from pipeline.contact.analysis import analyse_contact, line_of_action_load, warn_physics
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
@@ -218,13 +218,14 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
             if source is None:
                 source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                            cache=options.cache, model=stages.stiffness.model)
-            cycle = analyse_contact(source, op, opts)
+            cycle = analyse_contact(source, op, opts, warn=False)
             dist = load_distribution(cycle, pair, op)
             w_new = np.interp(z, dist.z, dist.cycle_mean)
             change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
             w = w_new
             if mesh is not None:
                 mesh = dataclasses.replace(mesh, roll=mean_roll(cycle, b, n, pair.s_pitch))
+        warn_physics(cycle)  # once, for the cycle the fixed point keeps
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
                         f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
     if reflected:  # the shafts' motion in the real gearbox (misalignment module docstring)
