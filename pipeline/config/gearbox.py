@@ -682,8 +682,10 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                                                               and box.shafts):
         raise InputError(f'operation.pinion_rotation = "{rotation}" sets which flanks load '
                          "a pair's shafts; this file has no [pinion.shaft] or [gear.shaft]")
-    for key, role, what in (("drive_inertia_kgm2", "pinion", "motor"),
-                            ("load_inertia_kgm2", "gear", "driven machine")):
+    drives = ((("drive_inertia_kgm2", "pinion", "motor"),
+               ("load_inertia_kgm2", "gear", "driven machine")) if box.kind == "pair"
+              else (("drive_inertia_kgm2", "sun", "motor"),))
+    for key, role, what in drives:
         if key in doc.get("dynamics", {}) and role not in box.shafts:
             raise InputError(f"dynamics.{key} needs [{role}.shaft]: the {what} is tied to the "
                              f"{role} by its shaft's torsion")

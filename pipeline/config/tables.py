@@ -354,6 +354,8 @@ DYNAMICS_PLANETARY = (
     Key("sun_load_side", S, choices=("both", "L", "R")),
     Key("damping_ratio", N),
     Key("modal_damping_ratio", N),
+    Key("drive_inertia_kgm2", N,
+        help="the motor's inertia at the sun shaft's torque point (needs [sun.shaft])"),
     Key("excitation", S, choices=EXCITATIONS,
         help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
 )

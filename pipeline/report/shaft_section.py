@@ -1,6 +1,6 @@
 """The shafts sections of a mesh report: their deflection, the misalignment it opens across
 the face and the line load with and without it; the dynamics with the shafts beside the
-same on rigid supports."""
+same without them."""
 
 from __future__ import annotations
 
@@ -107,8 +107,8 @@ def planetary_shaft_section(stage: Any, figures: Sequence[Figure]) -> Section:
 
 
 def shaft_dynamics_section(summary: Mapping[str, Any], figures: Sequence[Figure]) -> Section:
-    """Natural frequencies and the sweep's largest dynamic factor with the shafts and on
-    rigid supports, from the run's dynamics summary
+    """Natural frequencies and the sweep's largest dynamic factor with the shafts and without
+    them, from the run's dynamics summary
     (:meth:`pipeline.run.dynamics.DynamicsStages.summary` with its ``without_shafts``)."""
     rigid = summary["without_shafts"]
     with_fn = summary["natural_frequencies_Hz"]
@@ -126,13 +126,15 @@ def shaft_dynamics_section(summary: Mapping[str, Any], figures: Sequence[Figure]
                              "Hz", sweep["max_dynamic_factor_at_Hz"][mesh],
                              rigid["max_dynamic_factor_at_Hz"][mesh]))
     notes = ("With the shafts each gear is held at its seat by its shaft (bearings and shaft "
-             "bending in series, 1 / C_yy of the seat flexibility) and, where [dynamics] "
-             "gives a motor's or a driven machine's inertia, tied to it by the shaft's "
-             "torsion between the seat and the torque point (1 / C_theta_z theta_z); its "
-             "mesh is excited by the contact with the shafts' misalignment. On rigid supports: "
-             "the gears' rotations only, no motor or machine, the contact on rigid supports. "
-             "The natural frequencies are the elastic ones up to the cut of the dynamics "
-             "section; a dash: the model has fewer.",)
-    return Section("shaft_dynamics", "Dynamics with the shafts and on rigid supports",
-                   tuple(rows), columns=("with the shafts", "rigid supports"),
+             "bending in series, 1 / C_yy of the seat flexibility; a planet by its pin and "
+             "its bearing in series) and, where [dynamics] gives a motor's or a driven "
+             "machine's inertia, tied to it by the shaft's torsion between the seat and the "
+             "torque point (1 / C_theta_z theta_z); the meshes are excited by the contact with "
+             "the shafts' misalignment. Without the shafts: the same file without its shaft "
+             "tables, its supports the typed [dynamics] bearing stiffnesses or their defaults, "
+             "no motor or machine, the contact on rigid supports. The natural frequencies are "
+             "the elastic ones up to the cut of the dynamics section; a dash: the model has "
+             "fewer.",)
+    return Section("shaft_dynamics", "Dynamics with and without the shafts",
+                   tuple(rows), columns=("with the shafts", "without the shafts"),
                    figures=tuple(figures), notes=notes)

@@ -176,7 +176,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
         if result.dynamics.without_shafts is not None:
-            sections.append(_shaft_dynamics_section(result.dynamics, summary, fig, title))
+            sections.append(_shaft_dynamics_section(result.dynamics, summary, name, fig,
+                                                    title))
     if result.rating is not None:
         sections += _rating_sections(result.rating, name, fig, title, actual.gear.internal)
     run_s = result.log.summary()["total_s"]
@@ -215,18 +216,25 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
                          {role: spec[0] for role, spec in box.shafts.items()})
 
 
-def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], fig, title: str):
-    """The dynamics with the shafts and on rigid supports, with the figure of both sweeps."""
+def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], name: str, fig,
+                            title: str):
+    """The dynamics with and without the shafts, with the figure of both sweeps for this
+    report's mesh (a planetary set's: its first planet's)."""
+    from pipeline.dynamics.mesh_names import planet_meshes
     from pipeline.report.shaft_section import shaft_dynamics_section
     from pipeline.viz.shafts import plot_shaft_dynamics
 
     sweep, rigid = dynamics.sweep, dynamics.without_shafts
-    f = fig("report_shaft_dynamics.png", "Dynamic factor over mesh frequency with the shafts "
-            "and on rigid supports, with the natural frequencies of each",
-            plot_shaft_dynamics, sweep.frequencies, sweep.dynamic_factor[0],
-            rigid.sweep.dynamic_factor[0], summary["natural_frequencies_Hz"],
+    meshes = planet_meshes(sweep.mesh_names, name).get("", {})
+    shown = meshes[min(meshes)] if meshes else sweep.mesh_names[0]
+    i = sweep.mesh_names.index(shown)
+    tag = "" if shown == "mesh" else f" (mesh {shown})"
+    f = fig("report_shaft_dynamics.png", f"Dynamic factor over mesh frequency{tag} with and "
+            "without the shafts, with the natural frequencies of each",
+            plot_shaft_dynamics, sweep.frequencies, sweep.dynamic_factor[i],
+            rigid.sweep.dynamic_factor[i], summary["natural_frequencies_Hz"],
             summary["without_shafts"]["natural_frequencies_Hz"],
-            dynamics.operating.mesh_frequency, title)
+            dynamics.operating.mesh_frequency, title + tag)
     return shaft_dynamics_section(summary, [f])
 
 

@@ -67,8 +67,7 @@ from pipeline.contact.compliance import compliance_source
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.progress import Steps
-from pipeline.run.shafts import MAX_ITERATIONS, TOLERANCE
-from pipeline.shaft.beam import BeamShaft
+from pipeline.run.shafts import MAX_ITERATIONS, TOLERANCE, seat_flexibility, shaft_model
 from pipeline.shaft.misalignment import (
     body_retreats,
     planet_unit_loads,
@@ -292,16 +291,6 @@ def face_points(lay: Any, face_width: float, n: int) -> tuple[np.ndarray, np.nda
     return z, lay.gear_position + z - 0.5 * face_width
 
 
-def _model(spec: tuple[str, Any], points: np.ndarray, cache: Any = None) -> ShaftModel:
-    """The model a ``[<gear>.shaft]`` names, the beam with nodes at ``points`` (m)."""
-    model, layout = spec
-    if model == "fe3d":
-        from pipeline.shaft.fe3d import Fe3dShaft
-
-        return Fe3dShaft(layout) if cache is None else Fe3dShaft(layout, cache=cache)
-    return BeamShaft(layout, extra_nodes=tuple(float(p) for p in points))
-
-
 def sun_unit_loads(base_radius: float, angles: Sequence[float], n: int) -> list[np.ndarray]:
     """Each sun-planet mesh's unit loads (n, 6) on the sun in the first mesh's frame: the
     pair's ``(0, 1, 0, 0, 0, r_b)`` turned by ``psi_k - psi_0`` (module docstring)."""
@@ -440,7 +429,7 @@ def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any =
     if "sun" in box.shafts:
         spec = box.shafts["sun"]
         _, points = face_points(spec[1], widths["sun_planet"], n)
-        model = _model(spec, points, cache)
+        model = shaft_model(spec, points, cache)
         index = np.arange(n)
         sun = LoadedShaft(model, points, model.flexibility(points),
                           tuple(("sun_planet", u, index) for u in
@@ -449,7 +438,7 @@ def build_system(box: Gearbox, widths: Mapping[str, float], n: int, cache: Any =
         spec = box.shafts["planet"]
         per_mesh = {m: np.round(face_points(spec[1], widths[m], n)[1], 12) for m in MESHES}
         points = np.unique(np.concatenate(list(per_mesh.values())))
-        model = _model(spec, points)
+        model = shaft_model(spec, points)
         angles = (ps.sun_planet.operating_pressure_angle,
                   ps.planet_ring.operating_pressure_angle)
         pin = LoadedShaft(model, points, model.flexibility(points),
@@ -525,21 +514,26 @@ def _contact(box: Gearbox, stages: Any, gap: np.ndarray, z: np.ndarray,
     return cycle, load_distribution(cycle, pair, op)
 
 
-def support_stiffness(box: Gearbox, cache: Any = None) -> tuple[float | None, float | None]:
+def support_stiffness(box: Gearbox, cache: Any = None
+                      ) -> tuple[float | None, float | None, float | None]:
     """The sun's and a planet's support stiffness from their shafts (N/m; None without one):
     the sun's ``1 / C_yy`` of its seat's centre (bearings and bending in series, the seat
     free to tilt), a planet's pin the same in series with the planet bearing,
-    ``1 / (C_yy + 1 / k_pb)``; the 3D superelement read from or written to ``cache``."""
+    ``1 / (C_yy + 1 / k_pb)``; and the sun shaft's torsional stiffness between its seat's
+    centre and its torque point, ``1 / C_theta_z theta_z`` (N m/rad; None without a sun
+    shaft). The 3D superelement read from or written to ``cache``."""
     out: list[float | None] = []
+    torsion = None
     for role in ("sun", "planet"):
         spec = box.shafts.get(role)
         if spec is None:
             out.append(None)
             continue
-        lay = spec[1]
-        model = _model(spec, np.array([]), cache if role == "sun" else None)
-        c = float(model.flexibility(np.array([lay.gear_position]))[1, 1])
+        flex = seat_flexibility(spec, cache if role == "sun" else None)
+        c = float(flex[1, 1])
         if role == "planet":
             c += 1.0 / box.planet_bearing_stiffness
+        else:
+            torsion = float(1.0 / flex[5, 5])
         out.append(1.0 / c)
-    return out[0], out[1]
+    return out[0], out[1], torsion

@@ -96,14 +96,14 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
                         rigid: np.ndarray, natural: Sequence[float],
                         natural_rigid: Sequence[float], mesh_frequency: float,
                         title: str) -> Figure:
-    """The dynamic factor (-) over mesh frequency (Hz) with the shafts and on rigid
-    supports, with each model's natural frequencies (Hz) marked on its own colour and the
-    operating mesh frequency."""
+    """The dynamic factor (-) over mesh frequency (Hz) with the shafts and without them, with
+    each model's natural frequencies (Hz) marked in its own colour and the operating mesh
+    frequency."""
     fig = new_figure((7.5, 3.6), "constrained")
     ax = fig.add_subplot(1, 1, 1)
     f = np.asarray(frequencies)
     ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
-    ax.plot(f, rigid, "k--", lw=1.4, label="rigid supports")
+    ax.plot(f, rigid, "k--", lw=1.4, label="without the shafts")
     for fn, colour, ls in ((natural, "C3", ":"), (natural_rigid, "k", "-.")):
         for x in fn:
             if f[0] <= x <= f[-1]:
@@ -114,7 +114,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     ax.set_xlim(f[0], f[-1])
     ax.grid(alpha=0.3)
     ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
-    ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, rigid supports")
+    ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, without the shafts")
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)
     return fig

@@ -211,6 +211,7 @@ def planetary_model_from_gears(
     options: PlanetaryDynamicsOptions,
     sun_excitation: MeshExcitation,
     ring_excitation: MeshExcitation,
+    drive_torsion: float | None = None,
 ) -> PlanetaryModel:
     """The planar planetary model (Lin and Parker 1999) of a set, derived from its gears.
 
@@ -224,7 +225,13 @@ def planetary_model_from_gears(
     sun_excitation, ring_excitation : k(tau) (N/m) and e(tau) (m) of one sun-planet and one
         planet-ring mesh along the transverse line of action, signals starting at the
         start of contact (e.g. from :func:`mesh_operations` and the contact analysis).
+    drive_torsion : the sun shaft's torsional stiffness between its seat and its torque
+        point, N m/rad (:mod:`pipeline.shaft`), tying ``options.drive_inertia`` (the motor)
+        to the sun; None: no shaft.
     """
+    if options.drive_inertia is not None and drive_torsion is None:
+        raise InputError("dynamics.drive_inertia_kgm2 needs [sun.shaft]: the torsional "
+                         "stiffness between it and the sun is its shaft's")
     if options.herringbone_keys:
         raise InputError(f"dynamics.{options.herringbone_keys[0]} applies to a herringbone "
                          "set; this planetary set has no herringbone gears")
@@ -233,6 +240,8 @@ def planetary_model_from_gears(
         k_sun_mesh=sun_excitation.stiffness, k_ring_mesh=ring_excitation.stiffness,
         e_sun_mesh=sun_excitation.transmission_error,
         e_ring_mesh=ring_excitation.transmission_error,
+        inertia_drive=options.drive_inertia,
+        kt_drive=None if options.drive_inertia is None else drive_torsion,
     )
 
 
