@@ -260,3 +260,16 @@ def test_the_rotation_needs_shafts():
                                          r"sets which flanks load a pair's shafts"):
         gearbox_from_text(DEMO_PAIR.replace("[operation]\n", '[operation]\npinion_rotation = '
                                             '"counterclockwise"\n') + FAST)
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_fixed_point_that_does_not_settle_is_one_line(tmp_path, monkeypatch):
+    """Allowed one iteration, the overhung pinion's fixed point (which needs 3) stops with
+    one line naming the iteration and the last change of the line load."""
+    import pipeline.run.shafts as shafts
+
+    monkeypatch.setattr(shafts, "MAX_ITERATIONS", 1)
+    with pytest.raises(InputError, match=r"^shafts: the line load still changes by [0-9.e-]+ "
+                                         r"\(relative\) after iteration 1; the shafts and the "
+                                         r"mesh do not settle$"):
+        _run(_shaft(60.0, (20.0, 40.0)), tmp_path)
