@@ -41,6 +41,7 @@ class ModificationMap:
     Attributes
     ----------
     role : "pinion" or "gear".
+    base_radius : its base radius r_b, m (diameter ``2 sqrt(roll^2 + r_b^2)``).
     face : (nf,) face positions z_i (its own face coordinate), m.
     roll : (nr,) roll lengths of its active flank, ascending, m.
     diameter : (nr,) the diameters there, m.
@@ -48,6 +49,7 @@ class ModificationMap:
     """
 
     role: str
+    base_radius: float
     face: np.ndarray
     roll: np.ndarray
     diameter: np.ndarray
@@ -72,5 +74,5 @@ def _map(frame: FlankFrame, mod: GearModification, b: float, n_face: int,
     s, roll = s[order], roll[order]
     z = np.linspace(0.0, b, n_face)
     ss, zz = np.meshgrid(s, z)
-    return ModificationMap(frame.role, z + frame.face_shift, roll, frame.diameter(s),
+    return ModificationMap(frame.role, frame.base_radius, z + frame.face_shift, roll, frame.diameter(s),
                            mod.deviation(frame, ss, zz))
