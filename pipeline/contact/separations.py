@@ -157,10 +157,6 @@ class FlankModifications:
             out.append(GearModification(profile=profile, lead=lead))
         return out[0], out[1]
 
-    def tip_relief_of(self, role: str) -> float:
-        """C_a (m) of the ``role`` ("pinion" or "gear") of the mesh, 0 without."""
-        return self.flanks[("pinion", "gear").index(role)].profile.tip_relief
-
     def check_fits(self, pair: GearPair, mesh: str = "") -> None:
         """Refuse a relief length longer than the path of contact of ``pair`` (named
         ``mesh`` in the message when given), and each gear's modifications outside its
