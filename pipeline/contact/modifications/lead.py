@@ -68,8 +68,8 @@ class LeadModification:
                                  f"end_relief_{face} = {amount:.6g} m needs a length > 0 m")
             if amount == 0.0 and length > 0.0:
                 raise InputError(f"modifications.end_relief_{face}_length = {length:.6g} m "
-                                 f"changes nothing without modifications.end_relief_{face} "
-                                 "> 0 m")
+                                 "changes nothing without an amount modifications."
+                                 f"end_relief_{face}")
 
     @property
     def is_zero(self) -> bool:

@@ -92,7 +92,7 @@ class ProfileModification:
             if amount == 0.0 and given:
                 raise InputError(f"modifications.{end}_relief_{given[0]} = "
                                  f"{length if length is not None else diameter:.6g} m changes "
-                                 f"nothing without modifications.{end}_relief > 0 m")
+                                 f"nothing without an amount modifications.{end}_relief")
         check_range("modifications.profile_crowning", self.crowning, 0.0, MAX_AMOUNT, unit="m")
         check_range("modifications.profile_slope", self.slope, -MAX_AMOUNT, MAX_AMOUNT, unit="m")
 
