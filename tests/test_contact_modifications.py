@@ -28,8 +28,9 @@ from gearsets import spur
 from helpers import UniformSlices
 
 from pipeline.config.modifications import read_topography
-from pipeline.contact.compliance import compliance_source
 from pipeline.contact.analysis import analyse_contact
+from pipeline.contact.compliance import compliance_source
+from pipeline.contact.distribution import load_distribution
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.contact.modifications import (
     GearModification,
@@ -37,11 +38,10 @@ from pipeline.contact.modifications import (
     ProfileModification,
     flank_frames,
     modification_gap,
+    shapes,
 )
-from pipeline.contact.modifications import shapes
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.distribution import load_distribution
 from pipeline.contact.source import ContactPoints
 from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
@@ -294,11 +294,6 @@ def test_grid_checked_where_it_enters(tmp_path, spur_pair_z50):
         read_topography(path, "pinion.modifications.topography_csv")
 
 
-def _gap_slices(pair, mods, z):
-    fp, _ = flank_frames(pair)
-    return modification_gap(pair, np.full(z.size, pair.s_pitch), z, mods.flanks)
-
-
 def test_crowning_under_a_slope_lowers_k_hbeta_in_closed_form():
     """Independent slices of uniform stiffness c0 (local contact left out): the line load is
     n c0 (delta - g(z)), so K_Hbeta = 1 + n c0 (mean g - min g) / w_m over the slice
@@ -310,17 +305,18 @@ def test_crowning_under_a_slope_lowers_k_hbeta_in_closed_form():
     w_m = load / pair.face_width
     z = (np.arange(slices) + 0.5) * pair.face_width / slices
     results = {}
-    for name, mods in (
+    x = 2 * z / pair.face_width - 1
+    for name, mods, g in (
             ("slope", FlankModifications(pinion_flank=GearModification(
-                lead=LeadModification(slope=15 * UM)))),
+                lead=LeadModification(slope=15 * UM))), 15 * UM * x / 2),
             ("slope_and_crowning", FlankModifications(
                 pinion_flank=GearModification(lead=LeadModification(slope=15 * UM)),
-                gear_flank=GearModification(lead=LeadModification(crowning=10 * UM))))):
+                gear_flank=GearModification(lead=LeadModification(crowning=10 * UM))),
+             15 * UM * x / 2 + 10 * UM * x**2)):
         cyc = loaded_mesh_cycle(UniformSlices(pair, slices, c0), load, mods, "none", 24)
         dist = load_distribution(cyc, pair, OperatingPoint(torque=torque, speed=100.0))
         _, inside = pair.pair_positions(cyc.s0)
         n = inside.sum(axis=1)
-        g = _gap_slices(pair, mods, z)
         assert np.all(n * c0 * (g.max() - g.min()) < w_m)  # the whole face carries load
         np.testing.assert_allclose(dist.k_hbeta_position,
                                    1.0 + n * c0 * (g.mean() - g.min()) / w_m, rtol=1e-9)

@@ -74,5 +74,5 @@ def _map(frame: FlankFrame, mod: GearModification, b: float, n_face: int,
     s, roll = s[order], roll[order]
     z = np.linspace(0.0, b, n_face)
     ss, zz = np.meshgrid(s, z)
-    return ModificationMap(frame.role, frame.base_radius, z + frame.face_shift, roll, frame.diameter(s),
-                           mod.deviation(frame, ss, zz))
+    return ModificationMap(frame.role, frame.base_radius, z + frame.face_shift, roll,
+                           frame.diameter(s), mod.deviation(frame, ss, zz))
