@@ -13,6 +13,10 @@ point and optional tables per stage. Which gear tables it has says what it is:
 * a **lumped model** from a publication that gives masses and stiffnesses but no
   tooth geometry: ``[lumped_model]`` (:mod:`pipeline.config.lumped`).
 
+A pair's gears may hold their flank modifications, ``[pinion.modifications]`` and
+``[gear.modifications]`` (:mod:`pipeline.config.modifications`); ``[contact]``'s tip relief,
+crowning and slope keys are their short form.
+
 Stage tables: ``[operation]``, ``[stiffness]``, ``[contact]``, ``[fe]``,
 ``[groove]``, ``[dynamics]`` (with ``[dynamics.response]``, ``[dynamics.sweep]``
 and an optional ``[dynamics.mesh_stiffness]``). Keys carry their unit in their
