@@ -184,9 +184,10 @@ class FlankModifications:
     def describe(self) -> str:
         """One line for titles and reports, in the gearbox file's units (um, mm), e.g.
         ``"tip relief pinion 15 um over 8.1 mm (linear), crowning 8 um"``, or ``"none"``."""
-        parts = [f"{who}: {text}" for who, m in zip(("pinion", "gear"), self.flanks,
+        gears = [f"{who}: {text}" for who, m in zip(("pinion", "gear"), self.flanks,
                                                       strict=True)
                  if not self.has_short_form and (text := m.describe())]
+        parts = ["; ".join(gears)] if gears else []
         parts += [f"tip relief {who} {amount * 1e6:.3g} um over {length * 1e3:.3g} mm "
                  f"({self.relief_shape})"
                  for who, amount, length in (

@@ -3,7 +3,7 @@
 One panel per gear (:class:`~pipeline.contact.modifications.ModificationMap`): face position
 ``b_z`` [mm] (the gear's own face coordinate, face 1 left) across, roll length [mm] up (tip
 up), the diameter [mm] on the right-hand axis; colour and labelled contour lines = material
-removed [um] (positive: removed; the colour scale is shared by both panels).
+removed [um] (positive: removed), each panel on its own colour scale.
 """
 
 from __future__ import annotations
@@ -28,17 +28,15 @@ def plot_modification_maps(maps: Sequence[ModificationMap], title: str,
                            internal: Sequence[bool] = ()) -> Figure:
     """The flanks' modification maps side by side (module docstring); ``internal`` says
     which gears are internal (their tip is the small diameter: tip down)."""
-    fig = new_figure((4.2 * len(maps) + 1.2, 4.4), "constrained")
+    fig = new_figure((5.2 * len(maps), 4.4), "constrained")
     axes = fig.subplots(1, len(maps), squeeze=False)[0]
-    values = np.concatenate([m.deviation.ravel() for m in maps]) * UM
-    lo, hi = float(values.min()), float(values.max())
-    if hi - lo < 1e-9:  # a flat map: a band around its value
-        lo, hi = lo - 0.5, hi + 0.5
-    levels = MaxNLocator(nbins=24).tick_values(lo, hi)  # round numbers of um
-    mesh = None
     for k, (ax, m) in enumerate(zip(axes, maps, strict=True)):
         z, roll, w = m.face * MM, m.roll * MM, m.deviation * UM
-        mesh = ax.contourf(z, roll, w.T, levels=levels, cmap="viridis")
+        lo, hi = float(w.min()), float(w.max())
+        if hi - lo < 1e-9:  # a flat map: a band around its value
+            lo, hi = lo - 0.5, hi + 0.5
+        levels = MaxNLocator(nbins=24).tick_values(lo, hi)  # round numbers of um
+        filled = ax.contourf(z, roll, w.T, levels=levels, cmap="viridis")
         lines = ax.contour(z, roll, w.T, levels=levels[::2], colors="k", linewidths=0.5)
         ax.clabel(lines, fontsize=7, fmt="%g")
         ax.set_xlabel(f"{m.role} face position b_z [mm]")
@@ -52,6 +50,6 @@ def plot_modification_maps(maps: Sequence[ModificationMap], title: str,
                                                                  0.0, None))))
         right.set_ylabel(f"{m.role} diameter [mm]")
         ax.set_title(f"{m.role} flank (active part)", fontsize=9)
-    fig.colorbar(mesh, ax=list(axes), label="material removed [um]", shrink=0.9)
+        fig.colorbar(filled, ax=ax, label="material removed [um]", shrink=0.9, pad=0.02)
     fig.suptitle(title, fontsize=9)
     return fig
