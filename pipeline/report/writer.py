@@ -119,10 +119,13 @@ def _modification_figures(contact: Any, pair: Any, fig, title: str) -> list[Figu
     flanks = contact.modifications.flanks
     if all(m.is_zero for m in flanks):
         return []
-    maps = modification_maps(pair, flanks)
-    return [fig("report_modifications.png", "Modification map of each flank: material "
-                "removed [um] over face position and roll length", plot_modification_maps,
-                maps, f"{title}: flank modifications", (False, pair.gear.internal))]
+    drawn = [(m, internal) for m, mod, internal in zip(
+        modification_maps(pair, flanks), flanks, (False, pair.gear.internal), strict=True)
+        if not mod.is_zero]  # an unmodified flank has no map to show
+    return [fig("report_modifications.png", "Modification map of each modified flank: "
+                "material removed [um] over face position and roll length",
+                plot_modification_maps, [m for m, _ in drawn], f"{title}: flank modifications",
+                [i for _, i in drawn])]
 
 
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,

@@ -27,7 +27,8 @@ UM = 1e6
 def plot_modification_maps(maps: Sequence[ModificationMap], title: str,
                            internal: Sequence[bool] = ()) -> Figure:
     """The flanks' modification maps side by side (module docstring); ``internal`` says
-    which gears are internal (their tip is the small diameter: tip down)."""
+    which gears are internal (their tip is the small diameter: the roll-length axis is
+    inverted so that every tip is up)."""
     fig = new_figure((5.2 * len(maps), 4.4), "constrained")
     axes = fig.subplots(1, len(maps), squeeze=False)[0]
     for k, (ax, m) in enumerate(zip(axes, maps, strict=True)):

@@ -49,7 +49,7 @@ class Topography:
     profile: np.ndarray
     values: np.ndarray
     axis: str = "roll_length"
-    source: str = "topography"
+    source: str = "grid"
 
     def __post_init__(self) -> None:
         if self.axis not in AXES:
