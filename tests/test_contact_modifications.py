@@ -355,3 +355,27 @@ def test_light_load_transmission_error_follows_the_reliefs_harris():
         harris = c * (1.0 - d / (2.0 * length))
         step = (c / length) * pair.base_pitch / 400  # sampling: the peak is a tent of slope C/L
         assert np.ptp(cyc.transmission_error) == pytest.approx(harris, abs=step + 2 * elastic)
+
+
+def test_internal_gear_in_its_own_coordinates():
+    """A ring (internal gear, 80 teeth) against a 30-tooth planet: its roll length is
+    |rho_2| = T1T2 + s, its tip the small diameter at s_start; a linear tip relief from a
+    start diameter and a parabolic root relief by roll length against their formulas."""
+    pair = GearPair(spur(30, "pinion"), spur(80, "gear", internal=True, bore_radius=0.13575))
+    g = pair.gear
+    s, z = _flank_points(pair)
+    rho2 = pair.t1t2 + s
+    rho_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
+    assert rho_tip == pytest.approx(pair.t1t2 + pair.s_start, rel=1e-12)
+    rho_a = rho_tip + 2.5 * MM
+    rho_sap = pair.t1t2 + pair.s_end
+    ring = GearModification(profile=ProfileModification(
+        tip_relief=15 * UM, tip_relief_diameter=2 * math.hypot(rho_a, g.base_radius),
+        root_relief=5 * UM, root_relief_length=2 * MM, root_relief_shape="parabolic"))
+    terms = ring.terms(flank_frames(pair)[1], s, z)
+    tip = 15 * UM * np.clip(rho_a - rho2, 0, None) / (rho_a - rho_tip)
+    root = 5 * UM * (np.clip(rho2 - (rho_sap - 2 * MM), 0, None) / (2 * MM)) ** 2
+    np.testing.assert_allclose(terms["tip_relief"], tip, rtol=0, atol=1e-12 * 15 * UM)
+    np.testing.assert_allclose(terms["root_relief"], root, rtol=0, atol=1e-12 * 5 * UM)
+    assert tip.max() == pytest.approx(15 * UM, rel=1e-9)
+    assert root.max() == pytest.approx(5 * UM, rel=1e-9)
