@@ -224,9 +224,10 @@ def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any
                        "um", assembled.summary()["centre_distance_change_um"]))
     notes = ()
     if figures:
-        notes = ("Modification maps: material removed (positive) over each flank's active "
-                 "part, face position across and roll length up (diameter on the right); the "
-                 "initial gap at a contact point is the sum of both flanks' values there.",)
+        notes = ("Modification maps: material removed (positive) over each modified flank's "
+                 "active part, face position across, roll length along the profile with the "
+                 "tip up (diameter on the right); the initial gap at a contact point is the "
+                 "sum of both flanks' values there.",)
     return Section("modifications", "Modifications and errors", tuple(rows),
                    figures=tuple(figures), notes=notes)
 
