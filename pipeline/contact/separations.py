@@ -19,8 +19,8 @@ Contributions add up:
   the pinion tip is at ``s_end``. **Lead crowning** ``C_b`` (the sum of both gears, given
   to the pinion): ``C_b (2 z / b - 1)^2``, zero at mid face, ``C_b`` at both faces.
   **Helix slope deviation / misalignment** ``f_Hb`` over the face width (the pinion's):
-  ``f_Hb (z / b - 1/2)``, positive when the gap opens towards ``z = b``. (Over the
-  pinion's own face, the common face width when both gears are equally wide.)
+  ``f_Hb (z / b - 1/2)``, positive when the gap opens towards ``z = b``; both over the
+  mesh's common face width ``b``.
 * **pitch errors**: a constant offset per tooth pair, ``pitch_errors[j]`` for the
   tooth pair with index ``k = j`` (``k = 0`` is the pair that enters contact at
   the start of the analysed mesh cycle (pinion driving; with the gear driving it
@@ -152,7 +152,8 @@ class FlankModifications:
             length = getattr(self, f"relief_length_{who}") if amount else None
             profile = ProfileModification(tip_relief=amount, tip_relief_length=length,
                                           tip_relief_shape=self.relief_shape)
-            lead = (LeadModification(crowning=self.crowning, slope=self.slope_deviation)
+            lead = (LeadModification(crowning=self.crowning, slope=self.slope_deviation,
+                                     common_width=True)
                     if who == "pinion" else LeadModification())
             out.append(GearModification(profile=profile, lead=lead))
         return out[0], out[1]

@@ -40,6 +40,7 @@ class FlankFrame:
     roll_sign, roll_offset : its roll length is ``roll_offset + roll_sign s``.
     face_width : its own face width b_i (one helical half of a herringbone gear).
     face_shift : ``(b_i - b) / 2``: its face position is ``z + face_shift``.
+    common_width : the mesh's common face width b (the narrower gear's).
     """
 
     role: str
@@ -51,6 +52,7 @@ class FlankFrame:
     roll_offset: float
     face_width: float
     face_shift: float
+    common_width: float
 
     def roll(self, s: np.ndarray) -> np.ndarray:
         """Its roll length (m) at roll coordinates ``s`` (m) of the mesh."""
@@ -95,8 +97,8 @@ def flank_frames(pair: GearPair) -> tuple[FlankFrame, FlankFrame]:
     """The pinion's and the gear's flank frames in the mesh ``pair``."""
     p, g, b = pair.pinion, pair.gear, pair.face_width
     pinion = FlankFrame("pinion", p.base_radius, pair.s_end, pair.s_start, 1, 1, 0.0,
-                        p.half_width, 0.5 * (p.half_width - b))
+                        p.half_width, 0.5 * (p.half_width - b), b)
     gear = FlankFrame("gear", g.base_radius, pair.s_start, pair.s_end, -1,
                       1 if g.internal else -1, pair.t1t2, g.half_width,
-                      0.5 * (g.half_width - b))
+                      0.5 * (g.half_width - b), b)
     return pinion, gear

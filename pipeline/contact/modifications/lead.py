@@ -12,7 +12,9 @@ face 1 at ``z_i = 0``, on the side of the pinion's reference face; face 2 at ``z
   relief shape (:mod:`.shapes`, linear or parabolic) of the distance into the relief,
   ``L_I - z_i`` and ``z_i - (b_i - L_II)``, the amount reached at the face.
 
-Positive values remove material.
+Positive values remove material. ``[contact]``'s short form (crowning, slope deviation)
+is evaluated over the mesh's common face width ``b`` and face position ``z`` instead
+(``common_width``), as it was defined before the gears had modifications of their own.
 """
 
 from __future__ import annotations
@@ -42,6 +44,8 @@ class LeadModification:
     end_relief_face1_length, end_relief_face2_length : their lengths L_I, L_II across the
         face, m, > 0 with an amount (at most the face width together: check_fits).
     end_relief_shape : "linear" or "parabolic".
+    common_width : evaluate over the mesh's common face width and face position (the short
+        form) instead of the gear's own.
     """
 
     crowning: float = 0.0
@@ -51,6 +55,7 @@ class LeadModification:
     end_relief_face2: float = 0.0
     end_relief_face2_length: float = 0.0
     end_relief_shape: str = "linear"
+    common_width: bool = False
 
     def __post_init__(self) -> None:
         check_range("modifications.lead_crowning", self.crowning, 0.0, MAX_AMOUNT, unit="m")
@@ -79,8 +84,10 @@ class LeadModification:
     def terms(self, frame: FlankFrame, z: np.ndarray) -> dict[str, np.ndarray]:
         """Material removed (m) at the mesh's face positions ``z`` (m) by each modification
         given, by name, in the order they are summed."""
-        zi = np.asarray(z, dtype=float) + frame.face_shift
-        b = frame.face_width
+        if self.common_width:
+            zi, b = np.asarray(z, dtype=float), frame.common_width
+        else:
+            zi, b = np.asarray(z, dtype=float) + frame.face_shift, frame.face_width
         out = {}
         if self.crowning:
             out["lead_crowning"] = shapes.crowning(zi, self.crowning, b)
