@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import load_workflow
 
 from pipeline.cli import main as cli
 from pipeline.config import load_gearbox
@@ -133,3 +134,15 @@ def test_light_load_te_follows_the_tip_reliefs_harris(box):
     assert plain < 0.02 * UM  # light load: the elastic part is small
     step = (c / length) * pair.base_pitch / positions
     assert relieved == pytest.approx(harris, abs=step + plain)
+
+
+def test_catalogue_workflow_draws_each_modification_alone(tmp_path):
+    """workflows/modification_catalogue.py: every kind 10 um alone on the demo pinion; the
+    twist S = 10 um removes S/4 = 2.5 um at the root of face 1 and the tip of face 2 and adds
+    2.5 um at the other corners (ISO 21771 profile twist, f_Halpha = S (z/b - 1/2))."""
+    summary = load_workflow("modification_catalogue").main(["--out", str(tmp_path / "w")])
+    assert (tmp_path / "w" / "modification_catalogue.png").stat().st_size > 50_000
+    assert summary["twist S"]["corners_um"] == pytest.approx([2.5, -2.5, -2.5, 2.5], rel=1e-12)
+    for name in ("tip relief (arc, 5 mm)", "lead crowning C_beta", "end reliefs (linear, 4 mm)"):
+        assert summary[name]["max_um"] == pytest.approx(10.0, rel=1e-9)
+        assert summary[name]["min_um"] == pytest.approx(0.0, abs=1e-12)

@@ -18,6 +18,7 @@ from pipeline.contact.modifications import ModificationMap
 from pipeline.viz.canvas import new_figure
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 MM = 1e3
@@ -32,25 +33,38 @@ def plot_modification_maps(maps: Sequence[ModificationMap], title: str,
     fig = new_figure((5.2 * len(maps), 4.4), "constrained")
     axes = fig.subplots(1, len(maps), squeeze=False)[0]
     for k, (ax, m) in enumerate(zip(axes, maps, strict=True)):
-        z, roll, w = m.face * MM, m.roll * MM, m.deviation * UM
-        lo, hi = float(w.min()), float(w.max())
-        if hi - lo < 1e-9:  # a flat map: a band around its value
-            lo, hi = lo - 0.5, hi + 0.5
-        levels = MaxNLocator(nbins=24).tick_values(lo, hi)  # round numbers of um
-        filled = ax.contourf(z, roll, w.T, levels=levels, cmap="viridis")
-        lines = ax.contour(z, roll, w.T, levels=levels[::2], colors="k", linewidths=0.5)
-        ax.clabel(lines, fontsize=7, fmt="%g")
-        ax.set_xlabel(f"{m.role} face position b_z [mm]")
-        ax.set_ylabel(f"{m.role} roll length [mm]")
-        if k < len(internal) and internal[k]:
-            ax.invert_yaxis()
-        rb = m.base_radius * MM
-        right = ax.secondary_yaxis(
-            "right", functions=(lambda r, rb=rb: 2.0 * np.sqrt(np.square(r) + rb * rb),
-                                lambda d, rb=rb: np.sqrt(np.clip(np.square(d / 2.0) - rb * rb,
-                                                                 0.0, None))))
-        right.set_ylabel(f"{m.role} diameter [mm]")
-        ax.set_title(f"{m.role} flank (active part)", fontsize=9)
-        fig.colorbar(filled, ax=ax, label="material removed [um]", shrink=0.9, pad=0.02)
+        plot_modification_map(m, f"{m.role} flank (active part)", ax=ax,
+                              internal=k < len(internal) and internal[k])
     fig.suptitle(title, fontsize=9)
     return fig
+
+
+def plot_modification_map(m: ModificationMap, title: str, *, ax: Axes | None = None,
+                          internal: bool = False, diameters: bool = True) -> Axes:
+    """One flank's map on ``ax`` (a new figure when None): filled contours and labelled
+    lines of the material removed [um], its own colour bar; ``diameters`` adds the
+    diameter [mm] axis on the right."""
+    if ax is None:
+        ax = new_figure((5.2, 4.4), "constrained").subplots()
+    z, roll, w = m.face * MM, m.roll * MM, m.deviation * UM
+    lo, hi = float(w.min()), float(w.max())
+    if hi - lo < 1e-9:  # a flat map: a band around its value
+        lo, hi = lo - 0.5, hi + 0.5
+    levels = MaxNLocator(nbins=24).tick_values(lo, hi)  # round numbers of um
+    filled = ax.contourf(z, roll, w.T, levels=levels, cmap="viridis")
+    lines = ax.contour(z, roll, w.T, levels=levels[::2], colors="k", linewidths=0.5)
+    ax.clabel(lines, fontsize=7, fmt="%g")
+    ax.set_xlabel(f"{m.role} face position b_z [mm]")
+    ax.set_ylabel(f"{m.role} roll length [mm]")
+    if internal:
+        ax.invert_yaxis()
+    if diameters:
+        rb = m.base_radius * MM
+        right = ax.secondary_yaxis(
+            "right", functions=(lambda r: 2.0 * np.sqrt(np.square(r) + rb * rb),
+                                lambda d: np.sqrt(np.clip(np.square(d / 2.0) - rb * rb, 0.0,
+                                                          None))))
+        right.set_ylabel(f"{m.role} diameter [mm]")
+    ax.set_title(title, fontsize=9)
+    ax.figure.colorbar(filled, ax=ax, label="material removed [um]", shrink=0.9, pad=0.02)
+    return ax

@@ -11,7 +11,8 @@ face 2, i.e. ``f_Halpha(z_i) = S (z_i / b_i - 1/2)``, so that
 (``u`` from the start of active profile, ``L_AE`` the active flank's length, ``z_i`` the face
 position, ``b_i`` the face width; :mod:`.frame`). The same surface is a helix slope varying
 linearly up the profile ("helix twist"), so one amount describes both; ``S`` > 0 removes
-material at the tip of face 2 and the root of face 1 (``S/4`` there).
+material at the tip of face 2 and the root of face 1 (``S/4`` there). The map of each
+modification alone, the twist's among them: ``workflows/modification_catalogue.py``.
 """
 
 from __future__ import annotations
