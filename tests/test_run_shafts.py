@@ -59,11 +59,13 @@ def test_overhung_pinion_loads_the_face_end_by_its_bearings(tmp_path):
     assert dist.k_hbeta > 1.1
     rigid_k = np.ptp(st.rigid.transmission_error)  # the rigid contact is kept beside
     assert rigid_k >= 0.0
-    from pipeline.run.shafts import _model
+    from pipeline.run.shafts import shaft_model
 
     pair = r.meshes["mesh"].stiffness.actual
     w = np.interp(st.z, dist.z, dist.cycle_mean)
-    gap, _ = shaft_gap([_model(r.gearbox.shafts["pinion"], st.z), None],
+    spec = r.gearbox.shafts["pinion"]
+    nodes = spec[1].gear_position - 0.5 * spec[1].seat_width + st.z
+    gap, _ = shaft_gap([shaft_model(spec, nodes), None],
                        [pair.pinion.base_radius, pair.gear.base_radius], st.z, w)
     assert gap - gap.mean() == pytest.approx(st.gap, abs=2e-3 * np.ptp(st.gap))
 
