@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import platform
 import sys
 
@@ -126,6 +127,29 @@ def test_pardiso_reproduces_uniaxial_stress_exactly():
     u = solve_static(model, F, held, solver=DirectSolver("pardiso"))
     assert u.method == "pardiso"
     assert _relative(u.displacements[:, 0], exact) < 1e-10
+
+
+@needs_pardiso
+def test_pardiso_factors_are_exact_and_independent():
+    """The 1D Laplacian tridiag(-1, 2, -1) of size n has the inverse
+    (A^-1)_ij = min(i, j) (n + 1 - max(i, j)) / (n + 1) (its discrete Green's function).
+    Two PARDISO factors live side by side (A and 2 A); dropping the second frees its MKL
+    memory and leaves the first solving exactly."""
+    n = 50
+    A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
+    i = np.arange(1, n + 1)[:, None]
+    j = np.array([1, n // 2 + 1, n])[None, :]
+    exact = np.minimum(i, j) * (n + 1 - np.maximum(i, j)) / (n + 1)
+    B = np.eye(n)[:, [0, n // 2, n - 1]]
+    first = factorize_spd(A, "pardiso")
+    second = factorize_spd(2 * A, "pardiso")
+    np.testing.assert_allclose(second.solve(B), exact / 2, rtol=1e-12)
+    del second
+    gc.collect()
+    X = first.solve(B)
+    np.testing.assert_allclose(X, exact, rtol=1e-12)
+    np.testing.assert_allclose(first.solve(B[:, 1]), exact[:, 1], rtol=1e-12)  # one column
+    assert first.method == "pardiso" and X.shape == B.shape
 
 
 @needs_pardiso

@@ -5,18 +5,19 @@ Methods (measured side by side on a 2-core machine when they were chosen):
 * ``"pardiso"`` - MKL PARDISO's supernodal sparse Cholesky (``mtype = 2``, METIS nested
   dissection) through pypardiso, with MKL from the ``mkl`` wheel; a dependency on x86-64
   Linux and Windows (the platforms with MKL wheels) and the default wherever it is
-  installed. ``workflows/benchmarks/bench_sparse_solvers.py`` (2 cores shared with other
-  jobs, load 2-5; ranges over 3 cold runs): the straddle-mounted shaft superelement
-  (64.3k unknowns, 4.8M non-zeros, 42 right-hand sides) factorises in 2.0-2.3 s on one
-  thread against 8.5-9.6 s for cholespy, and solves the block in 0.30-0.55 s against
-  0.73-0.81 s; the z 30 helical pinion of ``bench_fe3d`` (43.7k unknowns, 68 right-hand
-  sides) in 1.5-1.9 s against 4.2-6.6 s, solving at 3.9 against 13 ms per right-hand
-  side. Its solutions differ from cholespy's by 1e-12 (relative), as
-  cholespy's differ from SuperLU's. With a minimum degree ordering instead of METIS the
-  shaft factorises 35-70 % slower (the pinion 20 % faster, but it solves at half the
-  speed); 2 threads were no faster on the shared machine (MKL takes
-  ``OMP_NUM_THREADS``). It takes 25-30 % more memory than cholespy (411 against
-  326 MiB on the shaft) and about 1 GB of disk for MKL.
+  installed. ``workflows/benchmarks/bench_sparse_solvers.py`` (two runs of 3 cold
+  factorisations each, 2 cores shared with other jobs, load 2-6): the straddle-mounted
+  shaft superelement's matrix (64.3k unknowns, 4.8M non-zeros, 42 right-hand sides)
+  factorises in 2.0-3.7 s on one thread against 8.5-18.5 s with cholespy, and the block
+  solves in 0.30-0.83 s against 0.73-1.31 s; the z 30 helical pinion of ``bench_fe3d``
+  (43.7k unknowns, 68 right-hand sides) in 1.5-2.4 s against 4.2-7.8 s, solving at 4-8
+  against 13-19 ms per right-hand side; the same pinion refined to 112k unknowns in
+  5.9-12.6 s against 64-75 s. Its solutions differ from cholespy's by 1e-13 to 1e-12
+  (relative), as SuperLU's do. A minimum degree ordering instead of METIS factorises the
+  shaft 20-70 % slower (the pinion 20 % faster, but solves it at half the speed); 2
+  threads were no faster on the shared machine (MKL takes ``OMP_NUM_THREADS``). PARDISO
+  takes 25-30 % more memory than cholespy on the smaller matrices (shaft 405-411 against
+  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk.
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
   elasticity with 200k DOF factorises in about 20 s and each further right-hand side
@@ -28,24 +29,24 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   right-hand sides: factor and solves 4.6 s against 62.6 s for the p-multigrid CG
   (bench_fe; 114k DOF: 85 s).
 * ``"splu"`` - scipy's SuperLU. Always available; fine for 2D and small 3D
-  models, unusable for large 3D ones (> 600 s at 200k DOF; 8-12 s and 1 GB on the
+  models, unusable for large 3D ones (> 600 s at 200k DOF; 8-16 s and 1 GB on the
   shaft above), so it is only the fallback.
 
 Every result says which method ran, so reports can state it.
 
 Measured and not offered (bench_sparse_solvers, the same runs): CHOLMOD through the
 cvxopt wheel (OpenBLAS; kvxopt bundles the same libraries) factorises about as fast
-(shaft 1.7-4.1 s, pinion 1.2-1.8 s) but solves one right-hand side at a time (45 ms
-each on the shaft against PARDISO's 7), so the tables' hundreds of right-hand sides are
-slower, and cvxopt is GPL; sksparse-minimal
-(CHOLMOD on the reference BLAS) factorises the shaft in 4.4-8.7 s; QDLDL (an LDL^T
-without supernodes) in 29-40 s. scikit-sparse and pydiso (MKL PARDISO) have no wheels
-for this platform. MUMPS: the only binary wheel of ``python-mumps`` for CPython 3.11
-(0.0.2, manylinux2010) is compiled against NumPy 1.x and fails on import under NumPy 2
+(shaft 1.7-4.1 s, pinion 0.9-1.8 s, 112k unknowns 6.2-7.0 s) but solves one right-hand
+side at a time (45-83 ms each on the shaft against PARDISO's 7), so the tables' hundreds
+of right-hand sides are slower, and cvxopt is GPL; sksparse-minimal (CHOLMOD on the
+reference BLAS) factorises the shaft in 4.4-8.7 s; QDLDL (an LDL^T without supernodes)
+in 29-49 s. scikit-sparse and pydiso (MKL PARDISO) have no wheels for this platform.
+MUMPS: the only binary wheel of ``python-mumps`` for CPython 3.11 (0.0.2,
+manylinux2010) is compiled against NumPy 1.x and fails on import under NumPy 2
 ("numpy.core.multiarray failed to import"); the later releases pip finds for it (0.0.3,
-0.0.4) are source-only and need a system MUMPS. Without a sparse Cholesky, 3D models with
-many right-hand sides use the p-multigrid CG of :mod:`pipeline.fem.pmultigrid` (block
-right-hand sides, one set-up).
+0.0.4) are source-only and need a system MUMPS. Without a sparse Cholesky, 3D models
+with many right-hand sides use the p-multigrid CG of :mod:`pipeline.fem.pmultigrid`
+(block right-hand sides, one set-up).
 
 Solvers are passed in, as scikit-fem's ``solve(..., solver=...)`` takes them: a
 :class:`Solver` is called once with the free-free matrix and returns a set-up

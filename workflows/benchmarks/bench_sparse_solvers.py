@@ -30,7 +30,9 @@ that the process waited for a core), and the answer's agreement:
 ``results/benchmarks/sparse_solvers.json``. Timings are printed, not asserted (the machine
 is shared); the minimum over the repeats is the figure to compare.
 
-Run: ``python workflows/benchmarks/bench_sparse_solvers.py [--repeats N]``.
+Run: ``python workflows/benchmarks/bench_sparse_solvers.py [--repeats N] [--large]``
+(``--large`` adds the pinion refined to 1.9, 112k unknowns, with cholespy, PARDISO
+and cvxopt only).
 """
 
 from __future__ import annotations
@@ -127,7 +129,7 @@ def shaft_matrix() -> tuple[sp.csc_matrix, np.ndarray]:
     return _capture(solvers, lambda cache: Fe3dShaft(layout, cache=cache))
 
 
-def tooth_matrix() -> tuple[sp.csc_matrix, np.ndarray]:
+def tooth_matrix(refinement: float = 1.0) -> tuple[sp.csc_matrix, np.ndarray]:
     """bench_fe3d's z 30 helical pinion (whole gear): free stiffness and first load block."""
     import pipeline.contact.fe3d_table as table
     from pipeline.contact import FE3DCompliance, FE3DSettings
@@ -135,12 +137,16 @@ def tooth_matrix() -> tuple[sp.csc_matrix, np.ndarray]:
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_fe3d import _small_pair
 
-    settings = FE3DSettings(refinement=1.0, points=8)
+    settings = FE3DSettings(refinement=refinement, points=8)
     return _capture(table, lambda cache: FE3DCompliance.build(_small_pair(), settings,
                                                               cache=cache))
 
 
 MATRICES = {"shaft": shaft_matrix, "tooth": tooth_matrix}
+LARGE = {"tooth_refinement_1.9": lambda: tooth_matrix(1.9)}
+"""``--large``: the pinion's mesh refined to about the size of the largest 3D tables
+(112k unknowns), with the candidates that factorise it in seconds."""
+LARGE_CANDIDATES = ("cholespy", "pardiso-metis-1", "pardiso-metis-2", "cvxopt-cholmod")
 
 
 # -- the candidates (run in a child process) ---------------------------------------------
@@ -322,13 +328,15 @@ def _versions() -> dict:
 
 
 def bench_matrix(label: str, A: sp.csc_matrix, B: np.ndarray, folder: Path,
-                 repeats: int) -> dict:
-    """Every candidate ``repeats`` times on ``A`` with right-hand sides ``B``."""
+                 repeats: int, names: tuple[str, ...] = tuple(CANDIDATES)) -> dict:
+    """The candidates ``names`` (cholespy first), ``repeats`` times each, on ``A`` with
+    right-hand sides ``B``."""
     path = folder / f"{label}.npz"
     sp.save_npz(path, A)
     np.save(path.with_suffix(".rhs.npy"), B)
     rows, ref = [], None
-    for name, (package, ordering, threads) in CANDIDATES.items():
+    for name in names:
+        package, ordering, threads = CANDIDATES[name]
         row = {"solver": name, "package": package, "ordering": ordering,
                "threads_set": threads}
         why = _available(name)
@@ -372,19 +380,22 @@ def _print(m: dict) -> None:
               f"{diff if diff is not None else math.nan:9.1e} {last['residual']:9.1e}")
 
 
-def main(repeats: int = 2) -> dict:
+def main(repeats: int = 2, large: bool = False) -> dict:
     import os
 
     from pipeline.io import write_json
 
     out = {"repeats": repeats, "load_average_1_min_at_start": os.getloadavg()[0],
            "versions": _versions(), "matrices": []}
+    cases = [(label, make, tuple(CANDIDATES)) for label, make in MATRICES.items()]
+    if large:
+        cases += [(label, make, LARGE_CANDIDATES) for label, make in LARGE.items()]
     with tempfile.TemporaryDirectory() as tmp:
-        for label, make in MATRICES.items():
+        for label, make, names in cases:
             t0 = time.perf_counter()
             A, B = make()
             print(f"{label}: captured in {time.perf_counter() - t0:.1f} s", flush=True)
-            out["matrices"].append(bench_matrix(label, A, B, Path(tmp), repeats))
+            out["matrices"].append(bench_matrix(label, A, B, Path(tmp), repeats, names))
             _print(out["matrices"][-1])
     out["load_average_1_min_at_end"] = os.getloadavg()[0]
     write_json(Path("results/benchmarks/sparse_solvers.json"), out)
@@ -396,4 +407,5 @@ if __name__ == "__main__":
         print(json.dumps(run_one(sys.argv[2], Path(sys.argv[3]), Path(sys.argv[4]))))
     else:
         args = sys.argv[1:]
-        main(int(args[args.index("--repeats") + 1]) if "--repeats" in args else 2)
+        main(int(args[args.index("--repeats") + 1]) if "--repeats" in args else 2,
+             "--large" in args)
