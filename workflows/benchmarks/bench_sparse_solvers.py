@@ -54,7 +54,9 @@ import scipy.sparse as sp
 HERE = Path(__file__).resolve().parents[1]
 REFERENCE = "cholespy"
 
-# name: (package, ordering, threads); the factorisations are in _FACTOR below.
+# name: (package, ordering, threads); the factorisations are in _FACTOR below. The threads
+# are set for PARDISO; the others run on one (reference BLAS, SuperLU, QDLDL; cvxopt's
+# bundled OpenBLAS reports one thread to threadpoolctl).
 CANDIDATES = {
     "cholespy": ("cholespy", "CHOLMOD default (AMD)", 1),
     "splu": ("scipy", "MMD on A^T + A", 1),
