@@ -12,8 +12,9 @@ nothing that does not (times, folders, the platform string, which libraries the 
 happened to load), so two runs with the same hash computed the same thing.
 
 The numerical libraries recorded are NumPy, SciPy, scikit-fem, Gmsh and
-cholespy/scikit-sparse, with the sparse Cholesky used and the BLAS; a referenced file is
-for example a ``kind = "csv"`` stiffness table. Every command and workflow writes one.
+pypardiso/MKL/cholespy/scikit-sparse, with the sparse Cholesky used and the BLAS; a
+referenced file is for example a ``kind = "csv"`` stiffness table. Every command and
+workflow writes one.
 Cost, measured on 2 cores shared with other jobs (load average 4-5): 85-98 ms per record
 (source hash, ``git``, versions).
 """
@@ -36,7 +37,7 @@ from pipeline.io import content_hash, to_jsonable, write_json
 
 _UNHASHED = ("platform", "sparse_cholesky", "blas")  # machine, or what the run imported
 _TRACKED = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib",
-            "cholespy", "scikit-sparse", "threadpoolctl")
+            "cholespy", "scikit-sparse", "pypardiso", "mkl", "threadpoolctl")
 _PACKAGE = Path(__file__).resolve().parent
 
 
@@ -92,9 +93,9 @@ def code_revision() -> dict[str, str | None]:
 def library_versions() -> dict[str, Any]:
     """Versions of Python, the numerical libraries, the sparse solvers and the BLAS.
 
-    ``sparse_cholesky`` is the factorisation the FE solvers use by default ("cholmod",
-    "cholespy" or "none"; "not loaded" when the run did no FE); ``blas`` lists the
-    BLAS/OpenMP libraries loaded in the process. These two depend on what the run
+    ``sparse_cholesky`` is the factorisation the FE solvers use by default ("pardiso",
+    "cholmod", "cholespy" or "none"; "not loaded" when the run did no FE); ``blas`` lists
+    the BLAS/OpenMP libraries loaded in the process. These two depend on what the run
     imported, so they are recorded but not hashed (the package versions are).
     """
     out: dict[str, Any] = {"python": sys.version.split()[0], "platform": platform.platform()}

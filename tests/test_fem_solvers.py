@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import gc
+import platform
+import sys
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -13,6 +17,7 @@ from pipeline.fem.solvers import (
     cholespy_available,
     cholmod_available,
     factorize_spd,
+    pardiso_available,
     sparse_cholesky,
 )
 from pipeline.geometry.gear import Material
@@ -39,7 +44,8 @@ def test_factor_once_many_rhs_and_methods_agree(bar):
     assert ref.method == "splu"
     # Equilibrium: reactions balance the applied load in every case.
     np.testing.assert_allclose(ref.reactions.sum(axis=0), -F.sum(axis=0), rtol=1e-9)
-    for method, available in (("cholmod", cholmod_available()),
+    for method, available in (("pardiso", pardiso_available()),
+                              ("cholmod", cholmod_available()),
                               ("cholespy", cholespy_available())):
         if available:
             ch = solve_static(model, F, clamp, solver=DirectSolver(method))
@@ -66,6 +72,92 @@ def test_cholespy_is_installed_and_solves_many_rhs():
     exact = np.minimum(i, j) * (n + 1 - np.maximum(i, j)) / (n + 1)  # (A^-1)_ij
     np.testing.assert_allclose(X, exact, rtol=1e-12)
     assert f.method == "cholespy" and X.shape == B.shape
+
+
+MKL_PLATFORM = ((sys.platform == "linux" and platform.machine() == "x86_64")
+                or sys.platform == "win32")  # where pyproject installs pypardiso (MKL wheels)
+needs_pardiso = pytest.mark.skipif(not MKL_PLATFORM, reason="no MKL wheels on this platform")
+
+
+def _relative(x: np.ndarray, ref: np.ndarray) -> float:
+    return float(np.linalg.norm(x - ref) / np.linalg.norm(ref))
+
+
+@needs_pardiso
+def test_pardiso_is_installed_and_is_what_auto_takes(bar):
+    """pypardiso (MKL PARDISO) is a dependency: "auto" factorises with it, and its solution
+    of the clamped bar's three load cases equals SuperLU's and cholespy's to 1e-10
+    (relative, Frobenius norm over all cases)."""
+    assert pardiso_available() and sparse_cholesky() == "pardiso"
+    model, clamp, F = bar
+    auto = solve_static(model, F, clamp)
+    assert auto.method == "pardiso"
+    for method in ("splu", "cholespy"):
+        ref = solve_static(model, F, clamp, solver=DirectSolver(method)).displacements
+        assert _relative(auto.displacements, ref) < 1e-10
+        for k in range(F.shape[1]):  # and every load case on its own
+            assert _relative(auto.displacements[:, k], ref[:, k]) < 1e-10
+
+
+@needs_pardiso
+def test_pardiso_reproduces_uniaxial_stress_exactly():
+    """Patch test (Zienkiewicz, Taylor & Zhu, The Finite Element Method, 7th ed., 2013,
+    ch. 9): a 3D block in uniaxial tension sigma_x on rollers (u_x = 0 on x = 0, u_y = 0
+    on y = 0, u_z = 0 on z = 0) has the exact field u = sigma / E (x, -nu y, -nu z), which
+    the P2 space holds, so the discrete solution is that field to round-off. The loads are
+    K u_exact; their interior rows vanish (the field is in equilibrium), so only the x = L
+    face is loaded, with a resultant sigma_x times the face area."""
+    L, W, H, sigma = 0.2, 0.05, 0.03, 1e8
+    mesh = MeshTet.init_tensor(np.linspace(0, L, 6), np.linspace(0, W, 3),
+                               np.linspace(0, H, 3))
+    mat = Material()
+    model = build_model(mesh, mat, order=2)
+    X = model.basis.doflocs
+    comp = np.arange(model.n_dof) % 3
+    scale = sigma / mat.youngs_modulus * np.array([1.0, -mat.poisson_ratio,
+                                                   -mat.poisson_ratio])
+    exact = scale[comp] * X[comp, np.arange(model.n_dof)]
+    held = np.flatnonzero(np.isclose(X[comp, np.arange(model.n_dof)], 0.0, atol=1e-12))
+    F = model.stiffness @ exact
+    face = np.isclose(X[0], L) & (comp == 0)
+    loaded = np.isclose(X[0], L) | np.isin(np.arange(model.n_dof), held)
+    assert np.abs(F[~loaded]).max() < 1e-9 * np.abs(F).max()
+    assert F[face].sum() == pytest.approx(sigma * W * H, rel=1e-12)
+    F[~loaded] = 0.0
+    u = solve_static(model, F, held, solver=DirectSolver("pardiso"))
+    assert u.method == "pardiso"
+    assert _relative(u.displacements[:, 0], exact) < 1e-10
+
+
+@needs_pardiso
+def test_pardiso_factors_are_exact_and_independent():
+    """The 1D Laplacian tridiag(-1, 2, -1) of size n has the inverse
+    (A^-1)_ij = min(i, j) (n + 1 - max(i, j)) / (n + 1) (its discrete Green's function).
+    Two PARDISO factors live side by side (A and 2 A); dropping the second frees its MKL
+    memory and leaves the first solving exactly."""
+    n = 50
+    A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
+    i = np.arange(1, n + 1)[:, None]
+    j = np.array([1, n // 2 + 1, n])[None, :]
+    exact = np.minimum(i, j) * (n + 1 - np.maximum(i, j)) / (n + 1)
+    B = np.eye(n)[:, [0, n // 2, n - 1]]
+    first = factorize_spd(A, "pardiso")
+    second = factorize_spd(2 * A, "pardiso")
+    np.testing.assert_allclose(second.solve(B), exact / 2, rtol=1e-12)
+    del second
+    gc.collect()
+    X = first.solve(B)
+    np.testing.assert_allclose(X, exact, rtol=1e-12)
+    np.testing.assert_allclose(first.solve(B[:, 1]), exact[:, 1], rtol=1e-12)  # one column
+    assert first.method == "pardiso" and X.shape == B.shape
+
+
+@needs_pardiso
+def test_pardiso_refuses_a_matrix_that_is_not_positive_definite(bar):
+    """A free-free body (six rigid-body modes) has no Cholesky factor: a one-line error."""
+    model, _, _ = bar
+    with pytest.raises(RuntimeError, match="not positive definite"):
+        factorize_spd(model.stiffness, "pardiso")
 
 
 def test_bad_inputs(bar):

@@ -3,6 +3,7 @@ driven machine, and the modes and sweep beside the same pair on rigid supports."
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -97,37 +98,101 @@ def test_drive_inertia_needs_its_shaft():
         PairDynamicsOptions(drive_inertia=0.0)
 
 
+def without_shafts(text: str) -> str:
+    """A gearbox file without its shaft tables ([<gear>.shaft] and its [[...]] rows) and the
+    keys that need them (the motor and the machine)."""
+    out, skipping = [], False
+    for line in text.splitlines():
+        if line.lstrip().startswith("["):
+            skipping = ".shaft" in line.split("#")[0]
+        if not skipping and not line.startswith(("drive_inertia", "load_inertia")):
+            out.append(line)
+    return "\n".join(out) + "\n"
+
+
+SWEEP = "[dynamics.sweep]\nf_min_Hz = 400.0\nf_max_Hz = 8000.0\npoints_coarse = 60\n"
+
+
 @pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
 def test_run_shows_the_dynamics_with_and_without_the_shafts(tmp_path):
     """gearpipe run of the straddle-mounted example: summary.json and the report carry the
-    natural frequencies and the sweep's largest dynamic factor with the shafts and on rigid
-    supports; the lowest elastic mode with the shafts is the motor and the machine turning
-    against the gears through the shafts' torsion (below the rigid pair's mesh mode, the
-    only elastic mode of the rigidly supported pair, torsional)."""
+    natural frequencies and the sweep's largest dynamic factor with the shafts and without
+    them; "without" is the same file without its shaft tables run on its own (natural
+    frequencies and the sweep's largest dynamic factor to 1e-9 over the same sweep). The
+    lowest elastic mode with the shafts is the motor and the machine turning against the
+    gears through the shafts' torsion, far below every mode of the pair without them."""
     from pipeline.cli import main as cli
 
+    text = EXAMPLE.read_text() + SWEEP
+    path = tmp_path / "box.toml"
+    path.write_text(text)
     out = tmp_path / "run"
-    assert cli(["run", str(EXAMPLE), "--out", str(out), "--cache-dir", str(tmp_path / "c")]) == 0
+    assert cli(["run", str(path), "--out", str(out), "--cache-dir", str(tmp_path / "c")]) == 0
     dyn = json.loads((out / "summary.json").read_text())["dynamics"]
-    rigid = dyn["without_shafts"]
-    assert len(rigid["natural_frequencies_Hz"]) == 1
-    box = load_gearbox(EXAMPLE)
-    pair = box.pair
-    # the rigid pair's mesh mode: sqrt(k_mean / m_e), m_e = 1 / (r_p^2/J_p + r_g^2/J_g)
-    r = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path / "c")))
-    k_mean = float(np.mean(r.meshes["mesh"].shafts.rigid.mesh_stiffness))
-    jp, jg = box.bodies["pinion"].inertia_, box.bodies["gear"].inertia_
-    m_e = 1.0 / (pair.pinion.base_radius**2 / jp + pair.gear.base_radius**2 / jg)
-    assert rigid["natural_frequencies_Hz"][0] == pytest.approx(
-        math.sqrt(k_mean / m_e) / (2 * math.pi), rel=0.02)
-    assert dyn["natural_frequencies_Hz"][0] < 0.2 * rigid["natural_frequencies_Hz"][0]
+    alone = run_pipeline(gearbox_from_text(without_shafts(text)),
+                         RunOptions(show_progress=False, cache=Cache(tmp_path / "c")))
+    ref = alone.dynamics.summary()
+    without = dyn["without_shafts"]
+    assert without["natural_frequencies_Hz"] == pytest.approx(ref["natural_frequencies_Hz"],
+                                                              rel=1e-9)
+    assert without["max_dynamic_factor"]["mesh"] == pytest.approx(
+        ref["sweep"]["max_dynamic_factor"]["mesh"], rel=1e-9)
+    assert dyn["natural_frequencies_Hz"][0] < 0.3 * without["natural_frequencies_Hz"][0]
     report = json.loads((out / "report.json").read_text())["sections"]
     rows = report["shaft_dynamics"]["quantities"]
     assert rows["mode_1"]["values"]["with the shafts"] == pytest.approx(
         dyn["natural_frequencies_Hz"][0])
-    assert rows["max_dynamic_factor_mesh"]["values"]["rigid supports"] == pytest.approx(
-        rigid["max_dynamic_factor"]["mesh"])
+    assert rows["max_dynamic_factor_mesh"]["values"]["without the shafts"] == pytest.approx(
+        without["max_dynamic_factor"]["mesh"])
     assert (out / "report_shaft_dynamics.png").is_file()
+
+
+PLANETARY = Path(__file__).parents[1] / "workflows" / "configs" / "shaft_planetary.toml"
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_the_sun_shaft_ties_the_motor_to_the_sun(tmp_path):
+    """A planetary set with its sun on a shaft and [dynamics] drive_inertia_kgm2: the motor
+    is tied to the sun by the shaft's torsion, G J / L of the 112.5 mm sun body between its
+    seat's centre (120 mm) and the coupling (0 mm) (1e-9); a shaft far stiffer than the
+    rest makes the motor part of the sun (the frequencies of the model with the sun's
+    inertia plus the motor's, 1e-6); the run compares with the same file without shafts
+    (natural frequencies to 1e-9); a drive inertia without [sun.shaft] is refused."""
+    from pipeline.dynamics.models.planetary import PlanetaryModel
+    from pipeline.progress import Steps
+    from pipeline.run.chain import mesh_stages
+    from pipeline.run.dynamics import dynamic_model
+
+    dyn = '[dynamics]\nexcitation = "analytical"\ndrive_inertia_kgm2 = 0.02\n' + SWEEP
+    text = PLANETARY.read_text() + dyn
+    box = gearbox_from_text(text)
+    meshes = mesh_stages(box, RunOptions(show_progress=False, cache=Cache(tmp_path)),
+                         Steps("", enabled=False), contact=False)
+    model, _ = dynamic_model(box, meshes)
+    mat = box.shafts["sun"][1].material
+    assert model.kt_drive == pytest.approx(mat.shear_modulus * _polar(0.1125) / 0.120,
+                                           rel=1e-9)
+    assert "drive" in [b.name for b in model.assembly().bodies]
+    # the motor on a shaft of 1e12 N m/rad: its own mode at 2.6e6 Hz, the others moved by
+    # about (f / 2.6e6 Hz)^2
+    stiff = dataclasses.replace(model, kt_drive=1e12)
+    joined = dataclasses.replace(model, inertia_drive=None, kt_drive=None,
+                                 inertia_sun=model.inertia_sun + 0.02)
+    f_stiff = np.sort(analyse_modes(stiff).frequencies)
+    f_joined = np.sort(analyse_modes(joined).frequencies)
+    assert isinstance(stiff, PlanetaryModel)
+    assert f_stiff.size == f_joined.size + 1
+    j_s = model.inertia_sun  # the motor against the sun: two inertias on the stiff shaft
+    assert f_stiff[-1] == pytest.approx(
+        math.sqrt(1e12 * (0.02 + j_s) / (0.02 * j_s)) / (2 * math.pi), rel=1e-4)
+    assert f_stiff[:-1] == pytest.approx(f_joined, rel=1e-5, abs=1e-6)
+    r = run_pipeline(box, RunOptions(show_progress=False, cache=Cache(tmp_path)))
+    alone = run_pipeline(gearbox_from_text(without_shafts(text)),
+                         RunOptions(show_progress=False, cache=Cache(tmp_path)))
+    assert r.dynamics.summary()["without_shafts"]["natural_frequencies_Hz"] == pytest.approx(
+        alone.dynamics.summary()["natural_frequencies_Hz"], rel=1e-9)
+    with pytest.raises(InputError, match=r"dynamics.drive_inertia_kgm2 needs \[sun.shaft\]"):
+        gearbox_from_text(without_shafts(PLANETARY.read_text()) + dyn)
 
 
 def test_a_lumped_pair_takes_the_motor_with_its_shaft():

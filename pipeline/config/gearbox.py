@@ -13,6 +13,10 @@ point and optional tables per stage. Which gear tables it has says what it is:
 * a **lumped model** from a publication that gives masses and stiffnesses but no
   tooth geometry: ``[lumped_model]`` (:mod:`pipeline.config.lumped`).
 
+A pair's gears may hold their flank modifications, ``[pinion.modifications]`` and
+``[gear.modifications]`` (:mod:`pipeline.config.modifications`); ``[contact]``'s tip relief,
+crowning and slope keys are their short form.
+
 Stage tables: ``[operation]``, ``[stiffness]``, ``[contact]``, ``[fe]``,
 ``[groove]``, ``[dynamics]`` (with ``[dynamics.response]``, ``[dynamics.sweep]``
 and an optional ``[dynamics.mesh_stiffness]``). Keys carry their unit in their
@@ -46,6 +50,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pipeline.config import tables as T
+from pipeline.config.modifications import TABLE as MODIFICATIONS_TABLE
+from pipeline.config.modifications import gear_modifications
 from pipeline.config.rating import rating_options
 from pipeline.config.schema import (
     MAX_NAME_CHARS,
@@ -57,12 +63,13 @@ from pipeline.config.schema import (
     restated,
     unknown,
 )
-from pipeline.config.shafts import shaft_layout
+from pipeline.config.shafts import pin_layout, shaft_layout
 from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.tooth_errors import tooth_errors
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
+from pipeline.contact.modifications import flank_frames
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import (
     FlankModifications,
@@ -142,7 +149,10 @@ class Gearbox:
         or ``None``.
     lumped : a lumped dynamic model given directly (``[lumped_model]``), or ``None``.
     rating : the ISO 6336 rating's inputs (``[rating]``), or ``None`` (no rating).
-    shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout).
+    shafts : the gears' shafts by role (``[<gear>.shaft]``): (model, layout); a planet's
+        is its pin.
+    planet_bearing_stiffness : radial stiffness of the bearing between a planet and its pin
+        (``[planet.shaft]``), N/m; ``inf``: rigid.
     pinion_rotation : "clockwise" or "counterclockwise", the pinion's sense of rotation seen
         from the end its shafts' positions grow towards (``[operation] pinion_rotation``;
         with the driver it picks the flanks that load the shafts).
@@ -170,6 +180,7 @@ class Gearbox:
     lumped: DynamicModel | None = None
     rating: RatingOptions | None = None
     shafts: Mapping[str, tuple[str, ShaftLayout]] = field(default_factory=dict)
+    planet_bearing_stiffness: float = math.inf
     pinion_rotation: str = "clockwise"
     errors: ToothErrors | None = None
     source: InputFile | None = field(default=None, compare=False, repr=False)
@@ -251,7 +262,8 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
     if not isinstance(table, Mapping):
         raise InputError(f"{role} = {table!r}: expected a table [{role}]")
     keys = T.GEAR + T.BODY
-    values = read_table(table, keys, role, subtables=("material", "shaft"))
+    values = read_table(table, keys, role, subtables=("material", "shaft",
+                                                      MODIFICATIONS_TABLE))
     body_fields = {k.target for k in T.BODY}
     body = {k: values.pop(k) for k in list(values) if k in body_fields}
     internal = values.get("internal", False)
@@ -408,6 +420,22 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     return opts
 
 
+def _with_gear_modifications(contact: ContactOptions, doc: Mapping[str, Any], kind: str,
+                             roles: tuple[str, ...], base: Path | None) -> ContactOptions:
+    """``contact`` with each gear's ``[<gear>.modifications]`` (a gear pair's only)."""
+    given = [r for r in roles if isinstance(doc[r], Mapping) and MODIFICATIONS_TABLE in doc[r]]
+    if not given:
+        return contact
+    if kind != "pair":
+        raise InputError(f"[{given[0]}.{MODIFICATIONS_TABLE}] is read for a gear pair's "
+                         "[pinion] and [gear]; for a planetary set give [contact]'s short form "
+                         "(tip_relief_*_um, crowning_um, slope_deviation_um)")
+    flanks = {f"{r}_flank": gear_modifications(doc, r, base) for r in PAIR_ROLES}
+    mods = dataclasses.replace(contact.modifications, **flanks)
+    with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
+        return dataclasses.replace(contact, modifications=mods)
+
+
 def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> FE2DSettings | FE3DSettings:
     """``[fe]`` -> the FE model of the gears: ``FE3DSettings`` for ``[contact] compliance
     = "fe3d"``, else ``FE2DSettings``, each key setting the field of its name.
@@ -560,10 +588,14 @@ def _dynamics(doc: Mapping[str, Any], base: Path | None, kind: str, herringbone:
 
 
 def _shafts(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]
-            ) -> dict[str, tuple[str, ShaftLayout]]:
-    """``[<gear>.shaft]`` of each gear that has one (:mod:`pipeline.config.shafts`); a ring
-    has none (it is the housing's)."""
-    out = {}
+            ) -> tuple[dict[str, tuple[str, ShaftLayout]], float]:
+    """``[<gear>.shaft]`` of each gear that has one (:mod:`pipeline.config.shafts`) and the
+    radial stiffness of a planet's bearing on its pin (N/m, ``inf`` rigid); a ring has none
+    (it is the housing's); a planet's is its pin (:func:`~pipeline.config.shafts.pin_layout`).
+    The shafts of a planetary set are built for spur gears only
+    (:mod:`pipeline.run.planetary_shafts`)."""
+    out: dict[str, tuple[str, ShaftLayout]] = {}
+    k_planet = math.inf
     for role, gear in gears.items():
         table = doc[role].get("shaft") if isinstance(doc[role], Mapping) else None
         if table is None:
@@ -571,8 +603,17 @@ def _shafts(doc: Mapping[str, Any], gears: Mapping[str, GearSpec]
         if gear.internal:
             raise InputError(f"[{role}.shaft]: an internal gear is held by the housing, not a "
                              "shaft")
-        out[role] = shaft_layout(table, gear, f"{role}.shaft")
-    return out
+        if role in ("sun", "planet") and (gear.herringbone or gear.is_helical):
+            kind = "herringbone" if gear.herringbone else "helical"
+            raise InputError(f"[{role}.shaft]: shafts and pins of a {kind} planetary set are "
+                             "not built (its axial forces on the sun and the pins); they take "
+                             "spur sets")
+        if role == "planet":
+            model, layout, k_planet = pin_layout(table, gear, "planet.shaft")
+            out[role] = (model, layout)
+        else:
+            out[role] = shaft_layout(table, gear, f"{role}.shaft")
+    return out, k_planet
 
 
 def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
@@ -623,7 +664,9 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "[dynamics.response] and [dynamics.sweep]; the model's own keys "
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
-    contact = contact_options_from_table(doc.get("contact"))
+    contact = _with_gear_modifications(contact_options_from_table(doc.get("contact")), doc,
+                                       kind, roles, base)
+    shafts, k_planet = _shafts(doc, gears)
     fe = _fe(doc, contact)
     operation, rotation = _operation(doc)
     box = Gearbox(
@@ -641,7 +684,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                            kind == "planetary" and gears["sun"].herringbone),
         rating=rating_options(doc, kind, roles,
                               frozenset(r for r, g in gears.items() if g.internal)),
-        shafts=_shafts(doc, gears),
+        shafts=shafts,
+        planet_bearing_stiffness=k_planet,
         pinion_rotation=rotation,
         errors=tooth_errors(doc, kind, kw.get("pair"), contact.positions),
         source=source,
@@ -656,12 +700,23 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         raise InputError("dynamics.bearing_stiffness_N_per_m changes nothing: both gears sit "
                          "on shafts ([pinion.shaft], [gear.shaft]), whose bearings and "
                          "bending give the dynamic model's supports")
+    if box.kind == "planetary":
+        for role in ("sun", "planet"):
+            key = f"{role}_bearing_stiffness_N_per_m"
+            if role in box.shafts and key in doc.get("dynamics", {}):
+                what = ("the sun sits on [sun.shaft], whose bearings and bending" if
+                        role == "sun" else "the planets sit on pins ([planet.shaft]), whose "
+                        "supports, bending and planet bearing")
+                raise InputError(f"dynamics.{key} changes nothing: {what} give the dynamic "
+                                 f"model's {role} support")
     if "pinion_rotation" in doc.get("operation", {}) and not (box.kind == "pair"
                                                               and box.shafts):
         raise InputError(f'operation.pinion_rotation = "{rotation}" sets which flanks load '
                          "a pair's shafts; this file has no [pinion.shaft] or [gear.shaft]")
-    for key, role, what in (("drive_inertia_kgm2", "pinion", "motor"),
-                            ("load_inertia_kgm2", "gear", "driven machine")):
+    drives = ((("drive_inertia_kgm2", "pinion", "motor"),
+               ("load_inertia_kgm2", "gear", "driven machine")) if box.kind == "pair"
+              else (("drive_inertia_kgm2", "sun", "motor"),))
+    for key, role, what in drives:
         if key in doc.get("dynamics", {}) and role not in box.shafts:
             raise InputError(f"dynamics.{key} needs [{role}.shaft]: the {what} is tied to the "
                              f"{role} by its shaft's torsion")
@@ -690,13 +745,20 @@ def _check_fe3d_meshes(box: Gearbox, doc: Mapping[str, Any]) -> None:
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:
     """Each tip relief length at most the path of contact of every analysed mesh (the
-    shortest one's, named when there are several)."""
+    shortest one's, named when there are several); a pair's per-gear modifications inside
+    each gear's active flank and face width, in the words of its own table."""
     meshes = box.contact_meshes()
     if not meshes:
         return
     name, pair = min(meshes, key=lambda m: m[1].path_length)
+    mods = box.contact.modifications
+    if box.kind == "pair" and not mods.has_short_form:
+        for role, flank, frame in zip(PAIR_ROLES, mods.flanks, flank_frames(pair), strict=True):
+            table = doc[role].get(MODIFICATIONS_TABLE, {})
+            with restated(f"{role}.{MODIFICATIONS_TABLE}", T.GEAR_MODIFICATIONS, table):
+                flank.check_fits(frame)
     with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
-        box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
+        mods.check_fits(pair, name if len(meshes) > 1 else "")
 
 
 PITCH_ERRORS_KEY = "pitch_errors_um"

@@ -36,6 +36,11 @@ meets in minutes at most; a refused value names the key, the value and the range
   ``eccentricity_phase_*_deg``: one entry per tooth, each of magnitude <= 1000, summing to 0
   within 0.5 / [0, 1000] / [-360, 360]; mesh cycles of the span x ``[contact] positions``
   <= 100000
+* ``[<gear>.modifications]`` amounts ``*_um``: [0, 1000] (slopes and twist magnitude <=
+  1000); relief starts inside the gear's active flank of the mesh (``*_length_mm`` [0,
+  active flank], ``*_start_diameter_mm`` the active flank's diameters); end relief lengths
+  [0, face width], together at most the face width; a root relief ends below the tip
+  relief's start
 * ``[fe]`` ``teeth`` / ``points``: 1 .. 99 (contact sources 3 .., a 3D sector at least the
   tooth pairs in contact) / 2 .. 1000 (2D source 4 .., 3D source 2 .. 200); points x teeth
   (``gearpipe fe``) or points x loaded teeth (x ``face_points`` in 3D) <= 8000 flank points
@@ -170,7 +175,40 @@ MODIFICATIONS = (
     Key("slope_deviation_um", N),
     Key("pitch_errors_um", L),
 )
-"""Keys of the ``[contact]`` table that set :class:`FlankModifications`."""
+"""Keys of the ``[contact]`` table that set :class:`FlankModifications`: the short form of
+:data:`GEAR_MODIFICATIONS` (tip reliefs by roll length, lead crowning and slope on the
+pinion) and the pitch errors."""
+
+RELIEF_SHAPES = ("linear", "parabolic", "arc")
+GEAR_MODIFICATIONS = (
+    Key("tip_relief_um", N, help="C_a, reached at the active tip"),
+    Key("tip_relief_length_mm", N, help="its start as roll length down from the active tip"),
+    Key("tip_relief_start_diameter_mm", N, field="tip_relief_diameter",
+        help="its start as a diameter, instead"),
+    Key("tip_relief_shape", S, choices=RELIEF_SHAPES),
+    Key("root_relief_um", N, help="C_f, reached at the start of active profile"),
+    Key("root_relief_length_mm", N,
+        help="its start as roll length up from the start of active profile"),
+    Key("root_relief_start_diameter_mm", N, field="root_relief_diameter",
+        help="its start as a diameter, instead"),
+    Key("root_relief_shape", S, choices=RELIEF_SHAPES),
+    Key("profile_crowning_um", N, help="C_alpha over the active flank"),
+    Key("profile_slope_um", N, help="f_Halpha, positive: more removed towards the tip"),
+    Key("lead_crowning_um", N, help="C_beta over the gear's face width"),
+    Key("helix_slope_um", N, help="f_Hbeta, positive: more removed towards face 2"),
+    Key("end_relief_face1_um", N, help="C_I at face 1 (the pinion's reference face side)"),
+    Key("end_relief_face1_length_mm", N),
+    Key("end_relief_face2_um", N, help="C_II at face 2"),
+    Key("end_relief_face2_length_mm", N),
+    Key("end_relief_shape", S, choices=("linear", "parabolic")),
+    Key("twist_um", N, help="S: profile slope -S/2 at face 1 to +S/2 at face 2"),
+    Key("topography_csv", S, max_chars=4096,
+        help="deviation grid: face_position_mm, roll_length_mm or diameter_mm, deviation_um"),
+)
+"""Keys of a gear pair's ``[pinion.modifications]`` and ``[gear.modifications]``
+(:class:`~pipeline.contact.modifications.GearModification`; positive amounts remove
+material)."""
+
 ERRORS = (
     Key("single_pitch_pinion_um", L,
         help="single pitch deviations f_pt of the pinion's teeth 0 .. z1 - 1 (ISO 1328-1)"),
@@ -320,9 +358,20 @@ SHAFT_SEGMENT = (
 SHAFT_BEARING = (
     Key("position_mm", N, required=True),
     Key("radial_stiffness_N_per_m", N, help="left out: rigid"),
-    Key("tilting_stiffness_Nm_per_rad", N),
+    Key("tilting_stiffness_Nm_per_rad", "number_or_string", choices=("rigid",),
+        help='"rigid": clamped (a cantilevered shaft or pin); left out: 0, free to tilt'),
     Key("axial", B, help="this bearing locates the shaft axially"),
 )
+PLANET_PIN = (
+    Key("model", S, choices=("beam",), help="a planet's pin is a Timoshenko beam"),
+    Key("gear_position_mm", N, required=True, help="the planet's mid-face on its pin"),
+    Key("planet_bearing_radial_stiffness_N_per_m", N,
+        help="the bearing between the planet and its pin; left out: rigid"),
+)
+"""Keys of ``[planet.shaft]``: the planet's pin (:func:`pipeline.config.shafts.pin_layout`);
+its ``[[segments]]`` and ``[[bearings]]`` (the pin's supports in the carrier) as a shaft's."""
+PIN_ONLY = ("planet_bearing_radial_stiffness_N_per_m",)
+"""Keys of ``[planet.shaft]`` that a shaft's table has not."""
 
 EXCITATIONS = ("analytical", "contact")
 DYNAMICS = (
@@ -359,6 +408,8 @@ DYNAMICS_PLANETARY = (
     Key("sun_load_side", S, choices=("both", "L", "R")),
     Key("damping_ratio", N),
     Key("modal_damping_ratio", N),
+    Key("drive_inertia_kgm2", N,
+        help="the motor's inertia at the sun shaft's torque point (needs [sun.shaft])"),
     Key("excitation", S, choices=EXCITATIONS,
         help="mesh excitation: analytical stiffness, or the loaded contact of [contact]"),
 )

@@ -72,6 +72,7 @@ def analyse_contact(
     options: ContactOptions | None = None,
     *,
     show_progress: bool = False,
+    warn: bool = True,
 ) -> LoadedMeshCycle:
     """Loaded tooth contact over one mesh cycle at the operating torque.
 
@@ -81,13 +82,16 @@ def analyse_contact(
     operation : the driving torque (N m) sets the load P along the line of action.
     options : positions, local contact model, flank modifications (defaults if ``None``).
     show_progress : progress bar on stderr.
+    warn : issue the cycle's physics warnings (:func:`warn_physics`); a fixed point that
+        solves the contact again and again warns once, for the cycle it keeps.
     """
     options = options or ContactOptions()
     load = line_of_action_load(source.pair, operation)
     cycle = loaded_mesh_cycle(source, load, options.modifications, options.local_contact,
                               options.positions, driver=operation.driver,
                               show_progress=show_progress)
-    warn_physics(cycle)
+    if warn:
+        warn_physics(cycle)
     return cycle
 
 

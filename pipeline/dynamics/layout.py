@@ -87,7 +87,7 @@ def _planetary(model, bodies: tuple[Body, ...]) -> ModelLayout:
         if not (base[:1] == "p" and base[1:].isdigit() and int(base[1:]) <= len(angles)):
             extra = 1.6 * radius["ring"] + 2.2 * radius["planet"] * len(places)
             places.append(BodyPlace(b.name, (extra, 0.0), radius["planet"], b.frame_angle,
-                                    "body", side))
+                                    "drive" if b.name == "drive" else "body", side))
             continue
         psi = angles[int(base[1:]) - 1]
         a = model.carrier_radius

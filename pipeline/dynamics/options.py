@@ -241,6 +241,8 @@ class PlanetaryDynamicsOptions:
         "L" or "R" half (the other half is loaded through the groove).
     damping_ratio : mesh damping ratio zeta, in [0, 1].
     modal_damping_ratio : constant modal damping (Xu et al. 2020), in [0, 1].
+    drive_inertia : kg m^2 of the motor at the sun shaft's torque point, in (0, 1e6], or
+        None (the torque acts on the sun); needs the sun on a shaft (planar sets).
     excitation : "analytical" or "contact" (as for a pair), for every sun-planet and
         ring-planet mesh.
     sun_mesh_stiffness, ring_mesh_stiffness : an explicit k(tau) (N/m, transverse line of
@@ -264,6 +266,7 @@ class PlanetaryDynamicsOptions:
     sun_load_side: str = "both"
     damping_ratio: float = 0.05
     modal_damping_ratio: float = 0.0
+    drive_inertia: float | None = None
     excitation: str = "analytical"
     sun_mesh_stiffness: PeriodicSignal | None = None
     ring_mesh_stiffness: PeriodicSignal | None = None
@@ -293,6 +296,9 @@ class PlanetaryDynamicsOptions:
         check_choice("dynamics.sun_load_side", self.sun_load_side, SUN_LOAD_SIDES)
         check_range("dynamics.damping_ratio", self.damping_ratio, 0.0, 1.0)
         check_range("dynamics.modal_damping_ratio", self.modal_damping_ratio, 0.0, 1.0)
+        if self.drive_inertia is not None:
+            check_range("dynamics.drive_inertia", self.drive_inertia, 0.0, 1e6, lo_open=True,
+                        unit="kg m^2")
         check_choice("dynamics.excitation", self.excitation, EXCITATIONS)
         for name in ("sun_mesh_stiffness", "ring_mesh_stiffness"):
             sig = getattr(self, name)

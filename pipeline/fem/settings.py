@@ -19,7 +19,7 @@ from pipeline.validation import InputError, check_choice, check_int_range, check
 PLANE_KINDS = ("plane_strain", "plane_stress")
 CUTS = ("clamped", "free")  # sector cut faces
 ENDS = ("free", "sliding")  # 3D end faces: traction-free or u_z = 0
-FACTOR_METHODS = ("auto", "cholmod", "cholespy", "splu")
+FACTOR_METHODS = ("auto", "pardiso", "cholmod", "cholespy", "splu")
 SOLVERS = FACTOR_METHODS + ("pmg-cg",)  # what configuration files may name
 # graded 2D meshes: element size on unloaded teeth and largest body size (m_n), growth
 GRADED_TOOTH = 0.6

@@ -2,28 +2,51 @@
 
 Methods (measured side by side on a 2-core machine when they were chosen):
 
+* ``"pardiso"`` - MKL PARDISO's supernodal sparse Cholesky (``mtype = 2``, METIS nested
+  dissection) through pypardiso, with MKL from the ``mkl`` wheel; a dependency on x86-64
+  Linux and Windows (the platforms with MKL wheels) and the default wherever it is
+  installed. ``workflows/benchmarks/bench_sparse_solvers.py`` (two runs of 3 cold
+  factorisations each, 2 cores shared with other jobs, load 2-6): the straddle-mounted
+  shaft superelement's matrix (64.3k unknowns, 4.8M non-zeros, 42 right-hand sides)
+  factorises in 2.0-3.7 s on one thread against 8.5-18.5 s with cholespy, and the block
+  solves in 0.30-0.83 s against 0.73-1.31 s; the z 30 helical pinion of ``bench_fe3d``
+  (43.7k unknowns, 68 right-hand sides) in 1.5-2.4 s against 4.2-7.8 s, solving at 4-8
+  against 13-19 ms per right-hand side; the same pinion refined to 112k unknowns in
+  5.9-12.6 s against 64-75 s. Its solutions differ from cholespy's by 1e-13 to 1e-12
+  (relative), as SuperLU's do. A minimum degree ordering instead of METIS factorises the
+  shaft 20-70 % slower (the pinion 20 % faster, but solves it at half the speed); 2
+  threads were no faster on the shared machine (MKL takes ``OMP_NUM_THREADS``). PARDISO
+  takes 25-30 % more memory than cholespy on the smaller matrices (shaft 405-411 against
+  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk.
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
-  scikit-sparse; the default whenever it is installed. 3D P2 elasticity with
-  200k DOF factorises in about 20 s and each further right-hand side costs
-  milliseconds.
+  scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
+  elasticity with 200k DOF factorises in about 20 s and each further right-hand side
+  costs milliseconds.
 * ``"cholespy"`` - the same CHOLMOD Cholesky, statically linked in the ``cholespy``
-  wheel (a dependency, so always there when the package is installed; scikit-sparse
-  has no wheels and needs a system SuiteSparse). Taken by ``"auto"`` when
-  scikit-sparse is absent. 3D P2 sector, 23.8k DOF, 1200 right-hand sides: factor and
-  solves 4.6 s against 62.6 s for the p-multigrid CG (bench_fe; 114k DOF: 85 s).
+  wheel with the reference BLAS (one core; a dependency, so always there when the
+  package is installed; scikit-sparse has no wheels and needs a system SuiteSparse).
+  Taken by ``"auto"`` when neither is present. 3D P2 sector, 23.8k DOF, 1200
+  right-hand sides: factor and solves 4.6 s against 62.6 s for the p-multigrid CG
+  (bench_fe; 114k DOF: 85 s).
 * ``"splu"`` - scipy's SuperLU. Always available; fine for 2D and small 3D
-  models, unusable for large 3D ones (> 600 s at 200k DOF), so it is only the
-  fallback.
+  models, unusable for large 3D ones (> 600 s at 200k DOF; 8-16 s and 1 GB on the
+  shaft above), so it is only the fallback.
 
 Every result says which method ran, so reports can state it.
 
-MUMPS is not offered: it was measured through the ``python-mumps`` wheel, but
-the only binary wheel for CPython 3.11 (python-mumps 0.0.2, manylinux2010) is
-compiled against NumPy 1.x and fails on import under NumPy 2 ("numpy.core.multiarray
-failed to import"); later releases (0.0.3, 0.0.4) are source-only and need a system
-MUMPS to build (pip's build of 0.0.4 stops in meson). Without scikit-sparse, 3D models with
-many right-hand sides use cholespy's CHOLMOD, or, without it, the p-multigrid CG of
-:mod:`pipeline.fem.pmultigrid` (block right-hand sides, one set-up).
+Measured and not offered (bench_sparse_solvers, the same runs): CHOLMOD through the
+cvxopt wheel (OpenBLAS; kvxopt bundles the same libraries) factorises about as fast
+(shaft 1.7-4.1 s, pinion 0.9-1.8 s, 112k unknowns 6.2-7.0 s) but solves one right-hand
+side at a time (45-83 ms each on the shaft against PARDISO's 7), so the tables' hundreds
+of right-hand sides are slower, and cvxopt is GPL; sksparse-minimal (CHOLMOD on the
+reference BLAS) factorises the shaft in 4.4-8.7 s; QDLDL (an LDL^T without supernodes)
+in 29-49 s. scikit-sparse and pydiso (MKL PARDISO) have no wheels for this platform.
+MUMPS: the only binary wheel of ``python-mumps`` for CPython 3.11 (0.0.2,
+manylinux2010) is compiled against NumPy 1.x and fails on import under NumPy 2
+("numpy.core.multiarray failed to import"); the later releases pip finds for it (0.0.3,
+0.0.4) are source-only and need a system MUMPS. Without a sparse Cholesky, 3D models
+with many right-hand sides use the p-multigrid CG of :mod:`pipeline.fem.pmultigrid`
+(block right-hand sides, one set-up).
 
 Solvers are passed in, as scikit-fem's ``solve(..., solver=...)`` takes them: a
 :class:`Solver` is called once with the free-free matrix and returns a set-up
@@ -34,9 +57,13 @@ iterates. :func:`solver_named` turns a configuration string into one of them.
 
 from __future__ import annotations
 
+import os
+import sys
 import time
+import weakref
 from dataclasses import dataclass
 from importlib.util import find_spec
+from pathlib import Path
 from typing import Protocol
 
 import numpy as np
@@ -47,6 +74,11 @@ from skfem import Basis
 from pipeline.fem.pmultigrid import PMultigridCG
 from pipeline.fem.settings import FACTOR_METHODS, SOLVERS
 from pipeline.validation import InputError, check_choice
+
+
+def pardiso_available() -> bool:
+    """True when pypardiso (MKL PARDISO, with MKL from the ``mkl`` wheel) can be imported."""
+    return find_spec("pypardiso") is not None
 
 
 def cholmod_available() -> bool:
@@ -60,10 +92,60 @@ def cholespy_available() -> bool:
 
 
 def sparse_cholesky() -> str | None:
-    """The sparse Cholesky that "auto" uses: "cholmod", "cholespy" or None (neither)."""
+    """The sparse Cholesky that "auto" uses: "pardiso", "cholmod", "cholespy" or None
+    (none installed)."""
+    if pardiso_available():
+        return "pardiso"
     if cholmod_available():
         return "cholmod"
     return "cholespy" if cholespy_available() else None
+
+
+PARDISO_NOT_SPD = -4
+"""PARDISO's error for a zero or negative pivot: the matrix is not positive definite."""
+
+
+def _point_pypardiso_at_mkl() -> None:
+    """Name the environment's MKL runtime to pypardiso (``PYPARDISO_MKL_RT``), unless set.
+
+    Without it, every pypardiso solver object (and its import) looks for ``mkl_rt`` with
+    ``find_library`` and then a recursive glob over the environment: 0.3 s each. The
+    ``mkl`` wheel puts the library in the environment's ``lib`` folder.
+    """
+    if "PYPARDISO_MKL_RT" not in os.environ:
+        found = sorted(Path(sys.prefix, "lib").glob("libmkl_rt.so*"))
+        if found:
+            os.environ["PYPARDISO_MKL_RT"] = str(found[0])
+
+
+def _pardiso_factor(A: sp.spmatrix):
+    _point_pypardiso_at_mkl()
+    from pypardiso import PyPardisoSolver
+    from pypardiso.pardiso_wrapper import PyPardisoError
+
+    U = sp.triu(A, format="csr")  # PARDISO's symmetric storage: the upper triangle by rows
+    U.sort_indices()
+    U.data = U.data.astype(np.float64, copy=False)
+    solver = PyPardisoSolver(mtype=2)  # real symmetric positive definite: Cholesky L L^T
+    solver.set_iparm(1, 1)  # use the parameters set here, not PARDISO's defaults
+    solver.set_iparm(2, 2)  # METIS nested dissection (bench_sparse_solvers: beats min. degree)
+    solver.set_iparm(10, 8)  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
+    try:
+        solver.factorize(U)
+    except PyPardisoError as err:
+        solver.free_memory(everything=True)
+        if err.value == PARDISO_NOT_SPD:
+            raise RuntimeError("PARDISO's Cholesky met a zero or negative pivot: the matrix "
+                               "is not positive definite (a body without enough supports?)"
+                               ) from err
+        raise RuntimeError(f"PARDISO failed with error {err.value}") from err
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        return solver.solve(U, np.asarray(b, dtype=np.float64))
+
+    # PARDISO keeps its factor outside Python: free it with the last reference to solve
+    weakref.finalize(solve, solver.free_memory, True)
+    return solve
 
 
 def _cholespy_factor(A: sp.spmatrix):
@@ -89,7 +171,7 @@ class SPDFactor:
 
     Attributes
     ----------
-    method : "cholmod", "cholespy" or "splu".
+    method : "pardiso", "cholmod", "cholespy" or "splu".
     n : matrix size.
     factor_seconds : wall time of the factorisation, s.
     """
@@ -130,8 +212,8 @@ class Solver(Protocol):
 
 @dataclass(frozen=True)
 class DirectSolver:
-    """Factorise once (:func:`factorize_spd`); ``method`` "auto", "cholmod", "cholespy" or
-    "splu"."""
+    """Factorise once (:func:`factorize_spd`); ``method`` "auto", "pardiso", "cholmod",
+    "cholespy" or "splu"."""
 
     method: str = "auto"
 
@@ -161,19 +243,24 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
     Parameters
     ----------
     A : (n, n) sparse symmetric positive definite matrix.
-    method : "auto" (scikit-sparse's CHOLMOD if installed, else cholespy's, else
-        SuperLU), "cholmod", "cholespy" or "splu".
+    method : "auto" (MKL PARDISO's Cholesky if pypardiso is installed, else
+        scikit-sparse's CHOLMOD, else cholespy's, else SuperLU), "pardiso", "cholmod",
+        "cholespy" or "splu".
     """
     check_choice("solver.method", method, FACTOR_METHODS)
     if method == "auto":
         method = sparse_cholesky() or "splu"
+    if method == "pardiso" and not pardiso_available():
+        raise InputError("solver.method = 'pardiso' but pypardiso is not installed")
     if method == "cholmod" and not cholmod_available():
         raise InputError("solver.method = 'cholmod' but scikit-sparse is not installed")
     if method == "cholespy" and not cholespy_available():
         raise InputError("solver.method = 'cholespy' but cholespy is not installed")
     n = A.shape[0]
     t0 = time.perf_counter()
-    if method == "cholmod":
+    if method == "pardiso":
+        solve = _pardiso_factor(A)
+    elif method == "cholmod":
         from sksparse.cholmod import cholesky
 
         factor = cholesky(sp.csc_matrix(A))

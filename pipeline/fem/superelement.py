@@ -36,6 +36,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from pipeline.fem.groove.coupling import support_321, surface_loads, transfer_matrix
 from pipeline.fem.linear_static import ElasticModel, solve_static
@@ -94,11 +95,16 @@ class Superelement:
         return 0.5 * (K + K.T)
 
 
-def _fit(model: ElasticModel, patch: Patch) -> np.ndarray:
+def _fit(model: ElasticModel, patch: Patch) -> sp.csc_array:
     """B = P G^-1 (n_dof, 6): the distributed load per unit generalised load at the node,
-    and (transposed) its least-squares rigid fit."""
+    and (transposed) its least-squares rigid fit. Sparse: only the patch's DOFs carry
+    load; dense, the readouts ``B^T U`` of 30-odd patches on 42 solutions took 1.1 s and
+    the products ``P G^-1`` 0.1-1 s (64k unknowns, 23 patches)."""
     P, G = surface_loads(model, patch.triangles, patch.centre)
-    return P @ np.linalg.inv(G)
+    rows = np.flatnonzero(np.any(P, axis=1))  # the patch's DOFs
+    B = P[rows] @ np.linalg.inv(G)
+    return sp.csc_array((B.ravel(), (np.repeat(rows, 6), np.tile(np.arange(6), rows.size))),
+                        shape=P.shape)
 
 
 def condense(
@@ -120,12 +126,12 @@ def condense(
     S = [_fit(model, p) for p in sections]
     gam = [transfer_matrix(np.asarray(p.centre, float) - r0) for p in (*nodes, *sections)]
     if anchor_rigid:
-        B0 = np.zeros((model.n_dof, 6))
+        B0 = sp.csc_array((model.n_dof, 6))
         held = (3 * np.unique(anchor.triangles)[:, None] + np.arange(3)).ravel()
     else:
         B0 = _fit(model, anchor)
         held = support_321(model, anchor.triangles)
-    F = np.hstack([Bj - B0 @ gj.T for Bj, gj in zip(B, gam[:len(B)], strict=True)])
+    F = np.hstack([Bj.toarray() - B0 @ gj.T for Bj, gj in zip(B, gam[:len(B)], strict=True)])
     sol = solve_static(model, F, held, solver)
     U = sol.displacements
     if not anchor_rigid:

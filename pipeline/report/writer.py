@@ -112,6 +112,23 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
                                figures=figs)
 
 
+def _modification_figures(contact: Any, pair: Any, fig, title: str) -> list[Figure]:
+    """The flanks' modification maps of a mesh whose gears are modified (none otherwise)."""
+    from pipeline.contact.modifications import modification_maps
+    from pipeline.viz.modifications import plot_modification_maps
+
+    flanks = contact.modifications.flanks
+    if all(m.is_zero for m in flanks):
+        return []
+    drawn = [(m, internal) for m, mod, internal in zip(
+        modification_maps(pair, flanks), flanks, (False, pair.gear.internal), strict=True)
+        if not mod.is_zero]  # an unmodified flank has no map to show
+    return [fig("report_modifications.png", "Modification map of each modified flank: "
+                "material removed [um] over face position and roll length",
+                plot_modification_maps, [m for m, _ in drawn], f"{title}: flank modifications",
+                [i for _, i in drawn])]
+
+
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
                 command: str, dist: LoadDistribution, root_stress: Any = None,
                 halves: Any = None, half_roots: Mapping[str, Any] | None = None
@@ -149,7 +166,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
         content.pair_section(actual, st.stiffness.nominal),
         content.modifications_section(box.contact, st.case.assembly_errors,
-                                      st.stiffness.assembled),
+                                      st.stiffness.assembled,
+                                      _modification_figures(box.contact, actual, fig, title)),
         content.stiffness_section(st.stiffness, dist, st.compliance, [k_fig]),
         content.transmission_error_section(dist, [te_fig]),
         content.load_distribution_section(dist, actual, [w_fig], box.contact.modifications),
@@ -181,7 +199,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
         if result.dynamics.without_shafts is not None:
-            sections.append(_shaft_dynamics_section(result.dynamics, summary, fig, title))
+            sections.append(_shaft_dynamics_section(result.dynamics, summary, name, fig,
+                                                    title))
     if result.rating is not None:
         sections += _rating_sections(result.rating, name, fig, title, actual.gear.internal)
     run_s = result.log.summary()["total_s"]
@@ -201,6 +220,8 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
 
     stage = st.shafts
     rigid = load_distribution(stage.rigid, pair, op)
+    if box.kind == "planetary":
+        return _planetary_shaft_section(box, st, rigid, dist, fig, title)
     shafts = []
     for role, r in zip(("pinion", "gear"), stage.retreats, strict=True):
         if r is None or r.solution is None:
@@ -214,22 +235,51 @@ def _shaft_section(box: Any, st: Any, dist: LoadDistribution, pair: Any, op: Any
             "load across the face with and without it", plot_shaft_deflection, shafts,
             stage.z, rigid_w, np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title,
             stage.mesh is not None and stage.mesh.reversed)
-    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f])
+    return shaft_section(stage, rigid.k_hbeta, dist.k_hbeta, [f],
+                         {role: spec[0] for role, spec in box.shafts.items()})
 
 
-def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], fig, title: str):
-    """The dynamics with the shafts and on rigid supports, with the figure of both sweeps."""
+def _shaft_dynamics_section(dynamics: Any, summary: Mapping[str, Any], name: str, fig,
+                            title: str):
+    """The dynamics with and without the shafts, with the figure of both sweeps for this
+    report's mesh (a planetary set's: its first planet's)."""
+    from pipeline.dynamics.mesh_names import planet_meshes
     from pipeline.report.shaft_section import shaft_dynamics_section
     from pipeline.viz.shafts import plot_shaft_dynamics
 
     sweep, rigid = dynamics.sweep, dynamics.without_shafts
-    f = fig("report_shaft_dynamics.png", "Dynamic factor over mesh frequency with the shafts "
-            "and on rigid supports, with the natural frequencies of each",
-            plot_shaft_dynamics, sweep.frequencies, sweep.dynamic_factor[0],
-            rigid.sweep.dynamic_factor[0], summary["natural_frequencies_Hz"],
+    meshes = planet_meshes(sweep.mesh_names, name).get("", {})
+    shown = meshes[min(meshes)] if meshes else sweep.mesh_names[0]
+    i = sweep.mesh_names.index(shown)
+    tag = "" if shown == "mesh" else f" (mesh {shown})"
+    f = fig("report_shaft_dynamics.png", f"Dynamic factor over mesh frequency{tag} with and "
+            "without the shafts, with the natural frequencies of each",
+            plot_shaft_dynamics, sweep.frequencies, sweep.dynamic_factor[i],
+            rigid.sweep.dynamic_factor[i], summary["natural_frequencies_Hz"],
             summary["without_shafts"]["natural_frequencies_Hz"],
-            dynamics.operating.mesh_frequency, title)
+            dynamics.operating.mesh_frequency, title + tag)
     return shaft_dynamics_section(summary, [f])
+
+
+def _planetary_shaft_section(box: Any, st: Any, rigid: LoadDistribution,
+                             dist: LoadDistribution, fig, title: str):
+    """The shafts section of one mesh of a planetary set with its figure."""
+    from pipeline.report.shaft_section import planetary_shaft_section
+    from pipeline.viz.shafts import plot_planetary_shaft_deflection
+
+    stage = st.shafts
+    role = {"sun": ("sun", "bearings"), "planet pin": ("planet", "supports in the carrier")}
+    shafts = []
+    for name, z, line in stage.deflection_lines():
+        lay = box.shafts[role[name][0]][1]
+        shafts.append((name, z, line, lay.seat, np.array([b.position for b in lay.bearings]),
+                       role[name][1]))
+    f = fig("report_shafts.png", "The sun's and the planet pin's retreat along this mesh's "
+            "line of action and the line load across the face with and without it",
+            plot_planetary_shaft_deflection, shafts, stage.z,
+            np.interp(stage.z, rigid.z, rigid.cycle_mean),
+            np.interp(stage.z, dist.z, dist.cycle_mean), stage.gap, title)
+    return planetary_shaft_section(stage, [f])
 
 
 def _rating_sections(stage: Any, name: str, fig, title: str, internal: bool) -> list:

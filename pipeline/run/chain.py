@@ -21,7 +21,9 @@ takes from the one before:
 
 For a planetary set the two meshes are one sun-planet and one planet-ring mesh (for a
 herringbone set one helical half at half the load), ``[operation]`` giving the sun's torque
-and speed with the ring fixed. The dynamic factor is the largest over the mean mesh force.
+and speed with the ring fixed; with a sun's shaft or planets' pins both contacts are then
+solved again together with their deflection (:mod:`pipeline.run.planetary_shafts`). The
+dynamic factor is the largest over the mean mesh force.
 ``gearpipe modes|response|sweep`` build the dynamic model the same way.
 
 Cached by content hash (``meshes/`` of a checkout; ``--cache-dir`` moves it,
@@ -71,6 +73,7 @@ from pipeline.validation import InputError
 
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
+    from pipeline.run.planetary_shafts import PlanetaryMeshShafts
     from pipeline.run.revolution import RevolutionStage
     from pipeline.run.shafts import ShaftStage
 
@@ -138,7 +141,10 @@ class MeshStages:
         halves through the groove (:class:`pipeline.run.herringbone.HerringboneStage`), or
         ``None``.
     shafts : a pair on shafts: the contact solved with their deflection
-        (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle), or None.
+        (:class:`pipeline.run.shafts.ShaftStage`; ``contact`` is then that cycle); a
+        planetary set with a sun's shaft or planets' pins: this mesh's view of both meshes
+        solved together (:class:`pipeline.run.planetary_shafts.PlanetaryMeshShafts`); or
+        None.
     revolution : a pair with ``[contact.errors]``: the contact through the revolution
         (:class:`pipeline.run.revolution.RevolutionStage`), or None.
     """
@@ -149,7 +155,7 @@ class MeshStages:
     contact: LoadedMeshCycle | None
     compliance: str
     herringbone: HerringboneStage | None = None
-    shafts: ShaftStage | None = None
+    shafts: ShaftStage | PlanetaryMeshShafts | None = None
     revolution: RevolutionStage | None = None
 
     def summary(self) -> dict[str, Any]:
@@ -267,6 +273,14 @@ def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = T
     ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
-    return {case.name: static_stages(box, case, options, log, contact,
-                                     None if prebuilt is None else prebuilt[case.name])
-            for case in mesh_cases(box)}
+    out = {case.name: static_stages(box, case, options, log, contact,
+                                    None if prebuilt is None else prebuilt[case.name])
+           for case in mesh_cases(box)}
+    if contact and box.kind == "planetary" and box.shafts:
+        from pipeline.run.planetary_shafts import planetary_shaft_stage
+
+        sh = planetary_shaft_stage(box, out, options, log)  # both meshes together
+        if sh is not None:
+            out = {name: dataclasses.replace(st, contact=sh.cycles[name], shafts=sh.mesh(name))
+                   for name, st in out.items()}
+    return out

@@ -48,9 +48,10 @@ from pipeline.progress import Steps
 
 @dataclass(frozen=True)
 class WithoutShafts:
-    """The dynamics of a pair on shafts solved again without them, for comparison: the
-    gears on rigid supports (their rotations only), no motor or driven machine, the
-    contact on rigid supports as the excitation, the same sweep frequencies.
+    """The dynamics of a gearbox on shafts solved again without them, for comparison: the
+    supports ``[dynamics]`` gives without shafts (its typed bearing stiffnesses or their
+    defaults), no motor or driven machine, the contact on rigid supports as the excitation,
+    the same sweep frequencies.
 
     Attributes
     ----------
@@ -185,7 +186,8 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     shafts are supported by them and, with ``[dynamics] drive_inertia_kgm2`` /
     ``load_inertia_kgm2``, tied by their torsion to the motor and the driven machine
     (:func:`pipeline.run.shafts.support_stiffness`; the 3D superelement read from or written
-    to ``cache``).
+    to ``cache``); a planetary set's sun on its shaft and planets on pins are supported by
+    them (:func:`pipeline.run.planetary_shafts.support_stiffness`).
     """
     from pipeline.dynamics.models import planetary_gears as pg
     from pipeline.dynamics.models.spur_pair import spur_pair_model
@@ -195,13 +197,23 @@ def dynamic_model(box: Gearbox, meshes: Mapping[str, Any], cache: Any = None
     opts = dynamics_options(box)
     friction = box.stiffness.friction_model
     if box.kind == "planetary":
+        drive_torsion = None
+        if box.shafts:  # the sun's shaft and the planets' pins support them
+            from pipeline.run.planetary_shafts import support_stiffness as planetary_supports
+
+            k_sun, k_planet, drive_torsion = planetary_supports(box, cache)
+            opts = dataclasses.replace(
+                opts, **{k: v for k, v in (("sun_bearing_stiffness", k_sun),
+                                           ("planet_bearing_stiffness", k_planet))
+                         if v is not None})
         excitations = [excitation_from_signal(given) if given is not None
                        else mesh_excitation(meshes[name], friction, opts.excitation)
                        for name, given in (("sun_planet", opts.sun_mesh_stiffness),
                                            ("planet_ring", opts.ring_mesh_stiffness))]
         if not box.planetary.sun.herringbone:
             return (pg.planetary_model_from_gears(box.planetary, box.bodies, box.carrier,
-                                                  box.operation, opts, *excitations),
+                                                  box.operation, opts, *excitations,
+                                                  drive_torsion),
                     opts.excitation)
         hb = meshes["sun_planet"].herringbone if "sun_planet" in meshes else None
         extra = {}
@@ -264,22 +276,25 @@ def dynamics_stages(box: Gearbox, meshes: dict, options, log: Steps) -> Dynamics
                         f"{sweep.frequencies[-1]:.4g} Hz (operating mesh frequency "
                         f"{operating.mesh_frequency:.4g} Hz)")
     without = None
-    if box.kind == "pair" and box.shafts and "mesh" in meshes:
-        with log.step("modes and sweep on rigid supports (without the shafts)"):
-            without = without_shafts(box, meshes["mesh"], sweep)
+    if box.shafts and meshes:
+        with log.step("modes and sweep without the shafts"):
+            without = without_shafts(box, meshes, sweep)
     return DynamicsStages(model, excitation, modes, response, sweep, operating,
                           opts.sweep.given, without)
 
 
-def without_shafts(box: Gearbox, stages: Any, sweep: SweepResult) -> WithoutShafts:
-    """The pair's dynamics without its shafts (:class:`WithoutShafts`) over the frequencies
-    of ``sweep``; ``stages`` the pair's static stages with their shaft stage."""
+def without_shafts(box: Gearbox, meshes: Mapping[str, Any], sweep: SweepResult
+                   ) -> WithoutShafts:
+    """The dynamics without the shafts (:class:`WithoutShafts`) over the frequencies of
+    ``sweep``; ``meshes`` the static stages by mesh, with their shaft stages."""
     opts = dynamics_options(box)
-    plain = dataclasses.replace(box, shafts={}, dynamics=dataclasses.replace(
-        opts, dofs="torsional", drive_inertia=None, load_inertia=None))
-    rigid = stages if stages.shafts is None else dataclasses.replace(
-        stages, contact=stages.shafts.rigid, shafts=None)
-    model, _ = dynamic_model(plain, {"mesh": rigid})
+    drives = ({"drive_inertia": None, "load_inertia": None} if box.kind == "pair"
+              else {"drive_inertia": None})
+    plain = dataclasses.replace(box, shafts={},
+                                dynamics=dataclasses.replace(opts, **drives))
+    rigid = {name: st if st.shafts is None else dataclasses.replace(
+        st, contact=st.shafts.rigid, shafts=None) for name, st in meshes.items()}
+    model, _ = dynamic_model(plain, rigid)
     system = model.assembly().assemble()
     return WithoutShafts(analyse_modes(model),
                          mesh_force_sweep(system, sweep.frequencies, sweep.method,

@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.config import Gearbox
-from pipeline.contact.analysis import analyse_contact, line_of_action_load
+from pipeline.contact.analysis import analyse_contact, line_of_action_load, warn_physics
 from pipeline.contact.compliance import compliance_source
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
@@ -143,18 +143,41 @@ class ShaftStage:
         return cols
 
 
-def _model(spec: tuple[str, Any] | None, points: np.ndarray, cache: Any = None) -> Any:
-    """The shaft model a ``[<gear>.shaft]`` names: the beam with nodes at the face
-    ``points`` (m from the face's first end), or the 3D superelement (cached)."""
-    if spec is None:
-        return None
+def check_settling(iteration: int, change: float, what: str) -> None:
+    """The fixed point's one-line error once ``iteration`` passes :data:`MAX_ITERATIONS`,
+    naming the last relative ``change`` of the line load and ``what`` does not settle."""
+    if iteration > MAX_ITERATIONS:
+        raise InputError(f"shafts: the line load still changes by {change:.3g} (relative) "
+                         f"after iteration {MAX_ITERATIONS}; {what} do not settle")
+
+
+def shaft_model(spec: tuple[str, Any], nodes: Any = (), cache: Any = None) -> Any:
+    """The shaft model a ``[<gear>.shaft]`` names, ``spec`` = (model, layout): the beam with
+    extra nodes at ``nodes`` (m along the shaft), or the 3D superelement (read from or
+    written to ``cache``)."""
     model, layout = spec
     if model == "fe3d":
         from pipeline.shaft.fe3d import Fe3dShaft
 
         return Fe3dShaft(layout) if cache is None else Fe3dShaft(layout, cache=cache)
+    return BeamShaft(layout, extra_nodes=tuple(float(p) for p in nodes))
+
+
+def seat_flexibility(spec: tuple[str, Any], cache: Any = None) -> np.ndarray:
+    """(6, 6) the flexibility at the seat's centre of the shaft ``spec`` (bearings and the
+    torque point as supports; m/N, rad/N m)."""
+    layout = spec[1]
+    return shaft_model(spec, (), cache).flexibility(np.array([layout.gear_position]))
+
+
+def _face_model(spec: tuple[str, Any] | None, z: np.ndarray, cache: Any) -> Any:
+    """A pair's shaft model with beam nodes at the contact's face points ``z`` (m from the
+    face's first end); None without a shaft."""
+    if spec is None:
+        return None
+    layout = spec[1]
     start = layout.gear_position - 0.5 * layout.seat_width
-    return BeamShaft(layout, extra_nodes=tuple(float(start + z) for z in points))
+    return shaft_model(spec, start + z, cache)
 
 
 def support_stiffness(box: Gearbox, cache: Any = None
@@ -175,8 +198,7 @@ def support_stiffness(box: Gearbox, cache: Any = None
             lateral.append(None)
             torsional.append(None)
             continue
-        lay = spec[1]
-        c = _model(spec, np.array([]), cache).flexibility(np.array([lay.gear_position]))
+        c = seat_flexibility(spec, cache)
         lateral.append(float(1.0 / c[1, 1]))
         torsional.append(float(1.0 / c[5, 5]))
     return (lateral[0], lateral[1]), (torsional[0], torsional[1])
@@ -191,7 +213,7 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     n = box.contact.slices
     b = pair.face_width
     z = (np.arange(n) + 0.5) * b / n
-    models = [_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
+    models = [_face_model(box.shafts.get(role), z, options.cache) for role in ("pinion", "gear")]
     reflected = (box.pinion_rotation == "counterclockwise") != (op.driver == "gear")
     mesh = (HelicalMesh.of(pair, np.full(n, pair.s_pitch), reflected)
             if pair.pinion.is_helical or pair.pinion.herringbone else None)
@@ -202,10 +224,7 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     with log.step("shaft deflection and loaded contact", announce=True) as note:
         while change >= TOLERANCE:
             iteration += 1
-            if iteration > MAX_ITERATIONS:
-                raise InputError(f"shafts: the line load still changes by {change:.3g} "
-                                 f"(relative) after iteration {MAX_ITERATIONS}; the shafts "
-                                 "and the mesh do not settle")
+            check_settling(iteration, change, "the shafts and the mesh")
             gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle, flex,
                                       mesh)
             used, loaded = mesh, w
@@ -218,13 +237,14 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
             if source is None:
                 source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                            cache=options.cache, model=stages.stiffness.model)
-            cycle = analyse_contact(source, op, opts)
+            cycle = analyse_contact(source, op, opts, warn=False)
             dist = load_distribution(cycle, pair, op)
             w_new = np.interp(z, dist.z, dist.cycle_mean)
             change = float(np.abs(w_new - w).max() / np.abs(w_new).max())
             w = w_new
             if mesh is not None:
                 mesh = dataclasses.replace(mesh, roll=mean_roll(cycle, b, n, pair.s_pitch))
+        warn_physics(cycle)  # once, for the cycle the fixed point keeps
         note["text"] = (f"{iteration} iterations, misalignment {np.ptp(gap) * 1e6:.3g} um "
                         f"across the face, K_Hbeta {dist.k_hbeta:.3f}")
     if reflected:  # the shafts' motion in the real gearbox (misalignment module docstring)

@@ -76,13 +76,16 @@ and 4.8-5.5 % in torsion than the beam: each shoulder acts like 0.16-0.2 d (bend
 0.07-0.08 d (torsion) of extra small shaft - the large section next to a step is not
 fully effective (a Saint-Venant zone of the order of the step height, which beam theory
 lacks). The condensed flexibility is symmetric to 1e-15 before symmetrising. Timing
-(``workflows/benchmarks/bench_shaft_fe3d.py``; 2 cores, one busy with another job - the
-factorisation, cholespy's CHOLMOD on reference BLAS, runs on one): the straddle-mounted
-example (integral seat on the 142.5 mm body) 64k unknowns, 12-15 s cold (mesh 0.6-1.2,
-assembly 1.7-3.4, factorisation 7.2-9.4, solves 0.7-1.0 s; with the earlier sizing 51k
-unknowns in 38-41 s, 34 s of them factorising the slabs); a straddle-mounted pinion
-shaft (35-45 mm, bearings 200 mm apart, rigid hub) 35k unknowns, 3.9 s cold (mesh 0.35,
-assembly 1.4, factorisation 1.9, solves 0.2 s); 2 ms warm.
+(``workflows/benchmarks/bench_shaft_fe3d.py``; 2 cores shared with other jobs; the
+factorisation MKL PARDISO's, :mod:`pipeline.fem.solvers`): the straddle-mounted example
+(integral seat on the 142.5 mm body) 64k unknowns, 6.3-10.2 s cold at a load average of
+2-4 (mesh 0.7-1.0, assembly 0.9-3.7, factorisation 2.9-3.2 with MKL's loading, solves
+0.7-0.8 s) and 12.3-16.4 s at 5, against 14.9-20.8 s and 22.6-27.5 s with cholespy's
+CHOLMOD on the reference BLAS in the same runs (factorisation 9.5-18.4 s; the seat's
+compliance agrees to 2.5e-12; with the earlier sizing 51k unknowns in 38-41 s, 34 s of
+them factorising the slabs); a straddle-mounted pinion shaft (35-45 mm, bearings 200 mm
+apart, rigid hub) 35k unknowns, 2.6-3.5 s cold at load 2-4 (mesh 0.3-0.5, assembly
+0.6-0.8, factorisation 0.9-1.2, solves 0.2-0.3 s); 2-7 ms warm.
 """
 
 from __future__ import annotations

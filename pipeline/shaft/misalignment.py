@@ -103,7 +103,11 @@ exactly, and is the gearbox turned end for end (the mirrored shaft gives the sam
 1e-12); a rigid seat at mid-span tilts by the axial force's moment over its closed-form
 tilting stiffness (1e-9, its axial terms too); ``beta_b = 0`` is the spur result bit for
 bit. The demo pair at 15 deg on a straddle-mounted pinion opens 0.32 um (K_Hbeta 1.016;
-the spur pair 0) through its fixed point, to 1e-9 of the closed form.
+the spur pair 0) through its fixed point, to 1e-9 of the closed form. The planetary
+functions (block at the end; tests/test_shaft_planetary_loads.py): equally spaced sun meshes
+cancel (1e-14), a planet's two forces drive the carrier with ``T_s (1 + z_r / z_s)``
+(1e-12), a cantilevered pin's retreats are Roark's with the shear term (1e-9), an integral
+sun's twist is ``sum T_k min(z, z_k) / (G J)`` (1e-9).
 
 Face positions: functions here take and return the contact's face coordinate ``zeta`` (m
 from the face's first end, :attr:`LoadedMeshCycle.point_z`); the shaft's face point is at
@@ -316,3 +320,73 @@ def shaft_gap(models: Sequence[ShaftModel | None], base_radii: Sequence[float],
         if r is not None:
             gap = gap + r.total
     return gap, retreats
+
+
+# Planetary sets --------------------------------------------------------------------------
+#
+# A sun meshes with N planets and a planet with the sun and the ring: one shaft carries
+# several meshes. Each mesh m loads the shaft with its own unit loads ``L_m`` (n, 6) in the
+# shaft's frame and retreats by ``L_m . (u, theta)`` (module docstring), the shaft's
+# displacements ``d = C sum_m L_m F_m`` under all of them. For a spur set:
+#
+# * the sun in the mesh frame of its first planet's mesh (the pair sun-planet, the sun the
+#   pinion): mesh n is that mesh turned by ``psi_n - psi_0`` about the sun's axis, so its
+#   unit load is ``(0, 1, 0, 0, 0, r_b)`` turned by that angle (:func:`rotated_unit_loads`);
+#   with equally spaced planets the forces cancel and the moments about the axis add (which
+#   way the angles count changes no gap of a spur set: a round shaft's bending, mirrored
+#   with the forces, and its torsion are uncoupled);
+# * a planet turns freely on its pin (the planet bearing carries no torque), so a pin is
+#   loaded by forces only, in a frame with ``x`` along the tangent of the planet's orbit in
+#   the sense the sun pushes the planet and ``y`` radially outward from the sun's axis: the
+#   sun pushes the planet along ``(cos alpha_sp, sin alpha_sp)`` (away from the sun, a
+#   separating force) and the ring along ``(cos alpha_pr, -sin alpha_pr)`` (towards the
+#   sun's axis), each along its transverse line of action away from its mate
+#   (:func:`planet_unit_loads`). Both tangential parts point the same way: they drive the
+#   carrier, whose torque ``2 a N P cos(alpha)`` is the sun's and the ring's together.
+
+
+def rotated_unit_loads(unit: np.ndarray, angle: float) -> np.ndarray:
+    """``unit`` (n, 6) loads ``(F, M)`` turned by ``angle`` (rad) about the shaft's axis
+    ``z``: the forces' and the moments' x-y parts rotate, their z parts stay."""
+    c, s = math.cos(angle), math.sin(angle)
+    rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    unit = np.asarray(unit, dtype=float)
+    return np.concatenate([unit[:, :3] @ rot.T, unit[:, 3:] @ rot.T], axis=1)
+
+
+def planet_unit_loads(pressure_angles: tuple[float, float], n: int) -> tuple[np.ndarray,
+                                                                             np.ndarray]:
+    """The sun-planet and the planet-ring mesh's unit loads (n, 6) on a planet's pin per
+    newton of transverse load (forces only: the planet turns freely on its pin), in the pin's
+    frame (``x`` along the orbit's tangent, ``y`` radially out; block comment above);
+    ``pressure_angles`` the transverse operating pressure angles of the two meshes, rad."""
+    out = []
+    for angle, radial in zip(pressure_angles, (1.0, -1.0), strict=True):
+        u = np.zeros((n, 6))
+        u[:, 0] = math.cos(angle)
+        u[:, 1] = radial * math.sin(angle)
+        out.append(u)
+    return out[0], out[1]
+
+
+def body_retreats(flexibility: np.ndarray, units: Sequence[np.ndarray],
+                  forces: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+    """One shaft under several meshes: its displacements and each mesh's flank retreat.
+
+    Parameters
+    ----------
+    flexibility : (6n, 6n) the shaft's flexibility at its ``n`` face points (m/N, rad/N m).
+    units : per mesh, its unit loads (n, 6) at those points (N/N, N m/N).
+    forces : per mesh, its transverse force on each face slice (n,), N.
+
+    Returns
+    -------
+    (d, retreats): ``d`` (n, 6) the displacements ``C sum_m L_m F_m`` (m, rad) and, per
+    mesh, its retreat ``L_m . d`` (n,), m (block comment above).
+    """
+    if len(units) != len(forces) or not units:
+        raise InputError("shaft loads: one force row per mesh")
+    f = sum(np.asarray(u, dtype=float) * np.asarray(w, dtype=float)[:, None]
+            for u, w in zip(units, forces, strict=True))
+    d = (np.asarray(flexibility) @ f.reshape(-1)).reshape(-1, 6)
+    return d, [np.einsum("ij,ij->i", np.asarray(u, dtype=float), d) for u in units]

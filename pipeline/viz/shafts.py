@@ -25,19 +25,55 @@ def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
     helical pinion, :func:`pipeline.shaft.misalignment.seat_points`), which the label says."""
     fig = new_figure((9.0, 3.6), "constrained")
     ax = fig.add_subplot(1, 2, 1)
-    for i, (name, z, uy, seat, bearings) in enumerate(shafts):
-        colour = f"C{i}"
-        ax.plot(np.asarray(z) * 1e3, np.asarray(uy) * 1e6, colour, lw=1.8, label=name)
-        ax.axvspan(seat[0] * 1e3, seat[1] * 1e3, color=colour, alpha=0.15)
-        ax.plot(np.asarray(bearings) * 1e3, np.zeros(len(bearings)), "^", color=colour,
-                ms=8, label=f"{name}: bearings")
+    _shaft_panel(ax, [(*s, f"{s[0]}: bearings") for s in shafts],
+                 "deflection along the line of action", "shafts (the gear's seat shaded)")
+    _line_load_panel(fig.add_subplot(1, 2, 2), z_face, rigid, coupled, gap, face_reversed)
+    fig.suptitle(title, fontsize=9)
+    return fig
+
+
+def plot_planetary_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
+                                                           tuple[float, float], np.ndarray,
+                                                           str]],
+                                    z_face: np.ndarray, rigid: np.ndarray,
+                                    coupled: np.ndarray, gap: np.ndarray, title: str
+                                    ) -> Figure:
+    """One mesh of a planetary set: a panel per shaft that moves its flanks, ``(name, z m,
+    retreat m, (seat start, end) m, support positions m, the supports' name)``, each
+    section's retreat along the mesh's line of action in um over mm on its own scale (the
+    sun's wind-up from its torque point dwarfs a pin's bending), the seat shaded, the sun in
+    C0 and a pin in C1 in every mesh's figure; then the line load panel of
+    :func:`plot_shaft_deflection`."""
+    n = len(shafts) + 1
+    fig = new_figure((4.2 * n, 3.6), "constrained")
+    for i, s in enumerate(shafts):
+        ax = fig.add_subplot(1, n, i + 1)
+        _shaft_panel(ax, [s], "retreat along the line of action",
+                     f"{s[0]} (the seat shaded)", colour=0 if s[0] == "sun" else 1)
+    _line_load_panel(fig.add_subplot(1, n, n), z_face, rigid, coupled, gap, False)
+    fig.suptitle(title, fontsize=9)
+    return fig
+
+
+def _shaft_panel(ax, shafts, ylabel: str, title: str, colour: int = 0) -> None:
+    """Deflection lines ``(name, z, value, seat, supports, supports' name)`` in um over mm."""
+    for i, (name, z, uy, seat, bearings, marks) in enumerate(shafts):
+        c = f"C{colour + i}"
+        ax.plot(np.asarray(z) * 1e3, np.asarray(uy) * 1e6, c, lw=1.8, label=name)
+        ax.axvspan(seat[0] * 1e3, seat[1] * 1e3, color=c, alpha=0.15)
+        ax.plot(np.asarray(bearings) * 1e3, np.zeros(len(bearings)), "^", color=c, ms=8,
+                label=marks)
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("position along the shaft z [mm]")
-    ax.set_ylabel("deflection along the line of action [um]")
-    ax.set_title("shafts (the gear's seat shaded)", fontsize=9)
+    ax.set_ylabel(f"{ylabel} [um]")
+    ax.set_title(title, fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax2 = fig.add_subplot(1, 2, 2)
+
+
+def _line_load_panel(ax2, z_face, rigid, coupled, gap, face_reversed: bool) -> None:
+    """The cycle-mean line load (N/mm) on rigid supports and with the shafts, and the gap
+    (um, right axis), over the face position (mm)."""
     zf = np.asarray(z_face) * 1e3
     ax2.plot(zf, np.asarray(rigid) * 1e-3, "k--", lw=1.4, label="rigid supports")
     ax2.plot(zf, np.asarray(coupled) * 1e-3, "C3", lw=2.0, label="with the shafts")
@@ -54,22 +90,20 @@ def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
     more = tw.get_legend_handles_labels()
     ax2.legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="lower center")
     ax2.set_title("line load across the face", fontsize=9)
-    fig.suptitle(title, fontsize=9)
-    return fig
 
 
 def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
                         rigid: np.ndarray, natural: Sequence[float],
                         natural_rigid: Sequence[float], mesh_frequency: float,
                         title: str) -> Figure:
-    """The dynamic factor (-) over mesh frequency (Hz) with the shafts and on rigid
-    supports, with each model's natural frequencies (Hz) marked on its own colour and the
-    operating mesh frequency."""
+    """The dynamic factor (-) over mesh frequency (Hz) with the shafts and without them, with
+    each model's natural frequencies (Hz) marked in its own colour and the operating mesh
+    frequency."""
     fig = new_figure((7.5, 3.6), "constrained")
     ax = fig.add_subplot(1, 1, 1)
     f = np.asarray(frequencies)
     ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
-    ax.plot(f, rigid, "k--", lw=1.4, label="rigid supports")
+    ax.plot(f, rigid, "k--", lw=1.4, label="without the shafts")
     for fn, colour, ls in ((natural, "C3", ":"), (natural_rigid, "k", "-.")):
         for x in fn:
             if f[0] <= x <= f[-1]:
@@ -80,7 +114,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     ax.set_xlim(f[0], f[-1])
     ax.grid(alpha=0.3)
     ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
-    ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, rigid supports")
+    ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, without the shafts")
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)
     return fig

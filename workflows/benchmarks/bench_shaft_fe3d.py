@@ -12,6 +12,10 @@ Target: < 10 s cold (mesh, assembly, factorisation, condensation) on 2 cores.
   carrying the pinion (reference diameter 150 mm, z 50, m 3 mm) on a rigid hub 20 mm wide
   at mid-span.
 
+Both with the default solver (``"auto"``: MKL PARDISO where installed,
+:mod:`pipeline.fem.solvers`), and the straddle example once more with cholespy, the
+earlier default, side by side in the same run (``straddle_pinion_example/cholespy``).
+
 The load for the deflection printed: the demo pair's 340 N m, i.e. F_t = 2 T / d = 4533 N
 and F_r = F_t tan 20 deg = 1650 N at the pitch point, moved to the axis (the tangential
 force's lever is the torque).
@@ -50,8 +54,9 @@ def _layouts() -> dict:
     return {"straddle_pinion_example": example, "stepped_rigid_hub": stepped}
 
 
-def bench_case(name: str, layout, refinement: float) -> dict:
-    """Cold and warm build of ``layout``'s superelement: times (s), parts, size, answers."""
+def bench_case(name: str, layout, refinement: float, solver: str = "auto") -> dict:
+    """Cold and warm build of ``layout``'s superelement with ``solver``: times (s), parts,
+    size, answers."""
     import numpy as np
 
     from pipeline.cache.folder import Cache
@@ -60,7 +65,7 @@ def bench_case(name: str, layout, refinement: float) -> dict:
     from pipeline.shaft.fe3d_plan import Fe3dSettings, plan_fe3d
     from pipeline.shaft.model import PointLoad
 
-    settings = Fe3dSettings(refinement=refinement)
+    settings = Fe3dSettings(refinement=refinement, solver=solver)
     with tempfile.TemporaryDirectory() as folder:
         cache = Cache(folder)
         t0 = time.perf_counter()
@@ -104,6 +109,8 @@ def _print(r: dict) -> None:
 
 
 def main(refinement: float = 1.0) -> dict:
+    import numpy as np
+
     t0 = time.perf_counter()
     import pipeline.fem.linear_static  # noqa: F401  (scikit-fem, counted apart)
     import pipeline.fem.shaft_mesh  # noqa: F401  (Gmsh)
@@ -111,12 +118,21 @@ def main(refinement: float = 1.0) -> dict:
     from pipeline.provenance import library_versions
 
     t_import = time.perf_counter() - t0
-    cases = [bench_case(name, layout, refinement) for name, layout in _layouts().items()]
+    layouts = _layouts()
+    cases = [bench_case(name, layout, refinement) for name, layout in layouts.items()]
+    cases.append(bench_case("straddle_pinion_example/cholespy",
+                            layouts["straddle_pinion_example"], refinement, "cholespy"))
     for r in cases:
         _print(r)
+    key = "seat_compliance_diagonal_m_per_N_rad_per_Nm"
+    a, b = (np.array(c[key]) for c in (cases[0], cases[-1]))
+    agreement = float(np.max(np.abs(a - b) / np.abs(b)))
+    print(f"seat compliance diagonal, {cases[0]['solver']} against cholespy: largest "
+          f"relative difference {agreement:.1e}")
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"imports {t_import:.2f} s; peak resident memory {peak:.0f} MiB")
     out = {"cases": cases, "imports_s": t_import, "peak_rss_MiB": peak,
+           "seat_compliance_relative_difference_to_cholespy": agreement,
            "versions": library_versions()}
     write_json(Path("results/benchmarks/shaft_fe3d.json"), out)
     return out

@@ -28,7 +28,7 @@ import numpy as np
 
 from pipeline.dynamics.assembly import Assembly
 from pipeline.dynamics.bodies import Body, add_measures
-from pipeline.dynamics.couplings import Bearing, GearMesh, Load, Spring
+from pipeline.dynamics.couplings import Bearing, GearMesh, Load, Spring, TorsionalShaft
 from pipeline.dynamics.mesh_geometry import cylindrical_mesh_measure
 from pipeline.dynamics.modal import ModalResult, classify_modes
 from pipeline.dynamics.reduction import rigid_body_modes
@@ -195,16 +195,28 @@ class PlanetaryModel(PlanetaryMembers):
     e_sun_mesh, e_ring_mesh : transmission error e(tau) of every sun-planet / ring-planet
         mesh over one mesh period (m, shifted by the mesh phases like the stiffness), or
         ``None`` (perfect flanks).
+    inertia_drive, kt_drive : a motor behind the sun's shaft, kg m^2, tied to the sun by the
+        shaft's torsional stiffness, N m/rad (body ``drive``, its rotation only; it takes
+        ``sun_torque``); both None: the torque acts on the sun.
     """
 
     k_sun_mesh: PeriodicSignal | float = 5e8
     k_ring_mesh: PeriodicSignal | float = 5e8
     e_sun_mesh: PeriodicSignal | None = None
     e_ring_mesh: PeriodicSignal | None = None
+    inertia_drive: float | None = None
+    kt_drive: float | None = None
 
     def __post_init__(self) -> None:
         check_lumped_members(self, ("k_sun", "k_ring", "k_carrier", "k_planet", "kt_sun",
                                     "kt_ring", "kt_carrier"))
+        if self.inertia_drive is not None:
+            check_body_range("inertia_drive", self.inertia_drive)
+        if self.kt_drive is not None:
+            check_range("kt_drive", self.kt_drive, 0.0, 1e14, lo_open=True, unit="N m/rad")
+        if (self.inertia_drive is None) != (self.kt_drive is None):
+            raise InputError("inertia_drive and kt_drive go together: the drive inertia sits "
+                             "behind a shaft of that torsional stiffness")
 
     def assembly(self) -> Assembly:
         """Bodies, bearings, meshes and loads of the set."""
@@ -279,7 +291,13 @@ class PlanetaryModel(PlanetaryMembers):
                     self.k_planet,
                 ),
             ]
-        loads = self._loads(bodies, couplings)
+        driven = "s"
+        if self.inertia_drive is not None:
+            bodies.append(Body("drive", 0.0, self.inertia_drive, ("theta",),
+                               rotating_frame=True))
+            couplings.append(TorsionalShaft("drive", "s", self.kt_drive))
+            driven = "drive"
+        loads = self._loads(bodies, couplings, driven)
         return Assembly(
             bodies,
             couplings,
@@ -290,14 +308,16 @@ class PlanetaryModel(PlanetaryMembers):
             name=f"planetary-{self.n_planets}",
         )
 
-    def _loads(self, bodies, couplings) -> list[Load]:
+    def _loads(self, bodies, couplings, driven: str = "s") -> list[Load]:
+        """The sun torque on body ``driven`` (the sun or the motor behind its shaft) and, when
+        the drive path turns freely, its balance on the carrier."""
         if self.sun_torque == 0.0:
             return []
-        loads = [Load("s", "theta", self.sun_torque)]
+        loads = [Load(driven, "theta", self.sun_torque)]
         probe = Assembly(bodies, couplings, loads, period=self.mesh_period).assemble()
         R = rigid_body_modes(probe)
         if R.shape[1]:
-            i_s, i_c = probe.index("s.theta"), probe.index("c.theta")
+            i_s, i_c = probe.index(f"{driven}.theta"), probe.index("c.theta")
             r = probe.basis @ R[:, 0]
             if abs(r[i_c]) > 1e-12 * np.abs(r).max():
                 loads.append(Load("c", "theta", -self.sun_torque * r[i_s] / r[i_c]))

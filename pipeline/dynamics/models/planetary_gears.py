@@ -42,7 +42,9 @@ halves.
 ``gearpipe modes|response|sweep`` on a planetary file build these models. Supports, groove
 and damping are ``[dynamics]`` keys (``sun_bearing_stiffness_N_per_m``,
 ``ring_torsional_stiffness_Nm_per_rad``, ``groove_torsional_stiffness_Nm_per_rad``, ...:
-``wind_turbine_herringbone_planetary.toml`` lists them); with a ``[groove]`` table and
+``wind_turbine_herringbone_planetary.toml`` lists them; a sun on its shaft and planets on
+pins give the sun's and the planets' bearing stiffness instead,
+:func:`pipeline.run.planetary_shafts.support_stiffness`); with a ``[groove]`` table and
 ``excitation = "contact"`` the groove is its FE and a typed groove stiffness is refused.
 Checks: a z 40/20/80 set at 24.6 deg with Lin and Parker's parameters has their Table 2;
 ``wind_turbine_herringbone_planetary.toml`` with the hand-built model's parameters has its
@@ -209,6 +211,7 @@ def planetary_model_from_gears(
     options: PlanetaryDynamicsOptions,
     sun_excitation: MeshExcitation,
     ring_excitation: MeshExcitation,
+    drive_torsion: float | None = None,
 ) -> PlanetaryModel:
     """The planar planetary model (Lin and Parker 1999) of a set, derived from its gears.
 
@@ -222,7 +225,13 @@ def planetary_model_from_gears(
     sun_excitation, ring_excitation : k(tau) (N/m) and e(tau) (m) of one sun-planet and one
         planet-ring mesh along the transverse line of action, signals starting at the
         start of contact (e.g. from :func:`mesh_operations` and the contact analysis).
+    drive_torsion : the sun shaft's torsional stiffness between its seat and its torque
+        point, N m/rad (:mod:`pipeline.shaft`), tying ``options.drive_inertia`` (the motor)
+        to the sun; None: no shaft.
     """
+    if options.drive_inertia is not None and drive_torsion is None:
+        raise InputError("dynamics.drive_inertia_kgm2 needs [sun.shaft]: the torsional "
+                         "stiffness between it and the sun is its shaft's")
     if options.herringbone_keys:
         raise InputError(f"dynamics.{options.herringbone_keys[0]} applies to a herringbone "
                          "set; this planetary set has no herringbone gears")
@@ -231,6 +240,8 @@ def planetary_model_from_gears(
         k_sun_mesh=sun_excitation.stiffness, k_ring_mesh=ring_excitation.stiffness,
         e_sun_mesh=sun_excitation.transmission_error,
         e_ring_mesh=ring_excitation.transmission_error,
+        inertia_drive=options.drive_inertia,
+        kt_drive=None if options.drive_inertia is None else drive_torsion,
     )
 
 
