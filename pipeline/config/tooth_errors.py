@@ -13,6 +13,10 @@ through a whole revolution (:mod:`pipeline.contact.revolution`)::
     span = "hunting"     # LCM(z1, z2) mesh cycles; "pinion" / "gear": one revolution
 
 Signs, tooth numbering and how each error becomes a gap: :mod:`pipeline.contact.tooth_errors`.
+The deviations are given tooth by tooth (measured, or designed by the user's own script):
+there is no generator of a random pattern from a tolerance (an ISO 1328-1 grade's f_pt),
+because one seeded pattern is one gear of many, and its sidebands belong to the seed, not to
+the tolerance; a tolerance study runs many patterns.
 Every key left out is zero. Refused: a phase without its eccentricity; errors on a
 planetary set, or on a pair on shafts (the revolution does not take their deflection);
 ``[contact] pitch_errors_um`` beside this table (it offsets the tooth pairs of one mesh
