@@ -8,6 +8,15 @@ reads), ``sensitivity.png``, ``tradeoff.png`` (with two KPIs or more; the summar
 point's ``gearpipe run`` results in ``best_point/run/`` (:func:`report_best_point`, the
 hook of the tooth load distribution report), ``summary.json`` and ``run.json``.
 
+A Harris map (``kind = "harris"``, :mod:`pipeline.study.harris`) writes, beside the study
+tables, ``harris_map.csv`` (variant, torque, unit load, the KPIs, units in the headers),
+``harris_map.png`` and ``harris_map.html``; its summary gives each variant's load of
+smallest TE peak-to-peak. An optimisation (``kind = "optimise"``,
+:mod:`pipeline.study.optimise`) writes ``history.csv`` (one row per evaluation),
+``convergence.png``, ``optimum/gearbox.toml`` (the base file with the optimum values, a
+header saying what was optimised) with its ``gearpipe run`` folder ``optimum/run/``,
+``summary.json`` and ``run.json``.
+
 The folder follows every command's rule (:mod:`pipeline.output_folder`): checked before any
 point is computed (new, empty, or an earlier result of the same study:
 :func:`pipeline.study.store.study_folder`; anything else is refused in one line and left
@@ -30,7 +39,7 @@ from pipeline.io import atomic_write_text, write_json
 from pipeline.output_folder import staged_output
 from pipeline.provenance import write_run_record
 from pipeline.study.execute import CONNECT_TIMEOUT_S, StudyOptions, check_study, run_study
-from pipeline.study.spec import StudySpec, study_from_file
+from pipeline.study.spec import StudySpec, read_study_file
 from pipeline.study.store import is_complete, link_work_files, study_folder
 
 
@@ -69,6 +78,19 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
     (``report.html``) included; the gearbox file's ``name`` says it is the best point, so
     the figures and the report carry that name, not the base file's.
     """
+    doc = spec.point_document(values)
+    # figure titles and the report name the best point, not the base file
+    doc["name"] = f"{doc.get('name', spec.base_path.stem)}, best point of study {spec.name}"
+    header = (f"# Best point of the study {spec.name} ({spec.path.name}): the base file "
+              f"{spec.base_path.name} with\n" + "".join(f"#   {k} = {v!r}\n"
+                                                       for k, v in values.items()))
+    return write_gearbox_and_run(doc, header, out, run)
+
+
+def write_gearbox_and_run(doc: dict[str, Any], header: str, out: Path, run: bool = True
+                          ) -> list[Path]:
+    """``out/gearbox.toml`` (``header`` comment lines, then ``doc``) and, with ``run``, its
+    ``gearpipe run`` folder ``out/run/`` (report included)."""
     import tomli_w
 
     from pipeline.cli.run import figure_cache, write_run
@@ -76,12 +98,6 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
     from pipeline.run.chain import RunOptions
     from pipeline.run.runner import run_pipeline
 
-    doc = spec.point_document(values)
-    # figure titles and the report name the best point, not the base file
-    doc["name"] = f"{doc.get('name', spec.base_path.stem)}, best point of study {spec.name}"
-    header = (f"# Best point of the study {spec.name} ({spec.path.name}): the base file "
-              f"{spec.base_path.name} with\n" + "".join(f"#   {k} = {v!r}\n"
-                                                       for k, v in values.items()))
     path = atomic_write_text(out / "gearbox.toml", header + tomli_w.dumps(doc))
     files = [path]
     if run:
@@ -104,9 +120,11 @@ def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: b
 
 
 def run(args: argparse.Namespace) -> int:
-    spec = study_from_file(args.config)
+    spec = read_study_file(args.config)
     options = StudyOptions(scheduler=args.scheduler, workers=args.workers, resume=args.resume,
                            show_progress=not args.json)
+    if spec.kind == "optimise":
+        return _run_optimisation(args, spec, options)
     check_study(spec)  # the study file and options before the folder, all before any point
     target = args.out or Path("results") / Path(args.config).stem / "study"
     with staged_output(target, study_folder(spec)) as out:
@@ -129,10 +147,12 @@ def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
 
     cols = table.to_pydict()
     kpis = [n for n in table.column_names[1 + len(spec.axes):] if n != "error"]
+    if spec.kind == "harris":
+        return _write_harris(args, spec, cols, facts, out, files)
     trade = list(spec.tradeoff) or kpis[:2]  # checked before the points: check_study
     best_kpi = spec.best_kpi or kpis[0]
     best = best_row(cols, best_kpi, spec.best_goal)
-    files.append(save(plot_sensitivity(spec, cols, kpis[:4]), out / "sensitivity.png"))
+    files.append(save(plot_sensitivity(spec, cols, kpis), out / "sensitivity.png"))
     if len(trade) == 2:
         files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
                                         f"{spec.name}: {len(cols['point'])} points"),
@@ -153,3 +173,58 @@ def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
                            "base_sha256": spec.base.sha256}, files,
                      f"gearpipe study {args.config}")
     return summary
+
+
+def _write_harris(args: argparse.Namespace, spec: StudySpec, cols: dict[str, list],
+                  facts: dict[str, Any], out: Path, files: list[Path]) -> dict[str, Any]:
+    """The Harris map's CSV, figure and page, ``summary.json`` and ``run.json``."""
+    from pipeline.study.harris import harris_html, harris_map, plot_harris_map
+    from pipeline.viz import save
+
+    hmap = harris_map(spec, cols)
+    files.append(_write_rows(out / "harris_map.csv", hmap.rows()))
+    files.append(save(plot_harris_map(hmap), out / "harris_map.png"))
+    page = harris_html(hmap, "harris_map.png", [f.name for f in files])
+    files.append(atomic_write_text(out / "harris_map.html", page))
+    summary: dict[str, Any] = {"study": spec.name, "kind": "harris", **facts,
+                               "failed_points": sum(1 for e in cols["error"] if e),
+                               **hmap.summary()}
+    files.append(write_json(out / "summary.json", summary))
+    write_run_record(out, {"study": spec.document, "base": spec.base.document,
+                           "base_sha256": spec.base.sha256}, files,
+                     f"gearpipe study {args.config}")
+    return summary
+
+
+def _run_optimisation(args: argparse.Namespace, spec: Any, options: StudyOptions) -> int:
+    """``kind = "optimise"``: the optimiser, its record and figure, the optimum as a gearbox
+    file with its run folder (module docstring)."""
+    from pipeline.study.optimise import optimum_document, plot_convergence, run_optimisation
+    from pipeline.viz import save
+
+    if args.resume:
+        from pipeline.validation import InputError
+
+        raise InputError("--resume: an optimisation is not resumable; run it again")
+    target = args.out or Path("results") / Path(args.config).stem / "optimise"
+    with staged_output(target) as out:
+        result = run_optimisation(spec, options)
+        files = [_write_rows(out / "history.csv", result.history),
+                 save(plot_convergence(result), out / "convergence.png")]
+        doc, header = optimum_document(result)
+        files += write_gearbox_and_run(doc, header, out / "optimum", not args.no_best_run)
+        summary = {"kind": "optimise", **result.summary()}
+        files.append(write_json(out / "summary.json", summary))
+        write_run_record(out, {"study": spec.document, "base": spec.base.document,
+                               "base_sha256": spec.base.sha256}, files,
+                         f"gearpipe study {args.config}")
+    emit(args, summary, target)
+    return 0
+
+
+def _write_rows(path: Path, rows: list[dict[str, Any]]) -> Path:
+    """Rows of equal keys as a CSV (units in the keys; booleans as 1/0)."""
+    from pipeline.io import write_csv
+
+    cols = {k: [int(r[k]) if isinstance(r[k], bool) else r[k] for r in rows] for k in rows[0]}
+    return write_csv(path, cols)
