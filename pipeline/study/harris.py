@@ -100,14 +100,17 @@ class HarrisMap:
 
     def summary(self) -> dict[str, Any]:
         """Per variant the torque (N m) and unit load (N/mm) of its smallest TE
-        peak-to-peak and that value (um), with the design torque."""
+        peak-to-peak, that value (um) and whether it lies at an end of the torque range
+        (then the minimum may lie beyond it), with the design torque."""
         out: dict[str, Any] = {"design_torque_Nm": self.design_torque_Nm}
         if TE_PP in self.kpis:
             tmin = self.minimum_torque_Nm()
             out["minimum_te_peak_to_peak"] = {
                 label: {"torque_Nm": float(tmin[v]),
                         "unit_load_N_per_mm": float(tmin[v] * self.newtons_per_mm_per_Nm),
-                        "te_peak_to_peak_um": float(np.nanmin(self.kpis[TE_PP][v]))}
+                        "te_peak_to_peak_um": float(np.nanmin(self.kpis[TE_PP][v])),
+                        "at_range_end": bool(tmin[v] in (self.torque_Nm[0],
+                                                         self.torque_Nm[-1]))}
                 for v, label in enumerate(self.variants)}
         return out
 
@@ -175,7 +178,8 @@ def plot_harris_map(hmap: HarrisMap, kpis: tuple[str, ...] | None = None) -> Any
     top = axs[0].secondary_xaxis("top", functions=(
         lambda t: t * hmap.newtons_per_mm_per_Nm, lambda w: w / hmap.newtons_per_mm_per_Nm))
     top.set_xlabel("unit load along the line of action w = T / (r_b b) (N/mm)")
-    axs[0].legend(fontsize=8, ncol=2 if len(hmap.variants) > 3 else 1)
+    fig.legend(*axs[0].get_legend_handles_labels(), loc="outside lower center", fontsize=8,
+               ncol=min(3, len(hmap.variants) + 1))
     fig.suptitle(f"{hmap.name}: Harris map (loaded static TE; * smallest TE p-p)",
                  fontsize=10)
     return fig

@@ -58,6 +58,7 @@ import copy
 import math
 import time
 import uuid
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -75,7 +76,7 @@ from pipeline.study.spec import (
     read_header,
     set_key,
 )
-from pipeline.validation import InputError
+from pipeline.validation import InputError, PhysicsWarning
 
 PENALTY = 1000.0
 """Weight of the relative constraint violation in the penalised objective (module
@@ -463,11 +464,15 @@ def _batch_runner(spec: OptimiseSpec, client: Any, job: Any, workers: int) -> An
                    for j in range(0, len(ids), size)]
         rows: list[dict] = [{}] * len(docs)
         if client is None:
-            for g, ids in batches:
-                if g is not None and g not in fe:
-                    fe[g] = fe_tables_task(docs[ids[0]], job)
-                for r in evaluate_batch([(i, docs[i]) for i in ids], fe.get(g), job):
-                    rows[r["point"]] = r
+            # hundreds of evaluations would repeat their physics warnings; the constraints
+            # (tip_contact_share_percent, loaded_contact_ratio) are how a design rules them out
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", PhysicsWarning)
+                for g, ids in batches:
+                    if g is not None and g not in fe:
+                        fe[g] = fe_tables_task(docs[ids[0]], job)
+                    for r in evaluate_batch([(i, docs[i]) for i in ids], fe.get(g), job):
+                        rows[r["point"]] = r
             return rows
         for g, ids in batches:
             if g is not None and g not in fe:
