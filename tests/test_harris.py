@@ -117,7 +117,8 @@ def test_map_numbers_equal_single_point_runs(harris_run):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for r in (0, 7, 22):
-            values = {"variant": t["variant"][r], "operation.torque_Nm": t["operation.torque_Nm"][r]}
+            values = {"variant": t["variant"][r],
+                      "operation.torque_Nm": t["operation.torque_Nm"][r]}
             row = evaluate_point(spec.point_document(values), kpis=kpis)
             for k, v in row.items():
                 assert t[k][r] == pytest.approx(v, rel=1e-12, abs=1e-15)
@@ -147,7 +148,8 @@ def test_harris_outputs_carry_units_and_the_design_load(harris_run):
 @pytest.mark.parametrize("change, match", [
     ('[[axes]]\nkey = "pinion.teeth"\nvalues = [50]\n',
      r"study file key or table of kind = \"harris\" 'axes' is not known"),
-    ('[[variants]]\nlabel = "C_a 10 um"\n', r"variants: label 'C_a 10 um' is given more than once"),
+    ('[[variants]]\nlabel = "C_a 10 um"\n',
+     r"variants: label 'C_a 10 um' is given more than once"),
     ('[[variants]]\nlabel = "x"\nset = {"operation.torque_Nm" = 100.0}\n',
      r"variants\[2\]\.set: 'operation\.torque_Nm' is the map's \[torque\] axis"),
     ('[[variants]]\nlabel = "typo"\nset = {"contact.tip_relif_gear_um" = 1.0}\n',
