@@ -70,6 +70,30 @@ def best_row(table: dict[str, list], kpi: str, goal: str) -> int | None:
     return (min(vals) if goal == "min" else max(vals))[1]
 
 
+def best_row_mean_over(table: dict[str, list], kpi: str, goal: str, over: str,
+                       axes: list[str], reference: Any) -> tuple[int | None, float]:
+    """The best design on average over the axis ``over``: group the rows by the other
+    ``axes``' values, take the mean of ``kpi`` over each group (groups with a failed point
+    left out), pick the lowest mean ("min") or highest; returns the group's row at
+    ``reference`` (the value of ``over`` the best point is run at) and the mean, or
+    ``(None, nan)``."""
+    others = [a for a in axes if a != over]
+    groups: dict[tuple, list[int]] = {}
+    for i in range(len(table["point"])):
+        groups.setdefault(tuple(table[a][i] for a in others), []).append(i)
+    means = {}
+    for key, rows in groups.items():
+        vals = [table[kpi][i] for i in rows]
+        if all(v is not None and math.isfinite(v) for v in vals):
+            means[key] = sum(vals) / len(vals)
+    if not means:
+        return None, math.nan
+    pick = (min if goal == "min" else max)(means, key=means.__getitem__)
+    rows = groups[pick]
+    row = next((i for i in rows if table[over][i] == reference), rows[len(rows) // 2])
+    return row, means[pick]
+
+
 def report_best_point(spec: StudySpec, values: dict[str, Any], out: Path, run: bool = True
                       ) -> list[Path]:
     """The best point as a gearbox file and, with ``run``, its ``gearpipe run`` folder.
@@ -151,7 +175,15 @@ def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
         return _write_harris(args, spec, cols, facts, out, files)
     trade = list(spec.tradeoff) or kpis[:2]  # checked before the points: check_study
     best_kpi = spec.best_kpi or kpis[0]
-    best = best_row(cols, best_kpi, spec.best_goal)
+    mean = None
+    if spec.best_mean_over:
+        from pipeline.study.plots import reference_values
+
+        ref = reference_values(spec, cols)[spec.best_mean_over]
+        best, mean = best_row_mean_over(cols, best_kpi, spec.best_goal, spec.best_mean_over,
+                                        [a.label for a in spec.axes], ref)
+    else:
+        best = best_row(cols, best_kpi, spec.best_goal)
     files.append(save(plot_sensitivity(spec, cols, kpis), out / "sensitivity.png"))
     if len(trade) == 2:
         files.append(save(plot_tradeoff(cols, trade[0], trade[1], best,
@@ -167,6 +199,8 @@ def _write_outputs(args: argparse.Namespace, spec: StudySpec, table: Any,
         values = {a.label: cols[a.label][best] for a in spec.axes}
         summary["best"] = {"point": cols["point"][best], "kpi": best_kpi,
                            "goal": spec.best_goal, "value": cols[best_kpi][best], **values}
+        if mean is not None:
+            summary["best"].update(mean_over=spec.best_mean_over, mean=mean)
         files += report_best_point(spec, values, out / "best_point", not args.no_best_run)
     files.append(write_json(out / "summary.json", summary))
     write_run_record(out, {"study": spec.document, "base": spec.base.document,

@@ -286,6 +286,14 @@ def check_study(spec: StudySpec) -> tuple[KPI, ...]:
         if name not in names:
             raise InputError(f"{spec.path}: {where} = {name!r} is not a KPI of this study; "
                              f"its KPIs: {', '.join(names)}")
+    if spec.best_mean_over:
+        labels = [a.label for a in spec.axes]
+        if spec.best_mean_over not in labels:
+            raise InputError(f"{spec.path}: best.mean_over = {spec.best_mean_over!r} is not an "
+                             f"axis of this study; its axes: {', '.join(labels)}")
+        if spec.method != "grid" or len(labels) < 2:
+            raise InputError(f"{spec.path}: best.mean_over needs a grid of two axes or more "
+                             "(the mean is taken over one axis at each value of the others)")
     if len(set(spec.tradeoff)) == 1:
         raise InputError(f"{spec.path}: plots.tradeoff = {list(spec.tradeoff)!r}: expected two "
                          "different KPIs")

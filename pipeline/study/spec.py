@@ -30,6 +30,8 @@
     [best]
     kpi = "te_peak_to_peak_um"
     goal = "min"                              # or "max"
+    mean_over = "operation.torque_Nm"         # optional: the design best on average over
+                                              # this axis (a load range), not one point
 
     [execution]
     batch_points = 16                         # points per task (and per result part file)
@@ -122,6 +124,8 @@ class StudySpec:
         peak-dynamic-factor KPI, or ``None``.
     tradeoff : the two KPIs of the trade-off plot (empty: the first two).
     best_kpi, best_goal : the KPI that picks the best point and "min" / "max".
+    best_mean_over : an axis label: the best design is the one whose KPI averaged over
+        that axis is best (``""``: the best single point).
     batch_points : points per task and per result part file (0: chosen from the size).
     document : the study file as parsed (for the resume check and records).
     kind : "study" or "harris" (the optimiser's file is :class:`~.optimise.OptimiseSpec`).
@@ -143,6 +147,7 @@ class StudySpec:
     tradeoff: tuple[str, ...] = ()
     best_kpi: str = ""
     best_goal: str = "min"
+    best_mean_over: str = ""
     batch_points: int = 0
     document: Mapping[str, Any] = field(default_factory=dict, repr=False)
     kind: str = "study"
@@ -422,8 +427,10 @@ def output_tables(doc: Mapping[str, Any]) -> dict[str, Any]:
         raise InputError(f"plots.tradeoff = {trade!r}: expected two KPI names")
     out["tradeoff"] = tuple(trade)
     best = doc.get("best", {})
-    check_table_keys(best, ("kpi", "goal"), "best")
+    check_table_keys(best, ("kpi", "goal", "mean_over"), "best")
     out["best_kpi"] = str(best.get("kpi", ""))
+    if "mean_over" in best:
+        out["best_mean_over"] = str(best["mean_over"])
     goal = best.get("goal", "min")
     if goal not in ("min", "max"):
         raise unknown(str(goal), ("min", "max"), "best.goal")
