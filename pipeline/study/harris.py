@@ -153,7 +153,8 @@ def harris_map(spec: StudySpec, table: Mapping[str, list]) -> HarrisMap:
 def plot_harris_map(hmap: HarrisMap, kpis: tuple[str, ...] | None = None) -> Any:
     """The classic map: one panel per KPI (TE peak-to-peak first) over the driving torque
     (N m; the unit load per face width, N/mm, on the top axis), one curve per variant, the
-    design torque marked and each variant's smallest TE peak-to-peak starred."""
+    design torque marked and each variant's smallest TE peak-to-peak starred (when inside
+    the torque range)."""
     from pipeline.study.kpis import kpi_label
     from pipeline.viz.canvas import new_figure
 
@@ -165,7 +166,8 @@ def plot_harris_map(hmap: HarrisMap, kpis: tuple[str, ...] | None = None) -> Any
         for v, label in enumerate(hmap.variants):
             ax.plot(hmap.torque_Nm, hmap.kpis[k][v], "o-", ms=3, lw=1.4, color=f"C{v}",
                     label=label)
-            if k == TE_PP and tmin is not None and np.isfinite(tmin[v]):
+            inside = tmin is not None and hmap.torque_Nm[0] < tmin[v] < hmap.torque_Nm[-1]
+            if k == TE_PP and inside:  # a minimum at a range end may lie beyond it: no star
                 y = np.interp(tmin[v], hmap.torque_Nm, hmap.kpis[k][v])
                 ax.plot(tmin[v], y, "*", ms=11, color=f"C{v}", mec="k", mew=0.5)
         if hmap.design_torque_Nm is not None:
