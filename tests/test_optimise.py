@@ -173,3 +173,16 @@ def test_optimisation_file_errors_name_the_key(tmp_path, old, new, match):
     with pytest.raises(InputError, match=match) as info:
         optimise_from_file(f)
     assert "\n" not in str(info.value)
+
+
+def test_evaluations_on_a_local_cluster_equal_serial(tmp_path):
+    """The same optimisation (seeded) with its evaluations on 2 LocalCluster workers and
+    serially in this process: the same evaluations in the same order, equal values."""
+    f = tmp_path / "small.toml"
+    f.write_text(ONE.format(base=BASE, torques="[255.0, 425.0]").replace(
+        "popsize = 8", "popsize = 3").replace("maxiter = 15", "maxiter = 2"))
+    spec = optimise_from_file(f)
+    a = run_optimisation(spec, StudyOptions(workers=2, show_progress=False))
+    b = run_optimisation(spec, StudyOptions(workers=0, show_progress=False))
+    assert a.evaluations == b.evaluations == 3 * 5  # scipy: population >= 5, 1 + 2 generations
+    assert a.history == b.history and a.best == b.best
