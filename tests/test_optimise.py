@@ -93,7 +93,7 @@ def test_the_optimiser_finds_the_optimum_of_a_dense_scan(tmp_path, scan):
 def test_a_constraint_moves_the_optimum_to_the_scan_s_best_feasible_relief(tmp_path, scan):
     """With the loaded contact ratio at least 1.9 (deeper reliefs unload the double-contact
     ends), the scan's best feasible relief is 20 um (1.291 um TE p-p; 21 um, the
-    unconstrained optimum, unloads them to 1.8125); the optimiser lands within 1 um of it,
+    unconstrained optimum, falls below 1.9); the optimiser lands within 1 um of it,
     meets the constraint and is at least as low as the scan at 19 and 20 um (measured:
     20.18 um, 1.214 um, 56 evaluations)."""
     grid, te, lcr = scan
