@@ -69,7 +69,23 @@ def bench(workers: int = 2) -> dict:
                      "map_s": t_map, "figure_s": t_fig,
                      "total_s": t_read + t_check + t_study + t_map + t_fig,
                      "per_point_s": (t_study - t_cluster) / table.num_rows})
+    # the same points serially in this process (FE tables prebuilt): what a point costs
+    # without the cluster, and so the parallel efficiency
+    import warnings
+
+    from pipeline.study.evaluate import build_fe_tables, evaluate_point
+    from pipeline.study.kpis import select_kpis
+
+    docs = [spec.point_document(p.values) for p in design_points(spec)[::10]]
+    fe, kpis = build_fe_tables(docs[0]), select_kpis(spec.kpis, False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, t_serial = _timed(lambda: [evaluate_point(d, fe, kpis=kpis) for d in docs])
+    per_serial = t_serial / len(docs)
+    for r in runs:
+        r["parallel_efficiency"] = per_serial / (workers * r["per_point_s"])
     return {"file": str(MAP.relative_to(ROOT)), "read_s": t_read, "check_points_s": t_check,
+            "serial_s_per_point": per_serial,
             "cluster_start_close_s": t_cluster, "runs": runs,
             "minimum_torque_Nm": hmap.summary()["minimum_te_peak_to_peak"]}
 
@@ -87,7 +103,8 @@ def main() -> None:
         print(f"{r['run']}: {r['points']} points on {r['workers']} workers, study "
               f"{r['study_s']:.2f} s (about {r['per_point_s'] * 1e3:.0f} ms/point after the "
               f"cluster), map {r['map_s']:.2f} s, figure {r['figure_s']:.2f} s, total "
-              f"{r['total_s']:.2f} s")
+              f"{r['total_s']:.2f} s; parallel efficiency {r['parallel_efficiency']:.2f}")
+    print(f"serially in this process: {res['serial_s_per_point'] * 1e3:.0f} ms/point")
 
 
 if __name__ == "__main__":
