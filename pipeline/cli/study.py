@@ -5,8 +5,10 @@ Writes to ``results/<study file stem>/study/`` (or ``--out``): ``study.parquet``
 their units in the names, ``error``), ``manifest.json`` and ``parts/`` (what resuming
 reads), ``sensitivity.png``, ``tradeoff.png`` (with two KPIs or more; the summary's
 ``tradeoff`` says which, or why none), ``best_point/gearbox.toml`` with the best
-point's ``gearpipe run`` results in ``best_point/run/`` (:func:`report_best_point`, the
-hook of the tooth load distribution report), ``summary.json`` and ``run.json``.
+point (with ``[best] mean_over``: the design best on average over that axis, at the
+axis's reference value) and its ``gearpipe run`` results in ``best_point/run/``
+(:func:`report_best_point`, the hook of the tooth load distribution report),
+``summary.json`` and ``run.json``.
 
 A Harris map (``kind = "harris"``, :mod:`pipeline.study.harris`) writes, beside the study
 tables, ``harris_map.csv`` (variant, torque, unit load, the KPIs, units in the headers),
@@ -59,7 +61,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--resume", action="store_true",
                         help="continue the unfinished study in the output folder")
     parser.add_argument("--no-best-run", action="store_true",
-                        help="write the best point's gearbox file but do not run it")
+                        help="write the best point's (an optimisation: the optimum's) gearbox "
+                             "file but do not run it")
 
 
 def best_row(table: dict[str, list], kpi: str, goal: str) -> int | None:
