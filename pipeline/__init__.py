@@ -83,6 +83,12 @@ Methods and data the code relies on:
 * Lin and Parker (1999) — J. Lin, R. G. Parker. Analytical characterization of the unique
   properties of planetary gear free vibration. *Journal of Vibration and Acoustics* 121(3),
   316-321 (1999). Planar planetary model, mode types (``dynamics/models/planetary.py``).
+* Harris (1958) — S. L. Harris. Dynamic loads on the teeth of spur gears. *Proceedings of
+  the IMechE* 172, 87-112 (1958). Transmission error of a relieved pair against load: at light
+  load it follows the tip reliefs (``tests/test_contact_modifications.py``).
+* ISO 21771:2007 — Gears, cylindrical involute gears and gear pairs, concepts and geometry.
+  Roll length, profile and helix modifications, profile twist
+  (``contact/modifications/``).
 * ISO 6336-1:2019 — Calculation of load capacity of spur and helical gears, Part 1:
   Basic principles, introduction and general influence factors. Single stiffness c' and
   mesh stiffness c_gamma_alpha (``stiffness/iso6336.py``).

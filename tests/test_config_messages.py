@@ -114,6 +114,8 @@ CONTEXTS = [
     ("CONTACT", PAIR, "contact", T.CONTACT),
     ("MODIFICATIONS", _with(PAIR, "contact", RELIEFS), "contact", T.MODIFICATIONS),
     ("MODIFICATIONS", _with(PLANETARY, "contact", RELIEFS), "contact", T.MODIFICATIONS),
+    *[("GEAR_MODIFICATIONS", _with(PAIR, f"{role}.modifications", {}), f"{role}.modifications",
+       T.GEAR_MODIFICATIONS) for role in ("pinion", "gear")],
     *[("FE", _with(PAIR, "contact", {"compliance": c}), "fe", _fe_keys(c))
       for c in ("analytical", "fe2d", "fe3d")],
     ("GROOVE", _with(SUN_GROOVE, "groove", {"coupling": "tooth_forces"}), "groove", T.GROOVE),
@@ -164,6 +166,18 @@ SETUP = {
     ("dynamics.response", "periods"): {"method": "time", "n_harmonics": None},
     ("dynamics", "groove_lateral_stiffness_N_per_m"): {
         "groove_torsional_stiffness_Nm_per_rad": 1e9},
+    # a relief amount needs its start, a start its amount
+    **{(f"{role}.modifications", k): need for role in ("pinion", "gear") for k, need in (
+        ("tip_relief_um", {"tip_relief_length_mm": 2.0}),
+        ("tip_relief_length_mm", {"tip_relief_um": 10.0}),
+        ("tip_relief_start_diameter_mm", {"tip_relief_um": 10.0}),
+        ("root_relief_um", {"root_relief_length_mm": 2.0}),
+        ("root_relief_length_mm", {"root_relief_um": 10.0}),
+        ("root_relief_start_diameter_mm", {"root_relief_um": 10.0}),
+        ("end_relief_face1_um", {"end_relief_face1_length_mm": 3.0}),
+        ("end_relief_face1_length_mm", {"end_relief_face1_um": 5.0}),
+        ("end_relief_face2_um", {"end_relief_face2_length_mm": 3.0}),
+        ("end_relief_face2_length_mm", {"end_relief_face2_um": 5.0}))},
 }
 CHOICES = {("planetary", "direction"): "is not one of +1, -1"}
 """Whole-number keys that take a few values rather than a range."""
@@ -263,7 +277,7 @@ def test_out_of_range_names_the_key_value_and_range_in_its_unit(doc, path, key):
             assert not _refuses(doc, path, key, inside), (path, key.name, inside, msg)
 
 
-FREE_TEXT = ("name", "path", "column")
+FREE_TEXT = ("name", "path", "column", "topography_csv")
 """String keys that take any text (a label, a file, a column of it)."""
 
 

@@ -278,9 +278,9 @@ def test_helical_and_herringbone_sets_with_shafts_are_refused():
 def test_fixed_point_that_does_not_settle_is_one_line(tmp_path, monkeypatch):
     """Allowed one iteration, the example's fixed point (which needs 4) stops with one line
     naming the iteration and the change."""
-    import pipeline.run.planetary_shafts as ps
+    import pipeline.run.shafts as shafts
 
-    monkeypatch.setattr(ps, "MAX_ITERATIONS", 1)
+    monkeypatch.setattr(shafts, "MAX_ITERATIONS", 1)
     with pytest.raises(InputError, match=r"^shafts: the line load still changes by [0-9.e-]+ "
                                          r"\(relative\) after iteration 1; the sun, the pins "
                                          r"and the meshes do not settle$"):

@@ -59,11 +59,13 @@ def test_overhung_pinion_loads_the_face_end_by_its_bearings(tmp_path):
     assert dist.k_hbeta > 1.1
     rigid_k = np.ptp(st.rigid.transmission_error)  # the rigid contact is kept beside
     assert rigid_k >= 0.0
-    from pipeline.run.shafts import _model
+    from pipeline.run.shafts import shaft_model
 
     pair = r.meshes["mesh"].stiffness.actual
     w = np.interp(st.z, dist.z, dist.cycle_mean)
-    gap, _ = shaft_gap([_model(r.gearbox.shafts["pinion"], st.z), None],
+    spec = r.gearbox.shafts["pinion"]
+    nodes = spec[1].gear_position - 0.5 * spec[1].seat_width + st.z
+    gap, _ = shaft_gap([shaft_model(spec, nodes), None],
                        [pair.pinion.base_radius, pair.gear.base_radius], st.z, w)
     assert gap - gap.mean() == pytest.approx(st.gap, abs=2e-3 * np.ptp(st.gap))
 
@@ -260,3 +262,16 @@ def test_the_rotation_needs_shafts():
                                          r"sets which flanks load a pair's shafts"):
         gearbox_from_text(DEMO_PAIR.replace("[operation]\n", '[operation]\npinion_rotation = '
                                             '"counterclockwise"\n') + FAST)
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.validation.PhysicsWarning")
+def test_fixed_point_that_does_not_settle_is_one_line(tmp_path, monkeypatch):
+    """Allowed one iteration, the overhung pinion's fixed point (which needs 3) stops with
+    one line naming the iteration and the last change of the line load."""
+    import pipeline.run.shafts as shafts
+
+    monkeypatch.setattr(shafts, "MAX_ITERATIONS", 1)
+    with pytest.raises(InputError, match=r"^shafts: the line load still changes by [0-9.e-]+ "
+                                         r"\(relative\) after iteration 1; the shafts and the "
+                                         r"mesh do not settle$"):
+        _run(_shaft(60.0, (20.0, 40.0)), tmp_path)

@@ -52,6 +52,7 @@ CLASHES = [
     ("ring_body_fit", "samples"),
     ("herringbone_groove_study", "fit_grooves"),
     ("tip_relief_study", "gearpipe"),
+    ("modification_catalogue", "run"),
 ]
 
 

@@ -13,6 +13,10 @@ point and optional tables per stage. Which gear tables it has says what it is:
 * a **lumped model** from a publication that gives masses and stiffnesses but no
   tooth geometry: ``[lumped_model]`` (:mod:`pipeline.config.lumped`).
 
+A pair's gears may hold their flank modifications, ``[pinion.modifications]`` and
+``[gear.modifications]`` (:mod:`pipeline.config.modifications`); ``[contact]``'s tip relief,
+crowning and slope keys are their short form.
+
 Stage tables: ``[operation]``, ``[stiffness]``, ``[contact]``, ``[fe]``,
 ``[groove]``, ``[dynamics]`` (with ``[dynamics.response]``, ``[dynamics.sweep]``
 and an optional ``[dynamics.mesh_stiffness]``). Keys carry their unit in their
@@ -46,6 +50,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pipeline.config import tables as T
+from pipeline.config.modifications import TABLE as MODIFICATIONS_TABLE
+from pipeline.config.modifications import gear_modifications
 from pipeline.config.rating import rating_options
 from pipeline.config.schema import (
     MAX_NAME_CHARS,
@@ -62,6 +68,7 @@ from pipeline.config.signals import signal_from_table
 from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
+from pipeline.contact.modifications import flank_frames
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import (
     FlankModifications,
@@ -250,7 +257,8 @@ def _gear(doc: Mapping[str, Any], role: str) -> tuple[GearSpec, GearBody]:
     if not isinstance(table, Mapping):
         raise InputError(f"{role} = {table!r}: expected a table [{role}]")
     keys = T.GEAR + T.BODY
-    values = read_table(table, keys, role, subtables=("material", "shaft"))
+    values = read_table(table, keys, role, subtables=("material", "shaft",
+                                                      MODIFICATIONS_TABLE))
     body_fields = {k.target for k in T.BODY}
     body = {k: values.pop(k) for k in list(values) if k in body_fields}
     internal = values.get("internal", False)
@@ -405,6 +413,22 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
     _only_with(table, "contact", ("slice_coupling",), "compliance", ("analytical",),
                opts.compliance)
     return opts
+
+
+def _with_gear_modifications(contact: ContactOptions, doc: Mapping[str, Any], kind: str,
+                             roles: tuple[str, ...], base: Path | None) -> ContactOptions:
+    """``contact`` with each gear's ``[<gear>.modifications]`` (a gear pair's only)."""
+    given = [r for r in roles if isinstance(doc[r], Mapping) and MODIFICATIONS_TABLE in doc[r]]
+    if not given:
+        return contact
+    if kind != "pair":
+        raise InputError(f"[{given[0]}.{MODIFICATIONS_TABLE}] is read for a gear pair's "
+                         "[pinion] and [gear]; for a planetary set give [contact]'s short form "
+                         "(tip_relief_*_um, crowning_um, slope_deviation_um)")
+    flanks = {f"{r}_flank": gear_modifications(doc, r, base) for r in PAIR_ROLES}
+    mods = dataclasses.replace(contact.modifications, **flanks)
+    with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
+        return dataclasses.replace(contact, modifications=mods)
 
 
 def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> FE2DSettings | FE3DSettings:
@@ -635,7 +659,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "[dynamics.response] and [dynamics.sweep]; the model's own keys "
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
-    contact = contact_options_from_table(doc.get("contact"))
+    contact = _with_gear_modifications(contact_options_from_table(doc.get("contact")), doc,
+                                       kind, roles, base)
     shafts, k_planet = _shafts(doc, gears)
     fe = _fe(doc, contact)
     operation, rotation = _operation(doc)
@@ -714,13 +739,20 @@ def _check_fe3d_meshes(box: Gearbox, doc: Mapping[str, Any]) -> None:
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:
     """Each tip relief length at most the path of contact of every analysed mesh (the
-    shortest one's, named when there are several)."""
+    shortest one's, named when there are several); a pair's per-gear modifications inside
+    each gear's active flank and face width, in the words of its own table."""
     meshes = box.contact_meshes()
     if not meshes:
         return
     name, pair = min(meshes, key=lambda m: m[1].path_length)
+    mods = box.contact.modifications
+    if box.kind == "pair" and not mods.has_short_form:
+        for role, flank, frame in zip(PAIR_ROLES, mods.flanks, flank_frames(pair), strict=True):
+            table = doc[role].get(MODIFICATIONS_TABLE, {})
+            with restated(f"{role}.{MODIFICATIONS_TABLE}", T.GEAR_MODIFICATIONS, table):
+                flank.check_fits(frame)
     with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
-        box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
+        mods.check_fits(pair, name if len(meshes) > 1 else "")
 
 
 PITCH_ERRORS_KEY = "pitch_errors_um"

@@ -86,6 +86,8 @@ def referenced_files(document: Mapping[str, Any], base: Path | None,
         if isinstance(value, Mapping):
             if value.get("kind") == "csv" and isinstance(value.get("path"), str):
                 out[f"{name}.path"] = csv_path(value["path"], base)
+            if isinstance(value.get("topography_csv"), str):  # [<gear>.modifications]
+                out[f"{name}.topography_csv"] = csv_path(value["topography_csv"], base)
             out.update(referenced_files(value, base, f"{name}."))
     return out
 

@@ -32,6 +32,11 @@ meets in minutes at most; a refused value names the key, the value and the range
   ``pitch_errors_um``: magnitude <= 1000; ``pitch_errors_um`` (tooth pairs k = 0, 1, ... of
   the mesh cycle) at most the smaller gear's teeth entries, a warning names those of pairs
   k >= epsilon_alpha (they never mesh)
+* ``[<gear>.modifications]`` amounts ``*_um``: [0, 1000] (slopes and twist magnitude <=
+  1000); relief starts inside the gear's active flank of the mesh (``*_length_mm`` [0,
+  active flank], ``*_start_diameter_mm`` the active flank's diameters); end relief lengths
+  [0, face width], together at most the face width; a root relief ends below the tip
+  relief's start
 * ``[fe]`` ``teeth`` / ``points``: 1 .. 99 (contact sources 3 .., a 3D sector at least the
   tooth pairs in contact) / 2 .. 1000 (2D source 4 .., 3D source 2 .. 200); points x teeth
   (``gearpipe fe``) or points x loaded teeth (x ``face_points`` in 3D) <= 8000 flank points
@@ -166,7 +171,39 @@ MODIFICATIONS = (
     Key("slope_deviation_um", N),
     Key("pitch_errors_um", L),
 )
-"""Keys of the ``[contact]`` table that set :class:`FlankModifications`."""
+"""Keys of the ``[contact]`` table that set :class:`FlankModifications`: the short form of
+:data:`GEAR_MODIFICATIONS` (tip reliefs by roll length, lead crowning and slope on the
+pinion) and the pitch errors."""
+
+RELIEF_SHAPES = ("linear", "parabolic", "arc")
+GEAR_MODIFICATIONS = (
+    Key("tip_relief_um", N, help="C_a, reached at the active tip"),
+    Key("tip_relief_length_mm", N, help="its start as roll length down from the active tip"),
+    Key("tip_relief_start_diameter_mm", N, field="tip_relief_diameter",
+        help="its start as a diameter, instead"),
+    Key("tip_relief_shape", S, choices=RELIEF_SHAPES),
+    Key("root_relief_um", N, help="C_f, reached at the start of active profile"),
+    Key("root_relief_length_mm", N,
+        help="its start as roll length up from the start of active profile"),
+    Key("root_relief_start_diameter_mm", N, field="root_relief_diameter",
+        help="its start as a diameter, instead"),
+    Key("root_relief_shape", S, choices=RELIEF_SHAPES),
+    Key("profile_crowning_um", N, help="C_alpha over the active flank"),
+    Key("profile_slope_um", N, help="f_Halpha, positive: more removed towards the tip"),
+    Key("lead_crowning_um", N, help="C_beta over the gear's face width"),
+    Key("helix_slope_um", N, help="f_Hbeta, positive: more removed towards face 2"),
+    Key("end_relief_face1_um", N, help="C_I at face 1 (the pinion's reference face side)"),
+    Key("end_relief_face1_length_mm", N),
+    Key("end_relief_face2_um", N, help="C_II at face 2"),
+    Key("end_relief_face2_length_mm", N),
+    Key("end_relief_shape", S, choices=("linear", "parabolic")),
+    Key("twist_um", N, help="S: profile slope -S/2 at face 1 to +S/2 at face 2"),
+    Key("topography_csv", S, max_chars=4096,
+        help="deviation grid: face_position_mm, roll_length_mm or diameter_mm, deviation_um"),
+)
+"""Keys of a gear pair's ``[pinion.modifications]`` and ``[gear.modifications]``
+(:class:`~pipeline.contact.modifications.GearModification`; positive amounts remove
+material)."""
 
 FE = (
     Key("teeth", I, help="teeth in the FE model (default: gearpipe fe 5, contact sources "

@@ -14,8 +14,10 @@ the loaded approach and the mesh stiffness.
 - :func:`solve_positions` - a stack of given (G, eps) with a fixed point count (:mod:`.sweep`).
 - :class:`ComplianceSource`, :class:`ContactPoints`, :class:`SliceCompliance` -
   candidate points and compliance G of a pair at a mesh position (:mod:`.source`).
-- :class:`FlankModifications`, :func:`initial_separations` - eps from tip relief,
-  crowning, slope deviation and pitch errors (:mod:`.separations`).
+- :class:`FlankModifications`, :func:`initial_separations` - eps from each gear's flank
+  modifications, pitch errors and the shafts' lead gap (:mod:`.separations`); the per-gear
+  model (tip / root relief, crownings, slopes, end reliefs, twist, topography grid) and the
+  flanks' modification maps in :mod:`.modifications`.
 - :func:`loaded_mesh_cycle` - a mesh cycle from a compliance source, warm-started:
   loads, load sharing, transmission error, mesh stiffness, unit loads (:mod:`.ltca`).
 - A herringbone sun-planet mesh, both helical halves through the sun's relief groove

@@ -18,8 +18,10 @@
     load_map_profile_points = 80   # grid points along the path in the load map
     render = true                  # pyvista PNG of the load map
 
-Friction, the foundation correction and the load come from the ``[stiffness]``
-and ``[operation]`` tables, as for ``gearpipe stiffness``.
+The tip relief, crowning and slope keys are the short form of each gear's modifications
+(``[pinion.modifications]``, ``[gear.modifications]``, :mod:`pipeline.config.modifications`),
+read into the same model. Friction, the foundation correction and the load come from the
+``[stiffness]`` and ``[operation]`` tables, as for ``gearpipe stiffness``.
 """
 
 from __future__ import annotations

@@ -6,15 +6,21 @@ and relative to the unmodified, error-free flanks, for which ``eps = 0``
 everywhere. Positive ``eps`` means material removed (the point touches later).
 Contributions add up:
 
-* **tip relief** of the pinion (at the end of the path, ``s_end``) and of the gear
-  (at its start, ``s_start``): amount ``C_a`` at the tip, falling to zero over
-  the roll length ``L_a`` along the path (``s``), linearly or parabolically:
-  ``C_a ((s - (s_end - L_a)) / L_a)^e`` with ``e = 1`` or 2 (pinion; mirrored for
-  the gear). Pinion driving or not, the pinion tip is at ``s_end``.
-* **lead crowning** ``C_b`` (sum of both gears): ``C_b (2 z / b - 1)^2``, zero at
-  mid face, ``C_b`` at both faces.
-* **helix slope deviation / misalignment** ``f_Hb`` over the face width:
-  ``f_Hb (z / b - 1/2)``, positive when the gap opens towards ``z = b``.
+* **each gear's flank modifications** (:mod:`pipeline.contact.modifications`): tip and
+  root relief, profile crowning and slope, lead crowning, end reliefs, helix slope, twist
+  and a topography grid, given per gear (``[pinion.modifications]``,
+  ``[gear.modifications]``), each evaluated at the gear's own roll length and face
+  position of the point and summed.
+* The **short form** of ``[contact]`` is read into the same per-gear model: ``tip relief``
+  of the pinion (at the end of the path, ``s_end``) and of the gear (at its start,
+  ``s_start``): amount ``C_a`` at the tip, falling to zero over the roll length ``L_a``
+  along the path (``s``), linearly or parabolically: ``C_a ((s - (s_end - L_a)) /
+  L_a)^e`` with ``e = 1`` or 2 (pinion; mirrored for the gear). Pinion driving or not,
+  the pinion tip is at ``s_end``. **Lead crowning** ``C_b`` (the sum of both gears, given
+  to the pinion): ``C_b (2 z / b - 1)^2``, zero at mid face, ``C_b`` at both faces.
+  **Helix slope deviation / misalignment** ``f_Hb`` over the face width (the pinion's):
+  ``f_Hb (z / b - 1/2)``, positive when the gap opens towards ``z = b``; both over the
+  mesh's common face width ``b``.
 * **pitch errors**: a constant offset per tooth pair, ``pitch_errors[j]`` for the
   tooth pair with index ``k = j`` (``k = 0`` is the pair that enters contact at
   the start of the analysed mesh cycle (pinion driving; with the gear driving it
@@ -41,9 +47,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
+from pipeline.contact.modifications import (
+    GearModification,
+    LeadModification,
+    ProfileModification,
+    flank_frames,
+    modification_gap,
+)
 from pipeline.contact.source import ContactPoints, candidate_range
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
@@ -71,6 +85,9 @@ class FlankModifications:
         the face's first end (ascending), g in m (magnitude <= 1e-3), linear between points
         and constant beyond them: the relative displacement of the flanks along the line of
         action that the shafts' deflection causes (:mod:`pipeline.shaft`); empty: none.
+    pinion_flank, gear_flank : each gear's modifications
+        (:class:`~pipeline.contact.modifications.GearModification`), or None; not together
+        with the short form above (tip reliefs, crowning, slope deviation).
     """
 
     tip_relief_pinion: float = 0.0
@@ -82,6 +99,8 @@ class FlankModifications:
     slope_deviation: float = 0.0
     pitch_errors: tuple[float, ...] = ()
     lead_gap: tuple[tuple[float, float], ...] = ()
+    pinion_flank: GearModification | None = None
+    gear_flank: GearModification | None = None
 
     def __post_init__(self) -> None:
         for who in ("pinion", "gear"):
@@ -107,32 +126,70 @@ class FlankModifications:
                 raise InputError(f"contact.lead_gap[{j}]: face positions must ascend "
                                  f"({z:.6g} m after {table[j - 1][0]:.6g} m)")
         object.__setattr__(self, "lead_gap", table)
+        if self.has_short_form and (self.pinion_flank is not None
+                                    or self.gear_flank is not None):
+            raise InputError("contact.tip_relief_*, contact.crowning and contact."
+                             "slope_deviation are the short form of the gears' modifications: "
+                             "give them there (pinion.modifications, gear.modifications) "
+                             "instead")
+
+    @property
+    def has_short_form(self) -> bool:
+        """The tip reliefs, crowning or slope deviation of the short form are given."""
+        return bool(self.tip_relief_pinion or self.tip_relief_gear or self.crowning
+                    or self.slope_deviation)
+
+    @cached_property
+    def flanks(self) -> tuple[GearModification, GearModification]:
+        """The pinion's and the gear's modifications: given, or read from the short form
+        (tip reliefs by roll length; crowning and slope deviation on the pinion)."""
+        if not self.has_short_form:
+            return (self.pinion_flank or GearModification(),
+                    self.gear_flank or GearModification())
+        out = []
+        for who in ("pinion", "gear"):
+            amount = getattr(self, f"tip_relief_{who}")
+            length = getattr(self, f"relief_length_{who}") if amount else None
+            profile = ProfileModification(tip_relief=amount, tip_relief_length=length,
+                                          tip_relief_shape=self.relief_shape)
+            lead = (LeadModification(crowning=self.crowning, slope=self.slope_deviation,
+                                     common_width=True)
+                    if who == "pinion" else LeadModification())
+            out.append(GearModification(profile=profile, lead=lead))
+        return out[0], out[1]
 
     def check_fits(self, pair: GearPair, mesh: str = "") -> None:
         """Refuse a relief length longer than the path of contact of ``pair`` (named
-        ``mesh`` in the message when given)."""
+        ``mesh`` in the message when given), and each gear's modifications outside its
+        active flank or face (:meth:`GearModification.check_fits`)."""
         where = f" of the {mesh} mesh" if mesh else ""
         for who in ("pinion", "gear"):
             check_range(f"contact.relief_length_{who}", getattr(self, f"relief_length_{who}"),
                         0.0, pair.path_length, unit="m", note=f"the path of contact{where}")
+        for mod, frame in zip(self.flanks, flank_frames(pair), strict=True):
+            mod.check_fits(frame, mesh)
 
     @property
     def varies_across_face(self) -> bool:
-        """Lead crowning or a helix slope deviation: the gap changes along the face, so even a
-        spur pair's line load does (the solve needs slices across the face)."""
-        return bool(self.crowning or self.slope_deviation
+        """A lead modification, a twist, a topography varying along the face or a lead gap:
+        the gap changes along the face, so even a spur pair's line load does (the solve
+        needs slices across the face)."""
+        return bool(any(m.varies_across_face for m in self.flanks)
                     or (self.lead_gap and len({g for _, g in self.lead_gap}) > 1))
 
     @property
     def is_zero(self) -> bool:
-        return not (self.tip_relief_pinion or self.tip_relief_gear or self.crowning
-                    or self.slope_deviation or any(self.pitch_errors)
+        return not (any(not m.is_zero for m in self.flanks) or any(self.pitch_errors)
                     or any(g for _, g in self.lead_gap))
 
     def describe(self) -> str:
         """One line for titles and reports, in the gearbox file's units (um, mm), e.g.
         ``"tip relief pinion 15 um over 8.1 mm (linear), crowning 8 um"``, or ``"none"``."""
-        parts = [f"tip relief {who} {amount * 1e6:.3g} um over {length * 1e3:.3g} mm "
+        gears = [f"{who}: {text}" for who, m in zip(("pinion", "gear"), self.flanks,
+                                                      strict=True)
+                 if not self.has_short_form and (text := m.describe())]
+        parts = ["; ".join(gears)] if gears else []
+        parts += [f"tip relief {who} {amount * 1e6:.3g} um over {length * 1e3:.3g} mm "
                  f"({self.relief_shape})"
                  for who, amount, length in (
                      ("pinion", self.tip_relief_pinion, self.relief_length_pinion),
@@ -177,13 +234,6 @@ def reach_in_pitches(pair: GearPair, tip_contact: bool = True) -> float:
     return (hi - pair.s_start) / pair.base_pitch
 
 
-def _relief(x: np.ndarray, amount: float, length: float, power: int) -> np.ndarray:
-    """``amount (x / length)^power`` for ``x > 0`` (x: roll distance into the relief, m)."""
-    if amount == 0.0:
-        return np.zeros_like(x)
-    return amount * np.clip(x / length, 0.0, None) ** power
-
-
 def initial_separations(pair: GearPair, points: ContactPoints, mods: FlankModifications,
                         zone: tuple[float, float] | None = None) -> np.ndarray:
     """Initial gaps ``eps`` (m, shape (n,)) of the candidate points (module docstring).
@@ -194,14 +244,8 @@ def initial_separations(pair: GearPair, points: ContactPoints, mods: FlankModifi
     """
     mods.check_fits(pair)
     s, z = points.s, points.z
-    power = 1 if mods.relief_shape == "linear" else 2
     on_path = np.clip(s, pair.s_start, pair.s_end)  # a corner has its tip's relief
-    eps = _relief(on_path - (pair.s_end - mods.relief_length_pinion), mods.tip_relief_pinion,
-                  mods.relief_length_pinion, power)
-    eps = eps + _relief((pair.s_start + mods.relief_length_gear) - on_path,
-                        mods.tip_relief_gear, mods.relief_length_gear, power)
-    b = pair.face_width
-    eps = eps + mods.crowning * (2.0 * z / b - 1.0) ** 2 + mods.slope_deviation * (z / b - 0.5)
+    eps = modification_gap(pair, on_path, z, mods.flanks)
     if mods.lead_gap:
         zs, gs = np.array(mods.lead_gap).T
         eps = eps + np.interp(z, zs, gs)

@@ -203,11 +203,38 @@ def pair_section(actual: GearPair, nominal: GearPair) -> Section:
     ))
 
 
-def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any) -> Section:
-    """Profile and lead modifications, pitch errors and assembly errors."""
+def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any,
+                          figures: Sequence[Figure] = ()) -> Section:
+    """Profile and lead modifications (each gear's, or ``[contact]``'s short form), pitch
+    errors and assembly errors; ``figures``: the flanks' modification maps."""
     m = contact.modifications
     pitch = ", ".join(f"{e * UM:g}" for e in m.pitch_errors) or "none"
-    rows = [
+    per_gear = m.pinion_flank is not None or m.gear_flank is not None
+    rows = _gear_modification_rows(m) if per_gear else _short_form_rows(m)
+    rows += [
+        quantity("pitch_errors", "pitch errors of tooth pairs k = 0, 1, ... (k = 0 enters "
+                 "contact at the start of the cycle)", "um", pitch),
+        quantity("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
+           ", ".join(f"{e * UM:g}" for e in assembly.pinion)),
+        quantity("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
+           ", ".join(f"{e * UM:g}" for e in assembly.gear)),
+    ]
+    if assembled is not None:
+        rows.append(quantity("centre_distance_change", "centre distance change from the errors",
+                       "um", assembled.summary()["centre_distance_change_um"]))
+    notes = ()
+    if figures:
+        notes = ("Modification maps: material removed (positive) over each modified flank's "
+                 "active part, face position across, roll length along the profile with the "
+                 "tip up (diameter on the right); the initial gap at a contact point is the "
+                 "sum of both flanks' values there.",)
+    return Section("modifications", "Modifications and errors", tuple(rows),
+                   figures=tuple(figures), notes=notes)
+
+
+def _short_form_rows(m: FlankModifications) -> list[Quantity]:
+    """``[contact]``'s short form: tip reliefs by roll length, crowning, slope deviation."""
+    return [
         quantity("tip_relief_pinion", "tip relief C_a of the pinion", "um",
             m.tip_relief_pinion * UM),
         quantity("tip_relief_length_pinion", "tip relief length of the pinion (roll)", "mm",
@@ -222,17 +249,48 @@ def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any
         quantity("crowning", "lead crowning C_b (both gears)", "um", m.crowning * UM),
         quantity("slope_deviation", "helix slope deviation / misalignment f_Hb", "um",
            m.slope_deviation * UM),
-        quantity("pitch_errors", "pitch errors of tooth pairs k = 0, 1, ... (k = 0 enters "
-                 "contact at the start of the cycle)", "um", pitch),
-        quantity("assembly_error_pinion", "pinion centre displacement (e_x, e_y)", "um",
-           ", ".join(f"{e * UM:g}" for e in assembly.pinion)),
-        quantity("assembly_error_gear", "gear centre displacement (e_x, e_y)", "um",
-           ", ".join(f"{e * UM:g}" for e in assembly.gear)),
     ]
-    if assembled is not None:
-        rows.append(quantity("centre_distance_change", "centre distance change from the errors",
-                       "um", assembled.summary()["centre_distance_change_um"]))
-    return Section("modifications", "Modifications and errors", tuple(rows))
+
+
+def _gear_modification_rows(m: FlankModifications) -> list[Quantity]:
+    """Each gear's modifications, the ones given (``[<gear>.modifications]``)."""
+    rows = []
+    for role, g in zip(("pinion", "gear"), m.flanks, strict=True):
+        p, q = g.profile, g.lead
+        for end, sym in (("tip", "C_a"), ("root", "C_f")):
+            amount = getattr(p, f"{end}_relief")
+            if not amount:
+                continue
+            length = getattr(p, f"{end}_relief_length")
+            start = (f"roll length {length * MM:.4g} mm from the "
+                     f"{'active tip' if end == 'tip' else 'start of active profile'}"
+                     if length is not None else
+                     f"diameter {getattr(p, f'{end}_relief_diameter') * MM:.6g} mm")
+            rows += [quantity(f"{role}_{end}_relief", f"{role}: {end} relief {sym}", "um",
+                              amount * UM),
+                     quantity(f"{role}_{end}_relief_start", f"{role}: {end} relief start "
+                              f"({getattr(p, f'{end}_relief_shape')})", "", start)]
+        for key, label, value in (
+                ("profile_crowning", "profile crowning C_alpha", p.crowning),
+                ("profile_slope", "profile slope f_Halpha (+: more removed at the tip)", p.slope),
+                ("lead_crowning", "lead crowning C_beta", q.crowning),
+                ("helix_slope", "helix slope f_Hbeta (+: more removed at face 2)", q.slope),
+                ("end_relief_face1", f"end relief at face 1 over "
+                 f"{q.end_relief_face1_length * MM:.4g} mm ({q.end_relief_shape})",
+                 q.end_relief_face1),
+                ("end_relief_face2", f"end relief at face 2 over "
+                 f"{q.end_relief_face2_length * MM:.4g} mm ({q.end_relief_shape})",
+                 q.end_relief_face2),
+                ("twist", "twist S (profile slope -S/2 at face 1 to +S/2 at face 2)", g.twist)):
+            if value:
+                rows.append(quantity(f"{role}_{key}", f"{role}: {label}", "um", value * UM))
+        if g.topography is not None:
+            rows.append(quantity(f"{role}_topography", f"{role}: topography grid", "",
+                                 g.topography.source))
+        if g.is_zero:
+            rows.append(quantity(f"{role}_modifications", f"{role}: modifications", "",
+                                 "none"))
+    return rows
 
 
 def stiffness_section(stiffness: StiffnessResult, dist: LoadDistribution, compliance: str,

@@ -247,7 +247,8 @@ def rating_local_section(m, figures: Sequence[Figure]) -> Section:
         "sharing between the pairs and the pressure at each point itself. The smallest "
         "S_H,loc therefore differs from ISO's S_H by the ratio of ISO's sigma_H to the "
         "contact's largest pressure (both with the same external factors).",
-        "The contact knows the modifications and deviations given in [contact], not the "
+        "The contact knows the modifications and deviations given in [contact] and the "
+        "gears' [<gear>.modifications], not the "
         "accuracy grade's deviations that ISO's K_Halpha allows for.",
     ]
     if loc.bending is not None:

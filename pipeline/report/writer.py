@@ -111,6 +111,23 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
                                figures=figs)
 
 
+def _modification_figures(contact: Any, pair: Any, fig, title: str) -> list[Figure]:
+    """The flanks' modification maps of a mesh whose gears are modified (none otherwise)."""
+    from pipeline.contact.modifications import modification_maps
+    from pipeline.viz.modifications import plot_modification_maps
+
+    flanks = contact.modifications.flanks
+    if all(m.is_zero for m in flanks):
+        return []
+    drawn = [(m, internal) for m, mod, internal in zip(
+        modification_maps(pair, flanks), flanks, (False, pair.gear.internal), strict=True)
+        if not mod.is_zero]  # an unmodified flank has no map to show
+    return [fig("report_modifications.png", "Modification map of each modified flank: "
+                "material removed [um] over face position and roll length",
+                plot_modification_maps, [m for m, _ in drawn], f"{title}: flank modifications",
+                [i for _, i in drawn])]
+
+
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
                 command: str, dist: LoadDistribution, root_stress: Any = None,
                 halves: Any = None, half_roots: Mapping[str, Any] | None = None
@@ -148,7 +165,8 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
         content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
         content.pair_section(actual, st.stiffness.nominal),
         content.modifications_section(box.contact, st.case.assembly_errors,
-                                      st.stiffness.assembled),
+                                      st.stiffness.assembled,
+                                      _modification_figures(box.contact, actual, fig, title)),
         content.stiffness_section(st.stiffness, dist, st.compliance, [k_fig]),
         content.transmission_error_section(dist, [te_fig]),
         content.load_distribution_section(dist, actual, [w_fig], box.contact.modifications),

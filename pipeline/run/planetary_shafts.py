@@ -67,7 +67,7 @@ from pipeline.contact.compliance import compliance_source
 from pipeline.contact.distribution import load_distribution
 from pipeline.contact.results import LoadedMeshCycle
 from pipeline.progress import Steps
-from pipeline.run.shafts import MAX_ITERATIONS, TOLERANCE, seat_flexibility, shaft_model
+from pipeline.run.shafts import TOLERANCE, check_settling, seat_flexibility, shaft_model
 from pipeline.shaft.misalignment import (
     body_retreats,
     planet_unit_loads,
@@ -75,7 +75,6 @@ from pipeline.shaft.misalignment import (
     unit_loads,
 )
 from pipeline.shaft.model import PointLoad, ShaftModel, ShaftSolution
-from pipeline.validation import InputError
 
 MESHES = ("sun_planet", "planet_ring")
 
@@ -469,10 +468,7 @@ def planetary_shaft_stage(box: Gearbox, stages: Mapping[str, Any], options: Any,
     with log.step("sun and pin deflection and loaded contact", announce=True) as note:
         while change >= TOLERANCE:
             iteration += 1
-            if iteration > MAX_ITERATIONS:
-                raise InputError(f"shafts: the line load still changes by {change:.3g} "
-                                 f"(relative) after iteration {MAX_ITERATIONS}; the sun, the "
-                                 "pins and the meshes do not settle")
+            check_settling(iteration, change, "the sun, the pins and the meshes")
             gaps, sun, pin = system.deflect(w)
             used = w
             w_new, change = {}, 0.0

@@ -76,7 +76,7 @@ def pinion_load(st: MeshStages) -> tuple[float, float]:
 
 def gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
     g = box.rating.gear(role)
-    relief = getattr(box.contact.modifications, ("tip_relief_pinion", "tip_relief_gear")[k])
+    relief = box.contact.modifications.flanks[k].profile.tip_relief  # C_a of the mesh's gear k
     return GearRatingInputs(
         sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.running_in,
         pitting_line=g.pitting_line, bending_line=g.bending_line, size_class=g.size_class,

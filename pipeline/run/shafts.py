@@ -143,6 +143,14 @@ class ShaftStage:
         return cols
 
 
+def check_settling(iteration: int, change: float, what: str) -> None:
+    """The fixed point's one-line error once ``iteration`` passes :data:`MAX_ITERATIONS`,
+    naming the last relative ``change`` of the line load and ``what`` does not settle."""
+    if iteration > MAX_ITERATIONS:
+        raise InputError(f"shafts: the line load still changes by {change:.3g} (relative) "
+                         f"after iteration {MAX_ITERATIONS}; {what} do not settle")
+
+
 def shaft_model(spec: tuple[str, Any], nodes: Any = (), cache: Any = None) -> Any:
     """The shaft model a ``[<gear>.shaft]`` names, ``spec`` = (model, layout): the beam with
     extra nodes at ``nodes`` (m along the shaft), or the 3D superelement (read from or
@@ -216,10 +224,7 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
     with log.step("shaft deflection and loaded contact", announce=True) as note:
         while change >= TOLERANCE:
             iteration += 1
-            if iteration > MAX_ITERATIONS:
-                raise InputError(f"shafts: the line load still changes by {change:.3g} "
-                                 f"(relative) after iteration {MAX_ITERATIONS}; the shafts "
-                                 "and the mesh do not settle")
+            check_settling(iteration, change, "the shafts and the mesh")
             gap, retreats = shaft_gap(models, radii, z, w, pair.pinion.helix_angle, flex,
                                       mesh)
             used, loaded = mesh, w

@@ -11,6 +11,7 @@ import, so it is imported only when :func:`render_load_map` runs; its plotter co
 from __future__ import annotations
 
 import math
+import textwrap
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -170,9 +171,10 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
 
 
 def load_map_title(title: str, modifications: str) -> str:
-    """Title of the load maps: ``title``, then what the map shows and the modifications."""
-    return (f"{title}\nunit load, envelope over the mesh cycle; modifications: "
-            f"{modifications}")
+    """Title of the load maps: ``title``, then what the map shows and the modifications
+    (wrapped at 120 characters: each gear's modifications can be a long list)."""
+    return "\n".join([title, *textwrap.wrap(
+        f"unit load, envelope over the mesh cycle; modifications: {modifications}", 120)])
 
 
 def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = None) -> Axes:
