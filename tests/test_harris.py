@@ -174,3 +174,29 @@ def test_a_negative_torque_is_refused(tmp_path):
     f.write_text(HARRIS.replace("range = [40.0, 600.0]", "range = [-40.0, 600.0]"))
     with pytest.raises(InputError, match=r"torque: -40.0 N m: expected torques > 0 N m"):
         study_from_file(f)
+
+
+def test_variants_take_any_gearbox_key_the_per_gear_modifications_too(tmp_path):
+    """The same linear relief (10 um over 6.68 mm on both tips) given by the ``[contact]``
+    short keys and by each gear's ``[<gear>.modifications]`` table: equal maps (1e-12), as
+    the gearbox file defines the two forms to be the same modification."""
+    from pipeline.study.execute import StudyOptions, run_study
+
+    short = ('{"contact.tip_relief_pinion_um" = 10.0, "contact.tip_relief_gear_um" = 10.0, '
+             f'"contact.tip_relief_length_pinion_mm" = {RELIEF_LENGTH_MM}, '
+             f'"contact.tip_relief_length_gear_mm" = {RELIEF_LENGTH_MM}}}')
+    per_gear = ", ".join(f'"{g}.modifications.tip_relief_um" = 10.0, '
+                         f'"{g}.modifications.tip_relief_length_mm" = {RELIEF_LENGTH_MM}'
+                         for g in ("pinion", "gear"))
+    f = tmp_path / "forms.toml"
+    f.write_text(f'kind = "harris"\nbase = "{BASE}"\n[set]\n"contact.positions" = 12\n'
+                 '"contact.render" = false\n[[variants]]\nlabel = "contact"\n'
+                 f'set = {short}\n[[variants]]\nlabel = "per gear"\nset = {{{per_gear}}}\n'
+                 '[torque]\nvalues = [150.0, 340.0]\n')
+    spec = study_from_file(f)
+    table, _ = run_study(spec, tmp_path / "out", StudyOptions(workers=0, show_progress=False))
+    hmap = harris_map(spec, table.to_pydict())
+    te = hmap.kpis["te_peak_to_peak_um"]
+    assert np.all(te > 0.1)
+    for k, a in hmap.kpis.items():
+        np.testing.assert_allclose(a[1], a[0], rtol=1e-12, atol=1e-15, err_msg=k)

@@ -177,6 +177,13 @@ def test_the_penalised_objective():
      'keys = ["contact.tip_relif_pinion_um"]',
      r"parameters\[0\]\.bounds = .*'tip_relif_pinion_um' is not known \(did you mean "
      r"'tip_relief_pinion_um'\?\)"),
+    ('"contact.tip_relief_length_pinion_mm" = 6.68\n"contact.tip_relief_length_gear_mm" = 6.68'
+     '\n[[parameters]]\nkeys = ["contact.tip_relief_pinion_um", "contact.tip_relief_gear_um"]'
+     '\nbounds = [0.0, 40.0]',
+     '[[parameters]]\nkeys = ["pinion.modifications.profile_crowning_um"]\n'
+     'bounds = [0.0, 2000.0]',
+     r"parameters\[0\]\.bounds = \[0, 2000\] \(pinion\.modifications\.profile_crowning_um\): "
+     r"at 2000 the gearbox is refused: .*profile_crowning_um"),
     ("bounds = [0.0, 40.0]", "bounds = [40.0, 0.0]",
      r"parameters\[0\]\.bounds = \[40\.0, 0\.0\] \(contact\.tip_relief_pinion_um\): low must "
      r"be below high"),
