@@ -1,5 +1,29 @@
 """Harris maps: loaded transmission error against load for a set of modification variants.
 
+The study file::
+
+    kind = "harris"
+    name = "harris_map"
+    base = "spur_pair_assembly_errors.toml"
+
+    [set]                                   # on every point (file units)
+    "contact.compliance" = "fe2d"
+
+    [[variants]]                            # a label and its gearbox key changes
+    label = "C_a 11 um"
+    set = {"pinion.modifications.tip_relief_um" = 11.0, "gear.modifications.tip_relief_um" = 11.0}
+
+    [torque]                                # driving torque, N m
+    range = [30.0, 600.0]                   # with points, or values = [...]
+    points = 20
+    design_Nm = 340.0                       # marked on the map (default: the base file's)
+
+    [kpis]
+    names = ["te_peak_to_peak_um", "te_order1_um", "te_order2_um"]   # the default
+
+    [execution]
+    batch_points = 16
+
 A Harris map is a study (``kind = "harris"`` in the study file, :mod:`pipeline.study.spec`)
 whose points are every ``[[variants]]`` entry (a label and its gearbox key changes, any
 dotted key of the base file in the file's units) at every torque of ``[torque]``: the
