@@ -57,12 +57,12 @@ minimum of the pipeline's map against the deflection of its own single pair, and
 larger relief moves it to a higher load.
 
 Measured (``workflows/benchmarks/bench_harris.py``, the example ``harris_map.toml``: FE 2D,
-20 positions, 5 variants x 20 torques, 2 LocalCluster workers; one run on the 2 cores
-shared with other jobs, load average 4.9 at the start): 14.8 s warm (FE tables in the
-cache), of which starting and closing the LocalCluster 3.6 s, the 100 points 9.9 s
-(99 ms per point; 111 ms per point serially in one process under the same load, parallel
-efficiency 0.56), checking every point 0.3 s, the figure 1.0 s. The target of 10 s needs
-the two cores: a point costs 45-60 ms on an idle core (``bench_study.py``).
+20 positions, 5 variants x 20 torques, 2 LocalCluster workers, the FE tables in the cache;
+the 2 cores shared with other jobs): at load average 4.2, 9.6 s and 11.0 s for two runs
+in a row (LocalCluster start and close 1.7 s, the 100 points 6.3-8.7 s at 63-87 ms per
+point against 68 ms serially in one process, the figure 0.5-1.4 s, checking every point
+0.2 s); at load average 4.9, 14.8 s. The target of 10 s is met only when the two cores
+are not shared (a point costs 45-60 ms on an idle core, ``bench_study.py``).
 """
 
 from __future__ import annotations

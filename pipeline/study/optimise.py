@@ -53,13 +53,13 @@ knows, now or later.
 
 Measured (``workflows/benchmarks/bench_optimise.py``, the example
 ``tip_relief_optimise.toml``: 4 parameters x 5 torques, FE 2D, 20 positions, 20 designs per
-generation, 10 generations = 220 evaluations = 1100 points, 2 LocalCluster workers; one
-run on the 2 cores shared with other jobs, load average 6.7 at the start): 127 s, 111 ms
-per point (101 ms serially in one process under the same load: parallel efficiency 0.45);
-LocalCluster start 4.9 s. The target of 60 s needs the two cores (a point costs
-45-60 ms on an idle core, ``bench_study.py``) or fewer generations: the record of that run
-reached 1.51 um (3 % above its final 1.468 um) after 100 evaluations. Nearly all of a
-point's time is the loaded contact solve (``pipeline.contact.ltca``: 95 % in a profile).
+generation, 10 generations = 220 evaluations = 1100 points, 2 LocalCluster workers; the 2
+cores shared with other jobs): 53.5 s at load average 3.5 (46 ms per point, 52 ms
+serially in one process; LocalCluster start 2.6 s), 127 s at load average 6.7 (111 ms per
+point). ``gearpipe study`` on the same file: 59.2 s for the optimisation, the optimum's
+``gearpipe run`` after it. Nearly all of a point's time is the loaded contact solve
+(``pipeline.contact.ltca``: 95 % in a profile). The record of the run reached 1.51 um
+(3 % above the final 1.468 um) after 100 evaluations.
 """
 
 from __future__ import annotations
