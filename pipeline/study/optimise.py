@@ -565,10 +565,11 @@ def optimum_document(result: OptimiseResult) -> tuple[dict[str, Any], str]:
 def plot_convergence(result: OptimiseResult) -> Any:
     """Objective J of every evaluation (constraint-violating ones as crosses) and the best
     feasible so far, over the evaluation number."""
-    from pipeline.study.kpis import kpi_label
+    from pipeline.study.kpis import KPI_BY_NAME, kpi_label
     from pipeline.viz.canvas import new_figure
 
     s = result.spec
+    unit = KPI_BY_NAME[s.objective].unit
     col = f"objective_{s.objective}"
     n = np.array([h["evaluation"] for h in result.history])
     j = np.array([h[col] for h in result.history], dtype=float)
@@ -584,7 +585,9 @@ def plot_convergence(result: OptimiseResult) -> Any:
     ax.set_xlabel("evaluation (each at every torque of the load cases)")
     ax.set_ylabel(f"weighted mean {kpi_label(s.objective)}")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3,
+               fontsize=8)
     ax.set_title(f"{s.name}: {result.evaluations} evaluations, {result.generations} "
-                 f"generations; optimum {result.objective:.4g}", fontsize=9)
+                 f"generations; optimum {result.objective:.4g}"
+                 + ("" if unit == "-" else f" {unit}"), fontsize=9)
     return fig
