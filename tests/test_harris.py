@@ -200,3 +200,24 @@ def test_variants_take_any_gearbox_key_the_per_gear_modifications_too(tmp_path):
     assert np.all(te > 0.1)
     for k, a in hmap.kpis.items():
         np.testing.assert_allclose(a[1], a[0], rtol=1e-12, atol=1e-15, err_msg=k)
+
+
+def test_a_map_resumes_and_refuses_to_resume_with_other_variants(tmp_path):
+    """A map is stored like a study's points: a resume of the finished map computes
+    nothing, and a resume after a variant's change is refused naming the variants."""
+    from pipeline.study.execute import StudyOptions, run_study
+
+    small = HARRIS.replace("points = 15", "points = 2").replace(
+        f'"contact.positions" = {POSITIONS}', '"contact.positions" = 12')
+    f = tmp_path / "h.toml"
+    f.write_text(small)
+    a, _ = run_study(study_from_file(f), tmp_path / "out",
+                     StudyOptions(workers=0, show_progress=False))
+    b, facts = run_study(study_from_file(f), tmp_path / "out",
+                         StudyOptions(workers=0, show_progress=False, resume=True))
+    assert facts["computed_now"] == 0 and a.equals(b) and a.num_rows == 4
+    f.write_text(small.replace("= 20.0,", "= 21.0,"))
+    with pytest.raises(InputError, match=r"--resume: the study in .* was run with another "
+                                         r"variants"):
+        run_study(study_from_file(f), tmp_path / "out",
+                  StudyOptions(workers=0, show_progress=False, resume=True))
