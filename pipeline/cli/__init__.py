@@ -63,7 +63,8 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
     "sweep": ("pipeline.cli.dynamics", "add_sweep_arguments", "run_sweep",
               "RMS dynamic mesh force against mesh frequency"),
     "study": ("pipeline.cli.study", "add_arguments", "run",
-              "design study: a base gearbox file over design axes, KPIs per point, on Dask "
+              "design study: a base gearbox file over design axes, KPIs per point, on Dask; "
+              "kind = \"harris\" a Harris map, kind = \"optimise\" an optimisation "
               "(STUDY.toml instead of a gearbox file)"),
 }
 

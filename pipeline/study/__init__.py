@@ -8,6 +8,10 @@
   serially; :func:`run_study`.
 * :mod:`.store` - the results folder: atomic part files, manifest, resume check, Parquet/CSV.
 * :mod:`.plots` - one-at-a-time sensitivity and KPI trade-off figures.
+* :mod:`.harris` - Harris maps (``kind = "harris"``): TE against load per modification
+  variant, on the study machinery.
+* :mod:`.optimise` - gearbox keys optimised over a load range (``kind = "optimise"``),
+  differential evolution with its evaluations on Dask.
 * the command ``gearpipe study`` is :mod:`pipeline.cli.study`.
 """
 

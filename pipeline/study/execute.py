@@ -138,8 +138,10 @@ def check_scheduler(address: str) -> tuple[str, str, int]:
 
 
 @dataclass(frozen=True)
-class _Job:
-    """What every batch of a study shares (sent with each batch)."""
+class BatchJob:
+    """What every batch of a study or optimisation shares (sent with each batch): the
+    KPIs, the speed range of the dynamic ones, the FE cache, the computed-point log
+    (``None``: none) and the session id."""
 
     kpis: tuple[KPI, ...]
     speed_range_rpm: tuple[float, float] | None
@@ -149,7 +151,7 @@ class _Job:
     session: str
 
 
-def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[dict]:
+def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: BatchJob) -> list[dict]:
     """KPI rows ``{"point": i, KPI...: value, "error": ""}`` of a batch (one BLAS thread).
 
     A point the pipeline refuses (an :class:`InputError` such as a contact that does not
@@ -171,7 +173,8 @@ def evaluate_batch(batch: list[tuple[int, dict]], fe: Any, job: _Job) -> list[di
     return rows
 
 
-def _fe_batch(doc: dict, job: _Job) -> Any:
+def fe_tables_task(doc: dict, job: BatchJob) -> Any:
+    """The FE tables of a point's geometry on one BLAS thread (one task per geometry)."""
     with one_blas_thread():
         return build_fe_tables(doc, cache=job.cache)
 
@@ -283,6 +286,14 @@ def check_study(spec: StudySpec) -> tuple[KPI, ...]:
         if name not in names:
             raise InputError(f"{spec.path}: {where} = {name!r} is not a KPI of this study; "
                              f"its KPIs: {', '.join(names)}")
+    if spec.best_mean_over:
+        labels = [a.label for a in spec.axes]
+        if spec.best_mean_over not in labels:
+            raise InputError(f"{spec.path}: best.mean_over = {spec.best_mean_over!r} is not an "
+                             f"axis of this study; its axes: {', '.join(labels)}")
+        if spec.method != "grid" or len(labels) < 2:
+            raise InputError(f"{spec.path}: best.mean_over needs a grid of two axes or more "
+                             "(the mean is taken over one axis at each value of the others)")
     if len(set(spec.tradeoff)) == 1:
         raise InputError(f"{spec.path}: plots.tradeoff = {list(spec.tradeoff)!r}: expected two "
                          "different KPIs")
@@ -326,7 +337,7 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
         done = store.open(options.resume, len(points))
         todo = [p.index for p in points if p.index not in done]
         session = uuid.uuid4().hex[:8]
-        job = _Job(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
+        job = BatchJob(kpis, spec.speed_range_rpm, spec.speed_points, options.cache,
                    str(Path(out).resolve() / "computed_points.log")
                    if options.point_log and client is None else None, session)
         nw = (os.cpu_count() or 1) if options.workers is None else options.workers
@@ -345,7 +356,7 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
             fe_cache: dict[Any, Any] = {}
             for g, ids in batches:
                 if g is not None and g not in fe_cache:
-                    fe_cache[g] = _fe_batch(docs[ids[0]], job)
+                    fe_cache[g] = fe_tables_task(docs[ids[0]], job)
                 rows = evaluate_batch([(i, docs[i]) for i in ids], fe_cache.get(g), job)
                 finish(rows)
                 for _ in rows:
@@ -356,7 +367,7 @@ def run_study(spec: StudySpec, out: Path, options: StudyOptions | None = None, *
             if client is None:
                 client = stack.enter_context(dask_client(None, options.workers))
             nw = len(client.scheduler_info().get("workers", {})) or nw
-            fe_futures = {g: client.submit(_fe_batch, docs[ids[0]], job, key=f"fe-tables-{g}")
+            fe_futures = {g: client.submit(fe_tables_task, docs[ids[0]], job, key=f"fe-tables-{g}")
                           for g, ids in batches if g is not None}
             futures = [client.submit(evaluate_batch, [(i, docs[i]) for i in ids],
                                      fe_futures.get(g), job, key=f"batch-{session}-{ids[0]}")

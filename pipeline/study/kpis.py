@@ -117,6 +117,11 @@ def _ripple(r: PointResult) -> float:
     return float((k.max() - k.min()) / k.mean() * 100.0)
 
 
+def _tip_share(r: PointResult) -> float:
+    tip = r.contact.tip_contact_peak()
+    return 0.0 if tip is None else tip["share"] * 100.0
+
+
 def _peak_factor(r: PointResult) -> tuple[float, float]:
     df = r.sweep.dynamic_factor.max(axis=0)
     i = int(np.argmax(df))
@@ -159,6 +164,14 @@ KPIS: tuple[KPI, ...] = (
         lambda r: float(r.contact.max_unit_load.max()) * 1e-3,
         "largest load per unit length of contact line over the cycle",
         "max. unit load"),
+    KPI("loaded_contact_ratio", "-", "contact", lambda r: r.contact.loaded_contact_ratio,
+        "mean number of tooth pairs carrying load over the cycle (1: the load jumps between "
+        "pairs, as with a relief too long or deep for the load)",
+        "loaded contact ratio"),
+    KPI("tip_contact_share_percent", "%", "contact", _tip_share,
+        "largest share of a position's load carried by a tip corner beyond the path of "
+        "contact (edge contact at the tip; 0 when none)",
+        "tip-corner load share"),
     KPI("safety_pitting_min", "-", "rating", lambda r: r.rating.smallest("pitting")[0],
         "smallest ISO 6336-2 pitting safety factor S_H of any gear of any mesh",
         "min. pitting safety S_H"),

@@ -60,9 +60,13 @@ from pipeline.validation import InputError
 def study_identity(spec: StudySpec, kpi_names: Sequence[str]) -> dict[str, Any]:
     """Everything a study's numbers depend on (for the manifest and the resume check)."""
     doc = spec.document
-    return {"base_sha256": spec.base.sha256, "set": doc.get("set", {}),
-            "axes": doc.get("axes", []), "sampling": doc.get("sampling", {}),
-            "kpis": doc.get("kpis", {}), "kpi_columns": list(kpi_names)}
+    out = {"base_sha256": spec.base.sha256, "set": doc.get("set", {}),
+           "axes": doc.get("axes", []), "sampling": doc.get("sampling", {}),
+           "kpis": doc.get("kpis", {}), "kpi_columns": list(kpi_names)}
+    if spec.kind != "study":  # a Harris map: its axes are these tables
+        out.update(kind=spec.kind, variants=doc.get("variants", []),
+                   torque=doc.get("torque", {}))
+    return out
 
 
 # what a study's working folder holds (module docstring); with the tables, what run_study
