@@ -12,7 +12,6 @@ lines starting with ``#`` are comments).
 
 from __future__ import annotations
 
-import csv
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -21,7 +20,7 @@ import numpy as np
 
 from pipeline.config import tables as T
 from pipeline.config.schema import read_table, restated
-from pipeline.config.signals import csv_path, path_problem
+from pipeline.config.signals import csv_path, csv_rows
 from pipeline.contact.modifications import (
     GearModification,
     LeadModification,
@@ -78,17 +77,8 @@ def gear_modifications(doc: Mapping[str, Any], role: str,
 def read_topography(path: Path, key: str) -> Topography:
     """A topography grid from a CSV file (module docstring); ``key`` names it in messages."""
     shown = f'{key} = "{path}"'
-    problem = path_problem(path)
-    if problem is not None:
-        raise InputError(f"{shown} {problem}; give a CSV file with columns face_position_mm, "
-                         "roll_length_mm (or diameter_mm), deviation_um")
-    try:
-        with path.open(encoding="utf-8", newline="") as f:
-            rows = [r for r in csv.reader(f) if r and not r[0].lstrip().startswith("#")]
-    except OSError as exc:
-        raise InputError(f"{shown} cannot be read ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise InputError(f"{shown} is not a UTF-8 text file (a CSV table is)") from None
+    rows = csv_rows(path, shown, "give a CSV file with columns face_position_mm, "
+                    "roll_length_mm (or diameter_mm), deviation_um", comments=True)
     names = [n.strip() for n in rows[0]] if rows else []
     axis = [n for n in names if n in PROFILE_COLUMNS]
     if any(c not in names for c in COLUMNS) or len(axis) != 1:

@@ -92,6 +92,25 @@ def referenced_files(document: Mapping[str, Any], base: Path | None,
     return out
 
 
+def csv_rows(path: Path, shown: str, hint: str, comments: bool = False) -> list[list[str]]:
+    """The rows of the CSV file ``path`` (with ``comments``: lines starting with ``#`` and
+    empty lines left out); a missing, unreadable or non-UTF-8 file is one line starting with
+    ``shown`` (the key as the file gave it) and, for a missing one, ending with ``hint``."""
+    problem = path_problem(path)
+    if problem is not None:
+        raise InputError(f"{shown} {problem}; {hint}")
+    try:
+        with path.open(encoding="utf-8", newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as exc:
+        raise InputError(f"{shown} cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{shown} is not a UTF-8 text file (a CSV table is)") from None
+    if comments:
+        rows = [r for r in rows if r and not r[0].lstrip().startswith("#")]
+    return rows
+
+
 def path_problem(path: Path) -> str | None:
     """Why ``path`` cannot be read as a data file, or ``None``: missing, a folder, or not a
     regular file (a device such as ``/dev/zero``, a pipe, a socket: reading one may never
@@ -108,17 +127,8 @@ def path_problem(path: Path) -> str | None:
 def _csv_signal(kw: dict[str, Any], where: str, base: Path | None) -> PeriodicSignal:
     path = csv_path(kw["path"], base)
     key = f'{where}.path = "{path}"'
-    problem = path_problem(path)
-    if problem is not None:
-        raise InputError(f"{key} {problem}; give a CSV file with one mesh period of stiffness "
-                         "values (N/m) in a column")
-    try:
-        with path.open(encoding="utf-8", newline="") as f:
-            rows = list(csv.reader(f))
-    except OSError as exc:
-        raise InputError(f"{key} cannot be read ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise InputError(f"{key} is not a UTF-8 text file (a CSV table is)") from None
+    rows = csv_rows(path, key, "give a CSV file with one mesh period of stiffness values "
+                    "(N/m) in a column")
     names = [n.strip() for n in rows[0]] if rows else []
     col = kw.get("column", names[-1] if names else "")
     if col not in names:

@@ -82,6 +82,7 @@ from pipeline.study.spec import (
     TORQUE_KEY,
     check_table_keys,
     fixed_changes,
+    gearbox_keys,
     number,
     read_header,
     set_key,
@@ -203,13 +204,7 @@ def _positive_int(v: Any, where: str, lo: int, hi: int) -> int:
 def _parameter(table: Any, i: int) -> Parameter:
     where = f"parameters[{i}]"
     check_table_keys(table, ("keys", "key", "bounds"), where)
-    if ("key" in table) == ("keys" in table):
-        raise InputError(f"{where}: give the gearbox key(s) as key = \"table.key_unit\" or "
-                         "keys = [...]")
-    keys = table.get("keys", [table.get("key")])
-    if (not isinstance(keys, list) or not keys
-            or not all(isinstance(k, str) and k for k in keys)):
-        raise InputError(f"{where}.keys = {keys!r}: expected a list of dotted gearbox keys")
+    keys = gearbox_keys(table, where)
     b = table.get("bounds")
     if not isinstance(b, list) or len(b) != 2:
         raise InputError(f"{where}.bounds = {b!r} ({keys[0]}): expected [low, high] in the "

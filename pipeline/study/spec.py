@@ -208,9 +208,9 @@ def number(v: Any, where: str) -> float:
     return float(v)
 
 
-def _axis(table: Any, i: int) -> Axis:
-    where = f"axes[{i}]"
-    check_table_keys(table, AXIS_KEYS, where)
+def gearbox_keys(table: Any, where: str) -> list[str]:
+    """The dotted gearbox keys a table names by ``key = "..."`` or ``keys = [...]`` (one of
+    the two), refused in one line naming ``where`` otherwise."""
     if ("key" in table) == ("keys" in table):
         raise InputError(f"{where}: give the gearbox key(s) as key = \"table.key_unit\" or "
                          "keys = [...]")
@@ -218,6 +218,13 @@ def _axis(table: Any, i: int) -> Axis:
     if (not isinstance(keys, list) or not keys
             or not all(isinstance(k, str) and k for k in keys)):
         raise InputError(f"{where}.keys = {keys!r}: expected a list of dotted gearbox keys")
+    return keys
+
+
+def _axis(table: Any, i: int) -> Axis:
+    where = f"axes[{i}]"
+    check_table_keys(table, AXIS_KEYS, where)
+    keys = gearbox_keys(table, where)
     if ("values" in table) == ("range" in table):
         raise InputError(f"{where} ({keys[0]}): give either values = [...] or range = [lo, hi]")
     if "values" in table:
