@@ -65,7 +65,8 @@ def test_helical_slice_stiffness_workflow(tmp_path):
 
 
 def test_default_case(tmp_path):
-    """The main job runs gearpipe run: FE-enriched contact feeds the dynamics.
+    """The main job runs gearpipe run: FE-enriched contact, with the pinion's shaft, feeds
+    the rating and the dynamics.
 
     The contact load is the driving torque over the pinion base radius (exact); the mean
     dynamic mesh force carries it (harmonic balance of a periodic steady state: the
@@ -93,6 +94,16 @@ def test_default_case(tmp_path):
     assert contact["mesh_stiffness_mean_N_per_m"] == pytest.approx(3.026e8, rel=2e-3)
     dyn = s["dynamics"]["response_at_operating_speed"]["meshes"]["mesh"]
     assert dyn["mean_force_N"] == pytest.approx(contact["load_N"], rel=1e-3)
+    # the chain goes through the pinion's shaft: its misalignment opens a face load factor
+    # the rating takes, the dynamics compare with the same file without the shaft
+    assert mesh["shafts"]["misalignment_across_face_m"] > 1e-7
+    rating = s["rating"]["meshes"]["mesh"]
+    assert rating["K_Hbeta_source"] == "loaded contact with the shafts' deflection"
+    assert rating["K_Hbeta"] > 1.0
+    assert "without_shafts" in s["dynamics"]
+    for name in ("shaft_deflection.csv", "shaft_face.csv", "report_shafts.png",
+                 "report_shaft_dynamics.png"):
+        assert (run / name).exists(), name
 
 
 def test_validate_stiffness_workflow(tmp_path):

@@ -28,7 +28,7 @@ from pipeline.dynamics.sweep import mesh_force_sweep
 from pipeline.report.dynamics_section import dynamics_meshes_section
 from pipeline.run.runner import gearbox_dynamic_model
 from pipeline.signals import PeriodicSignal
-from workflows.default_case import DEFAULT
+from workflows.default_case import PAPER_CASE as DEFAULT
 
 
 def _sinusoidal_te_pair(a: float = 5e-6, k: float = 3.0e8, zeta: float = 0.07):

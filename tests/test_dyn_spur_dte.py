@@ -306,7 +306,7 @@ def test_demo_dynamic_factor_agrees_with_an_independent_time_integration():
     """
     from pipeline.config import gearbox_from_text
     from pipeline.run.runner import gearbox_dynamic_model
-    from workflows.default_case import DEFAULT
+    from workflows.default_case import PAPER_CASE as DEFAULT
 
     text = DEFAULT.replace('compliance = "fe2d"', 'compliance = "analytical"').replace(
         "positions = 60", "positions = 360")

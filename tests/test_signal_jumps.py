@@ -22,7 +22,7 @@ from pipeline.config import gearbox_from_text
 from pipeline.dynamics.mesh_input import tooth_pair_jumps
 from pipeline.signals import Jump, PeriodicSignal, resample_with_jumps
 from pipeline.validation import InputError
-from workflows.default_case import DEFAULT
+from workflows.default_case import PAPER_CASE as DEFAULT
 
 LEAVE = 0.6180339887
 

@@ -56,13 +56,15 @@ def plot_planetary_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.n
 
 
 def _shaft_panel(ax, shafts, ylabel: str, title: str, colour: int = 0) -> None:
-    """Deflection lines ``(name, z, value, seat, supports, supports' name)`` in um over mm."""
+    """Deflection lines ``(name, z, value, seat, supports, supports' name)`` in um over mm,
+    the supports marked on their lines."""
     for i, (name, z, uy, seat, bearings, marks) in enumerate(shafts):
         c = f"C{colour + i}"
         ax.plot(np.asarray(z) * 1e3, np.asarray(uy) * 1e6, c, lw=1.8, label=name)
         ax.axvspan(seat[0] * 1e3, seat[1] * 1e3, color=c, alpha=0.15)
-        ax.plot(np.asarray(bearings) * 1e3, np.zeros(len(bearings)), "^", color=c, ms=8,
-                label=marks)
+        # on the line: an elastic bearing gives by the shaft's deflection there
+        at = np.interp(np.asarray(bearings, dtype=float), np.asarray(z), np.asarray(uy))
+        ax.plot(np.asarray(bearings) * 1e3, at * 1e6, "^", color=c, ms=8, label=marks)
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("position along the shaft z [mm]")
     ax.set_ylabel(f"{ylabel} [um]")
