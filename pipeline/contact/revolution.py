@@ -13,22 +13,44 @@ as in every mesh cycle, and carries the gap of the flank modifications plus
 
 What repeats and what does not. The candidate points, their compliance ``G``, the local
 contact model and the gaps of the flank modifications depend only on the position in the
-mesh cycle (``j``), so they are built once per ``j`` (``m`` calls to the compliance
-source, as for one mesh cycle); the errors change only the gaps, so the ``N m`` solves
-(:func:`~pipeline.contact.complementarity.solve_contact`) are what repeats. Each solve is
-warm-started from the previous position's loads on the same tooth pair (pairs keep their
-identity across cycles: pair ``k`` of cycle ``c`` is pair ``k + 1`` of cycle ``c + 1``).
-Without errors every cycle is the same problem, so the revolution repeats the mesh cycle
-to round-off.
+mesh cycle (``j``) and on the pair's geometry, so without runout they are built once per
+``j`` (``m`` calls to the compliance source, as for one mesh cycle) and the errors change
+only the gaps: the ``N m`` solves (:func:`~pipeline.contact.complementarity.solve_contact`)
+are what repeats. Each solve is warm-started from the previous position's loads on the same
+tooth pair (pairs keep their identity across cycles: pair ``k`` of cycle ``c`` is pair
+``k + 1`` of cycle ``c + 1``). Without errors every cycle is the same problem, so the
+revolution repeats the mesh cycle to round-off.
 
-A rigid offset of all pairs in mesh (a runout's gap at an instant) leaves the loads
-unchanged and adds itself to the transmission error (the conditions of
-:mod:`pipeline.contact.complementarity` hold with ``eps + d`` and ``x_s + d``); pitch
-deviations differ from pair to pair and redistribute the load.
+Runout. An eccentric gear's teeth are translated by ``e`` once per revolution
+(:mod:`pipeline.contact.tooth_errors`): along the line of action that is a gap common to
+every pair in mesh (:func:`~pipeline.contact.tooth_errors.runout_gaps`), which adds itself
+to the transmission error and leaves the loads unchanged (the conditions of
+:mod:`pipeline.contact.complementarity` hold with ``eps + d`` and ``x_s + d``); along the
+line of centres it changes the centre distance by ``delta_a``
+(:func:`~pipeline.contact.tooth_errors.centre_distance_change`), and with it the pressure
+angle, the path of contact and the contact ratio, which modulates the mesh harmonics:
+sidebands at the mesh orders +- 1. Each mesh cycle ``c`` is solved quasi-statically on the
+pair at the centre distance ``a + delta_a_c`` of the cycle's middle (per cycle rather than
+per position because each new pair costs its tip-contact zone, about 7 ms on the demo pair,
+``N`` times instead of ``N m``; the once-per-revolution modulation is then a staircase of
+``N`` steps, whose sidebands at ``z1 +- 1`` differ from the smooth sinusoid's by the
+harmonics' phase ramp of ``2 pi / N`` across a cycle: a few per cent for ``N = 50``), with
+the positions ``s0_j`` moved by :func:`~pipeline.contact.tooth_errors.roll_shift` (the
+contact at the same pinion angle on that pair), keeping the common gap. Its compliance source is the same gears' at the new
+centre distance (:func:`at_centre_distance`): the analytical slices' tooth models and the
+FE sources' influence tables belong to each gear alone (as when a design study reuses FE
+tables, :func:`pipeline.contact.compliance.compliance_source`), so they are reused and
+only the pair, hence where each contact point lies on the flanks, changes. The points,
+``G`` and the local model are then built at all ``N m`` positions instead of ``m``;
+without eccentricity the rigid-offset-only problem
+above is what remains.
+
+Pitch deviations differ from pair to pair and redistribute the load.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -46,8 +68,21 @@ from pipeline.contact.ltca import (
 from pipeline.contact.recording import CycleRecorder
 from pipeline.contact.revolution_results import LoadedRevolution
 from pipeline.contact.separations import FlankModifications, initial_separations
-from pipeline.contact.source import ComplianceSource, ContactPoints, candidate_range
-from pipeline.contact.tooth_errors import ToothErrors, pitch_gaps, runout_gaps, tooth_offsets
+from pipeline.contact.source import (
+    ComplianceSource,
+    ContactPoints,
+    FrictionCorrected,
+    SliceCompliance,
+    candidate_range,
+)
+from pipeline.contact.tooth_errors import (
+    ToothErrors,
+    centre_distance_change,
+    pitch_gaps,
+    roll_shift,
+    runout_gaps,
+    tooth_offsets,
+)
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
 from pipeline.progress import progress
@@ -106,6 +141,38 @@ def _phase(source: ComplianceSource, s0: float, mods: FlankModifications, local:
     Gt, _, hertz, lever = along_line_of_action(pair, pts, G, np.zeros(len(pts)), hertz, driver)
     tc = tip_contact(pair, pts.s)
     return _Phase(pts, Gt, hertz, lever, eps, c_lin, (tc.lever_pinion, tc.lever_gear))
+
+
+def at_centre_distance(source: ComplianceSource, pair: GearPair) -> ComplianceSource:
+    """``source`` for the same gears at the centre distance of ``pair`` (module docstring):
+    analytical slices with their tooth models, an FE source with its influence tables, a
+    friction-corrected source with both parts."""
+    if isinstance(source, SliceCompliance):
+        return dataclasses.replace(source, model=dataclasses.replace(source.model, pair=pair))
+    if isinstance(source, FrictionCorrected):
+        return dataclasses.replace(source, base=at_centre_distance(source.base, pair),
+                                   slices=at_centre_distance(source.slices, pair))
+    if dataclasses.is_dataclass(source) and "pair" in {f.name for f in
+                                                        dataclasses.fields(source)}:
+        return dataclasses.replace(source, pair=pair)
+    raise InputError(f"contact.errors: a runout changes the centre distance, which the "
+                     f"{type(source).__name__} compliance source cannot take; give "
+                     "eccentricity_pinion_um = eccentricity_gear_um = 0")
+
+
+def _runout_source(source: ComplianceSource, nominal: GearPair,
+                   delta_a: float) -> tuple[ComplianceSource, float]:
+    """``source`` on the pair at centre distance ``a + delta_a`` (m) and how much further
+    along the path that pair touches at the same pinion angle (m)."""
+    pair = GearPair(nominal.pinion, nominal.gear,
+                    centre_distance=nominal.operating_centre_distance + delta_a)
+    if not np.array_equal(pair.pair_indices(source.tip_contact),
+                          nominal.pair_indices(source.tip_contact)):
+        raise InputError(f"contact.errors: the runout changes the centre distance by "
+                         f"{delta_a * 1e6:.4g} um, which changes how many tooth pairs can "
+                         "touch at once (the contact ratio crosses a whole number); the "
+                         "full-revolution contact keeps the tooth pairs of the nominal pair")
+    return at_centre_distance(source, pair), roll_shift(nominal, pair)
 
 
 def revolution_size(errors: ToothErrors, pair: GearPair, positions: int) -> tuple[int, int]:
@@ -192,16 +259,26 @@ def loaded_revolution(
             f"with {len(first.points)} candidate points each keep about {records} point "
             f"records, more than {MAX_POINT_RECORDS} (about 1 GB): give fewer "
             "contact.positions or contact.slices, or a shorter span")
-    phases = [first] + [_phase(source, float(s), mods, local, driver, c_hertz)
-                        for s in s0[1:]]
     cycle_of = np.repeat(np.arange(cycles), m)
     roll = cycle_of * pair.base_pitch + np.tile(s0 - s0[0], cycles)
     runout = runout_gaps(pair, errors, roll)
+    eccentric = bool(errors.pinion.eccentricity or errors.gear.eccentricity)
+    middle = np.arange(cycles) * pair.base_pitch + float(np.mean(s0 - s0[0]))
+    delta_a = centre_distance_change(pair, errors, middle) if eccentric else np.zeros(cycles)
+    phases = [] if eccentric else [first] + [
+        _phase(source, float(s), mods, local, driver, c_hertz) for s in s0[1:]]
     offsets = tooth_offsets(pair, errors)
     record = CycleRecorder(pair, total, source.tip_contact)
     prev = None
     for i in progress(range(total), "revolution contact", total=total, enabled=show_progress):
-        c, ph = int(cycle_of[i]), phases[i % m]
+        c = int(cycle_of[i])
+        if eccentric:
+            if i % m == 0:
+                src, shift = _runout_source(source, pair, float(delta_a[c]))
+                record.pair = src.pair  # it places the points' corners and curvatures
+            ph = _phase(src, float(s0[i % m]) + shift, mods, local, driver, c_hertz)
+        else:
+            ph = phases[i % m]
         label = f"mesh cycle {c}, position {i % m} (s0 = {s0[i % m] * 1e3:.6g} mm)"
         eps = ph.eps + ph.error_gaps(pair, errors, c, (runout[0][i], runout[1][i]), offsets)
         eps_t = eps / ph.lever
@@ -219,4 +296,5 @@ def loaded_revolution(
     contact = record.cycle(s0[0] + roll, load, local)
     return LoadedRevolution(contact=contact, mesh_cycles=cycles, positions_per_cycle=m,
                             teeth=np.array([pair.pinion.teeth, pair.gear.teeth]),
-                            span=errors.span, runout_gap=runout[0] + runout[1])
+                            span=errors.span, runout_gap=runout[0] + runout[1],
+                            centre_distance_change=np.repeat(delta_a, m))

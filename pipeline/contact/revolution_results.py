@@ -77,6 +77,8 @@ class LoadedRevolution:
     teeth : (2,) int, z1 and z2.
     span : "hunting", "pinion" or "gear".
     runout_gap : (N m,) the gap both eccentricities open at each position, m.
+    centre_distance_change : (N m,) the change of the centre distance both eccentricities
+        give at each position, m (the position is solved on the pair at that distance).
     """
 
     contact: LoadedMeshCycle
@@ -85,6 +87,7 @@ class LoadedRevolution:
     teeth: np.ndarray
     span: str
     runout_gap: np.ndarray
+    centre_distance_change: np.ndarray
 
     def __len__(self) -> int:
         return len(self.contact)
@@ -189,6 +192,7 @@ class LoadedRevolution:
             "roll_coordinate_s0 [m]": c.s0,
             "transmission_error [m]": c.transmission_error,
             "runout_gap [m]": self.runout_gap,
+            "centre_distance_change [m]": self.centre_distance_change,
             "mesh_stiffness_tangent [N/m]": c.mesh_stiffness,
             "max_unit_load [N/m]": c.max_unit_load,
             "residual [m]": c.residual,
@@ -216,4 +220,5 @@ def revolution_from_arrays(z: dict[str, np.ndarray]) -> LoadedRevolution:
     return LoadedRevolution(contact=contact, mesh_cycles=int(z["mesh_cycles"]),
                             positions_per_cycle=int(z["positions_per_cycle"]),
                             teeth=np.asarray(z["teeth"]), span=str(z["span"]),
-                            runout_gap=np.asarray(z["runout_gap"]))
+                            runout_gap=np.asarray(z["runout_gap"]),
+                            centre_distance_change=np.asarray(z["centre_distance_change"]))

@@ -54,16 +54,40 @@ coordinate: with the pinion driving that is the sense of rotation in time; with 
 driving the mesh runs through ``s`` backwards in time (the pair ``k = 0`` is the one about
 to leave), so the revolution is read backwards and "the sense of rotation" above is the
 one in which ``s`` grows. ``phi_g = 90 deg``: at the first position the teeth
-of gear ``g`` lie ``e_g`` behind along the line of action (the gap is largest). This is
-the first-order gap. Left out are the eccentricity's two effects on the path of contact:
-the translation moves the gear's tip circle along the line of action by ``g_g`` (the end
-of the path where that gear's tip enters or leaves shifts by ``g_g``), and its component
-along the line of centres changes the centre distance by ``delta_a``, which moves the
-start of the path (``T1 T2`` grows by ``delta_a / sin(alpha_wt)``). Both change the contact
-ratio by about ``e / p_bt`` once per revolution (0.1 % for 10 um on the demo pair, ``p_bt
-= 8.9 mm``) and so modulate the mesh harmonics; without them a runout leaves the loads
-unchanged (a gap common to every pair on the path of contact; at a tip corner it acts
-through the lever below) and adds ``g_g`` to the transmission error, with no sidebands.
+of gear ``g`` lie ``e_g`` behind along the line of action (the gap is largest).
+
+The same translation moves the gear's centre of teeth, and so the centre distance. In the
+plane of the pinion-driving picture (pinion centre at the origin, gear centre at ``(0, a)``,
+the line of action from ``T1 = r_b1 (sin alpha_wt, cos alpha_wt)`` towards the gear along
+``t = (-cos alpha_wt, sin alpha_wt)``, the pinion turning counter-clockwise, the gear
+clockwise): ``n_1 = -t``, ``n_2 = t``, ``u_1 = u_2 = (-sin alpha_wt, -cos alpha_wt)``, and
+the centre distance grows by the eccentricity's component along the line of centres away
+from the mate,
+
+    delta_a_1 = e_1 cos(phi_1 + theta_1 - alpha_wt),
+    delta_a_2 = -e_2 cos(phi_2 + theta_2 + alpha_wt)
+
+(:func:`centre_distance_change`; check: ``phi_g + theta_g = 90 deg``, the teeth ``e_g``
+behind along the line of action, gives ``delta_a_g = e_g sin(alpha_wt)``, the centre line's
+share of that translation). With the gear driving the same holds in the mirror image in
+which ``s`` grows. A changed centre distance ``a' = a + delta_a`` changes the operating
+pressure angle (``cos alpha' = (r_b1 + r_b2) / a'``), the base tangent points and so the
+path of contact (its ends, where the tip circles cut the line of action: ``s_end`` stays
+``sqrt(r_a1^2 - r_b1^2)`` from ``T1``, ``T1 T2`` grows by about ``delta_a / sin(alpha_wt)``)
+and the contact ratio (about ``-delta_a / (p_bt sin(alpha_wt))``: -0.33 % for 10 um on the
+demo pair, ``p_bt = 8.86 mm``). It also turns ``T1`` about the pinion's axis by
+``alpha' - alpha_wt``, so at a given pinion angle the contact lies ``r_b1 (alpha' -
+alpha_wt)`` further along the path (:func:`roll_shift`, as ``AssembledPair.roll_offset``
+of :mod:`pipeline.geometry.assembly_errors` without the centre line's rotation). Both
+modulate the mesh harmonics once per revolution: sidebands at the mesh orders +- 1
+(:mod:`pipeline.contact.revolution` solves each mesh cycle on the pair at its centre
+distance). The gap ``g_g`` above already holds the centre-distance change's rigid part
+(``delta_a sin(alpha_wt)`` along the line of action, the change of backlash of one flank).
+The pair at ``a'`` is the eccentric gear's instantaneous geometry up to a rotation of the
+whole picture: the component of the translation across the line of centres turns the line
+of centres by ``delta = d_perp / a``, which moves the contact along the path by
+``r_b1 delta`` at a given pinion angle. That phase modulation of the mesh harmonics is of
+the same order as the one of ``r_b1 (alpha' - alpha_wt)`` and is left out.
 A measured cumulative pitch deviation of an eccentric gear already contains its
 eccentricity's sinusoid: give one or the other.
 
@@ -224,3 +248,24 @@ def runout_gaps(pair: GearPair, errors: ToothErrors,
     roll = np.asarray(roll, dtype=float)
     return (errors.pinion.runout_gap(roll / pair.pinion.base_radius),
             errors.gear.runout_gap(roll / pair.gear.base_radius))
+
+
+def centre_distance_change(pair: GearPair, errors: ToothErrors,
+                           roll: np.ndarray) -> np.ndarray:
+    """Change of the centre distance from both eccentricities at the unrolled roll distance
+    ``roll`` (m) from the first position, m: ``e_1 cos(phi_1 + theta_1 - alpha_wt) - e_2
+    cos(phi_2 + theta_2 + alpha_wt)`` (module docstring)."""
+    roll = np.asarray(roll, dtype=float)
+    alpha = pair.operating_pressure_angle
+    p, g = errors.pinion, errors.gear
+    return (p.eccentricity * np.cos(p.eccentricity_phase + roll / pair.pinion.base_radius - alpha)
+            - g.eccentricity * np.cos(g.eccentricity_phase + roll / pair.gear.base_radius
+                                      + alpha))
+
+
+def roll_shift(nominal: GearPair, actual: GearPair) -> float:
+    """How much further along the path of contact ``actual`` (the pair at another centre
+    distance) touches than ``nominal`` at the same pinion angle, m: ``r_b1 (alpha' -
+    alpha_wt)``, the turn of the base tangent point ``T1`` (module docstring)."""
+    return nominal.pinion.base_radius * (actual.operating_pressure_angle
+                                         - nominal.operating_pressure_angle)
