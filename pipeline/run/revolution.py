@@ -3,7 +3,9 @@
 After the mesh-cycle contact (:func:`pipeline.run.chain.loaded_contact`) the same compliance
 source is solved through the span of the errors (:func:`pipeline.contact.revolution.
 loaded_revolution`: the hunting cycle or one revolution, each tooth pair with its own
-teeth's pitch deviations and both runouts), at the ``[contact]`` positions per mesh cycle.
+teeth's pitch deviations, both runouts as a gap along the line of action and, each mesh
+cycle, the pair at the centre distance they give, the same source's tables or tooth models
+reused), at the ``[contact]`` positions per mesh cycle.
 The result is cached like the mesh cycle, by a content hash of everything it depends on
 (the mesh cycle's inputs and the errors) and the contact code.
 """

@@ -6,9 +6,11 @@ tooth, tip reliefs), 60 positions per mesh cycle = 3000 contact solves, on the a
 slice compliance and on the 2D FE compliance of the demo (``compliance = "fe2d"``; its
 tables are built once into a temporary cache first and not timed). For each: the source's
 build, the revolution (wall time, two runs, the faster kept) and its breakdown from a
-profiled run (the ``m`` per-phase setups: candidate points, ``G``, Weber's model, gaps;
-the ``N m`` solves; recording the loads and pressures), against one mesh cycle of 60
-positions. Prints the figures and writes ``results/benchmarks/revolution.json``.
+profiled run (the per-position setups: candidate points, ``G``, Weber's model, gaps, at
+all ``N m`` positions because the runout moves the centre distance each mesh cycle, and
+the ``N`` pairs at those centre distances with their tip-contact zones; the ``N m``
+solves; recording the loads and pressures), against one mesh cycle of 60 positions.
+Prints the figures and writes ``results/benchmarks/revolution.json``.
 """
 
 from __future__ import annotations
@@ -35,7 +37,8 @@ from pipeline.io import write_json  # noqa: E402
 from pipeline.provenance import library_versions  # noqa: E402
 
 PARTS = {  # profile entries (file tail, function) -> part of the breakdown
-    "setup per phase (points, G, local model, gaps)": (("revolution.py", "_phase"),),
+    "setup per position (points, G, local model, gaps)": (("revolution.py", "_phase"),),
+    "pairs at the runout's centre distances": (("revolution.py", "_runout_source"),),
     "contact solves": (("complementarity.py", "solve_contact"),),
     "recording loads and pressures": (("recording.py", "add"), ("recording.py", "cycle")),
 }
