@@ -97,9 +97,10 @@ from pipeline.stiffness.tooth import hertz_compliance
 from pipeline.validation import InputError, check_choice, check_int_range, check_range
 
 MAX_POSITIONS = 100_000
-"""Most positions of a full-revolution contact (mesh cycles x positions per cycle): 1.5 to
-3.5 min for the demo pair at the 0.9-2.1 ms per position of
-``workflows/benchmarks/bench_revolution.py`` (2 shared cores)."""
+"""Most positions of a full-revolution contact (mesh cycles x positions per cycle): about
+3 min for the demo pair with a runout at the 1.6-1.7 ms per position of
+``workflows/benchmarks/bench_revolution.py`` (2 shared cores; 0.9 ms without a runout,
+whose positions share their setup)."""
 MAX_POINT_RECORDS = 10_000_000
 """Most candidate points over all positions: the result keeps 12 numbers per point (about
 1 GB at this many)."""
