@@ -28,18 +28,23 @@ to the transmission error and leaves the loads unchanged (the conditions of
 :mod:`pipeline.contact.complementarity` hold with ``eps + d`` and ``x_s + d``); along the
 line of centres it changes the centre distance by ``delta_a``
 (:func:`~pipeline.contact.tooth_errors.centre_distance_change`), and with it the pressure
-angle, the path of contact and the contact ratio, which modulates the mesh harmonics:
-sidebands at the mesh orders +- 1. Each mesh cycle ``c`` is solved quasi-statically on the
+angle, the path of contact and the contact ratio; across it, it turns the line of centres
+(:func:`~pipeline.contact.tooth_errors.centre_line_turn`), which moves the contact along
+the path at a given pinion angle. Both modulate the mesh harmonics: sidebands at the mesh
+orders +- 1. Each mesh cycle ``c`` is solved quasi-statically on the
 pair at the centre distance ``a + delta_a_c`` of the cycle's middle, per cycle rather than
 per position because each new pair costs its tip-contact zone (about 7 ms on the demo
 pair), ``N`` times instead of ``N m``. The once-per-revolution modulation is then a
-staircase of ``N`` steps: its sidebands at ``z1 +- 1`` are ``e_r |sum_j D_j exp(-2 pi i j
-(1 +- 1/N) / m)| / m`` (``D_j`` the TE's derivative by ``a`` at position ``j``, ``e_r`` the
-amplitude of ``delta_a``), within a few per cent of the smooth sinusoid's ``|dC_1/da| e_r
-/ 2`` (-3.8 % and +3.8 % on the demo pair with tip reliefs at 20 % load). The positions
-``s0_j`` are moved by :func:`~pipeline.contact.tooth_errors.roll_shift` (the contact at
-the same pinion angle on that pair), and the common gap is kept. The compliance source is
-the same gears' at the new centre distance (:func:`at_centre_distance`): the analytical
+staircase of ``N`` steps. For a pinion runout its sidebands at ``z1 +- 1`` are ``e |sum_j
+(D_j +- i r_b1 S_j / a) exp(-2 pi i j (1 +- 1/N) / m)| / m`` (``D_j`` and ``S_j`` the TE's
+derivatives by ``a`` and by ``s0`` at position ``j``; derived in
+``tests/test_contact_revolution.py``), within a few per cent of the smooth modulation's
+``|dC_1/da -+ z1 C_1 / a| e / 2`` (``C_1`` the complex first mesh-order harmonic; +0.9 %
+and -0.2 % on the demo pair with tip reliefs at 20 % load, sidebands of 6.2 and 2.7 nm).
+The positions ``s0_j`` are moved by :func:`~pipeline.contact.tooth_errors.roll_shift`
+(the contact at the same pinion angle on that pair with its line of centres turned), and
+the common gap is kept. The compliance source is the same gears' at the new centre
+distance (:func:`at_centre_distance`): the analytical
 slices' tooth models and the FE sources' influence tables belong to each gear alone (as
 when a design study reuses FE tables, :func:`pipeline.contact.compliance.
 compliance_source`), so they are reused and only the pair, hence where each contact point
@@ -85,6 +90,7 @@ from pipeline.contact.source import (
 from pipeline.contact.tooth_errors import (
     ToothErrors,
     centre_distance_change,
+    centre_line_turn,
     pitch_gaps,
     roll_shift,
     runout_gaps,
@@ -168,10 +174,11 @@ def at_centre_distance(source: ComplianceSource, pair: GearPair) -> ComplianceSo
                      "eccentricity_pinion_um = eccentricity_gear_um = 0")
 
 
-def _runout_source(source: ComplianceSource, nominal: GearPair,
-                   delta_a: float) -> tuple[ComplianceSource, float]:
+def _runout_source(source: ComplianceSource, nominal: GearPair, delta_a: float,
+                   turn: float) -> tuple[ComplianceSource, float]:
     """``source`` on the pair at centre distance ``a + delta_a`` (m) and how much further
-    along the path that pair touches at the same pinion angle (m)."""
+    along the path that pair touches at the same pinion angle (m), its line of centres
+    turned by ``turn`` (rad)."""
     pair = GearPair(nominal.pinion, nominal.gear,
                     centre_distance=nominal.operating_centre_distance + delta_a)
     if not np.array_equal(pair.pair_indices(source.tip_contact),
@@ -180,7 +187,7 @@ def _runout_source(source: ComplianceSource, nominal: GearPair,
                          f"{delta_a * 1e6:.4g} um, which changes how many tooth pairs can "
                          "touch at once (the contact ratio crosses a whole number); the "
                          "full-revolution contact keeps the tooth pairs of the nominal pair")
-    return at_centre_distance(source, pair), roll_shift(nominal, pair)
+    return at_centre_distance(source, pair), roll_shift(nominal, pair, turn)
 
 
 def revolution_size(errors: ToothErrors, pair: GearPair, positions: int) -> tuple[int, int]:
@@ -273,6 +280,7 @@ def loaded_revolution(
     eccentric = bool(errors.pinion.eccentricity or errors.gear.eccentricity)
     middle = np.arange(cycles) * pair.base_pitch + float(np.mean(s0 - s0[0]))
     delta_a = centre_distance_change(pair, errors, middle) if eccentric else np.zeros(cycles)
+    turn = centre_line_turn(pair, errors, middle)
     phases = [] if eccentric else [first] + [
         _phase(source, float(s), mods, local, driver, c_hertz) for s in s0[1:]]
     offsets = tooth_offsets(pair, errors)
@@ -282,7 +290,7 @@ def loaded_revolution(
         c = int(cycle_of[i])
         if eccentric:
             if i % m == 0:
-                src, shift = _runout_source(source, pair, float(delta_a[c]))
+                src, shift = _runout_source(source, pair, float(delta_a[c]), float(turn[c]))
                 record.pair = src.pair  # it places the points' corners and curvatures
             ph = _phase(src, float(s0[i % m]) + shift, mods, local, driver, c_hertz)
         else:

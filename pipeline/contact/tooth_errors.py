@@ -76,20 +76,24 @@ path of contact (its ends, where the tip circles cut the line of action: ``s_end
 ``sqrt(r_a1^2 - r_b1^2)`` from ``T1``, ``T1 T2`` grows by about ``delta_a / sin(alpha_wt)``)
 and the contact ratio (about ``-delta_a / (p_bt sin(alpha_wt))``: -0.33 % for 10 um on the
 demo pair, ``p_bt = 8.86 mm``). It also turns ``T1`` about the pinion's axis by
-``alpha' - alpha_wt``, so at a given pinion angle the contact lies ``r_b1 (alpha' -
-alpha_wt)`` further along the path (:func:`roll_shift`, as ``AssembledPair.roll_offset``
-of :mod:`pipeline.geometry.assembly_errors` without the centre line's rotation). Both
-modulate the mesh harmonics once per revolution: sidebands at the mesh orders +- 1
+``alpha' - alpha_wt``. The component of the translation across the line of centres,
+``d_x`` in that picture (``d_1x = e_1 sin(phi_1 + theta_1 - alpha_wt)``, ``d_2x = -e_2
+sin(phi_2 + theta_2 + alpha_wt)``), turns the line of centres, and the line of action with
+it, by ``delta = (d_2x - d_1x) / a`` (:func:`centre_line_turn`), towards the side where
+``T1`` lies for ``delta > 0``. At a given pinion angle the contact then lies
+``r_b1 (delta + alpha' - alpha_wt)`` further along the path (:func:`roll_shift`, as
+``AssembledPair.roll_offset`` of :mod:`pipeline.geometry.assembly_errors`): the pinion's
+involute is where it was, its base tangent point has turned. Both the new path and this
+shift modulate the mesh harmonics once per revolution: sidebands at the mesh orders +- 1
 (:mod:`pipeline.contact.revolution` solves each mesh cycle on the pair at its centre
-distance). The gap ``g_g`` above already holds the centre-distance change's rigid part
-(``delta_a sin(alpha_wt)`` along the line of action, the change of backlash of one flank).
-The pair at ``a'`` is the eccentric gear's instantaneous geometry up to a rotation of the
-whole picture: the component of the translation across the line of centres turns the line
-of centres by ``delta = d_perp / a``, which moves the contact along the path by
-``r_b1 delta`` at a given pinion angle. That phase modulation of the mesh harmonics is of
-the same order as the one of ``r_b1 (alpha' - alpha_wt)`` and is left out.
-A measured cumulative pitch deviation of an eccentric gear already contains its
-eccentricity's sinusoid: give one or the other.
+distance). The gap ``g_g`` above already holds the rigid part of both: with ``n_1 = (cos
+alpha_wt, -sin alpha_wt)``, ``d . n_1 = d_x cos(alpha_wt) - d_y sin(alpha_wt)``, where
+``-d_y sin(alpha_wt) = delta_a sin(alpha_wt)`` is the change of one flank's backlash
+and (for the pinion) ``d_1x cos(alpha_wt) = -(r_b1 + r_b2) delta`` the gear's turn that
+keeps the flanks together while both base tangent points turn with the line of centres.
+The pair at ``a'`` at positions moved by the roll shift is thus the eccentric gear's
+instantaneous geometry to first order in ``e``. A measured cumulative pitch deviation of
+an eccentric gear already contains its eccentricity's sinusoid: give one or the other.
 
 Beyond the path of contact a pair touches at a tip corner along the mate's flank normal
 (:mod:`pipeline.geometry.tip_contact`), off the line of action: turning gear ``g`` by
@@ -263,9 +267,23 @@ def centre_distance_change(pair: GearPair, errors: ToothErrors,
                                       + alpha))
 
 
-def roll_shift(nominal: GearPair, actual: GearPair) -> float:
+def centre_line_turn(pair: GearPair, errors: ToothErrors, roll: np.ndarray) -> np.ndarray:
+    """Turn of the line of centres from both eccentricities at the unrolled roll distance
+    ``roll`` (m) from the first position, rad, positive in the sense in which ``T1`` lies
+    from the line of centres: ``(d_2x - d_1x) / a`` with ``d_1x = e_1 sin(phi_1 + theta_1 -
+    alpha_wt)`` and ``d_2x = -e_2 sin(phi_2 + theta_2 + alpha_wt)`` (module docstring)."""
+    roll = np.asarray(roll, dtype=float)
+    alpha = pair.operating_pressure_angle
+    p, g = errors.pinion, errors.gear
+    d1 = p.eccentricity * np.sin(p.eccentricity_phase + roll / pair.pinion.base_radius - alpha)
+    d2 = -g.eccentricity * np.sin(g.eccentricity_phase + roll / pair.gear.base_radius + alpha)
+    return (d2 - d1) / pair.operating_centre_distance
+
+
+def roll_shift(nominal: GearPair, actual: GearPair, turn: float = 0.0) -> float:
     """How much further along the path of contact ``actual`` (the pair at another centre
-    distance) touches than ``nominal`` at the same pinion angle, m: ``r_b1 (alpha' -
-    alpha_wt)``, the turn of the base tangent point ``T1`` (module docstring)."""
-    return nominal.pinion.base_radius * (actual.operating_pressure_angle
+    distance, its line of centres turned by ``turn``, rad, :func:`centre_line_turn`) touches
+    than ``nominal`` at the same pinion angle, m: ``r_b1 (turn + alpha' - alpha_wt)``, the
+    turn of the base tangent point ``T1`` (module docstring)."""
+    return nominal.pinion.base_radius * (turn + actual.operating_pressure_angle
                                          - nominal.operating_pressure_angle)
