@@ -6,7 +6,10 @@ Checks against exact solutions of the contact problem:
   cycle of :func:`pipeline.contact.ltca.loaded_mesh_cycle`;
 * a runout is a rigid translation of one gear's teeth: at an instant every pair on the line
   of action gets the same gap, which the KKT conditions of Yang et al. (2026) eqs. 27-29
-  carry into the approach unchanged (``x_s + d`` solves ``eps + d``) with the same loads;
+  carry into the approach unchanged (``x_s + d`` solves ``eps + d``) with the same loads,
+  and the pair has another centre distance and a turned line of centres: each mesh cycle
+  of the revolution is the mesh cycle of that pair plus the gap, and its sidebands at the
+  mesh orders +- 1 are the linear estimate's (derived in the test's docstring);
 * a tooth's pitch deviation is a rigid offset of the pairs it meshes in; at light load the
   approach is the smallest gap of the pairs in contact (the unloaded transmission error,
   Harris 1958 / Welbourn 1979's rigid-body TE), so the TE moves by that offset exactly
