@@ -74,13 +74,14 @@ def revolution_section(stage: Any, figures: list[Figure]) -> Section:
         "both eccentricities at the instant (e sin(phi + theta) of each gear, the same for "
         "every pair on the line of action); teeth are numbered in the order they come into "
         "mesh, tooth 0 of both gears forming the first pair.",
-        "A runout alone is a rigid offset of all pairs in mesh: it adds e sin(phi + theta) "
-        "to the transmission error and leaves the loads, hence the mesh orders, unchanged "
-        "(no sidebands at first order). Left out: the shift of the eccentric gear's tip "
-        "circle along the path and the change of centre distance, which change the contact "
-        "ratio by about e / p_bt once per revolution and would modulate the mesh. Sidebands "
-        "here come from pitch deviations, which differ from pair to pair and redistribute "
-        "the load.",
+        "A runout also moves the eccentric gear's centre: each mesh cycle is solved on the "
+        "pair at the centre distance of its middle (a + e_1 cos(phi_1 + theta_1 - alpha_wt) "
+        "- e_2 cos(phi_2 + theta_2 + alpha_wt)), "
+        "whose pressure angle, path of contact and contact ratio differ, at positions moved "
+        "by the turn of the base tangent point T1 (the changed pressure angle and the turned "
+        "line of centres). That modulates the mesh harmonics once per revolution: sidebands "
+        "at the mesh orders +- 1 (checked against the linear estimate from two mesh cycles "
+        "at a +- 1 um). Pitch deviations differ from pair to pair and redistribute the load.",
         "The other sections, and the dynamics excited by the contact, use the mesh cycle "
         "without these errors.",
     )
