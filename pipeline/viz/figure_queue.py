@@ -167,15 +167,24 @@ def _draw_in(pool: ProcessPoolExecutor, jobs: list[Job]) -> list[str]:
     except BrokenProcessPool:  # a worker died before all drawings were sent
         futures += [None] * (len(jobs) - len(futures))
     failures = []
+    broken = False
     try:
         for (path, job), future in zip(jobs, futures, strict=True):
             # an exception here is the pool's, not the drawing's (draw_one catches those):
             # the drawing did not pickle, or its worker or another one died (then its file,
             # written or not, is drawn again)
-            if future is not None and future.exception() is None:
+            gone = future is None or future.cancelled()
+            error = None if gone else future.exception()
+            if not gone and error is None:
                 failures.append(future.result())
-            else:
-                failures.append(draw_one(path, job))
+                continue
+            if not broken and (gone or isinstance(error, BrokenProcessPool)):
+                # the pool's other workers end before anything is drawn here: none of its
+                # processes is still writing, and the temporary file one left half-written
+                # is a dead process's, removed by the next write into its folder
+                kill_pool(pool)
+                broken = True
+            failures.append(draw_one(path, job))
     except BaseException:  # interrupted: nothing more to wait for
         kill_pool(pool)
         raise
