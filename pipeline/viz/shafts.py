@@ -101,7 +101,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     """The dynamic factor (-) over mesh frequency (Hz) with the shafts and without them, with
     each model's natural frequencies (Hz) marked in its own colour and the operating mesh
     frequency."""
-    fig = new_figure((7.5, 3.6), "constrained")
+    fig = new_figure((9.5, 3.6), "constrained")
     ax = fig.add_subplot(1, 1, 1)
     f = np.asarray(frequencies)
     ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
@@ -117,6 +117,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     ax.grid(alpha=0.3)
     ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
     ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, without the shafts")
-    ax.legend(fontsize=8)
+    # beside the axes: the resonance lines run through the whole height of the plot
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title(title, fontsize=9)
     return fig
