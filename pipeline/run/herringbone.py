@@ -166,7 +166,7 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
                   announce=True) as note:
         cycle, c_hit = cached_herringbone_cycle(
             pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
-            box.contact, box.stiffness, box.herringbone, fe=box.fe_source,
+            box.mesh_contact("sun_planet"), box.stiffness, box.herringbone, fe=box.fe_source,
             model=stages.stiffness.model, cache=options.cache, cycle_cache=options.cycle_cache,
             show_progress=options.show_progress)
         note["cached"] = c_hit

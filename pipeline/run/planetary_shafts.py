@@ -498,11 +498,12 @@ def _contact(box: Gearbox, stages: Any, gap: np.ndarray, z: np.ndarray,
     """One mesh's loaded contact with ``gap`` (mean taken out) as its lead gap, and its load
     distribution; its compliance source built once into ``sources``."""
     pair, op = stages.stiffness.actual, stages.case.operation
-    mods = dataclasses.replace(box.contact.modifications,
+    name = stages.case.name
+    contact = box.mesh_contact(name)
+    mods = dataclasses.replace(contact.modifications,
                                lead_gap=tuple(zip(z.tolist(), (gap - gap.mean()).tolist(),
                                                   strict=True)))
-    opts = dataclasses.replace(box.contact, modifications=mods)
-    name = stages.case.name
+    opts = dataclasses.replace(contact, modifications=mods)
     if name not in sources:
         sources[name] = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                           cache=options.cache, model=stages.stiffness.model)
