@@ -209,3 +209,38 @@ def test_single_gear_file_refuses_modifications():
         gearbox_from_dict(doc)
     assert str(exc.value) == ("[gear.modifications] is read for gears in mesh (a pair or a "
                               "planetary set); this file describes a single gear")
+
+
+def test_herringbone_stage_takes_the_sun_planet_flanks(tmp_path):
+    """The herringbone set of Xu et al. (2020) with its groove (coarse: 8 positions, 6
+    slices, a 60 mm groove mesh) and per-gear tables: the contact of both halves through the
+    groove is the one solved with the pair sun + planet's contact options, bit for bit, and
+    not the one without them (the sun's 10 um lead crowning and the planet's 5 um profile
+    crowning change the halves' load)."""
+    from pipeline.contact.herringbone import GrooveFlankCoupling
+    from pipeline.run.chain import mesh_cases, static_stages
+    from pipeline.run.herringbone import cached_herringbone_cycle
+
+    text = (CONFIGS / "wind_turbine_herringbone_planetary.toml").read_text(encoding="utf-8")
+    doc = tomllib.loads(text[:text.index("\n[dynamics]")])
+    doc["contact"] |= {"positions": 8, "slices": 6}
+    doc["groove"]["mesh_size_mm"] = 60.0
+    doc["sun"]["modifications"] = {"lead_crowning_um": 10.0}
+    doc["planet"]["modifications"] = {"profile_crowning_um": 5.0}
+    box = gearbox_from_dict(doc)
+    options = RunOptions(show_progress=False, cache=Cache(tmp_path))
+    case = mesh_cases(box)[0]
+    hb = static_stages(box, case, options, Steps("", enabled=False)).herringbone
+    pair_doc = _pair_doc({k: v for k, v in doc.items() if k not in ("groove", "herringbone")},
+                         "sun_planet")
+    contact = gearbox_from_dict(pair_doc).mesh_contact("mesh")
+    assert contact == box.mesh_contact("sun_planet") != box.contact
+    coupling = GrooveFlankCoupling.from_matrix(hb.groove.coupling_matrix)
+    cycles = [cached_herringbone_cycle(hb.pair, hb.operation, coupling, 4, c, box.stiffness,
+                                       box.herringbone, cache=options.cache,
+                                       cycle_cache=Cache.off())[0]
+              for c in (contact, box.contact)]
+    for half in ("left", "right"):
+        _assert_same_cycle(getattr(hb.cycle, half), getattr(cycles[0], half))
+        assert not np.array_equal(getattr(hb.cycle, half).transmission_error,
+                                  getattr(cycles[1], half).transmission_error)
