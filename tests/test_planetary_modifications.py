@@ -182,15 +182,15 @@ def _refusal(edit) -> str:
      "contact.crowning_um is the short form of [sun.modifications], [planet.modifications] "
      "and [ring.modifications]: give it in [sun.modifications] instead (the file has both)"),
     (lambda d: d["ring"]["modifications"].update(tip_relief_start_diameter_mm=250.0),
-     "ring.modifications.tip_relief_start_diameter_mm = 250 mm is outside the allowed range [234, 245.059] mm "
-     "(the ring's active flank of the planet_ring mesh)"),
+     "ring.modifications.tip_relief_start_diameter_mm = 250 mm is outside the allowed range "
+     "[234, 245.059] mm (the ring's active flank of the planet_ring mesh)"),
     (lambda d: d["sun"]["modifications"].update(tip_relief_start_diameter_mm=127.0),
-     "sun.modifications.tip_relief_start_diameter_mm = 127 mm is outside the allowed range [116.01, 126] mm "
-     "(the sun's active flank of the sun_planet mesh)"),
+     "sun.modifications.tip_relief_start_diameter_mm = 127 mm is outside the allowed range "
+     "[116.01, 126] mm (the sun's active flank of the sun_planet mesh)"),
     # 15 mm fits the planet's flank towards the ring (16.7 mm) but not towards the sun
     (lambda d: d["planet"]["modifications"].update(tip_relief_length_mm=15.0),
-     "planet.modifications.tip_relief_length_mm = 15 mm is outside the allowed range [0, 14.4819] mm (the "
-     "planet's active flank of the sun_planet mesh)"),
+     "planet.modifications.tip_relief_length_mm = 15 mm is outside the allowed range "
+     "[0, 14.4819] mm (the planet's active flank of the sun_planet mesh)"),
     (lambda d: d["ring"]["modifications"].update(end_relief_face1_length_mm=20.0,
                                                  end_relief_face2_length_mm=20.0),
      "ring.modifications.end_relief_face1_length_mm + ring.modifications."
