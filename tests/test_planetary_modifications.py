@@ -153,6 +153,19 @@ def test_rating_reads_each_meshs_tip_relief():
                    ("planet_ring", "ring"): pytest.approx(10e-6, abs=1e-18)}
 
 
+def test_titles_name_each_meshs_gears(example):
+    """The line the load maps' titles carry names the mesh's gears, not pinion and gear."""
+    box, _ = example
+    assert box.mesh_contact("sun_planet").modifications.describe(
+        box.mesh_gears("sun_planet")) == (
+        "sun: tip relief 14 um from d 122 mm (parabolic), lead crowning 5 um; planet: tip "
+        "relief 15 um over 4 mm (linear), profile crowning 2 um")
+    assert box.mesh_contact("planet_ring").modifications.describe(
+        box.mesh_gears("planet_ring")) == (
+        "planet: tip relief 15 um over 4 mm (linear), profile crowning 2 um; ring: tip relief "
+        "10 um from d 237 mm (linear), end relief face 1 4 um, end relief face 2 4 um")
+
+
 def test_short_form_is_the_contact_table_of_both_meshes():
     """Without per-gear tables each mesh takes ``[contact]`` itself (the short form as
     before: the same object, so the same cache keys and cycles)."""
@@ -244,3 +257,36 @@ def test_herringbone_stage_takes_the_sun_planet_flanks(tmp_path):
         _assert_same_cycle(getattr(hb.cycle, half), getattr(cycles[0], half))
         assert not np.array_equal(getattr(hb.cycle, half).transmission_error,
                                   getattr(cycles[1], half).transmission_error)
+
+
+def test_report_names_each_meshs_gears_and_draws_both_maps(tmp_path):
+    """``gearpipe run`` of the example: each mesh's report lists its two gears' tables in
+    their own names and units (sun-planet: sun 14 um from d 122 mm, planet 15 um over 4 mm;
+    planet-ring: planet 15 um, ring 10 um from d 237 mm and 4 um end reliefs) with its
+    modification map."""
+    import json
+
+    from pipeline.cli import main as cli
+
+    out = tmp_path / "run"
+    assert cli(["run", str(CONFIGS / "planetary_modifications.toml"), "--out", str(out),
+                "--cache-dir", str(tmp_path / "c")]) == 0
+    want = {"sun_planet": {"sun_tip_relief": 14.0, "planet_tip_relief": 15.0,
+                           "sun_lead_crowning": 5.0, "planet_profile_crowning": 2.0},
+            "planet_ring": {"planet_tip_relief": 15.0, "ring_tip_relief": 10.0,
+                            "ring_end_relief_face1": 4.0, "ring_end_relief_face2": 4.0,
+                            "planet_profile_crowning": 2.0}}
+    starts = {"sun_planet": {"sun": "diameter 122 mm", "planet": "roll length 4 mm from the "
+                             "active tip"},
+              "planet_ring": {"planet": "roll length 4 mm from the active tip",
+                              "ring": "diameter 237 mm"}}
+    for mesh, values in want.items():
+        report = json.loads((out / f"{mesh}_report.json").read_text())
+        section = report["sections"]["modifications"]
+        q = section["quantities"]
+        got = {k: v["value"] for k, v in q.items() if v["unit"] == "um"
+               and not k.startswith(("pitch", "assembly"))}
+        assert got == pytest.approx(values, abs=1e-12)
+        assert {k: q[f"{k}_tip_relief_start"]["value"] for k in starts[mesh]} == starts[mesh]
+        assert [f["file"] for f in section["figures"]] == [f"{mesh}_report_modifications.png"]
+        assert (out / f"{mesh}_report_modifications.png").stat().st_size > 10_000

@@ -73,7 +73,8 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
                        st.case.operation, box.stiffness.foundation_correction)
     files += write_contact(st.contact, pair, opts, ref.total,
-                           contact_title(name, st.contact, pair, opts), out, prefix, figures)
+                           contact_title(name, st.contact, pair, opts), out, prefix, figures,
+                           box.mesh_gears(st.case.name))
     if st.shafts is not None:
         from pipeline.io import write_csv
 
