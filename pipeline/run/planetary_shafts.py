@@ -39,7 +39,9 @@ each face's points are centred on its gear's seat (``gear_position + z - b / 2``
 contact's face position over the mesh's face width ``b``). The fixed point is the pair's
 (:mod:`pipeline.run.shafts`) over both meshes together: start from the uniform line loads,
 load the sun and the pin with both, solve both contacts with the gaps (mean taken out) as
-``FlankModifications.lead_gap``, and repeat until neither line load changes by more than
+``FlankModifications.lead_gap`` of each mesh's own contact options (its gears' flank
+modifications, :meth:`~pipeline.config.gearbox.Gearbox.mesh_contact`), and repeat until
+neither line load changes by more than
 :data:`~pipeline.run.shafts.TOLERANCE` (largest change over the largest value, the larger of
 the two meshes); after :data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the
 iteration and the change.
