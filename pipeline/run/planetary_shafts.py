@@ -41,10 +41,10 @@ contact's face position over the mesh's face width ``b``). The fixed point is th
 load the sun and the pin with both, solve both contacts with the gaps (mean taken out) as
 ``FlankModifications.lead_gap`` of each mesh's own contact options (its gears' flank
 modifications, :meth:`~pipeline.config.gearbox.Gearbox.mesh_contact`), and repeat until
-neither line load changes by more than
-:data:`~pipeline.run.shafts.TOLERANCE` (largest change over the largest value, the larger of
-the two meshes); after :data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the
-iteration and the change.
+neither line load changes by more than :data:`~pipeline.run.shafts.TOLERANCE` (largest
+change over the largest value, the larger of the two meshes); after
+:data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the iteration and the
+change.
 
 Dynamics (:func:`support_stiffness`): the sun's support is its shaft at the seat's centre
 (bearings and bending in series, ``1 / C_yy``), a planet's the pin's at its seat in series
