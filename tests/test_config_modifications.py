@@ -1,4 +1,4 @@
-"""``[pinion.modifications]`` / ``[gear.modifications]`` where they enter: read in SI, each
+"""``[<gear>.modifications]`` where they enter: read in SI, each
 refusal one line naming the key as written, its value in the file's unit and the range or
 the conflict (the ranges of every key are swept in tests/test_config_messages.py)."""
 
@@ -104,9 +104,13 @@ def test_refused_in_one_line(edits, expected):
     assert msg.startswith(expected), msg
 
 
-def test_planetary_set_refused():
-    msg = _refusal({"sun.modifications": {"lead_crowning_um": 5.0}}, doc=PLANETARY)
-    assert msg.startswith("[sun.modifications] is read for a gear pair's [pinion] and [gear]")
+def test_planetary_set_reads_each_gears_table():
+    """A planetary set's [sun.modifications] goes on the sun-planet mesh's pinion flank
+    (tests/test_planetary_modifications.py: the meshes against their pairs)."""
+    box = _box({"sun.modifications": {"lead_crowning_um": 5.0}}, doc=PLANETARY)
+    assert box.mesh_contact("sun_planet").modifications.pinion_flank.lead.crowning == \
+        pytest.approx(5e-6)
+    assert box.mesh_contact("planet_ring").modifications.pinion_flank is None
 
 
 def test_topography_file_problems_name_the_file(tmp_path):

@@ -156,8 +156,8 @@ def contact(box, groove, hb, positions, cache):
     op = mesh_operations(ps, box.operation, 1)[0]
     cyc, hit = cached_herringbone_cycle(
         pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
-        dataclasses.replace(box.contact, positions=positions), box.stiffness, hb,
-        cache=cache)
+        dataclasses.replace(box.mesh_contact("sun_planet"), positions=positions),
+        box.stiffness, hb, cache=cache)
     return cyc, pair, op, hit
 
 

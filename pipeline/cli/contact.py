@@ -49,9 +49,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
                   k_slice: np.ndarray, title: str, out: Path, prefix: str = "",
-                  figures: FigureCache = NO_CACHE) -> list[Path]:
+                  figures: FigureCache = NO_CACHE,
+                  gears: tuple[str, str] = ("pinion", "gear")) -> list[Path]:
     """Cycle and point CSVs, the cycle plot (against the slice method's ``k_slice``, N/m)
-    and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG)."""
+    and the load maps (2D PNG, VTU and, with ``opts.render``, the pyvista PNG); ``gears``
+    names the mesh's gears in the titles' modifications."""
     from pipeline.viz.contact import plot_contact_cycle
     from pipeline.viz.loadmap import load_map_title, plot_load_map_2d, render_load_map
 
@@ -60,7 +62,7 @@ def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
              figures.save(out / f"{prefix}contact_cycle.png", plot_contact_cycle, cyc, k_slice,
                           title)]
     lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    map_title = load_map_title(title, opts.modifications.describe())
+    map_title = load_map_title(title, opts.modifications.describe(gears))
     files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm,
                               map_title))
     files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))

@@ -69,11 +69,12 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
              f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
     files = write_geometry(st.geometry, out, prefix, figures, name)
     files += write_stiffness(st.stiffness, out, title, prefix, figures)
-    model, opts = st.stiffness.model, box.contact
+    model, opts = st.stiffness.model, box.mesh_contact(st.case.name)
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
                        st.case.operation, box.stiffness.foundation_correction)
     files += write_contact(st.contact, pair, opts, ref.total,
-                           contact_title(name, st.contact, pair, opts), out, prefix, figures)
+                           contact_title(name, st.contact, pair, opts), out, prefix, figures,
+                           box.mesh_gears(st.case.name))
     if st.shafts is not None:
         from pipeline.io import write_csv
 

@@ -13,9 +13,12 @@ point and optional tables per stage. Which gear tables it has says what it is:
 * a **lumped model** from a publication that gives masses and stiffnesses but no
   tooth geometry: ``[lumped_model]`` (:mod:`pipeline.config.lumped`).
 
-A pair's gears may hold their flank modifications, ``[pinion.modifications]`` and
-``[gear.modifications]`` (:mod:`pipeline.config.modifications`); ``[contact]``'s tip relief,
-crowning and slope keys are their short form.
+Each gear may hold its flank modifications, ``[<gear>.modifications]``
+(:mod:`pipeline.config.modifications`); ``[contact]``'s tip relief, crowning and slope keys
+are their short form, given per mesh as (pinion, gear). In a planetary set the sun-planet
+mesh takes the sun's and the planet's tables, the planet-ring mesh the planet's and the
+ring's: :meth:`Gearbox.mesh_contact` gives the contact options of each mesh, and every stage
+reads them from it.
 
 Stage tables: ``[operation]``, ``[stiffness]``, ``[contact]``, ``[fe]``,
 ``[groove]``, ``[dynamics]`` (with ``[dynamics.response]``, ``[dynamics.sweep]``
@@ -69,7 +72,7 @@ from pipeline.config.toml_file import InputFile, parse_input, read_input_file
 from pipeline.config.tooth_errors import tooth_errors
 from pipeline.config.units import format_value, unit_of_key
 from pipeline.contact.herringbone import SUN_LOAD_SIDE, HerringboneOptions
-from pipeline.contact.modifications import flank_frames
+from pipeline.contact.modifications import GearModification, flank_frames
 from pipeline.contact.options import ContactOptions
 from pipeline.contact.separations import (
     FlankModifications,
@@ -102,6 +105,9 @@ if TYPE_CHECKING:
 
 PAIR_ROLES = ("pinion", "gear")
 PLANETARY_ROLES = ("sun", "planet", "ring")
+MESH_GEARS = {"mesh": PAIR_ROLES, "sun_planet": ("sun", "planet"),
+              "planet_ring": ("planet", "ring")}
+"""The gear tables of each mesh, (pinion, gear) of its :class:`GearPair`."""
 EXTERNAL_ROLES = ("pinion", "sun", "planet")
 """Gear tables that describe external gears only."""
 STAGE_TABLES = ("operation", "stiffness", "contact", "fe", "groove", "herringbone",
@@ -158,6 +164,9 @@ class Gearbox:
         with the driver it picks the flanks that load the shafts).
     errors : per-tooth errors of a pair's gears (``[contact.errors]``,
         :mod:`pipeline.config.tooth_errors`), or ``None``.
+    gear_modifications : a planetary set's flank modifications by gear table ("sun",
+        "planet", "ring"; the ``[<gear>.modifications]`` given), which :meth:`mesh_contact`
+        puts on each mesh; empty for a pair, whose ``contact`` holds its gears' already.
     source : the file it was read from (text, hash) or ``None`` when built in Python.
     tables : names of the tables the file gave (which stages it asks for).
     """
@@ -183,6 +192,7 @@ class Gearbox:
     planet_bearing_stiffness: float = math.inf
     pinion_rotation: str = "clockwise"
     errors: ToothErrors | None = None
+    gear_modifications: Mapping[str, GearModification] = field(default_factory=dict)
     source: InputFile | None = field(default=None, compare=False, repr=False)
     tables: tuple[str, ...] = ()
 
@@ -236,6 +246,33 @@ class Gearbox:
             ps = self.planetary
             return (("sun_planet", ps.sun_planet), ("planet_ring", ps.planet_ring))
         return ()
+
+    @staticmethod
+    def mesh_gears(mesh: str) -> tuple[str, str]:
+        """The gear tables of mesh ``mesh``, (pinion, gear): ("pinion", "gear"), ("sun",
+        "planet") or ("planet", "ring")."""
+        return MESH_GEARS[mesh]
+
+    def mesh_contact(self, mesh: str) -> ContactOptions:
+        """The contact options of mesh ``mesh`` (a name of :meth:`contact_meshes`): ``contact``
+        with the modifications of the mesh's two gears as its pinion's and gear's flanks.
+
+        A pair's is ``contact`` itself. In a planetary set the sun-planet mesh's pinion flank
+        is the sun's ``[sun.modifications]`` and its gear flank the planet's; the planet-ring
+        mesh's pinion flank is the planet's (the same table: a planet is modified alike on
+        both flanks, the one that meshes with the sun and the one that meshes with the ring)
+        and its gear flank the ring's. Without per-gear tables both meshes take ``contact``
+        (its short form, if any, applies to each mesh as (pinion, gear)).
+        """
+        if mesh not in MESH_GEARS or (mesh == "mesh") != (self.kind == "pair"):
+            raise InputError(f"{self.name}: no mesh {mesh!r} in a {_KIND_TEXT[self.kind]} "
+                             f"(its meshes: {', '.join(n for n, _ in self.contact_meshes())})")
+        if not self.gear_modifications:
+            return self.contact
+        flanks = [self.gear_modifications.get(role) for role in MESH_GEARS[mesh]]
+        mods = dataclasses.replace(self.contact.modifications, pinion_flank=flanks[0],
+                                   gear_flank=flanks[1])
+        return dataclasses.replace(self.contact, modifications=mods)
 
     def require_pair(self) -> GearPair:
         """The pair; a clear error when the file describes something else."""
@@ -421,19 +458,25 @@ def contact_options_from_table(table: Mapping[str, Any] | None) -> ContactOption
 
 
 def _with_gear_modifications(contact: ContactOptions, doc: Mapping[str, Any], kind: str,
-                             roles: tuple[str, ...], base: Path | None) -> ContactOptions:
-    """``contact`` with each gear's ``[<gear>.modifications]`` (a gear pair's only)."""
+                             roles: tuple[str, ...], base: Path | None
+                             ) -> tuple[ContactOptions, dict[str, GearModification]]:
+    """``contact`` with a pair's ``[pinion.modifications]`` and ``[gear.modifications]`` as
+    its flanks; a planetary set's ``[<gear>.modifications]`` by gear table instead (put on
+    each mesh by :meth:`Gearbox.mesh_contact`), ``contact`` unchanged."""
     given = [r for r in roles if isinstance(doc[r], Mapping) and MODIFICATIONS_TABLE in doc[r]]
     if not given:
-        return contact
-    if kind != "pair":
-        raise InputError(f"[{given[0]}.{MODIFICATIONS_TABLE}] is read for a gear pair's "
-                         "[pinion] and [gear]; for a planetary set give [contact]'s short form "
-                         "(tip_relief_*_um, crowning_um, slope_deviation_um)")
-    flanks = {f"{r}_flank": gear_modifications(doc, r, base) for r in PAIR_ROLES}
-    mods = dataclasses.replace(contact.modifications, **flanks)
+        return contact, {}
+    if kind not in ("pair", "planetary"):
+        raise InputError(f"[{given[0]}.{MODIFICATIONS_TABLE}] is read for gears in mesh (a "
+                         "pair or a planetary set); this file describes a "
+                         f"{_KIND_TEXT[kind]}")
+    flanks = {r: gear_modifications(doc, r, base) for r in given}
+    if kind == "planetary":
+        return contact, flanks
+    mods = dataclasses.replace(contact.modifications,
+                               **{f"{r}_flank": flanks.get(r) for r in PAIR_ROLES})
     with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
-        return dataclasses.replace(contact, modifications=mods)
+        return dataclasses.replace(contact, modifications=mods), {}
 
 
 def _fe(doc: Mapping[str, Any], contact: ContactOptions) -> FE2DSettings | FE3DSettings:
@@ -664,8 +707,8 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
                              "[dynamics.response] and [dynamics.sweep]; the model's own keys "
                              "go into [lumped_model]")
         kw["lumped"] = lumped_model(doc["lumped_model"], base)
-    contact = _with_gear_modifications(contact_options_from_table(doc.get("contact")), doc,
-                                       kind, roles, base)
+    contact, gear_mods = _with_gear_modifications(
+        contact_options_from_table(doc.get("contact")), doc, kind, roles, base)
     shafts, k_planet = _shafts(doc, gears)
     fe = _fe(doc, contact)
     operation, rotation = _operation(doc)
@@ -688,6 +731,7 @@ def gearbox_from_dict(doc: Mapping[str, Any], name: str = "gearbox",
         planet_bearing_stiffness=k_planet,
         pinion_rotation=rotation,
         errors=tooth_errors(doc, kind, kw.get("pair"), contact.positions),
+        gear_modifications=gear_mods,
         source=source,
         tables=tuple(k for k in doc if isinstance(doc[k], Mapping)),
         **kw,
@@ -745,20 +789,28 @@ def _check_fe3d_meshes(box: Gearbox, doc: Mapping[str, Any]) -> None:
 
 def _check_relief_lengths(box: Gearbox, doc: Mapping[str, Any]) -> None:
     """Each tip relief length at most the path of contact of every analysed mesh (the
-    shortest one's, named when there are several); a pair's per-gear modifications inside
-    each gear's active flank and face width, in the words of its own table."""
+    shortest one's, named when there are several); each gear's per-gear modifications inside
+    its active flank and face width in every mesh it takes part in, in the words of its own
+    table (a planet's in both of its meshes)."""
     meshes = box.contact_meshes()
     if not meshes:
         return
-    name, pair = min(meshes, key=lambda m: m[1].path_length)
-    mods = box.contact.modifications
-    if box.kind == "pair" and not mods.has_short_form:
-        for role, flank, frame in zip(PAIR_ROLES, mods.flanks, flank_frames(pair), strict=True):
+    for mesh, pair in meshes:
+        mods = box.mesh_contact(mesh).modifications
+        if mods.has_short_form:
+            continue
+        for role, given, flank, frame in zip(
+                MESH_GEARS[mesh], (mods.pinion_flank, mods.gear_flank), mods.flanks,
+                flank_frames(pair), strict=True):
+            if given is None:
+                continue
             table = doc[role].get(MODIFICATIONS_TABLE, {})
             with restated(f"{role}.{MODIFICATIONS_TABLE}", T.GEAR_MODIFICATIONS, table):
-                flank.check_fits(frame)
+                flank.check_fits(dataclasses.replace(frame, role=role),
+                                 mesh if len(meshes) > 1 else "")
+    name, pair = min(meshes, key=lambda m: m[1].path_length)
     with restated("contact", T.CONTACT + T.MODIFICATIONS, doc.get("contact", {})):
-        mods.check_fits(pair, name if len(meshes) > 1 else "")
+        box.contact.modifications.check_fits(pair, name if len(meshes) > 1 else "")
 
 
 PITCH_ERRORS_KEY = "pitch_errors_um"

@@ -1,9 +1,16 @@
-"""``[pinion.modifications]`` and ``[gear.modifications]`` -> each gear's flank modifications.
+"""``[<gear>.modifications]`` -> each gear's flank modifications.
 
-A gear pair's tables hold each gear's modifications in the file's units (keys in
+A gear pair's ``[pinion.modifications]`` and ``[gear.modifications]``, a planetary set's
+``[sun.modifications]``, ``[planet.modifications]`` and ``[ring.modifications]`` hold each
+gear's modifications in the file's units (keys in
 :data:`~pipeline.config.tables.GEAR_MODIFICATIONS`, model in
-:mod:`pipeline.contact.modifications`). ``[contact]``'s tip relief, crowning and slope keys
-are the short form of the same model: one or the other, not both. A ``topography_csv`` is a
+:mod:`pipeline.contact.modifications`; which mesh takes which table:
+:meth:`pipeline.config.gearbox.Gearbox.mesh_contact`). A planet's table applies to both of
+its flanks, the one meshing with the sun and the one meshing with the ring, each measured
+from its own start of active profile in its own mesh and with face 1 on the side of the
+sun's first face. A ring's tip is at its smaller diameter (its tip relief starts there and
+runs outwards). ``[contact]``'s tip relief, crowning and slope keys are the short form of
+the same model: one or the other, not both. A ``topography_csv`` is a
 UTF-8 CSV file (a relative path is relative to the gearbox file) with a header naming its
 columns and units: ``face_position_mm``, either ``roll_length_mm`` or ``diameter_mm``, and
 ``deviation_um`` (material removed), one row per grid point of a full grid (any order;
@@ -61,9 +68,11 @@ def gear_modifications(doc: Mapping[str, Any], role: str,
     values = read_table(table, T.GEAR_MODIFICATIONS, where)
     short = [k for k in SHORT_FORM if k in doc.get("contact", {})]
     if short:
-        raise InputError(f"contact.{short[0]} is the short form of [pinion.modifications] and "
-                         f"[gear.modifications]: give it in [{where}] instead (the file has "
-                         "both)")
+        tables = ("[pinion.modifications] and [gear.modifications]"
+                  if role in ("pinion", "gear") else "[sun.modifications], "
+                  "[planet.modifications] and [ring.modifications]")
+        raise InputError(f"contact.{short[0]} is the short form of {tables}: give it in "
+                         f"[{where}] instead (the file has both)")
     path = values.pop("topography_csv", None)
     with restated(where, T.GEAR_MODIFICATIONS, table):
         profile = ProfileModification(**{PROFILE[k]: values.pop(k) for k in list(values)

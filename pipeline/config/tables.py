@@ -205,7 +205,9 @@ GEAR_MODIFICATIONS = (
     Key("topography_csv", S, max_chars=4096,
         help="deviation grid: face_position_mm, roll_length_mm or diameter_mm, deviation_um"),
 )
-"""Keys of a gear pair's ``[pinion.modifications]`` and ``[gear.modifications]``
+"""Keys of each gear's ``[<gear>.modifications]``: a pair's ``[pinion.modifications]`` and
+``[gear.modifications]``, a planetary set's ``[sun.modifications]``,
+``[planet.modifications]`` and ``[ring.modifications]``
 (:class:`~pipeline.contact.modifications.GearModification`; positive amounts remove
 material)."""
 

@@ -182,13 +182,13 @@ class FlankModifications:
         return not (any(not m.is_zero for m in self.flanks) or any(self.pitch_errors)
                     or any(g for _, g in self.lead_gap))
 
-    def describe(self) -> str:
+    def describe(self, gears: tuple[str, str] = ("pinion", "gear")) -> str:
         """One line for titles and reports, in the gearbox file's units (um, mm), e.g.
-        ``"tip relief pinion 15 um over 8.1 mm (linear), crowning 8 um"``, or ``"none"``."""
-        gears = [f"{who}: {text}" for who, m in zip(("pinion", "gear"), self.flanks,
-                                                      strict=True)
+        ``"tip relief pinion 15 um over 8.1 mm (linear), crowning 8 um"``, or ``"none"``;
+        ``gears`` names the pinion's and the gear's flanks (a planetary mesh: its gears)."""
+        given = [f"{who}: {text}" for who, m in zip(gears, self.flanks, strict=True)
                  if not self.has_short_form and (text := m.describe())]
-        parts = ["; ".join(gears)] if gears else []
+        parts = ["; ".join(given)] if given else []
         parts += [f"tip relief {who} {amount * 1e6:.3g} um over {length * 1e3:.3g} mm "
                  f"({self.relief_shape})"
                  for who, amount, length in (

@@ -204,13 +204,15 @@ def pair_section(actual: GearPair, nominal: GearPair) -> Section:
 
 
 def modifications_section(contact: ContactOptions, assembly: Any, assembled: Any,
-                          figures: Sequence[Figure] = ()) -> Section:
+                          figures: Sequence[Figure] = (),
+                          gears: tuple[str, str] = ("pinion", "gear")) -> Section:
     """Profile and lead modifications (each gear's, or ``[contact]``'s short form), pitch
-    errors and assembly errors; ``figures``: the flanks' modification maps."""
+    errors and assembly errors; ``figures``: the flanks' modification maps; ``gears``: the
+    gear tables of the mesh's pinion and gear (a planetary mesh: "sun", "planet", "ring")."""
     m = contact.modifications
     pitch = ", ".join(f"{e * UM:g}" for e in m.pitch_errors) or "none"
     per_gear = m.pinion_flank is not None or m.gear_flank is not None
-    rows = _gear_modification_rows(m) if per_gear else _short_form_rows(m)
+    rows = _gear_modification_rows(m, gears) if per_gear else _short_form_rows(m)
     rows += [
         quantity("pitch_errors", "pitch errors of tooth pairs k = 0, 1, ... (k = 0 enters "
                  "contact at the start of the cycle)", "um", pitch),
@@ -252,10 +254,11 @@ def _short_form_rows(m: FlankModifications) -> list[Quantity]:
     ]
 
 
-def _gear_modification_rows(m: FlankModifications) -> list[Quantity]:
-    """Each gear's modifications, the ones given (``[<gear>.modifications]``)."""
+def _gear_modification_rows(m: FlankModifications, gears: tuple[str, str]) -> list[Quantity]:
+    """Each gear's modifications, the ones given (``[<gear>.modifications]``), by the gear
+    tables ``gears`` of the mesh's pinion and gear."""
     rows = []
-    for role, g in zip(("pinion", "gear"), m.flanks, strict=True):
+    for role, g in zip(gears, m.flanks, strict=True):
         p, q = g.profile, g.lead
         for end, sym in (("tip", "C_a"), ("root", "C_f")):
             amount = getattr(p, f"{end}_relief")

@@ -24,6 +24,7 @@ planetary set):
 from __future__ import annotations
 
 import csv
+import dataclasses
 import io
 import math
 import time
@@ -112,17 +113,19 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
                                figures=figs)
 
 
-def _modification_figures(contact: Any, pair: Any, fig, title: str) -> list[Figure]:
-    """The flanks' modification maps of a mesh whose gears are modified (none otherwise)."""
+def _modification_figures(contact: Any, pair: Any, gears: tuple[str, str], fig,
+                          title: str) -> list[Figure]:
+    """The flanks' modification maps of a mesh whose gears are modified (none otherwise),
+    each named by its gear table ``gears`` (pinion, gear of the mesh)."""
     from pipeline.contact.modifications import modification_maps
     from pipeline.viz.modifications import plot_modification_maps
 
     flanks = contact.modifications.flanks
     if all(m.is_zero for m in flanks):
         return []
-    drawn = [(m, internal) for m, mod, internal in zip(
-        modification_maps(pair, flanks), flanks, (False, pair.gear.internal), strict=True)
-        if not mod.is_zero]  # an unmodified flank has no map to show
+    drawn = [(dataclasses.replace(m, role=role), internal) for m, mod, role, internal in zip(
+        modification_maps(pair, flanks), flanks, gears, (False, pair.gear.internal),
+        strict=True) if not mod.is_zero]  # an unmodified flank has no map to show
     return [fig("report_modifications.png", "Modification map of each modified flank: "
                 "material removed [um] over face position and roll length",
                 plot_modification_maps, [m for m, _ in drawn], f"{title}: flank modifications",
@@ -161,16 +164,18 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
     p_fig = fig("report_contact_pressure.png", "Hertz contact pressure over both flanks",
                 viz.plot_contact_pressure, st.contact, dist, actual, title)
     planetary = _planetary_mesh(box, name, st)
+    contact, gears = box.mesh_contact(name), box.mesh_gears(name)
     sections = [
-        content.operation_section(actual, op, box.contact, st.compliance, dist, planetary),
+        content.operation_section(actual, op, contact, st.compliance, dist, planetary),
         content.geometry_section(st.geometry, actual, stage.get("geometry", [])),
         content.pair_section(actual, st.stiffness.nominal),
-        content.modifications_section(box.contact, st.case.assembly_errors,
+        content.modifications_section(contact, st.case.assembly_errors,
                                       st.stiffness.assembled,
-                                      _modification_figures(box.contact, actual, fig, title)),
+                                      _modification_figures(contact, actual, gears, fig, title),
+                                      gears),
         content.stiffness_section(st.stiffness, dist, st.compliance, [k_fig]),
         content.transmission_error_section(dist, [te_fig]),
-        content.load_distribution_section(dist, actual, [w_fig], box.contact.modifications),
+        content.load_distribution_section(dist, actual, [w_fig], contact.modifications),
         content.contact_pressure_section(dist, [p_fig]),
     ]
     if root_stress is not None:

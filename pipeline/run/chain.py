@@ -21,7 +21,9 @@ takes from the one before:
 
 For a planetary set the two meshes are one sun-planet and one planet-ring mesh (for a
 herringbone set one helical half at half the load), ``[operation]`` giving the sun's torque
-and speed with the ring fixed; with a sun's shaft or planets' pins both contacts are then
+and speed with the ring fixed, each with its gears' flank modifications
+(:meth:`~pipeline.config.gearbox.Gearbox.mesh_contact`, the contact options of a mesh that
+every stage reads); with a sun's shaft or planets' pins both contacts are then
 solved again together with their deflection (:mod:`pipeline.run.planetary_shafts`). The
 dynamic factor is the largest over the mean mesh force.
 ``gearpipe modes|response|sweep`` build the dynamic model the same way.
@@ -210,15 +212,14 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
     study builds one per geometry): its tables are used instead of building or reading them.
     Returns (cycle, True if read from the cache).
     """
-    actual = stiffness.actual
-    inputs = cycle_cache_inputs(actual, case.operation, box.contact, box.stiffness,
-                                box.fe_source)
+    actual, contact = stiffness.actual, box.mesh_contact(case.name)
+    inputs = cycle_cache_inputs(actual, case.operation, contact, box.stiffness, box.fe_source)
 
     def build() -> LoadedMeshCycle:
-        source = compliance_source(actual, case.operation, box.contact, box.stiffness,
+        source = compliance_source(actual, case.operation, contact, box.stiffness,
                                    box.fe_source, cache=options.cache, model=stiffness.model,
                                    show_progress=options.show_progress, prebuilt=prebuilt)
-        return analyse_contact(source, case.operation, box.contact,
+        return analyse_contact(source, case.operation, contact,
                                show_progress=options.show_progress)
 
     cycle, _, hit = cached_file("contactcycle", inputs, build, cycle_arrays, cycle_from_arrays,

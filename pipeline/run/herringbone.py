@@ -7,7 +7,10 @@ sun-planet mesh (:mod:`pipeline.run.chain`):
    cached by a content hash of the groove spec (gear, groove, shafts, mesh size, models);
 2. the loaded contact of both helical halves through it
    (:func:`pipeline.contact.herringbone.herringbone_mesh_cycle`, ``[herringbone]``
-   options), cached by a hash of everything the helical-half cycle depends on plus the
+   options) with the sun-planet mesh's contact options
+   (:meth:`~pipeline.config.gearbox.Gearbox.mesh_contact`: the sun's and the planet's flank
+   modifications, each half's face in its own frame, the right half the left's mirror
+   image), cached by a hash of everything the helical-half cycle depends on plus the
    condensed groove compliance, the planets and those options;
 3. with ``[dynamics] excitation = "contact"``, the left/right sun-planet excitation of the
    herringbone planetary model (:mod:`pipeline.dynamics.herringbone_excitation`), whose sun
@@ -166,7 +169,7 @@ def herringbone_stage(box, stages, options, log) -> HerringboneStage | None:
                   announce=True) as note:
         cycle, c_hit = cached_herringbone_cycle(
             pair, op, GrooveFlankCoupling.from_matrix(groove.coupling_matrix), ps.n_planets,
-            box.contact, box.stiffness, box.herringbone, fe=box.fe_source,
+            box.mesh_contact("sun_planet"), box.stiffness, box.herringbone, fe=box.fe_source,
             model=stages.stiffness.model, cache=options.cache, cycle_cache=options.cycle_cache,
             show_progress=options.show_progress)
         note["cached"] = c_hit

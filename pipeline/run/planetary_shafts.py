@@ -39,10 +39,12 @@ each face's points are centred on its gear's seat (``gear_position + z - b / 2``
 contact's face position over the mesh's face width ``b``). The fixed point is the pair's
 (:mod:`pipeline.run.shafts`) over both meshes together: start from the uniform line loads,
 load the sun and the pin with both, solve both contacts with the gaps (mean taken out) as
-``FlankModifications.lead_gap``, and repeat until neither line load changes by more than
-:data:`~pipeline.run.shafts.TOLERANCE` (largest change over the largest value, the larger of
-the two meshes); after :data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the
-iteration and the change.
+``FlankModifications.lead_gap`` of each mesh's own contact options (its gears' flank
+modifications, :meth:`~pipeline.config.gearbox.Gearbox.mesh_contact`), and repeat until
+neither line load changes by more than :data:`~pipeline.run.shafts.TOLERANCE` (largest
+change over the largest value, the larger of the two meshes); after
+:data:`~pipeline.run.shafts.MAX_ITERATIONS` a one-line error names the iteration and the
+change.
 
 Dynamics (:func:`support_stiffness`): the sun's support is its shaft at the seat's centre
 (bearings and bending in series, ``1 / C_yy``), a planet's the pin's at its seat in series
@@ -498,11 +500,12 @@ def _contact(box: Gearbox, stages: Any, gap: np.ndarray, z: np.ndarray,
     """One mesh's loaded contact with ``gap`` (mean taken out) as its lead gap, and its load
     distribution; its compliance source built once into ``sources``."""
     pair, op = stages.stiffness.actual, stages.case.operation
-    mods = dataclasses.replace(box.contact.modifications,
+    name = stages.case.name
+    contact = box.mesh_contact(name)
+    mods = dataclasses.replace(contact.modifications,
                                lead_gap=tuple(zip(z.tolist(), (gap - gap.mean()).tolist(),
                                                   strict=True)))
-    opts = dataclasses.replace(box.contact, modifications=mods)
-    name = stages.case.name
+    opts = dataclasses.replace(contact, modifications=mods)
     if name not in sources:
         sources[name] = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                           cache=options.cache, model=stages.stiffness.model)

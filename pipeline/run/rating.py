@@ -268,7 +268,7 @@ def rating_stage(box: Gearbox, meshes: Mapping[str, MeshStages],
                 blank_factor=blank_factor(box, ROLES[name]),
                 minimum_safety_pitting=opts.minimum_safety_pitting,
                 minimum_safety_bending=opts.minimum_safety_bending)
-            gears = tuple(gear_inputs(box, role, k) for k, role in enumerate(ROLES[name]))
+            gears = tuple(gear_inputs(box, name, role, k) for k, role in enumerate(ROLES[name]))
             cases[name] = (pair, torque, rpm, inputs, gears,
                            "pair" if name == "mesh" else name, dist, whole or half_set)
             bins[name] = None if opts.spectrum is None else mesh_spectrum(

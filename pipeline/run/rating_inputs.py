@@ -74,9 +74,11 @@ def pinion_load(st: MeshStages) -> tuple[float, float]:
     return op.torque / ratio, rpm * ratio
 
 
-def gear_inputs(box: Gearbox, role: str, k: int) -> GearRatingInputs:
+def gear_inputs(box: Gearbox, mesh: str, role: str, k: int) -> GearRatingInputs:
+    """The rating inputs of gear ``role``, gear ``k`` (0: pinion, 1: gear) of ``mesh``; its
+    tip relief C_a is its flank's in that mesh (:meth:`Gearbox.mesh_contact`)."""
     g = box.rating.gear(role)
-    relief = box.contact.modifications.flanks[k].profile.tip_relief  # C_a of the mesh's gear k
+    relief = box.mesh_contact(mesh).modifications.flanks[k].profile.tip_relief
     return GearRatingInputs(
         sigma_hlim=g.sigma_hlim, sigma_flim=g.sigma_flim, hardening=g.running_in,
         pitting_line=g.pitting_line, bending_line=g.bending_line, size_class=g.size_class,

@@ -57,15 +57,15 @@ def revolution_stage(box: Gearbox, stages: MeshStages, options: RunOptions,
     if box.errors is None:
         return None
     case, actual = stages.case, stages.stiffness.actual
-    inputs = {**cycle_cache_inputs(actual, case.operation, box.contact, box.stiffness,
+    c = box.mesh_contact(case.name)
+    inputs = {**cycle_cache_inputs(actual, case.operation, c, box.stiffness,
                                    box.fe_source), "errors": box.errors}
 
     def build() -> LoadedRevolution:
-        source = compliance_source(actual, case.operation, box.contact, box.stiffness,
+        source = compliance_source(actual, case.operation, c, box.stiffness,
                                    box.fe_source, cache=options.cache,
                                    model=stages.stiffness.model,
                                    show_progress=options.show_progress)
-        c = box.contact
         return loaded_revolution(source, line_of_action_load(actual, case.operation),
                                  box.errors, c.modifications, c.local_contact, c.positions,
                                  driver=case.operation.driver,

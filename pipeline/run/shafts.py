@@ -229,11 +229,12 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                                       mesh)
             used, loaded = mesh, w
             approach = float(gap.mean())
-            mods = dataclasses.replace(box.contact.modifications,
+            contact = box.mesh_contact(stages.case.name)
+            mods = dataclasses.replace(contact.modifications,
                                        lead_gap=tuple(zip(z.tolist(),
                                                           (gap - approach).tolist(),
                                                           strict=True)))
-            opts = dataclasses.replace(box.contact, modifications=mods)
+            opts = dataclasses.replace(contact, modifications=mods)
             if source is None:
                 source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
                                            cache=options.cache, model=stages.stiffness.model)
