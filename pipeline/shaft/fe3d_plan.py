@@ -49,8 +49,8 @@ class Fe3dSettings:
     seat_stations : reference nodes on an integral seat (``hub = "integral"``).
     section_spacing : largest distance between deflection-line sections, in local
         diameters.
-    solver : :func:`pipeline.fem.solvers.solver_named` ("auto", "cholmod", "cholespy",
-        "splu", "pmg-cg").
+    solver : :func:`pipeline.fem.solvers.solver_named` ("auto", "pardiso", "cholmod",
+        "cholespy", "splu", "pmg-cg").
     """
 
     refinement: float = 1.0
