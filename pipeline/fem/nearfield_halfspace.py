@@ -175,7 +175,7 @@ def nearfield_halfspace(points: FlankPoints, half_width: float, material: Materi
     """(n, n) ``H`` of the 3D ``points`` (module docstring), m/N: same-flank pairs at the
     geometric mean of their depths; zero elsewhere."""
     H = np.zeros((len(points), len(points)))
-    ii, jj = np.nonzero(points.same_flank())
+    ii, jj = np.nonzero(np.triu(points.same_flank()))  # H is symmetric: one triangle
     d = points.position[ii] - points.position[jj]
     # separation in the frame of j (and of i, averaged: H is even in s, so symmetric)
     st = 0.5 * (np.abs(np.einsum("ij,ij->i", d, points.tangent[jj]))
@@ -183,5 +183,5 @@ def nearfield_halfspace(points: FlankPoints, half_width: float, material: Materi
     sw = 0.5 * (np.abs(np.einsum("ij,ij->i", d, points.tangent_face[jj]))
                 + np.abs(np.einsum("ij,ij->i", d, points.tangent_face[ii])))
     h = np.sqrt(points.depth[ii] * points.depth[jj])
-    H[ii, jj] = patch_halfspace_compliance(st, sw, h, half_width, material)
+    H[ii, jj] = H[jj, ii] = patch_halfspace_compliance(st, sw, h, half_width, material)
     return H
