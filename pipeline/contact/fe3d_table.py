@@ -149,9 +149,11 @@ class FlankTable3D:
 def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings,
                      loaded: np.ndarray | None = None) -> SectorSettings3D:
     """Mesh settings: a sector of ``teeth`` teeth, or the whole gear (``teeth = z``)
-    graded from the ``loaded`` teeth."""
+    graded from the ``loaded`` teeth (every tooth fine for ``settings.mesh = "uniform"``)."""
     if teeth == gear.teeth:
         s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement)
+        if settings.mesh == "uniform":
+            s3 = replace(s3, loaded=None, size_tooth=None)
     else:
         s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
     if settings.hub_depth is not None:

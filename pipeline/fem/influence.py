@@ -141,9 +141,9 @@ def constrained_dofs(sector: SectorMesh2D | SectorMesh3D, model: ElasticModel,
         raise InputError("influence.ends = 'sliding' needs a 3D sector")
     names = ["bore"] + ([n for n in ("cut_left", "cut_right") if n in sector.facets]
                         if cuts == "clamped" else [])
-    out = [model.basis.get_dofs(sector.facets[n]).all() for n in names]
+    out = [model.dofs.get_dofs(sector.facets[n]).all() for n in names]
     if ends == "sliding":
-        out += [model.basis.get_dofs(sector.facets[n]).all("u^3") for n in ("end0", "end1")]
+        out += [model.dofs.get_dofs(sector.facets[n]).all("u^3") for n in ("end0", "end1")]
     return np.unique(np.concatenate(out))
 
 

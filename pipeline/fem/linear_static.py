@@ -12,13 +12,20 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 from skfem import Basis
 from skfem.mesh import Mesh
 
-from pipeline.fem.elasticity import assemble_stiffness, lame_constants, vector_basis
+from pipeline.fem.elasticity import (
+    assemble_fast,
+    assemble_stiffness,
+    default_intorder,
+    lame_constants,
+    vector_basis,
+)
 from pipeline.fem.solvers import DirectSolver, Factorization, Solver
 from pipeline.geometry.gear import Material
 from pipeline.progress import Steps
@@ -31,23 +38,34 @@ class ElasticModel:
 
     Attributes
     ----------
-    basis : scikit-fem vector basis; DOF ``d * node + component``.
+    dofs : scikit-fem vector basis with one quadrature point per cell: the DOF numbering
+        (``d * node + component``), facet DOFs and node locations, cheap to build.
     stiffness : (n_dof, n_dof) CSR stiffness matrix in N/m.
     lam, mu : Lame constants used, Pa.
     kind : "3d", "plane_strain" or "plane_stress".
     assembly_seconds : wall time of the assembly, s.
+    order, intorder : Lagrange order and the quadrature order the stiffness was
+        assembled with.
     """
 
-    basis: Basis
+    dofs: Basis
     stiffness: sp.csr_matrix
     lam: float
     mu: float
     kind: str
     assembly_seconds: float
+    order: int = 2
+    intorder: int = 2
 
     @property
     def n_dof(self) -> int:
         return self.stiffness.shape[0]
+
+    @cached_property
+    def basis(self) -> Basis:
+        """The vector basis at the assembly's quadrature (values and gradients at every
+        quadrature point: built on first use; on a 38k-cell P2 mesh it takes 0.5 GB)."""
+        return vector_basis(self.dofs.mesh, self.order, self.intorder)
 
 
 def build_model(
@@ -69,9 +87,13 @@ def build_model(
         raise InputError(f"elasticity.kind = {kind!r} does not fit a {mesh.dim()}D mesh")
     lam, mu = lame_constants(material, kind)
     t0 = time.perf_counter()
-    basis = vector_basis(mesh, order, intorder)
-    K = assemble_stiffness(basis, lam, mu, assembly)
-    return ElasticModel(basis, K, lam, mu, kind, time.perf_counter() - t0)
+    intorder = default_intorder(mesh, order) if intorder is None else intorder
+    if assembly == "fast":
+        K = assemble_fast(mesh, lam, mu, order, intorder)
+    else:
+        K = assemble_stiffness(vector_basis(mesh, order, intorder), lam, mu, assembly)
+    return ElasticModel(vector_basis(mesh, order, 0), K, lam, mu, kind,
+                        time.perf_counter() - t0, order, intorder)
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,7 +124,7 @@ def _set_up(model: ElasticModel, clamped_dofs: np.ndarray, solver: Solver | None
     fixed[np.asarray(clamped_dofs, dtype=np.int64)] = True
     free = np.flatnonzero(~fixed)
     solver = DirectSolver() if solver is None else solver
-    return free, solver(model.stiffness[free][:, free], model.basis, free)
+    return free, solver(model.stiffness[free][:, free], model.dofs, free)
 
 
 def solve_static(
