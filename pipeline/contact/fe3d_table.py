@@ -247,8 +247,8 @@ def _tooth_columns(gear: GearSpec, span: int, settings: FE3DSettings, cache: Cac
     on the grid of tooth ``t0 = z // 2`` (the mesh is fine on ``t0`` and its
     :data:`FINE_NEIGHBOURS` neighbours on each side).
 
-    Returns the stored arrays (``structural`` (2 span + 1) n x n, n the grid points of a
-    flank) with ``radii``, ``z``, ``load_tooth`` and ``cached``.
+    Returns the stored arrays (``structural``: (2 span + 1) n x n, n the grid points of a
+    flank, the teeth in ascending order) with ``load_tooth`` and ``cached``.
     """
     t0 = gear.teeth // 2
     reads = t0 + np.arange(-span, span + 1)
