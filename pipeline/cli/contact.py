@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
                                    tooth_model=args.tooth_model)
     cache = command_cache(args)
     src = compliance_source(pair, box.operation, opts, box.stiffness, box.fe_source,
-                            model=slices.model, cache=cache)
+                            model=slices.model, cache=cache, show_progress=True)
     cyc = analyse_contact(src, box.operation, opts, show_progress=True)
     ref = stiffness_at(slices.model, cyc.s0, opts.slices, slices.friction, slices.operating,
                        box.stiffness.foundation_correction)

@@ -232,7 +232,8 @@ FE = (
                               "in 2D, m_n / (3 refinement) in 3D"),
     Key("kind", S, choices=("plane_strain", "plane_stress"), help="2D model"),
     Key("mesh", S, choices=("graded", "uniform"),
-        help="2D source: graded from the loaded teeth (default) or uniform"),
+        help="FE sources: graded from the loaded teeth (default) or every tooth at the "
+             "flank size (the reference)"),
     Key("patch_mn", N, field="patch",
         help="2D source: load patch half-width in m_n (the flank grid ends 1.1 patch "
              "inside the involute; below 0.1, at least 0.1 / refinement)"),
@@ -243,7 +244,7 @@ FE = (
 FE_MODEL_KEYS = {
     "analytical": ("teeth", "points", "refinement", "kind"),
     "fe2d": ("teeth", "points", "refinement", "kind", "mesh", "patch"),
-    "fe3d": ("teeth", "points", "refinement", "face_points", "ends", "solver"),
+    "fe3d": ("teeth", "points", "refinement", "face_points", "ends", "solver", "mesh"),
 }
 """The ``[fe]`` keys of the FE model each ``[contact] compliance`` reads (each names the
 settings field it sets): ``gearpipe fe``'s 2D sectors with the analytical compliance, the

@@ -11,7 +11,10 @@ keeps the few-tooth sector clamped at its cut faces (an upper bound on stiffness
 
 Method
 ------
-* Tables: one structural table per gear (:mod:`pipeline.contact.fe3d_table`).
+* Tables: one structural table per gear (:mod:`pipeline.contact.fe3d_table`); a whole
+  gear's is solved for one loaded tooth and read on its neighbours (the gear is alike
+  from every tooth), and a left-hand gear's is its right-hand mirror image's, so the two
+  gears of a pair of equal gears share one solve.
 * Candidate points are the slices of :func:`pipeline.contact.source.slice_points`
   (``settings.slices`` across the face; ``compliance_source`` gives a spur pair without lead
   modifications one), so results compare
@@ -76,9 +79,9 @@ and 3D) couples the two or three tooth pairs in contact through the rim and web
 per pair, does not. The 3-tooth sectors of ``body = "sector"`` came out 38 % stiffer than the slice
 method on the same pair, because of their clamped cuts.
 
-Cost: ``workflows/benchmarks/bench_fe3d.py`` (z 30/30, m_n 3 mm, b 12 mm, whole gears at
-refinement 1, 44k DOF and 168 load cases per gear): cold 51 s (per gear: mesh 13 s,
-assembly 2 s, factorisation 5 s, solves 2.3 s, near field 2.1 s), warm 0.1 s, 0.84 GiB.
+Cost: ``workflows/benchmarks/bench_fe3d.py`` prints the breakdown, side by side with a
+baseline revision. Convergence: ``workflows/fe3d_convergence.py`` (the refinement study
+of the mesh stiffness and TE p-p, the graded mesh against every tooth fine).
 
 Limits
 ------

@@ -73,7 +73,7 @@ def assemble_generic(basis: Basis, lam: float, mu: float) -> sp.csr_matrix:
 
 def assemble_fast(
     mesh: Mesh, lam: float, mu: float, order: int = 2, intorder: int | None = None,
-    chunk: int = 20000, quadrature: tuple[np.ndarray, np.ndarray] | None = None,
+    chunk: int = 6000, quadrature: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> sp.csr_matrix:
     """Same matrix as :func:`assemble_generic` on ``vector_basis(mesh, order, intorder)``.
 
@@ -84,7 +84,8 @@ def assemble_fast(
     order : Lagrange order of the displacement (1 or 2).
     intorder : quadrature order (default :func:`default_intorder`).
     chunk : elements per batch; bounds the temporary memory to about
-        ``chunk * (d n_loc)^2 * 24`` bytes.
+        ``chunk * (d n_loc)^2 * 24`` bytes (3D P2, 38k cells, 212k unknowns: peak 0.65 GB
+        with 6000, 1.25 GB with 20000, no faster; measured).
     quadrature : (points (dim, n_q), weights (n_q,)) on the reference cell,
         overriding ``intorder`` (used to match an existing basis).
 

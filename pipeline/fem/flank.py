@@ -74,6 +74,16 @@ class FlankPoints:
         """(n, n) bool: points i and j lie on the same flank (tooth and side)."""
         return (self.tooth[:, None] == self.tooth[None, :]) & (self.side[:, None] == self.side)
 
+    def subset(self, index: np.ndarray) -> FlankPoints:
+        """The points ``index`` (a grid's ``shape`` is dropped: a subset is no grid)."""
+        def take(a):
+            return None if a is None else a[index]
+
+        return FlankPoints(self.tooth[index], self.side[index], self.radius[index],
+                           self.position[index], self.normal[index], self.tangent[index],
+                           self.arc[index], self.depth[index], take(self.z),
+                           take(self.tangent_face))
+
 
 def flank_points(gear: GearSpec, teeth: int, tooth: ArrayLike, radius: ArrayLike,
                  side: str = "right") -> FlankPoints:

@@ -94,6 +94,9 @@ class InfluenceMatrix:
     iterations : CG iterations of the slowest block (0 for direct solvers).
     timings : wall times, s ("assembly", "loads", "factor" (set-up), "solve",
         "nearfield", "total").
+    loaded : (m,) indices of the points that carried a load case, or None for all; with
+        ``m < n`` the matrices are (n, m): the approach at every point per unit load at
+        each loaded point.
     """
 
     points: FlankPoints
@@ -106,6 +109,7 @@ class InfluenceMatrix:
     method: str
     iterations: int
     timings: dict
+    loaded: np.ndarray | None = None
 
     @property
     def structural(self) -> np.ndarray:
@@ -120,8 +124,10 @@ class InfluenceMatrix:
         return self.structural / check_positive("face_width", face_width, unit="m")
 
     def symmetry_error(self) -> float:
-        """max |G - G^T| / max |G| of the FE matrix (Maxwell-Betti check)."""
-        return float(np.abs(self.fe - self.fe.T).max() / np.abs(self.fe).max())
+        """max |G - G^T| / max |G| of the FE matrix between the loaded points
+        (Maxwell-Betti check)."""
+        fe = self.fe if self.loaded is None else self.fe[self.loaded]
+        return float(np.abs(fe - fe.T).max() / np.abs(fe).max())
 
 
 def constrained_dofs(sector: SectorMesh2D | SectorMesh3D, model: ElasticModel,
@@ -135,9 +141,9 @@ def constrained_dofs(sector: SectorMesh2D | SectorMesh3D, model: ElasticModel,
         raise InputError("influence.ends = 'sliding' needs a 3D sector")
     names = ["bore"] + ([n for n in ("cut_left", "cut_right") if n in sector.facets]
                         if cuts == "clamped" else [])
-    out = [model.basis.get_dofs(sector.facets[n]).all() for n in names]
+    out = [model.dofs.get_dofs(sector.facets[n]).all() for n in names]
     if ends == "sliding":
-        out += [model.basis.get_dofs(sector.facets[n]).all("u^3") for n in ("end0", "end1")]
+        out += [model.dofs.get_dofs(sector.facets[n]).all("u^3") for n in ("end0", "end1")]
     return np.unique(np.concatenate(out))
 
 
@@ -164,6 +170,7 @@ def influence_matrix(
     patch_half_width: float | None = None, *, kind: str | None = None,
     solver: Solver | None = None, cuts: str = "clamped", ends: str = "free",
     block: int | None = None, model: ElasticModel | None = None, steps: Steps | None = None,
+    loaded: np.ndarray | None = None,
 ) -> InfluenceMatrix:
     """Structural flank compliance matrix of ``points`` on ``sector`` (one solver set-up).
 
@@ -183,6 +190,9 @@ def influence_matrix(
     model : a prebuilt P2 model of ``sector`` (reuse across calls), else assembled here.
     steps : progress and wall time of each step (assembly, loads, factorise, solve, near
         field) on stderr (:class:`pipeline.progress.Steps`); default silent.
+    loaded : indices of the points that carry a load case (default: all): one solve per
+        loaded point, every point read (the matrices are then (n, m)); the near field of
+        the loaded points' flanks only (it is zero between flanks).
     """
     dim = points.dim
     kind = KINDS[dim][0] if kind is None else kind
@@ -197,17 +207,37 @@ def influence_matrix(
         with steps.step("assembly"):
             model = build_model(sector.mesh, gear.material, order=2, kind=kind)
     t1 = time.perf_counter()
+    cols = None if loaded is None else np.asarray(loaded, dtype=np.int64).reshape(-1)
     with steps.step("loads"):
-        F = patch_loads(sector, points, c)
+        R = patch_loads(sector, points, c)
+        F = R if cols is None else R[:, cols]
     t2 = time.perf_counter()
     fe = load_compliance(model, F, constrained_dofs(sector, model, cuts, ends),
-                         solver_named("auto", dim) if solver is None else solver, block, steps)
+                         solver_named("auto", dim) if solver is None else solver, block, steps,
+                         read=None if cols is None else R)
     t3 = time.perf_counter()
     with steps.step("near field"):
-        local = (nearfield_halfplane(points, c, gear.material, kind) if dim == 2
-                 else nearfield_halfspace(points, c, gear.material))
+        local = _near_field(points, c, gear.material, kind, cols)
     t4 = time.perf_counter()
     timings = {"assembly": t1 - t0, "loads": t2 - t1, "factor": fe.factor_seconds,
                "solve": fe.solve_seconds, "nearfield": t4 - t3, "total": t4 - t0}
     return InfluenceMatrix(points, fe.matrix, local, c, kind, model.n_dof, fe.n_free,
-                           fe.method, fe.iterations, timings)
+                           fe.method, fe.iterations, timings, cols)
+
+
+def _near_field(points: FlankPoints, c: float, material, kind: str,
+                cols: np.ndarray | None) -> np.ndarray:
+    """The analytical near field (n, n), or (n, m) at the loaded points ``cols``: computed
+    on the flanks that carry them only (same-flank pairs; zero elsewhere)."""
+    def near(pts: FlankPoints) -> np.ndarray:
+        return (nearfield_halfplane(pts, c, material, kind) if pts.dim == 2
+                else nearfield_halfspace(pts, c, material))
+
+    if cols is None:
+        return near(points)
+    flank = points.tooth * 2 + (points.side > 0)
+    rows = np.flatnonzero(np.isin(flank, flank[cols]))
+    local = np.zeros((len(points), cols.size))
+    H = near(points.subset(rows))
+    local[rows] = H[:, np.searchsorted(rows, cols)]
+    return local

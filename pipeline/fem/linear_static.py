@@ -12,13 +12,20 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 from skfem import Basis
 from skfem.mesh import Mesh
 
-from pipeline.fem.elasticity import assemble_stiffness, lame_constants, vector_basis
+from pipeline.fem.elasticity import (
+    assemble_fast,
+    assemble_stiffness,
+    default_intorder,
+    lame_constants,
+    vector_basis,
+)
 from pipeline.fem.solvers import DirectSolver, Factorization, Solver
 from pipeline.geometry.gear import Material
 from pipeline.progress import Steps
@@ -31,23 +38,34 @@ class ElasticModel:
 
     Attributes
     ----------
-    basis : scikit-fem vector basis; DOF ``d * node + component``.
+    dofs : scikit-fem vector basis with one quadrature point per cell: the DOF numbering
+        (``d * node + component``), facet DOFs and node locations, cheap to build.
     stiffness : (n_dof, n_dof) CSR stiffness matrix in N/m.
     lam, mu : Lame constants used, Pa.
     kind : "3d", "plane_strain" or "plane_stress".
     assembly_seconds : wall time of the assembly, s.
+    order, intorder : Lagrange order and the quadrature order the stiffness was
+        assembled with.
     """
 
-    basis: Basis
+    dofs: Basis
     stiffness: sp.csr_matrix
     lam: float
     mu: float
     kind: str
     assembly_seconds: float
+    order: int = 2
+    intorder: int = 2
 
     @property
     def n_dof(self) -> int:
         return self.stiffness.shape[0]
+
+    @cached_property
+    def basis(self) -> Basis:
+        """The vector basis at the assembly's quadrature (values and gradients at every
+        quadrature point: built on first use; on a 38k-cell P2 mesh it takes 0.5 GB)."""
+        return vector_basis(self.dofs.mesh, self.order, self.intorder)
 
 
 def build_model(
@@ -69,9 +87,13 @@ def build_model(
         raise InputError(f"elasticity.kind = {kind!r} does not fit a {mesh.dim()}D mesh")
     lam, mu = lame_constants(material, kind)
     t0 = time.perf_counter()
-    basis = vector_basis(mesh, order, intorder)
-    K = assemble_stiffness(basis, lam, mu, assembly)
-    return ElasticModel(basis, K, lam, mu, kind, time.perf_counter() - t0)
+    intorder = default_intorder(mesh, order) if intorder is None else intorder
+    if assembly == "fast":
+        K = assemble_fast(mesh, lam, mu, order, intorder)
+    else:
+        K = assemble_stiffness(vector_basis(mesh, order, intorder), lam, mu, assembly)
+    return ElasticModel(vector_basis(mesh, order, 0), K, lam, mu, kind,
+                        time.perf_counter() - t0, order, intorder)
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,7 +124,7 @@ def _set_up(model: ElasticModel, clamped_dofs: np.ndarray, solver: Solver | None
     fixed[np.asarray(clamped_dofs, dtype=np.int64)] = True
     free = np.flatnonzero(~fixed)
     solver = DirectSolver() if solver is None else solver
-    return free, solver(model.stiffness[free][:, free], model.basis, free)
+    return free, solver(model.stiffness[free][:, free], model.dofs, free)
 
 
 def solve_static(
@@ -140,8 +162,9 @@ class LoadCompliance:
 
     Attributes
     ----------
-    matrix : (n_cases, n_cases) work-conjugate displacement of case ``i`` per unit of
-        case ``j`` (m/N for loads in N; symmetric to solver accuracy).
+    matrix : (n_read, n_cases) work-conjugate displacement of reading ``i`` per unit of
+        case ``j`` (m/N for loads in N); reading the load cases themselves it is square
+        and symmetric to solver accuracy.
     method : solver used; iterations : CG iterations of the slowest block (0: direct).
     n_free : number of unknowns solved for.
     factor_seconds, solve_seconds : wall times (set-up; all blocks), s.
@@ -158,9 +181,11 @@ class LoadCompliance:
 def load_compliance(
     model: ElasticModel, loads: sp.spmatrix, clamped_dofs: np.ndarray,
     solver: Solver | None = None, block: int | None = None, steps: Steps | None = None,
+    read: sp.spmatrix | None = None,
 ) -> LoadCompliance:
-    """``F^T K^-1 F`` with u = 0 on ``clamped_dofs``: set up once, solve ``block`` columns
-    at a time (only the block's displacements are ever held in memory).
+    """``R^T K^-1 F`` with u = 0 on ``clamped_dofs`` (``R = F`` unless ``read`` is given):
+    set up once, solve ``block`` columns at a time (only the block's displacements are
+    ever held in memory).
 
     Parameters
     ----------
@@ -169,29 +194,40 @@ def load_compliance(
     clamped_dofs : (m,) DOF indices held at zero.
     solver : default ``DirectSolver()`` (:mod:`pipeline.fem.solvers`).
     block : right-hand sides solved together. Default: as many as keep one block of
-        vectors under 24 MB (at least 16, at most 256). Above glibc's largest mmap
+        vectors under 96 MB for a factor, 24 MB for an iteration (at least 16, at most
+        256). Above glibc's largest mmap
         threshold (32 MB) every temporary of an iterative loop is a fresh mmap that the
         kernel must fault in: 150 columns at 50k DOF spent ~30 % of the time in the
         kernel (68.7 s vs 50 s at 60 columns, 63 s at 8, measured with the p-multigrid CG).
     steps : progress of the set-up ("factorise") and of the blocks ("solve") on stderr
         (:class:`pipeline.progress.Steps`); default silent.
+    read : (n_dof, n_read) sparse work-conjugate weights of the displacements read (e.g.
+        the patch loads of more points than are loaded); the matrix is then
+        (n_read, n_cases): the reading ``i`` per unit of load case ``j``.
     """
-    if loads.shape[0] != model.n_dof:
-        raise InputError(f"loads have {loads.shape[0]} rows, the model has {model.n_dof} DOFs")
+    read = loads if read is None else read
+    for name, m in (("loads", loads), ("read", read)):
+        if m.shape[0] != model.n_dof:
+            raise InputError(f"{name} have {m.shape[0]} rows, the model has {model.n_dof} DOFs")
     steps = Steps("", enabled=False) if steps is None else steps
     # a sparse Cholesky of a large 3D model holds the GIL for seconds: announce it at once
     with steps.step("factorise", announce=model.n_dof >= 50_000):
         free, factor = _set_up(model, clamped_dofs, solver)
     if block is None:
-        block = int(np.clip(24e6 / (8 * free.size), 16, 256))
+        # a factor's solves stream the whole factor once per block: larger blocks for it
+        # (PARDISO, 211k unknowns, 272 cases: 8.5 s in blocks of 16, 7.5 s of 32-64, 15 s
+        # in one block; measured)
+        size = 24e6 if factor.method == "pmg-cg" else 96e6
+        block = int(np.clip(size / (8 * free.size), 16, 256))
     check_int_range("solver.block", block, 1, 100000)
     t0 = time.perf_counter()
     Ff = sp.csc_matrix(loads)[free]
+    Rt = sp.csc_matrix(read)[free].T.tocsr()
     n = loads.shape[1]
-    C = np.empty((n, n))
+    C = np.empty((read.shape[1], n))
     with steps.step("solve"):
         for a in range(0, n, block):
-            C[:, a:a + block] = Ff.T @ factor.solve(Ff[:, a:a + block].toarray())
+            C[:, a:a + block] = Rt @ factor.solve(Ff[:, a:a + block].toarray())
             steps.advance("solve", min(a + block, n), n, "load cases")
     return LoadCompliance(C, factor.method, factor.iterations, int(free.size),
                           factor.factor_seconds, time.perf_counter() - t0)

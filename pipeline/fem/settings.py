@@ -166,6 +166,10 @@ class FE3DSettings:
     hub_depth : if given, the body is clamped at ``max(bore, r_f - hub_depth m_n)``
         instead of the bore (1..100 modules): a shallower body for deep gears.
     solver : linear solver (:func:`pipeline.fem.solvers.solver_named`, 3D).
+    mesh : whole gears: "graded" (default: the loaded tooth and its neighbours at the
+        flank size, the other teeth and the body coarser;
+        :mod:`pipeline.contact.fe3d_table`) or "uniform" (every tooth at the flank size,
+        the body graded from them: the reference, several times the unknowns).
     """
 
     body: str = "whole"
@@ -180,9 +184,11 @@ class FE3DSettings:
     slices: int | None = None
     hub_depth: float | None = None
     solver: str = "auto"
+    mesh: str = "graded"
 
     def __post_init__(self) -> None:
         check_choice("fe.body", self.body, BODIES)
+        check_choice("fe.mesh", self.mesh, MESHES)
         if self.teeth is not None:
             if self.body == "whole":
                 raise InputError(f"fe.teeth = {self.teeth} applies to body = 'sector' only "

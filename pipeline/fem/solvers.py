@@ -140,8 +140,16 @@ def _pardiso_factor(A: sp.spmatrix):
                                ) from err
         raise RuntimeError(f"PARDISO failed with error {err.value}") from err
 
+    # pypardiso's own solve keeps a copy of U (or its hash, above 5e7 non-zeros) and
+    # compares every right-hand side's matrix with it; the factor is ours alone, so drop
+    # the copy and ask PARDISO for its solve phase (33) directly, as pypardiso's
+    # remove_stored_factorization documents
+    solver.remove_stored_factorization()
+    solver.set_iparm(12, 0)  # U is CSR: no transposed solve
+
     def solve(b: np.ndarray) -> np.ndarray:
-        return solver.solve(U, np.asarray(b, dtype=np.float64))
+        solver.set_phase(33)
+        return solver._call_pardiso(U, np.asfortranarray(b, dtype=np.float64))
 
     # PARDISO keeps its factor outside Python: free it with the last reference to solve
     weakref.finalize(solve, solver.free_memory, True)

@@ -19,6 +19,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
+def export_revision(rev: str, folder: Path) -> Path:
+    """The files of revision ``rev`` of this checkout's repository, in ``folder`` (for
+    timing today's code beside the checkout's)."""
+    folder.mkdir(parents=True)
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder
+
+
 def timed_child(command: list[str], timing_file: Path, key: str | None = None) -> dict:
     """Run ``command`` and read its step timing from ``timing_file`` (JSON; under ``key``
     when given): ``wall_s``, ``cpu_s``, ``steps_s``, ``from_cache``, ``outside_steps_s``,
