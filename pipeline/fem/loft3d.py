@@ -30,10 +30,16 @@ def generate_curved_tets(gmsh) -> None:
     """
     gmsh.option.setNumber("Mesh.ElementOrder", 2)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
+    generate_linear_tets(gmsh)
+
+
+def generate_linear_tets(gmsh) -> None:
+    """Mesh the synchronised model with tetrahedra (Frontal-Delaunay surfaces, Delaunay
+    volume, Gmsh's quality optimisation); linear unless ``Mesh.ElementOrder`` was set."""
     gmsh.option.setNumber("Mesh.Algorithm", 6)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)
     gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
     gmsh.model.mesh.generate(3)
 
 

@@ -1,14 +1,15 @@
 """Whole 3D gear bodies: all teeth, the body down to the bore, the full face width.
 
-Geometry. The transverse outline of all ``z`` teeth (involute, trochoidal fillet,
-root and tip circles of :mod:`pipeline.geometry.profile`, split into the named
-pieces of :func:`pipeline.fem.outline2d.outline_pieces`) is lofted along the helix
-exactly as the sectors of :mod:`pipeline.fem.sector3d` are (section at ``z`` turned
-by ``theta(z) = s tan(beta) / r (z - b/2)``), giving a toothed solid; a cylinder of
-the bore radius (:func:`pipeline.fem.outline2d.inner_radius`) is cut out of it. So
-tooth ``k`` at mid-face sits where the 2D whole gear of ``sector2d`` (``teeth = z``)
-puts it, and the flank grids, load patches and influence routine of the sectors
-apply unchanged (a whole gear is a "sector" of ``teeth = z`` teeth without cut faces).
+Geometry. The transverse section of the whole gear (the outline of all ``z`` teeth:
+involute, trochoidal fillet, root and tip circles of :mod:`pipeline.geometry.profile`,
+split into the named pieces of :func:`pipeline.fem.outline2d.outline_pieces`, with the
+bore circle of :func:`pipeline.fem.outline2d.inner_radius` as a hole) is swept along the
+helix: the section at ``z`` is the mid-face section turned by
+``theta(z) = s tan(beta) / r (z - b/2)``, exactly as the sectors of
+:mod:`pipeline.fem.sector3d` are lofted. So tooth ``k`` at mid-face sits where the 2D
+whole gear of ``sector2d`` (``teeth = z``) puts it, and the flank grids, load patches and
+influence routine of the sectors apply unchanged (a whole gear is a "sector" of
+``teeth = z`` teeth without cut faces).
 
 Surface groups: ``right{k}`` / ``left{k}`` (k = 0 .. z-1), ``bore``, ``end0`` (z = 0)
 and ``end1`` (z = b). Boundary conditions are those of the 2D whole gear
@@ -20,6 +21,22 @@ points), ``size_tooth`` on the other teeth, growing to ``size_body`` in the rim,
 web and far teeth (:meth:`~pipeline.fem.mesh_settings.SectorSettings3D.whole_gear`).
 The unknowns then scale with the loaded teeth, not with ``z`` (defaults: flank cells
 m_n / (3 refinement), 2 m_n on the other teeth, 5 m_n in the body).
+
+How it is meshed, and why. Gmsh's built-in kernel twists the plane section (splines
+through every :data:`SPLINE_STEP`-th outline point, the bore circle as a hole) about the
+gear axis while translating it over the face (``geo.twist``; a plain extrusion for spur
+gears): the lateral faces are exact helicoids of their source curves, born with the names
+of the curves, so there is no loft, no boolean cut and no naming by geometry. Gmsh meshes
+it with linear tetrahedra; :func:`pipeline.fem.curved_p2.curve_p2` then adds the mid-edge
+nodes and puts every boundary node (vertices too) on the exact surface: the helicoid of
+the cubic spline through *all* outline points of its piece (the curve the lofted model
+interpolates), the bore cylinder; the end faces are planes. A cell that curving would fold
+stays straight.
+
+Measured (2 shared cores, z 30, m_n 3 mm, beta 15 deg, b 12 mm, bore 30 mm, loaded teeth
+13..16, refinement 1, about 9k cells): see :func:`build_whole_gear_mesh_3d` and
+``workflows/benchmarks/bench_mesh3d.py`` for the breakdown against the OpenCASCADE loft
+(:mod:`pipeline.fem.whole3d_loft`, kept as the reference).
 """
 
 from __future__ import annotations
@@ -28,75 +45,94 @@ import math
 
 import numpy as np
 
+from pipeline.fem.curved_p2 import SweptOutline, curve_p2
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
-from pipeline.fem.loft3d import generate_curved_tets, loft_inputs
+from pipeline.fem.loft3d import generate_linear_tets, loft_inputs
 from pipeline.fem.mesh_settings import SectorSettings3D
 from pipeline.geometry.gear import GearSpec
 
+SPLINE_SPACING = 0.25
+"""Gmsh's splines pass through outline points about this far apart (in normal modules):
+the twist's cost grows fast with the points (3.7 s with all 10200 points of a z 30 gear,
+0.23 s with every fourth). The mesh does not inherit the splines' error: its boundary
+nodes are put on the exact surface."""
+
+SIZE_INTEGRATION_PRECISION = 1e-5
+"""Relative precision of Gmsh's integral of 1 / size along the curves, which places the
+1D mesh nodes (Gmsh's default 1e-9 made the 1D meshing 0.57 s of a z 30 gear's total
+instead of 0.08 s, for nodes moved by a fraction 1e-5 of a cell)."""
+
 
 def build_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
-    """Loft, cut the bore and mesh the whole gear in Gmsh (module docstring)."""
+    """The whole gear's curved P2 mesh (module docstring); lengths in m."""
+    return curve_p2(*linear_whole_gear_mesh_3d(gear, settings))
+
+
+def linear_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D
+                              ) -> tuple[TetMeshData, SweptOutline]:
+    """Sweep and mesh the whole gear with linear tetrahedra in Gmsh: the mesh (order 1,
+    named groups) and the exact surfaces of its curved groups (tooth sides, bore) that
+    :func:`pipeline.fem.curved_p2.curve_p2` puts the nodes on."""
     r_in, b, rate, pieces = loft_inputs(gear, settings, gear.teeth)
     with gmsh_session() as gmsh:
-        occ = gmsh.model.occ
-        wires = [_outline_wire(occ, pieces, rate * (z - 0.5 * b), z)
-                 for z in np.linspace(0.0, b, settings.loft_sections)]
-        solid = occ.addThruSections(wires, makeSolid=True, makeRuled=False)[0][1]
-        bore = occ.addCylinder(0.0, 0.0, -0.1 * b, 0.0, 0.0, 1.2 * b, r_in)
-        out, _ = occ.cut([(3, solid)], [(3, bore)])
-        vol = out[0][1]
-        occ.synchronize()
-        groups = _classify(gmsh, vol, pieces, r_in, b, rate)
-        missing = [f"{side}{k}" for k in range(gear.teeth) for side in ("right", "left")
-                   if not groups.get(f"{side}{k}")]
-        missing += [n for n in ("bore", "end0", "end1") if not groups.get(n)]
-        if missing:
-            raise RuntimeError(f"whole3d: surfaces not found after lofting: {missing[:6]}")
+        vol, groups = _swept_section(gmsh, pieces, r_in, b, rate, gear.module)
         tooth_size_field(gmsh, settings, groups, gear.root_radius, extent=b)
-        generate_curved_tets(gmsh)
-        return extract_tet_mesh(gmsh, 2, groups, {"gear": [vol]})
+        gmsh.option.setNumber("Mesh.LcIntegrationPrecision", SIZE_INTEGRATION_PRECISION)
+        generate_linear_tets(gmsh)
+        data = extract_tet_mesh(gmsh, 1, groups, {"gear": [vol]})
+    return data, SweptOutline(pieces, r_in, b, rate)
 
 
-def _outline_wire(occ, pieces, rot: float, z: float) -> int:
-    """Closed wire of the whole outline turned by ``rot`` (rad) at height ``z`` (m)."""
+def _swept_section(gmsh, pieces, r_in: float, b: float, rate: float, module: float
+                   ) -> tuple[int, dict[str, list[int]]]:
+    """The section at z = 0 (turned by theta(0)) swept over ``b``: (volume tag, groups)."""
+    geo = gmsh.model.geo
+    rot = -0.5 * rate * b
+    spacing = SPLINE_SPACING * module
     c, s = math.cos(rot), math.sin(rot)
 
     def point(xy) -> int:
-        return occ.addPoint(c * xy[0] - s * xy[1], s * xy[0] + c * xy[1], z)
+        return geo.addPoint(c * xy[0] - s * xy[1], s * xy[0] + c * xy[1], 0.0)
 
     first = point(pieces[0][1][0])
-    prev, curves = first, []
-    for i, (_, seg) in enumerate(pieces):
-        last = i == len(pieces) - 1  # the outline closes on its first point
-        tags = [prev] + [point(p) for p in seg[1:-1 if last else None]] + ([first] if last else [])
-        curves.append(occ.addSpline(tags) if len(tags) > 2 else occ.addLine(*tags))
-        prev = tags[-1]
-    return occ.addWire(curves, checkClosed=True)
+    prev, curves, names = first, [], []
+    for i, (name, seg) in enumerate(pieces):
+        end = first if i == len(pieces) - 1 else point(seg[-1])
+        tags = [prev, *(point(seg[k]) for k in _spline_points(seg, spacing)[1:-1]), end]
+        curves.append(geo.addSpline(tags) if len(tags) > 2 else geo.addLine(*tags))
+        names.append(name)
+        prev = end
+    centre = geo.addPoint(0.0, 0.0, 0.0)
+    ring = [geo.addPoint(r_in * math.cos(a), r_in * math.sin(a), 0.0)
+            for a in 0.5 * math.pi * np.arange(4)]
+    arcs = [geo.addCircleArc(ring[i], centre, ring[(i + 1) % 4]) for i in range(4)]
+    base = geo.addPlaneSurface([geo.addCurveLoop(curves), geo.addCurveLoop(arcs)])
+    if rate == 0.0:
+        out = geo.extrude([(2, base)], 0.0, 0.0, b)
+    else:
+        out = geo.twist([(2, base)], 0.0, 0.0, 0.0, 0.0, 0.0, b, 0.0, 0.0, 1.0, rate * b)
+    geo.synchronize()
+    # extrude/twist return the top face, the volume, then one lateral face per boundary
+    # curve of the base in the order of its curve loops
+    names += ["bore"] * len(arcs)
+    if len(out) != 2 + len(names):
+        raise RuntimeError(f"whole3d: the sweep returned {len(out)} entities, "
+                           f"expected {2 + len(names)}")
+    groups: dict[str, list[int]] = {"end0": [base], "end1": [out[0][1]]}
+    for name, (_, tag) in zip(names, out[2:], strict=True):
+        groups.setdefault(name, []).append(tag)
+    return out[1][1], groups
 
 
-def _classify(gmsh, vol: int, pieces, r_in: float, b: float, rate: float
-              ) -> dict[str, list[int]]:
-    """Name the boundary surfaces: end caps by their axial extent, the bore by its radius,
-    lofted faces by the nearest named outline piece at mid-face."""
-    ref = np.vstack([seg for _, seg in pieces])
-    ref_names = [name for name, seg in pieces for _ in range(len(seg))]
-    groups: dict[str, list[int]] = {}
-    for _, s in gmsh.model.getBoundary([(3, vol)], oriented=False):
-        _, _, z0, _, _, z1 = gmsh.model.getBoundingBox(2, s)
-        lo, hi = gmsh.model.getParametrizationBounds(2, s)
-        x, y, z = gmsh.model.getValue(2, s, 0.5 * (np.asarray(lo) + np.asarray(hi)))
-        if z1 - z0 < 0.5 * b:
-            name = "end0" if z0 + z1 < b else "end1"
-        elif abs(math.hypot(x, y) - r_in) < 1e-6 * r_in:
-            name = "bore"
-        else:
-            th = -rate * (z - 0.5 * b)
-            ct, st = math.cos(th), math.sin(th)
-            p = np.array([ct * x - st * y, st * x + ct * y])
-            name = ref_names[int(np.argmin(np.sum((ref - p) ** 2, axis=1)))]
-        groups.setdefault(name, []).append(s)
-    return groups
+def _spline_points(seg: np.ndarray, spacing: float) -> np.ndarray:
+    """Indices of the points of ``seg`` (m, 2) about ``spacing`` (m) apart along it, first
+    and last included (even in arc length: Gmsh meshes a surface in the parameters of its
+    curves, and a spline's parameter runs evenly over its points)."""
+    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(seg, axis=0).T))]
+    n = max(1, math.ceil(s[-1] / spacing))
+    return np.unique(np.r_[np.searchsorted(s, np.linspace(0.0, s[-1], n + 1)[:-1]),
+                           len(seg) - 1])
 
 
 def whole_gear_area(gear: GearSpec, points: int, r_in: float) -> float:
