@@ -27,7 +27,7 @@ mid-face, :func:`pipeline.fem.outline2d.outline_pieces`) turned by
 ``theta(z) = rate (z - b/2)``. A point ``(x, y, z)`` is projected by turning it back by
 ``-theta(z)``, finding the nearest point of ``c`` (nearest dense sample, then Newton steps
 on the curve parameter) and turning that by ``theta(z)``: exact for the helicoid, since
-the rotation keeps ``z``. ``c`` is the cubic spline (natural ends, chord-length parameter)
+the rotation keeps ``z``. ``c`` is the cubic spline (not-a-knot ends, chord-length parameter)
 through all the outline points of each piece, the curve the lofted model interpolates too.
 The bore is the cylinder of radius ``r_in``: radial projection. Lengths in m.
 """
@@ -53,7 +53,7 @@ UNFOLD_STEPS = 4
 TET_EDGES = np.array([[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]])
 TRI_EDGES = np.array([[0, 1], [1, 2], [2, 0]])
 _NEWTON_STEPS = 4
-_SAMPLES_PER_SEGMENT = 8
+_SAMPLES_PER_SEGMENT = 3
 
 
 class CurvedBoundary(Protocol):
@@ -105,7 +105,7 @@ class SweptOutline:
         lift = 10.0 * max(float(np.abs(seg).max()) for _, seg in self.pieces)
         for i, (name, seg) in enumerate(self.pieces):
             u = start + np.r_[0.0, np.cumsum(np.hypot(*np.diff(seg, axis=0).T))]
-            spline = CubicSpline(u, seg, bc_type="natural")
+            spline = CubicSpline(u, seg)
             knots.append(u if i == 0 else u[1:])
             coefs.append(spline.c)
             bounds.append((u[0], u[-1]))
