@@ -23,20 +23,30 @@ The unknowns then scale with the loaded teeth, not with ``z`` (defaults: flank c
 m_n / (3 refinement), 2 m_n on the other teeth, 5 m_n in the body).
 
 How it is meshed, and why. Gmsh's built-in kernel twists the plane section (splines
-through every :data:`SPLINE_STEP`-th outline point, the bore circle as a hole) about the
-gear axis while translating it over the face (``geo.twist``; a plain extrusion for spur
-gears): the lateral faces are exact helicoids of their source curves, born with the names
-of the curves, so there is no loft, no boolean cut and no naming by geometry. Gmsh meshes
-it with linear tetrahedra; :func:`pipeline.fem.curved_p2.curve_p2` then adds the mid-edge
-nodes and puts every boundary node (vertices too) on the exact surface: the helicoid of
-the cubic spline through *all* outline points of its piece (the curve the lofted model
-interpolates), the bore cylinder; the end faces are planes. A cell that curving would fold
-stays straight.
+through outline points :data:`SPLINE_SPACING` flank cells apart, the bore circle as a hole)
+about the gear axis while translating it over the face (``geo.twist``; a plain extrusion
+for spur gears; the herringbone half 1 twists the other way): the lateral faces are
+helicoids of their source curves, born with the names of the curves, so there is no loft,
+no boolean cut and no naming by geometry. Gmsh meshes it with linear tetrahedra (sizes
+as before; :data:`SIZE_INTEGRATION_PRECISION`); :func:`pipeline.fem.curved_p2.curve_p2`
+then adds the mid-edge nodes and puts every boundary node (vertices too) on the exact
+surface: the helicoid of the cubic spline through :data:`EXACT_POINTS` times the outline
+points of its piece (13 nm from the exact involute and fillet of a m_n 3 mm gear), the
+bore cylinder; the end faces are planes. A cell that curving would fold is curved less
+(a few cells of the far teeth, whose cells are as large as the tooth; none on the loaded
+teeth).
 
-Measured (2 shared cores, z 30, m_n 3 mm, beta 15 deg, b 12 mm, bore 30 mm, loaded teeth
-13..16, refinement 1, about 9k cells): see :func:`build_whole_gear_mesh_3d` and
-``workflows/benchmarks/bench_mesh3d.py`` for the breakdown against the OpenCASCADE loft
-(:mod:`pipeline.fem.whole3d_loft`, kept as the reference).
+Measured (2 shared cores, one run, ``workflows/benchmarks/bench_mesh3d.py``). z 30,
+m_n 3 mm, beta 15 deg, b 12 mm, bore 30 mm, loaded teeth 13..16, refinement 1: 0.5 s
+for 9.6k cells / 18k nodes (sweep 0.06 s, Gmsh's 1D 0.07, 2D 0.07, 3D 0.13, outline
+splines 0.04, P2 nodes 0.1) against 5.5 s for 9.0k cells / 17k nodes with the
+OpenCASCADE loft it replaced (:mod:`pipeline.fem.whole3d_loft`, kept as the reference:
+wires 0.3 s, loft 0.6, bore cut 0.4, synchronise 0.5, 1D meshing 0.7-1.9 (the size
+fields at Gmsh's default integration precision), Gmsh's curved order 2 with CAD
+projection 2.5 s). The gear of Yang et al. (2026) (z 104, m_n 7.35 mm, b 130 mm, loaded
+teeth 51..54): BENCH_YANG. Volume against the exact section area x b: BENCH_VOLUME. The
+flank compliances of the loaded tooth equal the loft's within 0.42 % (different meshes of
+one model; tests/test_fem_whole3d.py).
 """
 
 from __future__ import annotations
@@ -53,11 +63,12 @@ from pipeline.fem.mesh_settings import SectorSettings3D
 from pipeline.fem.outline2d import outline_pieces
 from pipeline.geometry.gear import GearSpec
 
-SPLINE_SPACING = 0.25
-"""Gmsh's splines pass through outline points about this far apart (in normal modules):
-the twist's cost grows fast with the points (3.7 s with all 10200 points of a z 30 gear,
-0.23 s with every fourth). The mesh does not inherit the splines' error: its boundary
-nodes are put on the exact surface."""
+SPLINE_SPACING = 0.75
+"""Gmsh's splines pass through outline points about this far apart (in flank cell sizes
+``size_flank``): the twist's cost grows fast with the points (3.7 s with all 10200 points
+of a z 30 gear, 0.05 s at this spacing). The mesh does not inherit the splines' error:
+its boundary nodes are put on the exact surface; Gmsh's vertices moved by at most 1.2 %
+of a flank cell getting there (z 30, refinement 1; 10 % at twice the spacing)."""
 
 EXACT_POINTS = 4
 """The exact surfaces the nodes are put on are swept splines through this many times the
@@ -83,7 +94,7 @@ def linear_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D
     :func:`pipeline.fem.curved_p2.curve_p2` puts the nodes on."""
     r_in, b, rate, pieces = loft_inputs(gear, settings, gear.teeth)
     with gmsh_session() as gmsh:
-        vol, groups = _swept_section(gmsh, pieces, r_in, b, rate, gear.module)
+        vol, groups = _swept_section(gmsh, pieces, r_in, b, rate, settings.size_flank)
         tooth_size_field(gmsh, settings, groups, gear.root_radius, extent=b)
         gmsh.option.setNumber("Mesh.LcIntegrationPrecision", SIZE_INTEGRATION_PRECISION)
         generate_linear_tets(gmsh)
@@ -92,12 +103,12 @@ def linear_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D
     return data, SweptOutline(exact, r_in, b, rate)
 
 
-def _swept_section(gmsh, pieces, r_in: float, b: float, rate: float, module: float
+def _swept_section(gmsh, pieces, r_in: float, b: float, rate: float, size_flank: float
                    ) -> tuple[int, dict[str, list[int]]]:
     """The section at z = 0 (turned by theta(0)) swept over ``b``: (volume tag, groups)."""
     geo = gmsh.model.geo
     rot = -0.5 * rate * b
-    spacing = SPLINE_SPACING * module
+    spacing = SPLINE_SPACING * size_flank
     c, s = math.cos(rot), math.sin(rot)
 
     def point(xy) -> int:

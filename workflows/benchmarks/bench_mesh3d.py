@@ -102,7 +102,7 @@ def _print(r: dict) -> None:
     print(f"{r['case']}: swept {s['total_s']:.2f} s (Gmsh {s['gmsh_linear_s']:.2f} s, "
           f"P2 nodes {s['p2_nodes_s']:.2f} s), {s['cells']} cells, {s['nodes']} nodes, "
           f"{s['boundary_mid_nodes_off_surface']} of {s['boundary_mid_nodes']} boundary mid "
-          f"nodes straight, volume {s['volume_rel_error']:+.1e}; "
+          f"nodes curved less, volume {s['volume_rel_error']:+.1e}; "
           f"lofted {o['total_s']:.2f} s, {o['cells']} cells, {o['nodes']} nodes, "
           f"volume {o['volume_rel_error']:+.1e}; x{r['speed_up']:.1f}")
 
