@@ -1,7 +1,8 @@
-"""What the lofted 3D models (sectors, :mod:`pipeline.fem.sector3d`; whole gears,
-:mod:`pipeline.fem.whole3d`) are built from: the hand of each helical half, the checked
-tooth count, bore radius, meshed width and twist rate, the outline pieces, and the
-curved P2 meshing options. Gmsh is passed in (the session lives in
+"""What the swept 3D models (sectors lofted in :mod:`pipeline.fem.sector3d`; whole gears
+twisted in :mod:`pipeline.fem.whole3d`) are built from: the hand of each helical half,
+the checked tooth count, bore radius, meshed width and twist rate, the outline pieces,
+and the meshing options (Gmsh's curved P2 for the sectors, linear tetrahedra for the
+whole gears, which place their own P2 nodes). Gmsh is passed in (the session lives in
 :mod:`pipeline.fem.gmsh_session`). Lengths in m, angles in rad.
 """
 

@@ -36,17 +36,21 @@ bore cylinder; the end faces are planes. A cell that curving would fold is curve
 (a few cells of the far teeth, whose cells are as large as the tooth; none on the loaded
 teeth).
 
-Measured (2 shared cores, one run, ``workflows/benchmarks/bench_mesh3d.py``). z 30,
-m_n 3 mm, beta 15 deg, b 12 mm, bore 30 mm, loaded teeth 13..16, refinement 1: 0.5 s
-for 9.6k cells / 18k nodes (sweep 0.06 s, Gmsh's 1D 0.07, 2D 0.07, 3D 0.13, outline
-splines 0.04, P2 nodes 0.1) against 5.5 s for 9.0k cells / 17k nodes with the
-OpenCASCADE loft it replaced (:mod:`pipeline.fem.whole3d_loft`, kept as the reference:
-wires 0.3 s, loft 0.6, bore cut 0.4, synchronise 0.5, 1D meshing 0.7-1.9 (the size
-fields at Gmsh's default integration precision), Gmsh's curved order 2 with CAD
-projection 2.5 s). The gear of Yang et al. (2026) (z 104, m_n 7.35 mm, b 130 mm, loaded
-teeth 51..54): BENCH_YANG. Volume against the exact section area x b: BENCH_VOLUME. The
-flank compliances of the loaded tooth equal the loft's within 0.42 % (different meshes of
-one model; tests/test_fem_whole3d.py).
+Measured (2 shared cores, ``workflows/benchmarks/bench_mesh3d.py``: both meshers side by
+side in one run, load average 4, so read the ratios). z 30, m_n 3 mm, beta 15 deg,
+b 12 mm, bore 30 mm, loaded teeth 13..16, refinement 1: 0.63 s for 9.6k cells / 18k
+nodes against 6.1 s for 9.0k cells / 17k nodes with the OpenCASCADE loft it replaced
+(:mod:`pipeline.fem.whole3d_loft`, kept as the reference). Profiled on a quieter machine,
+0.5 s: sweep 0.06 s, Gmsh's 1D 0.07, 2D 0.07, 3D 0.13, outline splines 0.04, P2 nodes
+0.1; the loft's 5.5 s were wires 0.3, loft 0.6, bore cut 0.4, synchronise 0.5, 1D 0.7-1.9
+(the size fields at Gmsh's default integration precision), curved order 2 with CAD
+projection 2.5, its optimisation 0.2. The gear of Yang et al. (2026) (z 104,
+m_n 7.35 mm, b 130 mm, loaded teeth 51..54): refinement 0.6, 32k cells, 2.2 s (Gmsh 2.0,
+P2 nodes 0.3) against 25 s; refinement 1, 58k cells, 6.1 s (Gmsh 5.6, most of it the 3D
+Delaunay meshing and its optimisation) against 63 s. Mesh volume against the exact
+section area x b: +8e-6 (z 30), +7e-4 and +3e-4 (Yang; the loft: +1.9e-3, +1.1e-3,
++1.1e-3). The flank compliances of a loaded tooth equal the loft's within 0.42 % (two
+meshes of one model; tests/test_fem_whole3d.py).
 """
 
 from __future__ import annotations
