@@ -280,13 +280,13 @@ def test_a_cell_that_would_fold_is_curved_less(push, kept):
     at the order-4 quadrature points (max L1 + L2 = 6/7) stays above MIN_DET_RATIO = 0.05
     for d < 0.277 h. So d = 0.1 h is kept whole; d = h folds, and so does h / 2 after one
     halving; h / 4 is kept (1 - 6/7 = 0.14)."""
-    from pipeline.fem.curved_p2 import MIN_DET_RATIO, _quadrature_points, folded_cells
+    from pipeline.fem.curved_p2 import MIN_DET_RATIO, assembly_points, folded_cells
     from pipeline.fem.gmsh_session import TetMeshData
     from pipeline.fem.sector3d import _check_cells
     from pipeline.fem.tetmesh import to_skfem
 
     h = 0.5
-    lam = _quadrature_points()[:2].sum(axis=0)
+    lam = assembly_points()[:2].sum(axis=0)
     assert lam.max() == pytest.approx(6 / 7, rel=1e-12)
     assert (1 - 4 * kept * push * lam.max() > MIN_DET_RATIO
             and (kept == 1.0 or 1 - 8 * kept * push * lam.max() <= MIN_DET_RATIO))
@@ -362,3 +362,23 @@ def test_a_single_loaded_tooth_is_the_only_fine_one():
     mids = np.unique(data.surfaces["right15"][3:])
     p = data.points[:, mids]
     assert np.abs(boundary.project(p, np.full(mids.size, g)) - p).max() < 1e-12
+
+
+def test_an_inverted_straight_cell_is_refused():
+    """A cell numbered clockwise (negative volume) cannot be mended by straightening: the
+    P2 builder says so instead of handing over a matrix that is not positive definite."""
+    from pipeline.fem.gmsh_session import TetMeshData
+
+    class Flat:
+        groups = ("face",)
+
+        def project(self, p, group):
+            return p
+
+        def midpoint(self, a, b, group):
+            return 0.5 * (a + b)
+
+    cell = TetMeshData(np.array([[0.0, 0, 1, 0], [0, 1, 0, 0], [0, 0, 0, 1]]),
+                       np.arange(4)[:, None], {"face": np.array([[0], [1], [2]])})
+    with pytest.raises(RuntimeError, match="fold even with straight edges"):
+        curve_p2(cell, Flat())

@@ -222,9 +222,9 @@ def curve_p2(data: TetMeshData, boundary: CurvedBoundary) -> TetMeshData:
                                        edge_owner[bent]) - straight[:, bent]
     cells = np.vstack([data.cells, n_v + tet_edge.T])
     share = (edge_owner >= 0).astype(float)  # of each edge's curving kept
+    check = np.flatnonzero((node_owner[data.cells] >= 0).any(axis=0))  # cells that moved
     for step in range(UNFOLD_STEPS + 1):
         points = np.hstack([vertices, straight + share * shift])
-        check = np.flatnonzero(share[tet_edge].any(axis=1))
         bad = check[folded_cells(points, cells[:, check])]
         if bad.size == 0:
             break
@@ -256,7 +256,7 @@ def _p2_gradients(X: np.ndarray) -> np.ndarray:
     return np.array(grads)
 
 
-def _quadrature_points() -> np.ndarray:
+def assembly_points() -> np.ndarray:
     """Reference points (3, nq) of the assembly's quadrature on curved P2 cells (order 4,
     :func:`pipeline.fem.elasticity.default_intorder`)."""
     from skfem.quadrature import get_quadrature
@@ -267,11 +267,12 @@ def _quadrature_points() -> np.ndarray:
 
 def folded_cells(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """(n_cells,) True where the P2 cell's det J falls to :data:`MIN_DET_RATIO` of its
-    straight (vertex) cell's, or changes sign, at a quadrature point of the assembly.
+    straight (vertex) cell's, or changes sign, at a quadrature point of the assembly, or
+    where the straight cell itself is inverted (negative volume).
 
     ``points`` (3, n) in m, ``cells`` (10, n_cells) in MeshTet2 order.
     """
-    dN = _p2_gradients(_quadrature_points())
+    dN = _p2_gradients(assembly_points())
     J = np.einsum("inc,njq->ijcq", points[:, cells], dN)  # (3, 3, nc, nq)
     det = (J[0, 0] * (J[1, 1] * J[2, 2] - J[1, 2] * J[2, 1])
            - J[0, 1] * (J[1, 0] * J[2, 2] - J[1, 2] * J[2, 0])
@@ -279,4 +280,4 @@ def folded_cells(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     v = points[:, cells[:4]]
     lin = np.einsum("ic,ic->c", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0], axis=0),
                     v[:, 3] - v[:, 0])
-    return (det / lin[:, None]).min(axis=1) <= MIN_DET_RATIO
+    return (lin <= 0.0) | ((det / lin[:, None]).min(axis=1) <= MIN_DET_RATIO)

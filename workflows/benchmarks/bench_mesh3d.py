@@ -8,9 +8,10 @@ loaded teeth 51..54) at refinements 0.6 and 1. For each: the swept mesher's time
 into Gmsh (sweep, size field, linear tetrahedra) and the P2 node placement
 (:func:`pipeline.fem.curved_p2.curve_p2`), the loft's time
 (:func:`pipeline.fem.whole3d_loft.build_lofted_whole_gear_3d`), cells and nodes of both,
-the cells kept straight, and both mesh volumes against the exact one (the section's
-polyline area times b). The machine is shared: compare the two columns of one run.
-Prints the figures and writes results/benchmarks/mesh3d.json.
+the boundary mid-edge nodes curved less (so as not to fold a cell), both mesh volumes
+against the exact one (the section's polyline area times b) and the shape of the
+cells (mean-ratio quality of their vertices). The machine is shared: compare the two
+columns of one run. Prints the figures and writes results/benchmarks/mesh3d.json.
 
     python workflows/benchmarks/bench_mesh3d.py
 """
@@ -59,6 +60,18 @@ def _volume_error(data: TetMeshData, gear: GearSpec, settings: SectorSettings3D)
     return float(volume / (exact * meshed_width(gear)) - 1.0)
 
 
+def cell_quality(data: TetMeshData) -> tuple[float, float]:
+    """Smallest and 1st-percentile mean-ratio quality 12 (3 V)^(2/3) / sum(l^2) of the
+    straight cells (their vertices; 1 for the regular tetrahedron, 0 for a flat one)."""
+    v = data.points[:, data.cells[:4]]
+    vol = np.abs(np.einsum("ic,ic->c", np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0], axis=0),
+                           v[:, 3] - v[:, 0])) / 6
+    l2 = sum(np.sum((v[:, i] - v[:, j]) ** 2, axis=0)
+             for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)))
+    q = 12 * (3 * vol) ** (2 / 3) / l2
+    return float(q.min()), float(np.percentile(q, 1))
+
+
 def off_surface_nodes(data: TetMeshData, boundary: SweptOutline) -> tuple[int, int]:
     """Boundary mid-edge nodes of the curved groups, and how many of them are off their
     exact surface (by more than 1e-9 m): those of cells curved less so as not to fold."""
@@ -74,7 +87,7 @@ def off_surface_nodes(data: TetMeshData, boundary: SweptOutline) -> tuple[int, i
 
 def bench_case(name: str, gear: GearSpec, loaded: tuple[int, ...], refinement: float
                ) -> dict:
-    """Both meshers on ``gear``: times (s), sizes, straight boundary edges, volume errors."""
+    """Both meshers on ``gear``: times (s), sizes, nodes curved less, volumes, quality."""
     settings = SectorSettings3D.whole_gear(gear, loaded, refinement)
     t0 = time.perf_counter()
     linear, boundary = linear_whole_gear_mesh_3d(gear, settings)
@@ -90,10 +103,12 @@ def bench_case(name: str, gear: GearSpec, loaded: tuple[int, ...], refinement: f
                       "cells": int(swept.cells.shape[1]), "nodes": int(swept.points.shape[1]),
                       "boundary_mid_nodes": curved_nodes,
                       "boundary_mid_nodes_off_surface": off,
-                      "volume_rel_error": _volume_error(swept, gear, settings)},
+                      "volume_rel_error": _volume_error(swept, gear, settings),
+                      "quality_min_p1": cell_quality(swept)},
             "lofted": {"total_s": t3 - t2, "cells": int(lofted.cells.shape[1]),
                        "nodes": int(lofted.points.shape[1]),
-                       "volume_rel_error": _volume_error(lofted, gear, settings)},
+                       "volume_rel_error": _volume_error(lofted, gear, settings),
+                       "quality_min_p1": cell_quality(lofted)},
             "speed_up": (t3 - t2) / (t2 - t0)}
 
 
@@ -102,9 +117,11 @@ def _print(r: dict) -> None:
     print(f"{r['case']}: swept {s['total_s']:.2f} s (Gmsh {s['gmsh_linear_s']:.2f} s, "
           f"P2 nodes {s['p2_nodes_s']:.2f} s), {s['cells']} cells, {s['nodes']} nodes, "
           f"{s['boundary_mid_nodes_off_surface']} of {s['boundary_mid_nodes']} boundary mid "
-          f"nodes curved less, volume {s['volume_rel_error']:+.1e}; "
+          f"nodes curved less, volume {s['volume_rel_error']:+.1e}, quality min / 1 % "
+          f"{s['quality_min_p1'][0]:.2f} / {s['quality_min_p1'][1]:.2f}; "
           f"lofted {o['total_s']:.2f} s, {o['cells']} cells, {o['nodes']} nodes, "
-          f"volume {o['volume_rel_error']:+.1e}; x{r['speed_up']:.1f}")
+          f"volume {o['volume_rel_error']:+.1e}, quality {o['quality_min_p1'][0]:.2f} / "
+          f"{o['quality_min_p1'][1]:.2f}; x{r['speed_up']:.1f}")
 
 
 def main() -> dict:
