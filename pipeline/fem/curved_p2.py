@@ -18,7 +18,7 @@ check is det J at the quadrature points of the assembly of curved P2 cells (orde
 ``pipeline.fem.sector3d._check_cells``), required above :data:`MIN_DET_RATIO` of the
 straight cell's. The curving of a folded cell's edges is halved up to
 :data:`UNFOLD_STEPS` - 1 times, then dropped (the cell kept straight). Measured on the
-whole gears of :mod:`pipeline.fem.whole3d`: a few cells of the coarse far teeth (13 of
+whole gears of :mod:`pipeline.fem.whole3d`: a few cells of the coarse far teeth (33 of
 6100 boundary mid-edge nodes of a z 30 gear), none on the loaded teeth.
 
 The exact surface of a swept outline. A gear body swept along its helix has the tooth
