@@ -1,7 +1,8 @@
-"""What the lofted 3D models (sectors, :mod:`pipeline.fem.sector3d`; whole gears,
-:mod:`pipeline.fem.whole3d`) are built from: the hand of each helical half, the checked
-tooth count, bore radius, meshed width and twist rate, the outline pieces, and the
-curved P2 meshing options. Gmsh is passed in (the session lives in
+"""What the swept 3D models (sectors lofted in :mod:`pipeline.fem.sector3d`; whole gears
+twisted in :mod:`pipeline.fem.whole3d`) are built from: the hand of each helical half,
+the checked tooth count, bore radius, meshed width and twist rate, the outline pieces,
+and the meshing options (Gmsh's curved P2 for the sectors, linear tetrahedra for the
+whole gears, which place their own P2 nodes). Gmsh is passed in (the session lives in
 :mod:`pipeline.fem.gmsh_session`). Lengths in m, angles in rad.
 """
 
@@ -30,10 +31,16 @@ def generate_curved_tets(gmsh) -> None:
     """
     gmsh.option.setNumber("Mesh.ElementOrder", 2)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
+    generate_linear_tets(gmsh)
+
+
+def generate_linear_tets(gmsh) -> None:
+    """Mesh the synchronised model with tetrahedra (Frontal-Delaunay surfaces, Delaunay
+    volume, Gmsh's quality optimisation); linear unless ``Mesh.ElementOrder`` was set."""
     gmsh.option.setNumber("Mesh.Algorithm", 6)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)
     gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
     gmsh.model.mesh.generate(3)
 
 
