@@ -53,6 +53,7 @@ CLASHES = [
     ("herringbone_groove_study", "fit_grooves"),
     ("tip_relief_study", "gearpipe"),
     ("modification_catalogue", "run"),
+    ("fe3d_convergence", "run"),
 ]
 
 

@@ -6,7 +6,7 @@ cycle, at the default ``[fe]`` grid, with
 
 * the default graded whole-gear model (one loaded tooth and its neighbours at the flank
   size ``m_n / (3 refinement)``, :mod:`pipeline.contact.fe3d_table`) at refinements
-  0.6 .. 2 (flank elements 5 .. 1.5 mm);
+  0.6, 0.8, 1 (coarse default) or 0.6 .. 2 (``--full``: flank elements 1.67 .. 0.5 mm);
 * the same with every tooth at the flank size (``[fe] mesh = "uniform"``, the reference of
   the grading) and the former model (every tabulated tooth loaded and fine) at the default
   refinement 1.
@@ -14,10 +14,11 @@ cycle, at the default ``[fe]`` grid, with
 For each of the tangent mesh stiffness's mean, minimum and maximum and the TE p-p it fits
 ``q(h) = q_inf + C h^p`` through the three finest graded levels (``h`` the flank element
 size) and reports the rate ``p``, the extrapolated ``q_inf`` and each case's deviation from
-it. Writes ``results/fe3d_convergence/`` (``convergence.csv`` / ``.json`` / ``.png``).
-Several minutes on 2 cores (refinement 2: 120k unknowns).
+it. Writes ``convergence.csv`` / ``.json`` / ``.png`` and ``run.json`` to
+``results/fe3d_convergence/workflow/`` (or ``--out``). Several minutes on 2 cores
+(``--full``: refinement 2 is a 120k-unknown model; the uniform reference 250k).
 
-    python workflows/fe3d_convergence.py [--out DIR] [--refinements 0.6,0.8,1,1.4,2]
+    python workflows/fe3d_convergence.py [--full] [--out DIR]
 """
 
 from __future__ import annotations
@@ -34,18 +35,24 @@ import numpy as np
 from scipy.optimize import brentq
 
 from pipeline.cache.folder import Cache
+from pipeline.cli import run_workflow
+from pipeline.cli.common import workflow_dir
 from pipeline.contact import FE3DCompliance, FE3DSettings
 from pipeline.contact.fe3d_source import touching_pairs
 from pipeline.contact.fe3d_table import flank_table
 from pipeline.contact.ltca import loaded_mesh_cycle
 from pipeline.geometry import GearPair, GearSpec
 from pipeline.io import write_csv, write_json
+from pipeline.output_folder import staged_output
+from pipeline.provenance import write_run_record
 
 KPIS = (("k_mean", "mesh stiffness mean", "N/um", 1e-6),
         ("k_min", "mesh stiffness min", "N/um", 1e-6),
         ("k_max", "mesh stiffness max", "N/um", 1e-6),
         ("te_pp", "TE peak to peak", "um", 1e6))
 LOAD_N = 4000.0
+COARSE = (0.6, 0.8, 1.0)
+FULL = (0.6, 0.8, 1.0, 1.4, 2.0)
 
 
 def bench_pair() -> GearPair:
@@ -94,12 +101,8 @@ def fit(h: np.ndarray, q: np.ndarray) -> tuple[float, float]:
     return p, float(q[2] - c * h[2] ** p)
 
 
-def main(argv: list[str] | None = None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--out", type=Path, default=Path("results/fe3d_convergence"))
-    ap.add_argument("--refinements", default="0.6,0.8,1,1.4,2")
-    args = ap.parse_args(argv)
-    levels = sorted(float(r) for r in args.refinements.split(","))
+def run(out: Path, levels: tuple[float, ...]) -> dict:
+    """The study at refinements ``levels`` (ascending), written to ``out``."""
     pair = bench_pair()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -119,18 +122,32 @@ def main(argv: list[str] | None = None) -> dict:
         limits[key] = {"rate": p, "limit": q_inf}
         for r in rows:
             r[f"{key}_vs_limit_percent"] = 100 * (r[key] / q_inf - 1)
-    out = {"pair": "helical z 30/30, m_n 3 mm, beta 15 deg, b 12 mm (bench_fe3d)",
-           "load_N": LOAD_N, "cases": rows, "fit": limits}
-    args.out.mkdir(parents=True, exist_ok=True)
-    write_json(args.out / "convergence.json", out)
-    write_csv(args.out / "convergence.csv", _csv_rows(rows))
-    _figure(rows, limits, args.out / "convergence.png")
+    summary = {"pair": "helical z 30/30, m_n 3 mm, beta 15 deg, b 12 mm (bench_fe3d)",
+               "load_N": LOAD_N, "cases": rows, "fit": limits}
+    files = [write_json(out / "convergence.json", summary),
+             write_csv(out / "convergence.csv", _csv_rows(rows))]
+    _figure(rows, limits, out / "convergence.png")
+    write_run_record(out, {"refinements": list(levels), "load_N": LOAD_N,
+                           "settings": "FE3DSettings() defaults"},
+                     [*files, out / "convergence.png"], "workflows/fe3d_convergence.py")
+    return summary
+
+
+def main(argv: list[str] | None = None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--full", action="store_true", help=f"refinements {FULL}, not {COARSE}")
+    ap.add_argument("--out", type=Path, default=None, help="default: results/<script>/workflow")
+    args = ap.parse_args(argv)
+    args.out = workflow_dir(__file__, args.out)
+    with staged_output(args.out) as out:
+        summary = run(out, FULL if args.full else COARSE)
     for key, *_ in KPIS:
-        f = limits[key]
-        print(f"{key}: rate {f['rate']:.2f}, limit {f['limit']:.6g}; "
-              + ", ".join(f"{r['model']} {r['refinement']:g} {r[key + '_vs_limit_percent']:+.2f} %"
-                          for r in rows))
-    return out
+        f = summary["fit"][key]
+        print(f"{key}: rate {f['rate']:.2f}, limit {f['limit']:.6g}; " + ", ".join(
+            f"{r['model']} {r['refinement']:g} {r[key + '_vs_limit_percent']:+.2f} %"
+            for r in summary["cases"]))
+    print(f"written to {args.out}/")
+    return summary
 
 
 def _csv_rows(rows: list[dict]) -> dict[str, list]:
@@ -176,4 +193,4 @@ def _figure(rows: list[dict], limits: dict, path: Path) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run_workflow(__file__, main))
