@@ -159,10 +159,26 @@ def _compare(context: Context, run: str) -> Outcome:
              " contact)", "position in the mesh cycle (s0 - s_start) / p_b [-]",
              f"{what} [{unit}]",
              tuple(s for t, T in enumerate(torques) for s in (
-                 Series(f"CalculiX, {T:g} N m", x, ref[t] * scale, "o"),
-                 Series(f"gearpipe FE 2D, {T:g} N m", x, got[t] * scale, "-x"))))
+                 Series(f"CalculiX, {T:g} N m", x, ref[t] * scale, f"C{t}o"),
+                 Series(f"gearpipe FE 2D, {T:g} N m", x, got[t] * scale, f"C{t}-x"))))
         for what, unit, ref, got, scale in (("loaded TE", "um", te_r, te_g, 1e6),
                                             ("mesh stiffness", "N/um", k_r, k_g, 1e-6)))
+    diff = tuple(Series(f"{what}, {T:g} N m", x, 100 * (got[t] / ref[t] - 1.0), style)
+                 for what, ref, got, style in (("TE", te_r, te_g, "-o"), ("k", k_r, k_g, "--x"))
+                 for t, T in enumerate(torques))
+    bands = {"TE and k": TOLERANCES["te"]} if run == "full" else \
+        {"TE": TOLERANCES["te"], "k": TOLERANCES["k_nominal"]}
+    for name, tol in bands.items():
+        diff += (Series(f"tolerance of {name}, +-{100 * tol:g} %", (0.0, 1.0, np.nan, 0.0, 1.0),
+                        (100 * tol, 100 * tol, np.nan, -100 * tol, -100 * tol),
+                        "k:" if name != "k" else "k-."),)
+    t_c, i_c = np.nonzero(closing) if run == "full" else ((), ())
+    if len(i_c):
+        diff += (Series(f"k where a tip corner closes (+-{100 * TOLERANCES['k_closing']:g} %)",
+                        x[i_c], 100 * (k_g[t_c, i_c] / k_r[t_c, i_c] - 1.0), "ks"),)
+    plots += (Plot("gearpipe / CalculiX - 1 at every position and torque",
+                   "position in the mesh cycle (s0 - s_start) / p_b [-]", "difference [%]",
+                   diff),)
     prov = reference["provenance"]
     inputs = (("pair", "demo pair: z 50/50, m 3 mm, 20 deg, b 20 mm, bores 42 mm, "
                        "frictionless"),

@@ -97,10 +97,12 @@ def case_weber_half_plane(context: Context) -> Outcome:
         quantities.append(Quantity(f"(model - exact) (h/a)^2 at h/a = {r:g}", "-", -coef,
                                    e * r**2, "relative", 1e-3,
                                    "the O((a/h)^4) term: < 0.1 % from h/a = 20 on"))
-    plot = Plot("Weber's approach against the half-plane (Flamant) solution",
-                "depth h / half-width a [-]", "approach of one body [um]",
-                (Series("Flamant half-plane, quadrature", ratios, np.array(exact) * 1e6),
-                 Series("Weber-Banaschek (model)", ratios, np.array(model) * 1e6, "--x")))
+    plot = Plot("Weber's approach minus the half-plane (Flamant) solution",
+                "depth h / half-width a [-]",
+                "|model - exact| / (2 w (1 - nu^2) / (pi E)) [-]",
+                (Series("Weber-Banaschek against the quadrature", ratios, np.abs(errs)),
+                 Series(f"{coef:.4f} (a/h)^2 (expansion)", ratios, coef / ratios**2, "--")),
+                loglog=True)
     inputs = (("load per length w", f"{w:g} N/m"), ("radius of each body", f"{2 * R * 1e3:g} "
                                                     "mm"),
               ("E, nu", "207 GPa, 0.3"), ("h / a", ", ".join(f"{r:g}" for r in ratios)))
@@ -160,7 +162,7 @@ def case_harris_light_load(context: Context) -> Outcome:
     c, c0, load, n = (HARRIS[k] for k in ("relief_m", "c0_N_per_m2", "load_N", "positions"))
     elastic = load / (c0 * pair.face_width)
     quantities, series = [], []
-    for share in HARRIS["length_shares"]:
+    for i, share in enumerate(HARRIS["length_shares"]):
         length = share * d
         relief = GearModification(profile=ProfileModification(tip_relief=c,
                                                                tip_relief_length=length))
@@ -174,8 +176,10 @@ def case_harris_light_load(context: Context) -> Outcome:
                                    f"the sampling of {n} positions ({step * 1e9:.2f} nm: the "
                                    f"peak is a tent of slope C/L) plus twice the elastic part "
                                    f"P / (c0 b) ({elastic * 1e9:.2f} nm)", UM))
-        series.append(Series(f"L = {share:g} D", (cyc.s0 - pair.s_start) / pair.base_pitch,
-                             cyc.transmission_error * 1e6, "-"))
+        x = (cyc.s0 - pair.s_start) / pair.base_pitch
+        series.append(Series(f"L = {share:g} D", x, cyc.transmission_error * 1e6, f"C{i}-"))
+        series.append(Series(f"Harris p-p, L = {share:g} D", (0.0, 1.0),
+                             (harris * 1e6, harris * 1e6), f"C{i}:"))
     plot = Plot("Light-load TE with linear tip relief C = 10 um on both gears",
                 "position in the mesh cycle (s0 - s_start) / p_b [-]",
                 "transmission error [um]", tuple(series))

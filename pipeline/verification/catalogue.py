@@ -86,14 +86,14 @@ CATALOGUE: tuple[Case, ...] = (
     Case("cantilever_l2_convergence", "L2 convergence rate of the P2 cantilever against "
          "its a-priori order", "convergence", "fast",
          cases_elasticity.case_cantilever_convergence),
-    Case("fe2d_tooth_compliance_convergence", "2D FE single-tooth compliance over three "
+    Case("fe2d_tooth_compliance_convergence", "2D FE single-tooth compliance over four "
          "mesh refinements: change and observed order", "convergence", "fast",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence),
     Case("shaft_torsion_frequency_convergence", "beam shaft torsional frequency: O(h^2) "
          "convergence", "convergence", "fast",
          cases_shaft.case_torsional_frequency_convergence),
-    Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over four "
-         "mesh refinements (to 82k nodes)", "convergence", "full",
+    Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
+         "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),
 )
 """Every case, in report order."""

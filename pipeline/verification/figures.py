@@ -17,7 +17,7 @@ def plot_case(plot: Plot, ax: Axes | None = None) -> Axes:
     """Draw ``plot`` into ``ax`` (a new figure without one): every series with its label,
     the axis labels with their units, log-log for a convergence study."""
     if ax is None:
-        ax = new_figure((7.0, 4.0), layout="constrained").add_subplot()
+        ax = new_figure((9.0, 4.0), layout="constrained").add_subplot()
     for s in plot.series:
         ax.plot(s.x, s.y, s.style, label=s.label, markersize=4)
     if plot.loglog:
@@ -27,8 +27,8 @@ def plot_case(plot: Plot, ax: Axes | None = None) -> Axes:
     ax.set_ylabel(plot.ylabel)
     ax.set_title(plot.title, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    if len(plot.series) > 1:
-        ax.legend(fontsize=8)
+    if len(plot.series) > 1:  # beside the axes: never over the curves
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax
 
 

@@ -69,7 +69,7 @@ def _quantities(quantities: tuple[Quantity, ...], failed: bool) -> str:
     table = ("<table><tr><th>quantity</th><th>reference</th><th>gearpipe</th><th>error</th>"
              "<th>tolerance</th><th>status</th><th>why this tolerance</th></tr>"
              f"{rows}</table>")
-    if len(quantities) <= 12:
+    if len(quantities) <= 40:
         return table
     bad = sum(not q.passed for q in quantities)
     open_ = " open" if failed else ""
