@@ -58,7 +58,7 @@ def test_independent_fe_case_fails_on_perturbed_reference_data(tmp_path):
     doc["runs"]["full"][5]["torques"][1]["transmission_error_m"] *= 1.02
     (tmp_path / "demo_pair_reference.json").write_text(json.dumps(doc))
     r = _run("calculix_demo_pair", Context(reference_dir=tmp_path))
-    assert r.status == "fail" and _failed(r) == ["loaded TE, 340 N m, position 5"]
+    assert r.status == "fail" and _failed(r) == ["loaded TE, 340 N m, position 5 of 24"]
     missing = _run("calculix_demo_pair", Context(reference_dir=tmp_path / "none"))
     assert missing.status == "error"
     assert missing.error.startswith("FileNotFoundError: the CalculiX reference data")

@@ -83,6 +83,12 @@ CATALOGUE: tuple[Case, ...] = (
     Case("calculix_demo_pair_nominal", "loaded contact confined to the path of contact "
          "against CalculiX's nominal-path run", "independent_fe", "fast",
          cases_calculix.case_calculix_demo_pair_nominal),
+    Case("calculix_rounded_tips", "loaded contact of the demo pair with tips rounded by "
+         "0.3 mm against CalculiX meshing the same rounding", "independent_fe", "fast",
+         cases_calculix.case_calculix_rounded_tips),
+    Case("calculix_high_contact_ratio", "loaded contact of a high-contact-ratio spur pair "
+         "(eps_alpha 2.06) against CalculiX", "independent_fe", "fast",
+         cases_calculix.case_calculix_high_contact_ratio),
     Case("cantilever_l2_convergence", "L2 convergence rate of the P2 cantilever against "
          "its a-priori order", "convergence", "fast",
          cases_elasticity.case_cantilever_convergence),
