@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pipeline.validation import InputError
 from pipeline.verification import (
     cases_calculix,
+    cases_calculix_rerun,
     cases_contact,
     cases_dynamics,
     cases_elasticity,
@@ -83,6 +84,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("calculix_demo_pair_nominal", "loaded contact confined to the path of contact "
          "against CalculiX's nominal-path run", "independent_fe", "fast",
          cases_calculix.case_calculix_demo_pair_nominal),
+    Case("calculix_corner_torques", "driving torque at CalculiX's own rotations where a tip "
+         "corner touches (free of the load-step secant)", "independent_fe", "fast",
+         cases_calculix.case_calculix_corner_torques),
     Case("calculix_rounded_tips", "loaded contact of the demo pair with tips rounded by "
          "0.3 mm against CalculiX meshing the same rounding", "independent_fe", "fast",
          cases_calculix.case_calculix_rounded_tips),
@@ -98,6 +102,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("shaft_torsion_frequency_convergence", "beam shaft torsional frequency: O(h^2) "
          "convergence", "convergence", "fast",
          cases_shaft.case_torsional_frequency_convergence),
+    Case("calculix_rerun", "CalculiX rerun at two committed coarse-mesh positions "
+         "reproduces the committed torques (needs ccx)", "independent_fe", "full",
+         cases_calculix_rerun.case_calculix_rerun),
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),
