@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from pipeline.verification.context import Context
-from pipeline.verification.model import Outcome, Quantity
+from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
 
 LIN_PARKER_1999_TABLE_2 = {
     3: {"rotational": (1475.7, 1930.3, 2658.3, 7462.8, 11775.3),
@@ -126,3 +126,52 @@ def case_piecewise_monodromy(context: Context) -> Outcome:
               ("inertia, period", "1 kg m^2, 1 s"), ("samples", str(n)))
     return Outcome("Meissner-type equation: monodromy = product of closed-form maps "
                    "(Nayfeh and Mook 1979, sec. 5.2)", inputs, tuple(quantities))
+
+
+MATHIEU = {"a2": 1.0, "eps": 0.2, "samples": 4096, "segments": (32, 64, 128, 256),
+           "reference_segments": 4096}
+"""x'' + w0^2 (1 + eps cos 2 pi t) x = 0, period 1 s, (2 w0 / 2 pi)^2 = a2 (the centre of
+the principal instability tongue)."""
+
+
+def case_mathieu_convergence(context: Context) -> Outcome:
+    """The largest Floquet multiplier of the Mathieu equation by the segment-mean
+    propagator: its error falls as h^2."""
+    from pipeline.dynamics.assembly import Assembly
+    from pipeline.dynamics.bodies import Body
+    from pipeline.dynamics.couplings import GearMesh
+    from pipeline.dynamics.integrate import floquet_multipliers
+    from pipeline.signals import PeriodicSignal
+
+    m = MATHIEU
+    w0 = math.pi * math.sqrt(m["a2"])
+    tau = np.arange(m["samples"]) / m["samples"]
+    sig = PeriodicSignal(w0**2 * (1 + m["eps"] * np.cos(2 * np.pi * tau)))
+    body = Body("b", inertia=1.0, dofs=("theta",))
+    system = Assembly([body], [GearMesh("k", {("b", "theta"): 1.0}, sig)],
+                      period=1.0).assemble()
+    ref = float(np.abs(floquet_multipliers(system, segments=m["reference_segments"])).max())
+    segs = np.array(m["segments"])
+    vals = [float(np.abs(floquet_multipliers(system, segments=int(s))).max()) for s in segs]
+    errs = np.abs(np.array(vals) - ref)
+    h = 1.0 / segs
+    rate = float(np.polyfit(np.log(h), np.log(errs), 1)[0])
+    why = ("the segment-mean propagator is second-order accurate in the segment length "
+           "(midpoint rule of the stiffness); 0.15 for the fit against a 4096-segment "
+           "reference")
+    conv = Convergence("segment length h [s]", tuple(h), "largest |Floquet multiplier| [-]",
+                       tuple(vals), tuple(errs), "|mu_h - mu_4096| [-]", rate, 2.0, why)
+    q = (Quantity("fitted convergence rate", "-", 2.0, rate, "absolute", 0.15, why),
+         Quantity("largest multiplier > 1 (inside the tongue: unstable)", "-", 1.0, ref,
+                  "lower_bound", 0.0, "a2 = 1 lies inside the principal tongue "
+                  "1 +- eps / 2 (Nayfeh and Mook 1979)"))
+    plot = Plot("Mathieu equation: error of the largest Floquet multiplier",
+                "segment length h [s]", "|mu_h - mu_4096| [-]",
+                (Series("segment-mean propagator", h, errs),
+                 Series("h^2", h, errs[0] * (h / h[0]) ** 2, "--")), loglog=True)
+    inputs = (("equation", "x'' + w0^2 (1 + eps cos 2 pi t) x = 0, period 1 s"),
+              ("a2 = (2 w0 / 2 pi)^2, eps", f"{m['a2']:g}, {m['eps']:g}"),
+              ("segments", ", ".join(str(s) for s in segs) + f" (reference "
+                                                             f"{m['reference_segments']})"))
+    return Outcome("Mathieu equation, principal tongue (Nayfeh and Mook 1979, sec. 5.2); "
+                   "convergence of the propagator", inputs, q, conv, (plot,))

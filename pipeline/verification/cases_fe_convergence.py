@@ -17,7 +17,7 @@ import numpy as np
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.verification.context import Context
-from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
+from pipeline.verification.model import PERCENT, Convergence, Outcome, Plot, Quantity, Series
 
 SECTOR_GEAR = GearSpec(teeth=30, module=3e-3, pressure_angle=math.radians(20),
                        face_width=0.02, bore_radius=0.03)
@@ -65,7 +65,7 @@ def case_fe2d_tooth_compliance_convergence(
     q = (Quantity("relative change between the two finest levels", "-", 0.0,
                   float(changes[-1]), "upper_bound", LAST_CHANGE,
                   "the tables' discretisation error must stay far below the 5-20 % the FE "
-                  "corrects the analytical compliance by; the tests hold 2 %"),
+                  "corrects the analytical compliance by; the tests hold 2 %", PERCENT),
          Quantity("observed order of convergence", "-", MIN_ORDER, order, "lower_bound", 0.0,
                   why))
     plot = Plot("2D FE single-tooth compliance at the pitch point (z 30, 3-tooth sector)",

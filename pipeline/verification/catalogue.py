@@ -15,6 +15,7 @@ from pipeline.verification import (
     cases_calculix,
     cases_calculix_rerun,
     cases_contact,
+    cases_contact_convergence,
     cases_dynamics,
     cases_elasticity,
     cases_fe_convergence,
@@ -96,6 +97,12 @@ CATALOGUE: tuple[Case, ...] = (
     Case("cantilever_l2_convergence", "L2 convergence rate of the P2 cantilever against "
          "its a-priori order", "convergence", "fast",
          cases_elasticity.case_cantilever_convergence),
+    Case("calculix_reference_convergence", "the CalculiX reference's loaded TE over its "
+         "contact mesh (0.2 / 0.1 / 0.05 mm)", "convergence", "fast",
+         cases_contact_convergence.case_reference_mesh_convergence),
+    Case("contact_table_convergence", "loaded TE of the demo pair with the FE tables "
+         "refined twice as fine", "convergence", "fast",
+         cases_contact_convergence.case_contact_table_convergence),
     Case("fe2d_tooth_compliance_convergence", "2D FE single-tooth compliance over four "
          "mesh refinements: change and observed order", "convergence", "fast",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence),
@@ -105,6 +112,15 @@ CATALOGUE: tuple[Case, ...] = (
     Case("calculix_rerun", "CalculiX rerun at two committed coarse-mesh positions "
          "reproduces the committed torques (needs ccx)", "independent_fe", "full",
          cases_calculix_rerun.case_calculix_rerun),
+    Case("mathieu_convergence", "Floquet multiplier of the Mathieu equation: O(h^2) "
+         "convergence of the propagator", "convergence", "fast",
+         cases_dynamics.case_mathieu_convergence),
+    Case("shaft_fe3d_convergence", "3D shaft superelement: central flexibility over five "
+         "meshes against Timoshenko, with its rate", "convergence", "full",
+         cases_shaft.case_shaft_fe3d_convergence),
+    Case("contact_table_convergence_fine", "loaded TE of the demo pair over FE table "
+         "refinements 1, 2, 4: the observed order", "convergence", "full",
+         cases_contact_convergence.case_contact_table_convergence_fine),
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),

@@ -323,3 +323,5 @@ N_PER_MM2 = ("N/mm^2", 1e-6)
 """Display of a stress in Pa as N/mm^2."""
 N_PER_MM_UM = ("N/(mm um)", 1e-9)
 """Display of a stiffness per face width in N/m^2 as N/(mm um) (ISO 6336-1)."""
+PERCENT = ("%", 100.0)
+"""Display of a fraction (a relative change) in %."""
