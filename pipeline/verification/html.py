@@ -7,6 +7,7 @@ opens offline and prints to PDF)."""
 from __future__ import annotations
 
 import base64
+import math
 from html import escape
 
 from pipeline.verification.figures import png_bytes
@@ -81,8 +82,10 @@ def _convergence(c: Convergence) -> str:
     rows = "".join(f'<tr><td class="num">{h:.4g}</td><td class="num">{v:.8g}</td>'
                    f'<td class="num">{e:.3g}</td></tr>'
                    for h, v, e in zip(c.levels, c.values, c.errors, strict=True))
-    return (f"<p>Measured rate <b>{c.rate:.3f}</b>; expected {c.expected_rate:g}: "
-            f"{escape(c.rate_reason)}.</p>"
+    measured = f"<b>{c.rate:.3f}</b>" if math.isfinite(c.rate) else "not formed (two levels)"
+    expected = f"expected {c.expected_rate:g}" if math.isfinite(c.expected_rate) else \
+        "no a-priori rate"
+    return (f"<p>Measured rate {measured}; {expected}: {escape(c.rate_reason)}.</p>"
             f"<table><tr><th>{escape(c.level_name)}</th><th>{escape(c.quantity)}</th>"
             f"<th>{escape(c.error_name)}</th></tr>{rows}</table>")
 

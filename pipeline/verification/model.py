@@ -263,7 +263,8 @@ class VerificationRun:
             cases.append({"id": r.id, "kind": r.kind, "tier": r.tier, "status": r.status,
                           "seconds": r.seconds, "error": r.error,
                           "worst": None if q is None else {
-                              "quantity": q.name, "error": q.error,
+                              "quantity": q.name,
+                              "error": q.error if math.isfinite(q.error) else None,
                               "error_kind": q.error_kind, "tolerance": q.tolerance}})
         return {"cases": len(self.results), **self.counts, "passed": self.passed,
                 "seconds": self.seconds, "results": cases}

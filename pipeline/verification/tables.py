@@ -4,6 +4,7 @@ reference, value and (absolute) error and tolerance, a relative one is a fractio
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from pipeline.verification.model import CaseResult, Quantity, VerificationRun
@@ -36,10 +37,16 @@ def quantity_rows(run: VerificationRun) -> dict[str, list[Any]]:
     return {name: [row[i] for row in rows] for i, name in enumerate(QUANTITY_COLUMNS)}
 
 
+def _json_number(x: float) -> float | None:
+    """``x``, or ``None`` (JSON null) for NaN: JSON has no NaN."""
+    return None if isinstance(x, float) and math.isnan(x) else x
+
+
 def quantity_document(q: Quantity) -> dict[str, Any]:
     unit, factor = q.display or (q.unit, 1.0)
     return {"name": q.name, "unit": q.unit, "reference": q.reference, "value": q.value,
-            "error_kind": q.error_kind, "error": q.error, "tolerance": q.tolerance,
+            "error_kind": q.error_kind, "error": _json_number(q.error),
+            "tolerance": q.tolerance,
             "passed": q.passed, "tolerance_reason": q.reason,
             "display_unit": unit, "display_factor": factor}
 
@@ -57,11 +64,14 @@ def case_document(r: CaseResult) -> dict[str, Any]:
     if c is not None:
         doc["convergence"] = {"level_name": c.level_name, "levels": list(c.levels),
                               "quantity": c.quantity, "values": list(c.values),
-                              "error_name": c.error_name, "errors": list(c.errors),
-                              "rate": c.rate, "expected_rate": c.expected_rate,
+                              "error_name": c.error_name,
+                              "errors": [_json_number(e) for e in c.errors],
+                              "rate": _json_number(c.rate),
+                              "expected_rate": _json_number(c.expected_rate),
                               "rate_reason": c.rate_reason}
     doc["plots"] = [{"title": p.title, "xlabel": p.xlabel, "ylabel": p.ylabel,
-                     "series": [{"label": s.label, "x": list(s.x), "y": list(s.y)}
+                     "series": [{"label": s.label, "x": [_json_number(v) for v in s.x],
+                                 "y": [_json_number(v) for v in s.y]}
                                 for s in p.series]} for p in o.plots]
     return doc
 
