@@ -77,6 +77,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_1_stiffness_kisssoft", "ISO 6336-1 stiffness of the NREL 5 MW helical "
          "stage against KISSsoft's report", "published", "fast",
          cases_rating.case_iso_6336_1_stiffness_kisssoft),
+    Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
+         "S_F) against KISSsoft's report", "published", "fast",
+         cases_rating.case_kisssoft_helical_rating),
     Case("harris_1958_light_load_te", "light-load TE with tip relief against Harris (1958)",
          "published", "fast", cases_contact.case_harris_light_load),
     Case("calculix_demo_pair", "FE-enriched loaded contact (TE, mesh stiffness, 24 "
