@@ -112,17 +112,18 @@ CATALOGUE: tuple[Case, ...] = (
     Case("shaft_torsion_frequency_convergence", "beam shaft torsional frequency: O(h^2) "
          "convergence", "convergence", "fast",
          cases_shaft.case_torsional_frequency_convergence),
-    Case("calculix_rerun", "CalculiX rerun at two committed coarse-mesh positions "
-         "reproduces the committed torques (needs ccx)", "independent_fe", "full",
-         cases_calculix_rerun.case_calculix_rerun),
     Case("mathieu_convergence", "Floquet multiplier of the Mathieu equation: O(h^2) "
          "convergence of the propagator", "convergence", "fast",
          cases_dynamics.case_mathieu_convergence),
+    Case("calculix_rerun", "CalculiX rerun at two committed coarse-mesh positions "
+         "reproduces the committed torques (needs ccx)", "independent_fe", "full",
+         cases_calculix_rerun.case_calculix_rerun),
     Case("shaft_fe3d_convergence", "3D shaft superelement: central flexibility over five "
          "meshes against Timoshenko, with its rate", "convergence", "full",
          cases_shaft.case_shaft_fe3d_convergence),
     Case("contact_table_convergence_fine", "loaded TE of the demo pair over FE table "
-         "refinements 1, 2, 4: the observed order", "convergence", "full",
+         "refinements 1, 2, 4, and at the tip-corner positions against CalculiX",
+         "convergence", "full",
          cases_contact_convergence.case_contact_table_convergence_fine),
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
