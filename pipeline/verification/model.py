@@ -306,13 +306,16 @@ def format_error(q: Quantity) -> str:
 
 
 def format_tolerance(q: Quantity) -> str:
-    """The tolerance for display, with the side it bounds."""
+    """The tolerance for display: +- the tolerance, or the bound on the value."""
     if q.error_kind == "relative":
         return f"+-{q.tolerance * 100:.3g} %"
     unit, factor = display_unit(q)
-    t = f"{q.tolerance * factor:.3g} {unit}".rstrip()
-    return {"absolute": f"+-{t}", "lower_bound": f">= -{t}", "upper_bound": f"<= {t}"}[
-        q.error_kind]
+    if q.error_kind == "absolute":
+        return f"+-{q.tolerance * factor:.3g} {unit}".rstrip()
+    # a bound reads best as the bound on the value itself
+    if q.error_kind == "lower_bound":
+        return f"value >= {(q.reference - q.tolerance) * factor:.4g} {unit}".rstrip()
+    return f"value <= {(q.reference + q.tolerance) * factor:.4g} {unit}".rstrip()
 
 
 UM = ("um", 1e6)
