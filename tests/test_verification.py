@@ -9,6 +9,7 @@ import csv
 import io
 import json
 import math
+import re
 import time
 
 import pytest
@@ -76,7 +77,11 @@ def test_report_files(fast_run):
     assert doc["cases"] == len(FAST) and doc["pass"] == len(FAST) and doc["passed"]
     quantities = [q for c in doc["cases_detail"] for q in c["quantities"]]
     assert all(q["unit"] and q["tolerance_reason"] for q in quantities)
-    conv = [c for c in doc["cases_detail"] if c["kind"] == "convergence"]
+    plots = [p for c in doc["cases_detail"] for p in c["plots"]]
+    assert len(plots) >= 8
+    for p in plots:  # every axis names its unit
+        assert re.search(r"\[.+\]$", p["xlabel"]) and re.search(r"\[.+\]$", p["ylabel"]), p
+        conv = [c for c in doc["cases_detail"] if c["kind"] == "convergence"]
     assert all(len(c["convergence"]["levels"]) >= 2 for c in conv)
     rates = {c["id"]: c["convergence"]["rate"] for c in conv}
     assert sum(r is not None and math.isfinite(r) for r in rates.values()) >= 5, rates
