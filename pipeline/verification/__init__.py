@@ -7,7 +7,9 @@ independent FE model's committed results, or the pipeline itself over mesh refin
 and returns them with the tolerance and its reason for every quantity; nothing here writes
 files but :mod:`.writers` (called by the command).
 
-- :mod:`.model` - the case model: quantities, convergence studies, plots, results.
+- :mod:`.model` - the case model: quantities, convergence studies, plots, outcomes.
+- :mod:`.results` - a case's result (status, time, message) and a run's totals.
+- :mod:`.display` - display units and the formatting of values, errors, tolerances.
 - :mod:`.catalogue` - the registry of cases with their tiers (``fast``, ``full``).
 - :mod:`.runner` - runs a selection, times it, turns an exception into a failed case.
 - :mod:`.context` - what cases share: the FE cache, the committed reference data.
@@ -20,7 +22,8 @@ files but :mod:`.writers` (called by the command).
 
 from pipeline.verification.catalogue import CATALOGUE, Case, select
 from pipeline.verification.context import Context
-from pipeline.verification.model import CaseResult, Outcome, Quantity, VerificationRun
+from pipeline.verification.model import Outcome, Quantity
+from pipeline.verification.results import CaseResult, VerificationRun
 from pipeline.verification.runner import run_cases
 
 __all__ = ["CATALOGUE", "Case", "CaseResult", "Context", "Outcome", "Quantity",

@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.verification.context import Context
-from pipeline.verification.model import N_PER_UM, UM, Outcome, Plot, Quantity, Series
+from pipeline.verification.display import N_PER_UM, UM
+from pipeline.verification.model import Outcome, Plot, Quantity, Series
 
 REFERENCE_FILE = "demo_pair_reference.json"
 HCR_FILE = "hcr_spur_pair_reference.json"

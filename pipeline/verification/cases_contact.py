@@ -12,7 +12,8 @@ import numpy as np
 
 from pipeline.geometry import GearPair, GearSpec, Material
 from pipeline.verification.context import Context
-from pipeline.verification.model import MM, N_PER_MM2, UM, Outcome, Plot, Quantity, Series
+from pipeline.verification.display import MM, N_PER_MM2, UM
+from pipeline.verification.model import Outcome, Plot, Quantity, Series
 
 HERTZ_CYLINDERS = {"force_N": 250.0, "length_m": 0.02, "d1_m": 0.02, "d2_m": 0.03,
                    "half_width_m": 2.8976e-5, "max_pressure_Pa": 274.65e6}

@@ -16,7 +16,8 @@ from pipeline.verification.cases_calculix import (
     load_reference,
 )
 from pipeline.verification.context import Context
-from pipeline.verification.model import PERCENT, Convergence, Outcome, Plot, Quantity, Series
+from pipeline.verification.display import PERCENT
+from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
 
 REFERENCE_SIZES_M = (0.2e-3, 0.1e-3, 0.05e-3)
 """Element sizes on the contact flanks of the reference's convergence runs, m."""

@@ -17,7 +17,8 @@ import numpy as np
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.verification.context import Context
-from pipeline.verification.model import PERCENT, Convergence, Outcome, Plot, Quantity, Series
+from pipeline.verification.display import PERCENT
+from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
 
 SECTOR_GEAR = GearSpec(teeth=30, module=3e-3, pressure_angle=math.radians(20),
                        face_width=0.02, bore_radius=0.03)

@@ -12,7 +12,8 @@ import math
 from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
 from pipeline.verification.context import Context
-from pipeline.verification.model import N_PER_MM2, N_PER_MM_UM, Outcome, Quantity
+from pipeline.verification.display import N_PER_MM2, N_PER_MM_UM
+from pipeline.verification.model import Outcome, Quantity
 
 MPA = 1e6
 

@@ -13,7 +13,8 @@ import numpy as np
 
 from pipeline.geometry.gear import Material
 from pipeline.verification.context import Context
-from pipeline.verification.model import UM, Convergence, Outcome, Plot, Quantity, Series
+from pipeline.verification.display import UM
+from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
 
 SIMPLY_SUPPORTED = {"length_m": 0.4, "outer_m": 0.06, "inner_m": 0.03,
                     "force_N": (2000.0, -3000.0)}

@@ -10,17 +10,10 @@ import base64
 import math
 from html import escape
 
+from pipeline.verification.display import format_error, format_tolerance, format_value
 from pipeline.verification.figures import png_bytes
-from pipeline.verification.model import (
-    KINDS,
-    CaseResult,
-    Convergence,
-    Quantity,
-    VerificationRun,
-    format_error,
-    format_tolerance,
-    format_value,
-)
+from pipeline.verification.model import KINDS, Convergence, Quantity
+from pipeline.verification.results import CaseResult, VerificationRun
 
 KIND_NAMES = {"exact": "exact solution", "published": "published value",
               "independent_fe": "independent FE model", "convergence": "convergence study"}

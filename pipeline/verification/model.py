@@ -9,14 +9,14 @@ Every compared quantity carries its unit, its reference, the project's value, ho
 error is measured and the tolerance with the reason for it; the case passes when every
 quantity is within its tolerance and nothing raised.
 
-Values are SI (the unit says which); :mod:`.tables` and :mod:`.html` convert for display
-only where a unit says so.
+Values are SI (the unit says which); :mod:`.display` shows them in engineering units where
+a quantity names its display unit. The results of a run are in :mod:`.results`.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -180,152 +180,3 @@ class Outcome:
     convergence: Convergence | None = None
     plots: tuple[Plot, ...] = ()
     notes: str = ""
-
-
-@dataclass(frozen=True)
-class CaseResult:
-    """One case run: the catalogue's description, its outcome (``None`` when it raised),
-    the time it took and the one-line message of what it raised.
-
-    Attributes
-    ----------
-    id, title, kind, tier : from the catalogue (:class:`.catalogue.Case`).
-    outcome : what the case function returned, or ``None``.
-    seconds : wall time of the case, s.
-    error : ``"ExceptionType: message"`` (one line) when the case raised, else ``""``.
-    """
-
-    id: str
-    title: str
-    kind: str
-    tier: str
-    outcome: Outcome | None
-    seconds: float
-    error: str = ""
-
-    @property
-    def passed(self) -> bool:
-        """No exception, at least one quantity, every quantity within its tolerance."""
-        return (not self.error and self.outcome is not None and bool(self.outcome.quantities)
-                and all(q.passed for q in self.outcome.quantities))
-
-    @property
-    def status(self) -> str:
-        """``"pass"``, ``"fail"`` or ``"error"`` (the case raised)."""
-        return "error" if self.error else ("pass" if self.passed else "fail")
-
-    @property
-    def worst(self) -> Quantity | None:
-        """The quantity furthest outside (or least inside) its tolerance."""
-        if self.outcome is None or not self.outcome.quantities:
-            return None
-        return max(self.outcome.quantities, key=_margin)
-
-    def summary_line(self) -> str:
-        """One line: status, id, time and the worst quantity's error against its
-        tolerance (or the error message)."""
-        head = f"{self.status.upper():5s} {self.id} ({self.seconds:.1f} s)"
-        if self.error:
-            return f"{head}: {self.error}"
-        q = self.worst
-        if q is None:
-            return f"{head}: no quantity compared"
-        return f"{head}: {q.name} {format_error(q)} (tolerance {format_tolerance(q)})"
-
-
-@dataclass(frozen=True)
-class VerificationRun:
-    """The results of a run of cases, in the catalogue's order."""
-
-    results: tuple[CaseResult, ...] = field(default_factory=tuple)
-
-    @property
-    def passed(self) -> bool:
-        return bool(self.results) and all(r.passed for r in self.results)
-
-    @property
-    def counts(self) -> dict[str, int]:
-        """Number of cases per status."""
-        out = {"pass": 0, "fail": 0, "error": 0}
-        for r in self.results:
-            out[r.status] += 1
-        return out
-
-    @property
-    def seconds(self) -> float:
-        return float(sum(r.seconds for r in self.results))
-
-    def summary(self) -> dict:
-        """Totals and one entry per case (id, kind, status, time, worst error)."""
-        cases = []
-        for r in self.results:
-            q = r.worst
-            cases.append({"id": r.id, "kind": r.kind, "tier": r.tier, "status": r.status,
-                          "seconds": r.seconds, "error": r.error,
-                          "worst": None if q is None else {
-                              "quantity": q.name,
-                              "error": q.error if math.isfinite(q.error) else None,
-                              "error_kind": q.error_kind, "tolerance": q.tolerance}})
-        return {"cases": len(self.results), **self.counts, "passed": self.passed,
-                "seconds": self.seconds, "results": cases}
-
-
-def _margin(q: Quantity) -> float:
-    """How far the error uses up its tolerance (> 1: outside)."""
-    e = q.error
-    if not math.isfinite(e):
-        return math.inf
-    if q.error_kind == "lower_bound":
-        used = -e
-    elif q.error_kind == "upper_bound":
-        used = e
-    else:
-        used = abs(e)
-    return used / q.tolerance if q.tolerance > 0 else (math.inf if used > 0 else 0.0)
-
-
-def display_unit(q: Quantity) -> tuple[str, float]:
-    """(unit, factor) the quantity is shown in; a dimensionless "-" shows as ""."""
-    unit, factor = q.display or (q.unit, 1.0)
-    return ("" if unit == "-" else unit), factor
-
-
-def format_value(q: Quantity, value: float) -> str:
-    """``value`` (in the quantity's SI unit) in its display unit, 6 significant digits."""
-    unit, factor = display_unit(q)
-    return f"{value * factor:.6g} {unit}".rstrip()
-
-
-def format_error(q: Quantity) -> str:
-    """The error for display: a relative one in %, others in the display unit."""
-    e = q.error
-    if q.error_kind == "relative":
-        return f"{e * 100:+.3g} %"
-    unit, factor = display_unit(q)
-    return f"{e * factor:+.3g} {unit}".rstrip()
-
-
-def format_tolerance(q: Quantity) -> str:
-    """The tolerance for display: +- the tolerance, or the bound on the value."""
-    if q.error_kind == "relative":
-        return f"+-{q.tolerance * 100:.3g} %"
-    unit, factor = display_unit(q)
-    if q.error_kind == "absolute":
-        return f"+-{q.tolerance * factor:.3g} {unit}".rstrip()
-    # a bound reads best as the bound on the value itself
-    if q.error_kind == "lower_bound":
-        return f"value >= {(q.reference - q.tolerance) * factor:.4g} {unit}".rstrip()
-    return f"value <= {(q.reference + q.tolerance) * factor:.4g} {unit}".rstrip()
-
-
-UM = ("um", 1e6)
-"""Display of a length in m as um."""
-MM = ("mm", 1e3)
-N_PER_UM = ("N/um", 1e-6)
-"""Display of a mesh stiffness in N/m as N/um."""
-N_PER_MM2 = ("N/mm^2", 1e-6)
-"""Display of a stress in Pa as N/mm^2."""
-N_PER_MM_UM = ("N/(mm um)", 1e-9)
-"""Display of a stiffness per face width in N/m^2 as N/(mm um) (ISO 6336-1)."""
-PERCENT = ("%", 100.0)
-"""Display of a fraction (a relative change) in %."""

@@ -9,7 +9,7 @@ from collections.abc import Callable, Sequence
 
 from pipeline.verification.catalogue import Case
 from pipeline.verification.context import Context
-from pipeline.verification.model import CaseResult, VerificationRun
+from pipeline.verification.results import CaseResult, VerificationRun
 
 
 def one_line(exc: BaseException) -> str:

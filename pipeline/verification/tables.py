@@ -7,7 +7,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from pipeline.verification.model import CaseResult, Quantity, VerificationRun
+from pipeline.verification.model import Quantity
+from pipeline.verification.results import CaseResult, VerificationRun
 
 QUANTITY_COLUMNS = ("case", "kind", "tier", "case status", "quantity", "unit",
                     "reference [SI unit of the row]", "value [SI unit of the row]",

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from pipeline.io import atomic_write_text, write_csv, write_json
 from pipeline.verification.html import validation_html
-from pipeline.verification.model import VerificationRun
+from pipeline.verification.results import VerificationRun
 from pipeline.verification.tables import quantity_rows, run_document
 
 REPORT_FILES = ("validate.html", "validate.json", "validate.csv")
