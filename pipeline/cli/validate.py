@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     counts = result.counts
     _stderr(f"{len(result.results)} cases: {counts['pass']} passed, {counts['fail']} failed, "
             f"{counts['error']} raised ({result.seconds:.1f} s)")
-    facts = {"command": "gearpipe validate " + " ".join(getattr(args, "_argv", []) or []),
+    facts = {"command": " ".join(["gearpipe", *(getattr(args, "_argv", None) or ["validate"])]),
              "gearpipe": __version__, "set": name}
     with staged_output(target) as out:
         files = write_validation(result, out, facts)

@@ -14,6 +14,7 @@ from pipeline.validation import InputError
 from pipeline.verification import (
     cases_calculix,
     cases_calculix_rerun,
+    cases_calculix_torques,
     cases_contact,
     cases_contact_convergence,
     cases_dynamics,
@@ -90,7 +91,7 @@ CATALOGUE: tuple[Case, ...] = (
          cases_calculix.case_calculix_demo_pair_nominal),
     Case("calculix_corner_torques", "driving torque at CalculiX's own rotations where a tip "
          "corner touches (free of the load-step secant)", "independent_fe", "fast",
-         cases_calculix.case_calculix_corner_torques),
+         cases_calculix_torques.case_calculix_corner_torques),
     Case("calculix_rounded_tips", "loaded contact of the demo pair with tips rounded by "
          "0.3 mm against CalculiX meshing the same rounding", "independent_fe", "fast",
          cases_calculix.case_calculix_rounded_tips),
