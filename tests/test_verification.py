@@ -94,7 +94,8 @@ def test_report_files(fast_run):
     unit = header.index("unit")
     assert all(len(r) == len(header) and r[unit] for r in rows[1:])
     record = json.loads((out / "run.json").read_text())
-    assert "calculix_reference" in json.dumps(record)
+    assert {"demo_pair_reference.json", "hcr_spur_pair_reference.json",
+            "calculix_spur_contact.py"} <= set(record["referenced_files"])
 
 
 def test_list_prints_the_catalogue_and_writes_nothing(tmp_path, capsys, monkeypatch):

@@ -43,11 +43,14 @@ def _stderr(line: str) -> None:
 
 
 def _reference_files(context) -> dict[str, Path]:
-    """The committed reference data the cases read (their SHA-256 goes into the record)."""
-    from pipeline.verification.cases_calculix import REFERENCE_FILE
+    """The committed reference data and model the cases read (their SHA-256 goes into the
+    record)."""
+    from pipeline.verification.cases_calculix import HCR_FILE, REFERENCE_FILE
+    from pipeline.verification.cases_calculix_rerun import SCRIPT
 
-    path = Path(context.reference_dir) / REFERENCE_FILE
-    return {"calculix_reference": path} if path.is_file() else {}
+    folder = Path(context.reference_dir)
+    return {name: folder / name for name in (REFERENCE_FILE, HCR_FILE, SCRIPT)
+            if (folder / name).is_file()}
 
 
 def run(args: argparse.Namespace) -> int:
