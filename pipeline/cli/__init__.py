@@ -14,11 +14,11 @@ values that change nothing, ...) are one line each, ``gearpipe <command>: warnin
 and the run goes on.
 
 Layout: one module per command (``run``, ``report``, ``geometry``, ``stiffness``, ``fe``,
-``groove``, ``contact``, ``dynamics`` for modes/response/sweep, ``study``) with its file
-writers beside it (``dynamics_files``), and ``common`` for the shared arguments, loading
-and records. Only this package reads files and writes results; the stage packages below
-it form a one-way import graph, checked by the layers contract in ``pyproject.toml``
-(``lint-imports``, run by ``./dev.sh test``).
+``groove``, ``contact``, ``dynamics`` for modes/response/sweep, ``study``, ``validate``)
+with its file writers beside it (``dynamics_files``), and ``common`` for the shared
+arguments, loading and records. Only this package reads files and writes results; the
+stage packages below it form a one-way import graph, checked by the layers contract in
+``pyproject.toml`` (``lint-imports``, run by ``./dev.sh test``).
 """
 
 from __future__ import annotations
@@ -66,6 +66,10 @@ SUBCOMMANDS: dict[str, tuple[str, str, str, str]] = {
               "design study: a base gearbox file over design axes, KPIs per point, on Dask; "
               "kind = \"harris\" a Harris map, kind = \"optimise\" an optimisation "
               "(STUDY.toml instead of a gearbox file)"),
+    "validate": ("pipeline.cli.validate", "add_arguments", "run",
+                 "the verification cases (exact solutions, published values, an independent "
+                 "FE model, convergence studies) in one report; exit status 1 when one "
+                 "fails"),
 }
 
 
