@@ -24,6 +24,8 @@ Stages, one sub-package each, in the order data flows through them:
 * ``config`` - the gearbox file -> frozen stage inputs (units defined once, strict tables).
 * ``run`` - the whole chain on one gearbox (:func:`~pipeline.run.run_pipeline`).
 * ``study`` - design studies over a base gearbox file (Dask or serial, resumable).
+* ``verification`` - the catalogue of checks against exact solutions, published values and
+  an independent FE model that ``gearpipe validate`` runs and reports.
 
 The command line (``gearpipe``, one module per command, with the file writers beside
 them) lives in ``pipeline/cli/``; the stages do not import it. Shared by all:
