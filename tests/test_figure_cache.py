@@ -224,3 +224,60 @@ def test_a_run_with_every_figure_cached_does_not_wait_for_the_drawer(tmp_path, m
         figures.queue.draw_all()
         assert figures.queue.drawer is None
     assert time.monotonic() - start < 30 and drawer and _gone(drawer)
+
+
+def test_flushed_figures_are_drawn_by_the_drawer_while_this_process_goes_on(tmp_path):
+    """:meth:`FigureQueue.flush` hands drawings to the drawer at once: they are drawn
+    before ``draw_all`` (this process waits here for the files, as it would compute), by
+    the drawer; the ones queued after it go to the pool the drawer forks; the files equal
+    those drawn in turn."""
+    serial = _figures(FigureCache().save, tmp_path / "serial", n=4)
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = _children()[0].pid
+        early = [figures.save(tmp_path / "early" / f"f{i}.png", draw_and_note_pid,
+                              tmp_path / f"early{i}.pid", f"figure {i}",
+                              np.arange(i + 3.0) ** 2) for i in range(2)]
+        figures.queue.flush()
+        assert not figures.queue.jobs and len(figures.queue.sent) == 2
+        deadline = time.monotonic() + 60
+        while not all(p.is_file() for p in early) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert all(p.is_file() for p in early)  # drawn before draw_all
+        late = [figures.save(tmp_path / "late" / f"f{i}.png", draw_and_note_pid,
+                             tmp_path / f"late{i}.pid", f"figure {i}",
+                             np.arange(i + 3.0) ** 2) for i in range(2, 4)]
+        figures.queue.draw_all(2)
+        assert figures.queue.drawer is None and not figures.queue.sent
+    for i in range(2):
+        assert (tmp_path / f"early{i}.pid").read_text().split()[0] == str(drawer)
+    for i in range(2, 4):  # the pool the drawer forked
+        assert (tmp_path / f"late{i}.pid").read_text().split()[1] == str(drawer)
+    for s, q in zip(serial, early + late, strict=True):
+        assert q.read_bytes() == s.read_bytes(), q.name
+
+
+def test_flushed_drawings_that_do_not_pickle_or_fail_are_handled_as_queued_ones(tmp_path):
+    """A flushed drawing that does not pickle is drawn here; a failing one is named; the
+    others are written."""
+    def local(y, title):  # a local function does not pickle
+        return draw_line(y, title)
+
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        good = _figures(figures.save, tmp_path, n=2)
+        here = figures.save(tmp_path / "here.png", local, np.arange(3.0), "local")
+        figures.save(tmp_path / "broken.png", draw_broken, np.zeros(2), "the broken one")
+        figures.queue.flush()
+        with pytest.raises(RuntimeError, match=r"broken\.png: ValueError: cannot draw"):
+            figures.queue.draw_all(2)
+    assert all(p.is_file() for p in [*good, here])
+    assert not (tmp_path / "broken.png").exists()
+
+
+def test_flush_without_a_drawer_leaves_the_drawings_queued(tmp_path):
+    queue = FigureQueue()
+    cache = FigureCache(queue=queue)
+    paths = _figures(cache.save, tmp_path, n=2)
+    queue.flush()
+    assert len(queue.jobs) == 2 and not queue.sent
+    queue.draw_all(workers=1)
+    assert all(p.is_file() for p in paths)

@@ -16,7 +16,12 @@ maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynami
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
 ``sweep.csv/png``), the load distribution report of every mesh (``report.html``,
 ``report.json``, ``report.csv``; :mod:`pipeline.report`), one ``summary.json`` and
-``run.json``. Each step prints a line with
+``run.json``. The mesh files are written as soon as their stages are computed (geometry and
+stiffness before the contact is solved, contact and load maps before the load
+distribution and the dynamics) and their figures drawn by the early-started drawer while
+the rest computes; the report figures are drawn with the dynamics figures, side by side,
+and the reports written once they are (:mod:`pipeline.viz.figure_queue`). Each step prints
+a line with
 its time on stderr; FE tables and contact cycles come from the cache when their inputs
 are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the cache).
 """
@@ -25,6 +30,8 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from pipeline.cli.common import (
@@ -38,7 +45,7 @@ from pipeline.cli.common import (
 )
 from pipeline.io import write_json
 from pipeline.output_folder import mesh_label, mesh_prefix, staged_output
-from pipeline.run.chain import MeshStages, RunOptions
+from pipeline.run.chain import WRITING_STEP, MeshStages, RunOptions
 from pipeline.run.runner import RunResult, run_pipeline
 from pipeline.viz.figure_cache import NO_CACHE, FigureCache
 from pipeline.viz.figure_queue import parallel_figures
@@ -56,25 +63,37 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_cache_arguments(parser)
 
 
-def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
-                figures: FigureCache) -> list[Path]:
-    from pipeline.cli.contact import contact_title, write_contact
+def _mesh_title(name: str, pair) -> str:
+    return (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
+            f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
+            f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
+
+
+def _write_static(name: str, geometry, stiffness, out: Path, prefix: str,
+                  figures: FigureCache) -> list[Path]:
+    """The geometry and analytical stiffness files of one mesh."""
     from pipeline.cli.geometry import write_geometry
     from pipeline.cli.stiffness import write_stiffness
+
+    files = write_geometry(geometry, out, prefix, figures, name)
+    return files + write_stiffness(stiffness, out, _mesh_title(name, stiffness.actual), prefix,
+                                   figures)
+
+
+def _write_contact(name: str, st: MeshStages, box, out: Path, prefix: str,
+                   figures: FigureCache) -> list[Path]:
+    """The loaded contact files of one mesh (with its shafts, revolution, herringbone)."""
+    from pipeline.cli.contact import contact_title, write_contact
     from pipeline.stiffness.mesh import stiffness_at
 
     pair = st.stiffness.actual
-    title = (f"{name}: z {pair.pinion.teeth}/{pair.gear.teeth}"
-             f"{' internal' if pair.gear.internal else ''}, m_n {pair.pinion.module * 1e3:g} mm, "
-             f"beta {math.degrees(pair.pinion.helix_angle):g} deg")
-    files = write_geometry(st.geometry, out, prefix, figures, name)
-    files += write_stiffness(st.stiffness, out, title, prefix, figures)
+    title = _mesh_title(name, pair)
     model, opts = st.stiffness.model, box.mesh_contact(st.case.name)
     ref = stiffness_at(model, st.contact.s0, opts.slices, box.stiffness.friction_model,
                        st.case.operation, box.stiffness.foundation_correction)
-    files += write_contact(st.contact, pair, opts, ref.total,
-                           contact_title(name, st.contact, pair, opts), out, prefix, figures,
-                           box.mesh_gears(st.case.name))
+    files = write_contact(st.contact, pair, opts, ref.total,
+                          contact_title(name, st.contact, pair, opts), out, prefix, figures,
+                          box.mesh_gears(st.case.name))
     if st.shafts is not None:
         from pipeline.io import write_csv
 
@@ -94,25 +113,54 @@ def _write_mesh(name: str, st: MeshStages, box, out: Path, prefix: str,
     return files
 
 
-def write_run(result: RunResult, out: Path, full: bool = False,
-              figures: FigureCache = NO_CACHE) -> list[Path]:
-    """All files of a run (module docstring); returns them."""
+def _write_dynamics(result: RunResult, out: Path, figures: FigureCache) -> list[Path]:
+    """The dynamics files of a run (none without dynamics)."""
     from pipeline.cli.dynamics_files import write_modes, write_response, write_sweep
     from pipeline.dynamics.layout import model_layout
 
+    dyn, name = result.dynamics, result.gearbox.name
+    if dyn is None:
+        return []
+    return [*write_modes(dyn.modes, out, model_layout(dyn.model), figures, name),
+            *write_response(dyn.response, out, name, figures, dyn.operating),
+            *write_sweep(dyn.sweep, out, name, figures,
+                         natural_frequencies=dyn.modes.frequencies, operating=dyn.operating)]
+
+
+def write_run(result: RunResult, out: Path, full: bool = False,
+              figures: FigureCache = NO_CACHE) -> list[Path]:
+    """All files of a run (module docstring) but the reports; returns them."""
     box = result.gearbox
     files: list[Path] = []
     for name, st in result.meshes.items():
-        files += _write_mesh(mesh_label(box.name, name), st, box, out, mesh_prefix(name),
-                             figures)
-    dyn = result.dynamics
-    if dyn is not None:
-        files += write_modes(dyn.modes, out, model_layout(dyn.model), figures, box.name)
-        files += write_response(dyn.response, out, box.name, figures, dyn.operating)
-        files += write_sweep(dyn.sweep, out, box.name, figures,
-                             natural_frequencies=dyn.modes.frequencies,
-                             operating=dyn.operating)
-    return files
+        label, prefix = mesh_label(box.name, name), mesh_prefix(name)
+        files += _write_static(label, st.geometry, st.stiffness, out, prefix, figures)
+        files += _write_contact(label, st, box, out, prefix, figures)
+    return files + _write_dynamics(result, out, figures)
+
+
+@dataclass
+class _EarlyWriter:
+    """Writes a run's mesh files as the stages hand them over
+    (:func:`pipeline.run.runner.run_pipeline`' ``on_static`` and ``on_meshes``) and
+    hands their figures to the drawer at once, so that they are drawn while the next
+    stages compute (:meth:`pipeline.viz.figure_queue.FigureQueue.flush`)."""
+
+    box: object
+    out: Path
+    figures: FigureCache
+    files: list[Path] = field(default_factory=list)
+
+    def static(self, case, geometry, stiffness) -> None:
+        self.files += _write_static(mesh_label(self.box.name, case.name), geometry, stiffness,
+                                    self.out, mesh_prefix(case.name), self.figures)
+        self.figures.queue.flush()
+
+    def meshes(self, meshes: Mapping[str, MeshStages]) -> None:
+        for name, st in meshes.items():
+            self.files += _write_contact(mesh_label(self.box.name, name), st, self.box,
+                                         self.out, mesh_prefix(name), self.figures)
+        self.figures.queue.flush()
 
 
 def run(args: argparse.Namespace, command: str = "run") -> int:
@@ -122,21 +170,27 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     options = RunOptions(full=args.full, cache=command_cache(args),
                          show_progress=not args.json, label=f"gearpipe {command}")
     # the drawer imports matplotlib while the stages compute (pipeline.viz.figure_queue)
-    with parallel_figures(figure_cache(options), prestart=True) as figures:
-        result = run_pipeline(box, options)
-        with staged_output(target) as out:
-            with result.log.step("writing tables and figures", announce=True):
-                files = write_run(result, out, args.full, figures)
-                figures.queue.draw_all(show_progress=options.show_progress)
-            if result.meshes:  # the report embeds the figures drawn above: after them
-                from pipeline.report import write_reports
+    # and draws each stage's figures while the next stages compute
+    with parallel_figures(figure_cache(options), prestart=True) as figures, \
+            staged_output(target) as out:
+        early = _EarlyWriter(box, out, figures)
+        result = run_pipeline(box, options, on_static=early.static, on_meshes=early.meshes)
+        with result.log.step(WRITING_STEP, announce=True):
+            files = early.files + _write_dynamics(result, out, figures)
+            reports = []
+            if result.meshes:  # the report figures are drawn with the others
+                from pipeline.report.writer import prepare_reports
 
-                with result.log.step("load distribution reports", announce=True):
-                    files += write_reports(result, out, figure_cache(options),
-                                           command=f"gearpipe {command} {args.config}",
-                                           show_progress=options.show_progress)
-            summary = result.summary()
-            files.append(write_json(out / "summary.json", summary))
-            record(out, args, box, files)
+                reports = prepare_reports(result, out, figures,
+                                          command=f"gearpipe {command} {args.config}",
+                                          written=files)
+            figures.queue.draw_all(show_progress=options.show_progress)
+        if reports:  # the reports embed the figures drawn above: after them
+            with result.log.step("load distribution reports", announce=True):
+                for report in reports:
+                    files += report.write(out)
+        summary = result.summary()
+        files.append(write_json(out / "summary.json", summary))
+        record(out, args, box, files)
     emit(args, summary, target)
     return 0

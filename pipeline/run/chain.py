@@ -49,7 +49,7 @@ s, the four changed dynamics figures with the tables 1.0-1.25 s, sweep 0.26-0.31
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -182,6 +182,16 @@ class MeshStages:
         return out
 
 
+WRITING_STEP = "writing tables and figures"
+"""The step a run's writer is timed in when the chain hands it stages early
+(:func:`static_stages`' ``on_static``, :func:`pipeline.run.runner.run_pipeline`)."""
+
+StaticWriter = Callable[["MeshCase", GeometryResult, StiffnessResult], None]
+"""Called with a mesh's geometry and analytical stiffness as soon as they are computed,
+before its loaded contact (``gearpipe run`` writes their files then, so that their figures
+are drawn while the contact is solved)."""
+
+
 def step_tag(mesh: str) -> str:
     """What a step line adds for a mesh: nothing for a pair's one mesh, ``" [<mesh>]"`` for
     each mesh of a planetary set."""
@@ -230,9 +240,11 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
 
 def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
-                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
+                  contact: bool = True, prebuilt: Any = None, *,
+                  on_static: StaticWriter | None = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
-    (``prebuilt``: :func:`loaded_contact`)."""
+    (``prebuilt``: :func:`loaded_contact`); ``on_static`` is handed the first two before
+    the contact is solved (:data:`StaticWriter`, timed as :data:`WRITING_STEP`)."""
     tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -240,6 +252,9 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
         stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
                                       assembly_errors=case.assembly_errors)
         note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
+    if on_static is not None:
+        with log.step(WRITING_STEP):
+            on_static(case, geometry, stiffness)
     cycle = None
     if contact:
         with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
@@ -269,13 +284,16 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
-                prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
+                prebuilt: Mapping[str, Any] | None = None, *,
+                on_static: StaticWriter | None = None) -> dict[str, MeshStages]:
     """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
-    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
+    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`); ``on_static``:
+    :func:`static_stages`."""
     if box.kind == "lumped":
         return {}
     out = {case.name: static_stages(box, case, options, log, contact,
-                                    None if prebuilt is None else prebuilt[case.name])
+                                    None if prebuilt is None else prebuilt[case.name],
+                                    on_static=on_static)
            for case in mesh_cases(box)}
     if contact and box.kind == "planetary" and box.shafts:
         from pipeline.run.planetary_shafts import planetary_shaft_stage
