@@ -281,3 +281,19 @@ def test_flush_without_a_drawer_leaves_the_drawings_queued(tmp_path):
     assert len(queue.jobs) == 2 and not queue.sent
     queue.draw_all(workers=1)
     assert all(p.is_file() for p in paths)
+
+
+@pytest.mark.parametrize(("env", "one"), [
+    ({"OMP_NUM_THREADS": "1"}, True),
+    ({"MKL_NUM_THREADS": "1", "OMP_NUM_THREADS": "2"}, True),  # MKL's own variable first
+    ({"MKL_NUM_THREADS": "2", "OMP_NUM_THREADS": "1"}, False),
+    ({"OMP_NUM_THREADS": "2"}, False),
+])
+def test_the_run_draws_alongside_the_solver_only_on_one_thread(env, one, monkeypatch):
+    from pipeline.cli.run import solver_on_one_core
+
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    assert solver_on_one_core(env) is one
+    assert solver_on_one_core({}) is False  # unset: one thread per core
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    assert solver_on_one_core({"OMP_NUM_THREADS": "2"}) is True  # one core anyway

@@ -6,7 +6,9 @@ load distribution and tooth root stress the run computed for every mesh
 (:mod:`pipeline.run.distribution`; it computes nothing itself), draws the report's own
 figures (:mod:`pipeline.viz.distribution`), embeds them and the
 stage figures it finds in the folder, and writes, per mesh (prefix ``<mesh>_`` for a
-planetary set):
+planetary set) the files below. :func:`prepare_reports` does it in two steps for a run
+that queues its figures (``gearpipe run``): the reports assembled and their figures queued
+beside the stage figures, then :meth:`PendingReport.write` once they are all drawn.
 
 * ``report.html`` - the self-contained report (:mod:`pipeline.report.html`); the
   sun-planet mesh of a herringbone set solved through its groove gets a section with both

@@ -26,7 +26,8 @@ Figures whose data is known early need not wait for the end: :meth:`FigureQueue.
 hands the drawings queued so far to the drawer one by one, and the drawer draws them
 while this process computes the next stages (``gearpipe run`` flushes a mesh's geometry
 and stiffness figures before its contact is solved, and the contact figures and load maps
-before the load distribution and the dynamics). :meth:`~FigureQueue.draw_all` then takes
+before the load distribution and the dynamics, when its FE solver keeps to one thread:
+:func:`pipeline.cli.run.solver_on_one_core`). :meth:`~FigureQueue.draw_all` then takes
 back those the drawer has not begun and draws them with the rest in the pool the drawer
 forks (the drawer finishes the one it is drawing first); one that did not pickle or that
 the drawer could not finish is drawn here, as a queued one.
