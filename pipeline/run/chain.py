@@ -35,32 +35,21 @@ settings, formats) and figures (drawing code, every plotted array); a rerun that
 only a dynamics option reads the contact cycle back and redraws only the dynamics figures.
 Figures not in the cache are drawn side by side in a process pool forked from a drawer
 that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads while the
-stages compute (:mod:`pipeline.viz.figure_queue`); with a single-threaded FE solver it also
-draws each mesh's figures while the next stages compute (:func:`static_stages`'
-``on_static``, :func:`pipeline.run.runner.run_pipeline`'s ``on_meshes``; measured: with
-two solver threads beside a busy drawer the FE steps took up to twice as long). The run
-imports matplotlib only to draw, and
+stages compute (:mod:`pipeline.viz.figure_queue`). The run imports matplotlib only to draw, and
 reading a gearbox file or cached FE tables imports no scikit-fem.
 
 Measured (``workflows/benchmarks/bench_run.py``: the demo's pair with FE 2D contact and the
-load distribution report, separate processes, cold runs alternating with the code before
-the writing side drew figures alongside the stages, 2 cores shared with other work at load
-average 3.5-5.4, three runs each; every file and every number of ``summary.json`` the
-same): with ``OMP_NUM_THREADS=2`` (``dev.sh``) cold 15.3-28.6 s against 30.9-33.5 s
-(median ratio 0.74), CPU with the drawing processes 13.7-15.6 s against 15.2-16.6 s; with
-``OMP_NUM_THREADS=1`` cold 17.3-29.1 s against 14.2-24.9 s (median ratio 1.02), CPU
-13.3-14.5 s against 12.9-14.0 s; warm with the damping ratio changed 7.4-7.5 s against
-9.0-10.1 s. Where the CPU time of a cold run goes (one process each, same machine): the
-computing process 5-6 s (imports 0.8-1.0 s, loaded contact with both FE tables 1.5 s,
-shafts 0.6 s, FE root stress 1.4-1.7 s, dynamics 0.45 s), the drawing processes 7-9 s
-(matplotlib import 0.35 s, the 21 matplotlib figures 4-5.5 s, the pyvista load map 1.3-1.9 s
-of which 0.7-1.2 s imports, each new drawing process 0.5-1.5 s more for its first figures).
+load distribution report, separate processes, 2 cores shared with other work, load average
+0.5-1.2, three runs): cold 9.6-11.4 s, warm 1.6-1.7 s, warm with the damping ratio changed
+2.3-2.7 s (2.73 s in a later run at load 0.6; target 3 s; interpreter and imports 0.8-0.95
+s, the four changed dynamics figures with the tables 1.0-1.25 s, sweep 0.26-0.31 s, report
+0.1-0.14 s).
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -193,16 +182,6 @@ class MeshStages:
         return out
 
 
-WRITING_STEP = "writing tables and figures"
-"""The step a run's writer is timed in when the chain hands it stages early
-(:func:`static_stages`' ``on_static``, :func:`pipeline.run.runner.run_pipeline`)."""
-
-StaticWriter = Callable[["MeshCase", GeometryResult, StiffnessResult], None]
-"""Called with a mesh's geometry and analytical stiffness as soon as they are computed,
-before its loaded contact (``gearpipe run`` writes their files then, so that their figures
-are drawn while the contact is solved)."""
-
-
 def step_tag(mesh: str) -> str:
     """What a step line adds for a mesh: nothing for a pair's one mesh, ``" [<mesh>]"`` for
     each mesh of a planetary set."""
@@ -251,11 +230,9 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
 
 def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
-                  contact: bool = True, prebuilt: Any = None, *,
-                  on_static: StaticWriter | None = None) -> MeshStages:
+                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
-    (``prebuilt``: :func:`loaded_contact`); ``on_static`` is handed the first two before
-    the contact is solved (:data:`StaticWriter`, timed as :data:`WRITING_STEP`)."""
+    (``prebuilt``: :func:`loaded_contact`)."""
     tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -263,9 +240,6 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
         stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
                                       assembly_errors=case.assembly_errors)
         note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
-    if on_static is not None:
-        with log.step(WRITING_STEP):
-            on_static(case, geometry, stiffness)
     cycle = None
     if contact:
         with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
@@ -295,16 +269,13 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
-                prebuilt: Mapping[str, Any] | None = None, *,
-                on_static: StaticWriter | None = None) -> dict[str, MeshStages]:
+                prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
     """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
-    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`); ``on_static``:
-    :func:`static_stages`."""
+    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
     out = {case.name: static_stages(box, case, options, log, contact,
-                                    None if prebuilt is None else prebuilt[case.name],
-                                    on_static=on_static)
+                                    None if prebuilt is None else prebuilt[case.name])
            for case in mesh_cases(box)}
     if contact and box.kind == "planetary" and box.shafts:
         from pipeline.run.planetary_shafts import planetary_shaft_stage

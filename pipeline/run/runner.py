@@ -4,7 +4,6 @@ a gearbox file describes (:func:`gearbox_dynamic_model`) for the dynamics comman
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -12,13 +11,7 @@ from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.config import Gearbox
 from pipeline.dynamics.assembly import DynamicModel
 from pipeline.progress import Steps
-from pipeline.run.chain import (
-    WRITING_STEP,
-    MeshStages,
-    RunOptions,
-    StaticWriter,
-    mesh_stages,
-)
+from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
 from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
 from pipeline.run.rating import RatingStage, rating_stage
@@ -61,28 +54,11 @@ class RunResult:
         return out
 
 
-MeshWriter = Callable[[Mapping[str, MeshStages]], None]
-"""Called with the static stages of every mesh as soon as they are computed, before the
-load distributions, the dynamics and the rating (``gearpipe run`` writes their files then,
-so that their figures are drawn while the rest is computed)."""
-
-
-def run_pipeline(box: Gearbox, options: RunOptions | None = None, *,
-                 on_static: StaticWriter | None = None,
-                 on_meshes: MeshWriter | None = None) -> RunResult:
-    """Run every stage the gearbox file asks for (module docstring); writes only the cache.
-
-    ``on_static`` and ``on_meshes`` are handed results as they come
-    (:data:`pipeline.run.chain.StaticWriter`, :data:`MeshWriter`; both timed as the step
-    :data:`pipeline.run.chain.WRITING_STEP`): the caller's writers, which the order of
-    the stages does not depend on.
-    """
+def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
+    """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    meshes = mesh_stages(box, options, log, on_static=on_static)
-    if on_meshes is not None:
-        with log.step(WRITING_STEP):
-            on_meshes(meshes)
+    meshes = mesh_stages(box, options, log)
     distributions = distribution_stages(box, meshes, options, log)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:

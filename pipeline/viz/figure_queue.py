@@ -22,16 +22,6 @@ CPU; with every worker warmed up: 11 % slower, and the unchanged warm run 18 % s
 (two imports compete with the computing process). With the drawer forking the pool, the
 runs took as long as with the hand-written drawer it replaced (median ratios 0.93-1.05).
 
-Figures whose data is known early need not wait for the end: :meth:`FigureQueue.flush`
-hands the drawings queued so far to the drawer one by one, and the drawer draws them
-while this process computes the next stages (``gearpipe run`` flushes a mesh's geometry
-and stiffness figures before its contact is solved, and the contact figures and load maps
-before the load distribution and the dynamics, when its FE solver keeps to one thread:
-:func:`pipeline.cli.run.solver_on_one_core`). :meth:`~FigureQueue.draw_all` then takes
-back those the drawer has not begun and draws them with the rest in the pool the drawer
-forks (the drawer finishes the one it is drawing first); one that did not pickle or that
-the drawer could not finish is drawn here, as a queued one.
-
 The figures come out the same wherever they are drawn. A drawing that does not pickle
 (a local function) is drawn in the process that holds it; so are the drawings a broken
 pool did not finish (a worker killed: the pool ends its other workers too), in turn.
@@ -75,13 +65,10 @@ class FigureQueue:
     ----------
     jobs : (PNG path, drawing thunk) in the order they were queued.
     drawer : the early-started drawer, a pool of one warmed-up process (:meth:`start`).
-    sent : drawings handed to the drawer one by one by :meth:`flush`, with their futures
-        (``None``: the drawer had died).
     """
 
     jobs: list[Job] = field(default_factory=list)
     drawer: ProcessPoolExecutor | None = None
-    sent: list[tuple[Job, Future | None]] = field(default_factory=list)
 
     def add(self, path: str | Path, job: Callable[[], Path]) -> Path:
         """Queue ``job`` (draws and writes ``path``); returns ``path``."""
@@ -95,33 +82,16 @@ class FigureQueue:
             self.drawer = process_pool(1, warm_up)
             start_workers(self.drawer)  # forked by this thread, the one that waits for it
 
-    def flush(self) -> None:
-        """Hand the drawings queued so far to the drawer, one by one, so that it draws them
-        while this process goes on computing (module docstring); without a drawer they
-        wait for :meth:`draw_all`."""
-        if self.drawer is None:
-            return
-        jobs, self.jobs = self.jobs, []
-        for path, job in jobs:
-            try:
-                future: Future | None = self.drawer.submit(draw_one, path, job)
-            except BrokenProcessPool:  # it died: drawn by draw_all
-                future = None
-            self.sent.append(((path, job), future))
-
     def stop(self) -> None:
-        """End the drawer without waiting (idempotent): it is killed rather than waited
-        for (it may still be importing matplotlib); drawings handed to it are dropped."""
+        """End the drawer without drawing (idempotent): it has drawn nothing, so it is
+        killed rather than waited for (it may still be importing matplotlib)."""
         drawer, self.drawer = self.drawer, None
-        self.sent = []
         if drawer is not None:
             kill_pool(drawer)
 
     def draw_all(self, workers: int | None = None, show_progress: bool = False) -> None:
         """Draw every queued figure in up to ``workers`` processes (default: CPU count):
         by the drawer if :meth:`start` started it, else from here (:func:`draw_jobs`).
-        Drawings :meth:`flush` handed to the drawer and not yet begun join the others in
-        the drawing pool; the drawer finishes the one it is drawing.
 
         ``show_progress``: the figures written so far, on stderr once the drawing has taken a
         second (:func:`pipeline.progress.progress`; counted by their files appearing, as
@@ -132,20 +102,14 @@ class FigureQueue:
         RuntimeError : naming the figures whose drawing failed (their files not written).
         """
         jobs, self.jobs = self.jobs, []
-        sent, self.sent = self.sent, []
-        if not jobs and not sent:  # every figure came from the cache: no waiting
+        if not jobs:  # every figure came from the cache: the drawer is not waited for
             self.stop()
             return
         drawer, self.drawer = self.drawer, None
-        paths = [path for (path, _), _ in sent] + [path for path, _ in jobs]
-        with _counting_files(paths, show_progress):
-            if drawer is None:
-                failures = draw_jobs([job for job, _ in sent] + jobs, workers)
-            else:
-                # not begun: drawn with the rest by the pool the drawer forks
-                late = [job for job, future in sent if future is not None and future.cancel()]
-                sent = [(job, f) for job, f in sent if f is None or not f.cancelled()]
-                failures = _by_drawer(drawer, late + jobs, workers, sent)
+        with _counting_files([path for path, _ in jobs], show_progress):
+            failures = _by_drawer(drawer, jobs, workers) if drawer is not None else None
+            if failures is None:
+                failures = draw_jobs(jobs, workers)
         if failures:
             raise RuntimeError("figures not written: " + "; ".join(failures))
 
@@ -170,40 +134,27 @@ def draw_one(path: Path, job: Callable[[], Path]) -> str | None:
     return None
 
 
-def _by_drawer(drawer: ProcessPoolExecutor, jobs: list[Job], workers: int | None,
-               sent: list[tuple[Job, Future | None]] = ()) -> list[str]:
-    """Have the drawer draw ``jobs`` (:func:`draw_jobs` there), wait for the drawings
-    ``sent`` to it earlier, and end it; its failures, in the order ``sent``, ``jobs``.
-    What it could not draw (a drawing that does not pickle, or all it had not finished
-    when it died) is drawn from here once it has ended: nothing it may have written then
-    is trusted."""
+def _by_drawer(drawer: ProcessPoolExecutor, jobs: list[Job], workers: int | None
+               ) -> list[str] | None:
+    """Have the drawer draw ``jobs`` (:func:`draw_jobs` there) and end it; its failures, or
+    ``None`` if it could not (the jobs do not pickle, or it died): then nothing it may
+    have written is trusted and the caller draws them all."""
     try:
-        batch: Future | None = drawer.submit(draw_jobs, jobs, workers) if jobs else None
+        future = drawer.submit(draw_jobs, jobs, workers)
     except BrokenProcessPool:  # it died before
-        batch = None
-    failures: list[str | None] = []
-    redo: list[Job] = []
+        kill_pool(drawer)
+        return None
     try:
-        for job, future in sent:
-            # an exception here is the drawer's, not a drawing's (draw_one catches those)
-            if future is not None and future.exception() is None:
-                failures.append(future.result())
-            else:
-                redo.append(job)
-        if jobs:
-            if batch is not None and batch.exception() is None:
-                failures += batch.result()
-                jobs = []
+        # an exception here is the drawer's, not a drawing's (draw_one catches those)
+        failures = future.result() if future.exception() is None else None
     except BaseException:  # interrupted: nothing more to wait for
         kill_pool(drawer)
         raise
-    if redo or jobs:
+    if failures is None:
         kill_pool(drawer)
-        failures += [draw_one(path, job) for path, job in redo]
-        failures += draw_jobs(jobs, workers)
     else:
         drawer.shutdown()
-    return [failure for failure in failures if failure]
+    return failures
 
 
 def _draw_in(pool: ProcessPoolExecutor, jobs: list[Job]) -> list[str]:

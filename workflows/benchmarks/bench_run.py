@@ -28,7 +28,6 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -36,7 +35,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(HERE / "workflows"))
 
-from child_runs import print_steps, timed_child  # noqa: E402
+from child_runs import export_revision, print_steps, timed_child  # noqa: E402
 from default_case import DEFAULT  # noqa: E402
 
 from pipeline.io import write_json  # noqa: E402
@@ -53,15 +52,6 @@ def one_run(config: Path, out: Path, cache: Path, root: Path = HERE) -> dict:
     return timed_child([sys.executable, "-m", "pipeline.cli", "run", str(config), "--out",
                         str(out), "--cache-dir", str(cache), "--json"],
                        out / "summary.json", key="timing", root=root)
-
-
-def export_revision(rev: str, folder: Path) -> Path:
-    """The files of revision ``rev`` of this checkout's repository, in ``folder``."""
-    folder.mkdir(parents=True)
-    archive = subprocess.run(["git", "-C", str(HERE), "archive", rev], check=True,
-                             capture_output=True).stdout
-    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
-    return folder
 
 
 def _without_timing(summary: dict) -> dict:

@@ -19,6 +19,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
+def export_revision(rev: str, folder: Path) -> Path:
+    """The files of revision ``rev`` of this checkout's repository, in ``folder`` (for
+    timing today's code beside the checkout's)."""
+    folder.mkdir(parents=True)
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev], check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder
+
+
 def timed_child(command: list[str], timing_file: Path, key: str | None = None,
                 root: Path = ROOT) -> dict:
     """Run ``command`` from the checkout ``root`` (its working folder and ``PYTHONPATH``;
