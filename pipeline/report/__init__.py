@@ -44,8 +44,9 @@ Measured through ``gearpipe report`` (one run each, 2 cores shared, load average
 
 Cost: ``gearpipe run`` has the report figures drawn with its other figures, side by side
 in the drawing pool (:func:`~pipeline.report.writer.prepare_reports`,
-:mod:`pipeline.viz.figure_queue`), and its report step then writes the files only: 0.03-0.07 s
-for the demo's pair (its FE stress tables are the run's load distribution step).
+:mod:`pipeline.viz.figure_queue`), and its report step then writes the files only:
+0.03-0.11 s for the demo's pair on 2 cores at load average up to 4 (its FE stress tables
+are the run's load distribution step).
 """
 
 from pipeline.report.model import MeshReport, Quantity, Section, format_value
