@@ -16,9 +16,11 @@ maps ``sun_planet_herringbone_load_map_{left,right}.png/.vtu`` - then the dynami
 (``modes.csv``, ``mode_shapes.png``, ``time_history.csv/png``, ``dte_spectrum.csv/png``,
 ``sweep.csv/png``), the load distribution report of every mesh (``report.html``,
 ``report.json``, ``report.csv``; :mod:`pipeline.report`), one ``summary.json`` and
-``run.json``. Each step prints a line with
-its time on stderr; FE tables and contact cycles come from the cache when their inputs
-are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the cache).
+``run.json``. The figures of the reports are drawn with the others, side by side
+(:mod:`pipeline.viz.figure_queue`), and the reports written once they are. Each step
+prints a line with its time on stderr; FE tables and contact cycles come from the cache
+when their inputs are unchanged (``--no-cache`` recomputes them, ``--cache-dir`` moves the
+cache).
 """
 
 from __future__ import annotations
@@ -127,14 +129,18 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
         with staged_output(target) as out:
             with result.log.step("writing tables and figures", announce=True):
                 files = write_run(result, out, args.full, figures)
-                figures.queue.draw_all(show_progress=options.show_progress)
-            if result.meshes:  # the report embeds the figures drawn above: after them
-                from pipeline.report import write_reports
+                reports = []
+                if result.meshes:  # the report figures are drawn with the others
+                    from pipeline.report.writer import prepare_reports
 
+                    reports = prepare_reports(result, out, figures,
+                                              command=f"gearpipe {command} {args.config}",
+                                              written=files)
+                figures.queue.draw_all(show_progress=options.show_progress)
+            if reports:  # the reports embed the figures drawn above: after them
                 with result.log.step("load distribution reports", announce=True):
-                    files += write_reports(result, out, figure_cache(options),
-                                           command=f"gearpipe {command} {args.config}",
-                                           show_progress=options.show_progress)
+                    for report in reports:
+                        files += report.write(out)
             summary = result.summary()
             files.append(write_json(out / "summary.json", summary))
             record(out, args, box, files)

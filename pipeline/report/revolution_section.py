@@ -4,7 +4,6 @@ errors through the hunting cycle or a revolution (:mod:`pipeline.contact.revolut
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 from pipeline.report.content import quantity
@@ -22,11 +21,11 @@ FIGURES = (
 )
 
 
-def revolution_figures(out: Path, prefix: str) -> list[Figure]:
-    """The revolution's figures the run wrote into ``out``
+def revolution_figures(names: set[str], prefix: str) -> list[Figure]:
+    """The revolution's figures among the run's files ``names``
     (:mod:`pipeline.cli.revolution_files`)."""
     return [Figure(f"{prefix}{file}", caption) for file, caption in FIGURES
-            if (out / f"{prefix}{file}").is_file()]
+            if f"{prefix}{file}" in names]
 
 
 def _errors_rows(errors: Any) -> list:

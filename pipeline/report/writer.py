@@ -6,7 +6,9 @@ load distribution and tooth root stress the run computed for every mesh
 (:mod:`pipeline.run.distribution`; it computes nothing itself), draws the report's own
 figures (:mod:`pipeline.viz.distribution`), embeds them and the
 stage figures it finds in the folder, and writes, per mesh (prefix ``<mesh>_`` for a
-planetary set):
+planetary set) the files below. :func:`prepare_reports` does it in two steps for a run
+that queues its figures (``gearpipe run``): the reports assembled and their figures queued
+beside the stage figures, then :meth:`PendingReport.write` once they are all drawn.
 
 * ``report.html`` - the self-contained report (:mod:`pipeline.report.html`); the
   sun-planet mesh of a herringbone set solved through its groove gets a section with both
@@ -25,10 +27,11 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import fnmatch
 import io
 import math
 import time
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -59,18 +62,25 @@ STAGE_FIGURES = (
 )
 
 
-def _stage_figures(out: Path, prefix: str, mesh_level: bool) -> dict[str, list[Figure]]:
+def present_files(out: Path, written: Iterable[str | Path] | None = None) -> set[str]:
+    """The names of the files in ``out`` and of ``written`` (files a run wrote or queued for
+    drawing there: a figure handed to a drawer is embedded once it is drawn)."""
+    return {p.name for p in out.iterdir()} | {Path(p).name for p in written or ()}
+
+
+def _stage_figures(names: set[str], prefix: str, mesh_level: bool
+                   ) -> dict[str, list[Figure]]:
     found: dict[str, list[Figure]] = {}
     for name, caption, section in STAGE_FIGURES:
         file = (prefix if mesh_level and section != "dynamics" else "") + name
-        if (out / file).is_file():
+        if file in names:
             found.setdefault(section, []).append(Figure(file, caption))
     if mesh_level:
         known = {f.file for f in found.get("load_maps", [])}
-        for path in sorted(out.glob(f"{prefix}load_map*.png")):
-            if path.name not in known:
-                found.setdefault("load_maps", []).append(
-                    Figure(path.name, "Load map: " + path.stem[len(prefix):].replace("_", " ")))
+        for file in sorted(fnmatch.filter(names, f"{prefix}load_map*.png")):
+            if file not in known:
+                found.setdefault("load_maps", []).append(Figure(
+                    file, "Load map: " + file[len(prefix):-len(".png")].replace("_", " ")))
     return found
 
 
@@ -88,7 +98,8 @@ def _planetary_mesh(box: Any, name: str, st: Any) -> content.PlanetaryMesh | Non
 
 
 def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
-                         half_roots: dict[str, Any], out: Path, prefix: str, fig) -> Any:
+                         half_roots: dict[str, Any], names: set[str], prefix: str, fig
+                         ) -> Any:
     """The herringbone section with its figures: the halves' line loads and the existing
     load maps of both helical halves."""
     from pipeline.report.herringbone_section import herringbone_section
@@ -105,7 +116,7 @@ def _herringbone_section(st: Any, planetary: content.PlanetaryMesh, halves: Any,
                 "rpm")]
     for side in ("left", "right"):
         file = f"{prefix}herringbone_load_map_{side}.png"
-        if (out / file).is_file():
+        if file in names:
             figs.append(Figure(file, f"Unit load over the sun and planet flanks of the {side} "
                                      "helical half (contact through the groove)"))
     return herringbone_section(halves, half_roots, planetary.speeds, stage.cycle,
@@ -134,19 +145,23 @@ def _modification_figures(contact: Any, pair: Any, gears: tuple[str, str], fig,
 
 def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, title: str,
                 command: str, dist: LoadDistribution, root_stress: Any = None,
-                halves: Any = None, half_roots: Mapping[str, Any] | None = None
-                ) -> MeshReport:
-    """Draw the report figures of mesh ``name`` into ``out`` and assemble its report from
-    its load distribution ``dist``; ``halves``
+                halves: Any = None, half_roots: Mapping[str, Any] | None = None,
+                names: set[str] | None = None) -> MeshReport:
+    """Draw (or queue, :class:`~pipeline.viz.figure_cache.FigureCache`) the report figures
+    of mesh ``name`` into ``out`` and assemble its report from its load distribution
+    ``dist``; ``halves``
     (:class:`~pipeline.contact.herringbone_distribution.HerringboneDistribution`) and
-    ``half_roots`` (root stress by column) add the herringbone section."""
+    ``half_roots`` (root stress by column) add the herringbone section; ``names``: the
+    stage figures there are to embed (:func:`present_files`; default: the files in
+    ``out``)."""
     from pipeline.viz import distribution as viz
 
     st = result.meshes[name]
     box = result.gearbox
     prefix = mesh_prefix(name)
     actual, op = st.stiffness.actual, st.case.operation
-    stage = _stage_figures(out, prefix, True)
+    names = present_files(out) if names is None else names
+    stage = _stage_figures(names, prefix, True)
 
     def fig(file: str, caption: str, fn, *args) -> Figure:
         figures.save(out / f"{prefix}{file}", fn, *args)
@@ -191,15 +206,15 @@ def mesh_report(result: Any, name: str, out: Path, figures: FigureCache, *, titl
     if st.revolution is not None:
         from pipeline.report.revolution_section import revolution_figures, revolution_section
 
-        sections.append(revolution_section(st.revolution, revolution_figures(out, prefix)))
+        sections.append(revolution_section(st.revolution, revolution_figures(names, prefix)))
     if halves is not None:
-        sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, out,
+        sections.append(_herringbone_section(st, planetary, halves, half_roots or {}, names,
                                              prefix, fig))
     if stage.get("load_maps"):
         sections.append(content.figures_section("load_maps", "Tooth-surface load maps",
                                                 stage["load_maps"]))
     if result.dynamics is not None:
-        dyn = _stage_figures(out, prefix, False).get("dynamics", [])
+        dyn = _stage_figures(names, prefix, False).get("dynamics", [])
         summary = result.dynamics.summary()
         sections.append(dynamics_section(summary))
         sections.append(dynamics_meshes_section(summary, name, dyn))
@@ -349,26 +364,69 @@ def write_mesh_report(report: MeshReport, dist: LoadDistribution, out: Path, pre
     ]
 
 
+@dataclasses.dataclass(frozen=True)
+class PendingReport:
+    """A mesh report assembled with its figures drawn or queued; :meth:`write` writes its
+    files (module docstring) once the figures are drawn (the HTML embeds them).
+
+    Attributes
+    ----------
+    report : the report.
+    distribution : its load distribution.
+    prefix : its files' prefix (``<mesh>_`` for a planetary set).
+    subtitle : the HTML's subtitle up to the time it took.
+    root_stress : its root stress, or None.
+    local : the rating's local safety, or None.
+    started : ``time.perf_counter()`` when its assembly began.
+    """
+
+    report: MeshReport
+    distribution: LoadDistribution
+    prefix: str
+    subtitle: str
+    root_stress: Any
+    local: Any
+    started: float
+
+    def write(self, out: Path) -> list[Path]:
+        """The report's files in ``out`` (its figures must be there)."""
+        subtitle = f"{self.subtitle}; written in {time.perf_counter() - self.started:.1f} s"
+        return write_mesh_report(self.report, self.distribution, out, self.prefix, subtitle,
+                                 self.root_stress, self.local)
+
+
 def write_reports(result: Any, out: Path, figures: FigureCache = NO_CACHE, *,
                   command: str = "gearpipe run", show_progress: bool = False) -> list[Path]:
     """Reports of every gear mesh of ``result`` with a load distribution
     (``result.distributions``, :mod:`pipeline.run.distribution`) into ``out`` (module
     docstring); returns the files. A run without gear meshes (a lumped model) has none.
-    With ``show_progress`` a mesh whose report takes over a second gets a line on stderr."""
+    With ``show_progress`` a mesh whose report takes over a second gets a line on stderr.
+    ``figures`` must draw at once (no queue); a run that queues its figures uses
+    :func:`prepare_reports`."""
     from pipeline.progress import Steps
 
     files: list[Path] = []
     steps = Steps(result.log.label, enabled=show_progress)
     for name, stage in result.distributions.items():
         with steps.step(f"report of {name.replace('_', '-')}"):
-            files += _write_one_report(result, name, stage, out, figures, command)
+            files += _prepare_one(result, name, stage, out, figures, command).write(out)
     return files
 
 
-def _write_one_report(result: Any, name: str, stage: Any, out: Path, figures: FigureCache,
-                      command: str) -> list[Path]:
+def prepare_reports(result: Any, out: Path, figures: FigureCache, *, command: str,
+                    written: Iterable[str | Path] = ()) -> list[PendingReport]:
+    """The reports of :func:`write_reports`, their figures queued on ``figures`` (or drawn)
+    beside the stage figures ``written`` (or queued) into ``out``; write each with
+    :meth:`PendingReport.write` once the figures are drawn."""
+    names = present_files(out, written)
+    return [_prepare_one(result, name, stage, out, figures, command, names)
+            for name, stage in result.distributions.items()]
+
+
+def _prepare_one(result: Any, name: str, stage: Any, out: Path, figures: FigureCache,
+                 command: str, names: set[str] | None = None) -> PendingReport:
     """The report of one mesh (:func:`write_reports`) from its
-    :class:`~pipeline.run.distribution.DistributionStage`; its files."""
+    :class:`~pipeline.run.distribution.DistributionStage`."""
     box = result.gearbox
     st = result.meshes[name]
     t0 = time.perf_counter()
@@ -379,10 +437,9 @@ def _write_one_report(result: Any, name: str, stage: Any, out: Path, figures: Fi
              f"{math.degrees(pair.pinion.helix_angle):g} deg")
     report = mesh_report(result, name, out, figures, title=title, command=command,
                          dist=stage.distribution, root_stress=stage.root_stress,
-                         halves=stage.halves, half_roots=stage.half_roots)
+                         halves=stage.halves, half_roots=stage.half_roots, names=names)
     subtitle = (f"Tooth load distribution report - {st.compliance} compliance, "
-                f"{len(st.contact)} mesh positions; written in "
-                f"{time.perf_counter() - t0:.1f} s")
+                f"{len(st.contact)} mesh positions")
     local = None if result.rating is None else result.rating.meshes[name].local
-    return write_mesh_report(report, stage.distribution, out, prefix, subtitle,
-                             stage.root_stress, local)
+    return PendingReport(report, stage.distribution, prefix, subtitle, stage.root_stress,
+                         local, t0)

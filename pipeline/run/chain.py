@@ -35,15 +35,28 @@ settings, formats) and figures (drawing code, every plotted array); a rerun that
 only a dynamics option reads the contact cycle back and redraws only the dynamics figures.
 Figures not in the cache are drawn side by side in a process pool forked from a drawer
 that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads while the
-stages compute (:mod:`pipeline.viz.figure_queue`). The run imports matplotlib only to draw, and
-reading a gearbox file or cached FE tables imports no scikit-fem.
+stages compute (:mod:`pipeline.viz.figure_queue`); the report figures are drawn with them
+(:func:`pipeline.report.writer.prepare_reports`), and a matplotlib figure is drawn once and
+cut to its tight box (:mod:`pipeline.viz.saving`). The run imports matplotlib only to draw,
+and reading a gearbox file or cached FE tables imports no scikit-fem.
 
 Measured (``workflows/benchmarks/bench_run.py``: the demo's pair with FE 2D contact and the
-load distribution report, separate processes, 2 cores shared with other work, load average
-0.5-1.2, three runs): cold 9.6-11.4 s, warm 1.6-1.7 s, warm with the damping ratio changed
-2.3-2.7 s (2.73 s in a later run at load 0.6; target 3 s; interpreter and imports 0.8-0.95
-s, the four changed dynamics figures with the tables 1.0-1.25 s, sweep 0.26-0.31 s, report
-0.1-0.14 s).
+load distribution report, separate processes, ``OMP_NUM_THREADS=2`` as ``dev.sh`` sets it,
+cold runs alternating with b847466, which drew the report figures in this process after the
+others and saved each through ``savefig(bbox_inches="tight")``; 2 cores shared with other
+work; every file and every number of ``summary.json`` the same). At load average 1.5-1.8,
+three runs each: cold 8.2-8.5 s against 9.7-10.6 s (median ratio 0.83; the writing and
+report steps 3.8 s against 5.3 s), CPU with the drawing processes 13.0-13.3 s against
+13.2-14.3 s, warm with the damping ratio changed 3.7 s against 4.1 s. At load average
+3.5-5.4, three runs each: cold 15.3-28.6 s against 30.9-33.5 s (median ratio 0.74), CPU
+13.7-15.6 s against 15.2-16.6 s. At load average 2.6-4.1, five runs each: cold 16.3-29.6 s
+against 14.9-29.7 s (median ratios 1.05 and 1.09 in two sessions), CPU 14.4-18.8 s against
+12.5-18.8 s. The gain depends on the other work sharing the cores: from 17-26 % to none
+within the spread of the runs. Where the CPU time of a cold run goes (one process each, same
+machine): the computing process 5-6 s (imports 0.8-1.0 s, loaded contact with both FE tables
+1.5 s, shafts 0.6 s, FE root stress 1.4-1.7 s, dynamics 0.45 s), the drawing processes 7-9 s
+(matplotlib import 0.35 s, the 21 matplotlib figures 4-5.5 s, the pyvista load map 1.3-1.9 s
+of which 0.7-1.2 s imports, each new drawing process 0.5-1.5 s more for its first figures).
 """
 
 from __future__ import annotations

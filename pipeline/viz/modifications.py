@@ -12,7 +12,6 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.ticker import MaxNLocator
 
 from pipeline.contact.modifications import ModificationMap
 from pipeline.viz.canvas import new_figure
@@ -44,6 +43,8 @@ def plot_modification_map(m: ModificationMap, title: str, *, ax: Axes | None = N
     """One flank's map on ``ax`` (a new figure when None): filled contours and labelled
     lines of the material removed [um], its own colour bar; ``diameters`` adds the
     diameter [mm] axis on the right."""
+    from matplotlib.ticker import MaxNLocator  # matplotlib only to draw (pipeline.viz.canvas)
+
     if ax is None:
         ax = new_figure((5.2, 4.4), "constrained").subplots()
     z, roll, w = m.face * MM, m.roll * MM, m.deviation * UM

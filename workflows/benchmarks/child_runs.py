@@ -29,17 +29,19 @@ def export_revision(rev: str, folder: Path) -> Path:
     return folder
 
 
-def timed_child(command: list[str], timing_file: Path, key: str | None = None) -> dict:
-    """Run ``command`` and read its step timing from ``timing_file`` (JSON; under ``key``
+def timed_child(command: list[str], timing_file: Path, key: str | None = None,
+                root: Path = ROOT) -> dict:
+    """Run ``command`` from the checkout ``root`` (its working folder and ``PYTHONPATH``;
+    default: this one) and read its step timing from ``timing_file`` (JSON; under ``key``
     when given): ``wall_s``, ``cpu_s``, ``steps_s``, ``from_cache``, ``outside_steps_s``,
     ``peak_rss_MB`` (``None`` when no higher than an earlier child's), ``load_average``."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     before, cpu0 = usage.ru_maxrss, usage.ru_utime + usage.ru_stime
     t0 = time.perf_counter()
-    subprocess.run(command, check=True, cwd=ROOT, stdout=subprocess.DEVNULL,
+    subprocess.run(command, check=True, cwd=root, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL,
                    env={**os.environ, "PYVISTA_OFF_SCREEN": "true", "MPLBACKEND": "Agg",
-                        "PYTHONPATH": str(ROOT)})
+                        "PYTHONPATH": str(root)})
     wall = time.perf_counter() - t0
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     peak = usage.ru_maxrss  # KiB, max over children
