@@ -20,9 +20,12 @@ each side only (the far teeth and the body coarse, as before). The tabulated blo
 Maxwell-Betti's pairs on differently meshed teeth (``info["reciprocity_error"]``,
 0.1-0.2 % at the defaults) and are averaged. Against the former model (every tabulated
 tooth loaded and fine) on the z 30/30 helical pair of ``bench_fe3d``: mesh stiffness
-mean, min and max and TE p-p within 0.1 %, at 44k instead of 2 x 44k unknowns and
-56 instead of 2 x 168 load cases. Responses read on a coarse neighbour made the pair
-0.5 % stiffer (hence the fine neighbours), coarser far teeth changed it by 0.05 %.
+mean, min and max within 0.05 %, TE p-p 0.16 %, from one 46k-unknown model for both gears
+(mirror images, below) and 56 instead of 2 x 168 load cases; against every tooth fine
+(269k unknowns) 0.06-0.10 %, TE p-p 0.05 % (``workflows/fe3d_convergence.py``); on the
+traction pair of Yang et al. (2026) (``gearpipe contact``) within 0.07 %, TE p-p 0.01 %.
+Responses read on a coarse neighbour made the z 30/30 pair 0.5 % stiffer than with every
+tooth fine (hence the fine neighbours), coarser far teeth changed it by 0.05 %.
 A sector (``body = "sector"``) is clamped at its cuts, not alike from every tooth: its
 tabulated teeth are all loaded.
 
