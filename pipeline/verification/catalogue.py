@@ -22,6 +22,7 @@ from pipeline.verification import (
     cases_fe_convergence,
     cases_rating,
     cases_shaft,
+    cases_spectrum,
 )
 from pipeline.verification.context import Context
 from pipeline.verification.model import KINDS, Outcome
@@ -81,6 +82,8 @@ CATALOGUE: tuple[Case, ...] = (
     Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
          "S_F) against KISSsoft's report", "published", "fast",
          cases_rating.case_kisssoft_helical_rating),
+    Case("iso_6336_6_annex_c", "Miner sum of a 42-bin load spectrum against ISO 6336-6 "
+         "Annex C, Table C.2", "published", "fast", cases_spectrum.case_iso_6336_6_annex_c),
     Case("harris_1958_light_load_te", "light-load TE with tip relief against Harris (1958)",
          "published", "fast", cases_contact.case_harris_light_load),
     Case("calculix_demo_pair", "FE-enriched loaded contact (TE, mesh stiffness, 24 "
