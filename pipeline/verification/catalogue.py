@@ -21,6 +21,7 @@ from pipeline.verification import (
     cases_elasticity,
     cases_fe_convergence,
     cases_rating,
+    cases_root_stress,
     cases_shaft,
     cases_spectrum,
 )
@@ -63,6 +64,9 @@ CATALOGUE: tuple[Case, ...] = (
          "G J / L", "exact", "fast", cases_elasticity.case_shaft_torsion),
     Case("shaft_beam_simply_supported", "Timoshenko beam shaft under a central load against "
          "its closed form", "exact", "fast", cases_shaft.case_simply_supported_shaft),
+    Case("iso_6336_3_root_geometry", "ISO 6336-3 method B root chord, fillet radius, arm "
+         "and load angle against the exact profile; FE tip-load root stress level", "exact",
+         "fast", cases_root_stress.case_iso_6336_3_root_geometry),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
