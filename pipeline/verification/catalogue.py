@@ -83,6 +83,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_1_stiffness_kisssoft", "ISO 6336-1 stiffness of the NREL 5 MW helical "
          "stage against KISSsoft's report", "published", "fast",
          cases_rating.case_iso_6336_1_stiffness_kisssoft),
+    Case("iso_6336_1_stiffness_planetary", "ISO 6336-1 stiffness of the NREL 5 MW "
+         "planetary sun-planet and planet-ring meshes against KISSsoft's report", "published",
+         "fast", cases_rating.case_iso_6336_1_stiffness_planetary),
     Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
          "S_F) against KISSsoft's report", "published", "fast",
          cases_rating.case_kisssoft_helical_rating),
