@@ -15,6 +15,7 @@ from pipeline.verification import (
     cases_calculix,
     cases_calculix_rerun,
     cases_calculix_torques,
+    cases_compliance,
     cases_contact,
     cases_contact_convergence,
     cases_dynamics,
@@ -67,6 +68,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_3_root_geometry", "ISO 6336-3 method B root chord, fillet radius, arm "
          "and load angle against the exact profile; FE tip-load root stress level", "exact",
          "fast", cases_root_stress.case_iso_6336_3_root_geometry),
+    Case("yang_2026_tooth_compliance", "potential-energy bending, shear and axial tooth "
+         "compliance against Yang et al. (2026)'s closed-form integrals", "exact", "fast",
+         cases_compliance.case_yang_2026_tooth_compliance),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
