@@ -25,6 +25,7 @@ from pipeline.verification import (
     cases_root_stress,
     cases_shaft,
     cases_spectrum,
+    cases_tip_contact,
 )
 from pipeline.verification.context import Context
 from pipeline.verification.model import KINDS, Outcome
@@ -71,6 +72,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("yang_2026_tooth_compliance", "potential-energy bending, shear and axial tooth "
          "compliance against Yang et al. (2026)'s closed-form integrals", "exact", "fast",
          cases_compliance.case_yang_2026_tooth_compliance),
+    Case("tip_corner_gap_and_lever", "tip-corner gap and lever factors beyond the path of "
+         "contact against the textbook involute construction", "exact", "fast",
+         cases_tip_contact.case_tip_corner_gap_and_lever),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
