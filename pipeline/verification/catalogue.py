@@ -25,6 +25,7 @@ from pipeline.verification import (
     cases_root_stress,
     cases_shaft,
     cases_spectrum,
+    cases_tangency,
     cases_tip_contact,
 )
 from pipeline.verification.context import Context
@@ -77,6 +78,9 @@ CATALOGUE: tuple[Case, ...] = (
          cases_tip_contact.case_tip_corner_gap_and_lever),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
+    Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
+         "rounded tip's tangency correction at its exact limits", "exact", "fast",
+         cases_tangency.case_tangency_hertz_limits),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
          "quadrature", "exact", "fast", cases_contact.case_weber_half_plane),
     Case("two_inertia_pair", "torsional spur pair natural frequency", "exact", "fast",
