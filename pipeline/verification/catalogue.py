@@ -21,6 +21,7 @@ from pipeline.verification import (
     cases_dynamics,
     cases_elasticity,
     cases_fe_convergence,
+    cases_fsh,
     cases_rating,
     cases_root_stress,
     cases_shaft,
@@ -76,6 +77,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("tip_corner_gap_and_lever", "tip-corner gap and lever factors beyond the path of "
          "contact against the textbook involute construction", "exact", "fast",
          cases_tip_contact.case_tip_corner_gap_and_lever),
+    Case("iso_6336_1_fsh_beside_beam", "ISO 6336-1 method C f_sh (Eq. 57, Figure 13 "
+         "arrangements a, b, c) beside the beam shaft's face tilt", "exact", "fast",
+         cases_fsh.case_iso_6336_1_fsh_beside_beam),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
