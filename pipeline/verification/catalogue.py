@@ -23,6 +23,7 @@ from pipeline.verification import (
     cases_fe_convergence,
     cases_fsh,
     cases_rating,
+    cases_revolution,
     cases_root_stress,
     cases_shaft,
     cases_spectrum,
@@ -87,6 +88,9 @@ CATALOGUE: tuple[Case, ...] = (
          cases_tangency.case_tangency_hertz_limits),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
          "quadrature", "exact", "fast", cases_contact.case_weber_half_plane),
+    Case("runout_revolution", "loaded contact through a revolution with a pinion runout: "
+         "the mesh cycle at each centre distance plus e sin(phi + theta)", "exact", "fast",
+         cases_revolution.case_runout_revolution),
     Case("two_inertia_pair", "torsional spur pair natural frequency", "exact", "fast",
          cases_dynamics.case_two_inertia_pair),
     Case("piecewise_stiffness_monodromy", "Floquet multipliers of a square-wave stiffness "
