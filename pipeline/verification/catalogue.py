@@ -20,6 +20,7 @@ from pipeline.verification import (
     cases_contact_convergence,
     cases_dynamics,
     cases_elasticity,
+    cases_fe3d_convergence,
     cases_fe_convergence,
     cases_fsh,
     cases_rating,
@@ -29,6 +30,7 @@ from pipeline.verification import (
     cases_spectrum,
     cases_tangency,
     cases_tip_contact,
+    cases_whole3d,
 )
 from pipeline.verification.context import Context
 from pipeline.verification.model import KINDS, Outcome
@@ -159,6 +161,12 @@ CATALOGUE: tuple[Case, ...] = (
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),
+    Case("whole3d_plane_strain", "3D whole gear with sliding end faces against the 2D "
+         "plane-strain whole gear (its exact limit)", "exact", "full",
+         cases_whole3d.case_whole3d_plane_strain),
+    Case("fe3d_table_convergence", "3D FE tables of a helical pair over refinements 0.6 to "
+         "2: mesh stiffness rate, limit, graded against uniform", "convergence", "full",
+         cases_fe3d_convergence.case_fe3d_table_convergence),
 )
 """Every case, in report order."""
 
