@@ -164,6 +164,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("whole3d_plane_strain", "3D whole gear with sliding end faces against the 2D "
          "plane-strain whole gear (its exact limit)", "exact", "full",
          cases_whole3d.case_whole3d_plane_strain),
+    Case("whole3d_plane_strain_convergence", "3D whole gear with sliding end faces: its gap "
+         "to plane strain over refinements 0.6, 1, 1.6", "convergence", "full",
+         cases_whole3d.case_whole3d_plane_strain_convergence),
     Case("fe3d_table_convergence", "3D FE tables of a helical pair over refinements 0.6 to "
          "2: mesh stiffness rate, limit, graded against uniform", "convergence", "full",
          cases_fe3d_convergence.case_fe3d_table_convergence),
