@@ -15,13 +15,22 @@ from pipeline.verification import (
     cases_calculix,
     cases_calculix_rerun,
     cases_calculix_torques,
+    cases_compliance,
     cases_contact,
     cases_contact_convergence,
     cases_dynamics,
     cases_elasticity,
+    cases_fe3d_convergence,
     cases_fe_convergence,
+    cases_fsh,
     cases_rating,
+    cases_revolution,
+    cases_root_stress,
     cases_shaft,
+    cases_spectrum,
+    cases_tangency,
+    cases_tip_contact,
+    cases_whole3d,
 )
 from pipeline.verification.context import Context
 from pipeline.verification.model import KINDS, Outcome
@@ -62,10 +71,28 @@ CATALOGUE: tuple[Case, ...] = (
          "G J / L", "exact", "fast", cases_elasticity.case_shaft_torsion),
     Case("shaft_beam_simply_supported", "Timoshenko beam shaft under a central load against "
          "its closed form", "exact", "fast", cases_shaft.case_simply_supported_shaft),
+    Case("iso_6336_3_root_geometry", "ISO 6336-3 method B root chord, fillet radius, arm "
+         "and load angle against the exact profile; FE tip-load root stress level", "exact",
+         "fast", cases_root_stress.case_iso_6336_3_root_geometry),
+    Case("yang_2026_tooth_compliance", "potential-energy bending, shear and axial tooth "
+         "compliance against Yang et al. (2026)'s closed-form integrals", "exact", "fast",
+         cases_compliance.case_yang_2026_tooth_compliance),
+    Case("tip_corner_gap_and_lever", "tip-corner gap and lever factors beyond the path of "
+         "contact against the textbook involute construction", "exact", "fast",
+         cases_tip_contact.case_tip_corner_gap_and_lever),
+    Case("iso_6336_1_fsh_beside_beam", "ISO 6336-1 method C f_sh (Eq. 57, Figure 13 "
+         "arrangements a, b, c) beside the beam shaft's face tilt", "exact", "fast",
+         cases_fsh.case_iso_6336_1_fsh_beside_beam),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
+    Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
+         "rounded tip's tangency correction at its exact limits", "exact", "fast",
+         cases_tangency.case_tangency_hertz_limits),
     Case("weber_half_plane", "Weber's local approach against the half-plane solution by "
          "quadrature", "exact", "fast", cases_contact.case_weber_half_plane),
+    Case("runout_revolution", "loaded contact through a revolution with a pinion runout: "
+         "the mesh cycle at each centre distance plus e sin(phi + theta)", "exact", "fast",
+         cases_revolution.case_runout_revolution),
     Case("two_inertia_pair", "torsional spur pair natural frequency", "exact", "fast",
          cases_dynamics.case_two_inertia_pair),
     Case("piecewise_stiffness_monodromy", "Floquet multipliers of a square-wave stiffness "
@@ -78,9 +105,14 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_1_stiffness_kisssoft", "ISO 6336-1 stiffness of the NREL 5 MW helical "
          "stage against KISSsoft's report", "published", "fast",
          cases_rating.case_iso_6336_1_stiffness_kisssoft),
+    Case("iso_6336_1_stiffness_planetary", "ISO 6336-1 stiffness of the NREL 5 MW "
+         "planetary sun-planet and planet-ring meshes against KISSsoft's report", "published",
+         "fast", cases_rating.case_iso_6336_1_stiffness_planetary),
     Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
          "S_F) against KISSsoft's report", "published", "fast",
          cases_rating.case_kisssoft_helical_rating),
+    Case("iso_6336_6_annex_c", "Miner sum of a 42-bin load spectrum against ISO 6336-6 "
+         "Annex C, Table C.2", "published", "fast", cases_spectrum.case_iso_6336_6_annex_c),
     Case("harris_1958_light_load_te", "light-load TE with tip relief against Harris (1958)",
          "published", "fast", cases_contact.case_harris_light_load),
     Case("calculix_demo_pair", "FE-enriched loaded contact (TE, mesh stiffness, 24 "
@@ -129,6 +161,15 @@ CATALOGUE: tuple[Case, ...] = (
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),
+    Case("whole3d_plane_strain", "3D whole gear with sliding end faces against the 2D "
+         "plane-strain whole gear (its exact limit)", "exact", "full",
+         cases_whole3d.case_whole3d_plane_strain),
+    Case("whole3d_plane_strain_convergence", "3D whole gear with sliding end faces: its gap "
+         "to plane strain over refinements 0.6, 1, 1.6", "convergence", "full",
+         cases_whole3d.case_whole3d_plane_strain_convergence),
+    Case("fe3d_table_convergence", "3D FE tables of a helical pair over refinements 0.6 to "
+         "2: mesh stiffness rate, limit, graded against uniform", "convergence", "full",
+         cases_fe3d_convergence.case_fe3d_table_convergence),
 )
 """Every case, in report order."""
 
