@@ -69,6 +69,10 @@ def test_classical_tooth_matches_closed_form(a1, mu_lam):
 
     The contact point with load angle a1 has tan(alpha_R) = a1 + a2 (a2: half base angle);
     friction enters as F_b = F(cos a1 - mu lam sin a1), F_a = F(sin a1 + mu lam cos a1).
+    Relative tolerances with ``abs=0`` (the compliances are 1e-16 to 2e-11 m^2/N, below
+    pytest's default absolute tolerance): 2e-5, and 5e-5 for bending at a1 = 0.05, whose
+    error falls at second order with the section count (9.1e-5, 2.5e-5, 5.0e-6 at 2000,
+    4000, 8000 sections; measured).
     """
     g = spur(50, "g")
     model = classical_tooth_model(g)
@@ -95,9 +99,11 @@ def test_classical_tooth_matches_closed_form(a1, mu_lam):
 
     r = g.base_radius / math.cos(math.atan(a1 + a2))
     c = tooth_compliance(model, r, mu=abs(mu_lam), lam=np.sign(mu_lam))
-    assert float(c.bending) == pytest.approx(quad(bend, -a1, a2, limit=200)[0], rel=2e-5)
-    assert float(c.shear) == pytest.approx(quad(shear, -a1, a2, limit=200)[0], rel=2e-5)
-    assert float(c.axial) == pytest.approx(quad(axial, -a1, a2, limit=200)[0], rel=2e-5)
+    rel_bending = 5e-5 if a1 < 0.1 else 2e-5
+    assert float(c.bending) == pytest.approx(quad(bend, -a1, a2, limit=200)[0],
+                                             rel=rel_bending, abs=0)
+    assert float(c.shear) == pytest.approx(quad(shear, -a1, a2, limit=200)[0], rel=2e-5, abs=0)
+    assert float(c.axial) == pytest.approx(quad(axial, -a1, a2, limit=200)[0], rel=2e-5, abs=0)
 
 
 def test_section_table_convergence():
