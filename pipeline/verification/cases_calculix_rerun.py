@@ -12,17 +12,15 @@ on the path (Debian: ``apt-get install calculix-ccx``).
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import shutil
-import sys
 from pathlib import Path
 from types import ModuleType
 
 import numpy as np
 
 from pipeline.verification.cases_calculix import load_reference
-from pipeline.verification.context import Context
+from pipeline.verification.context import Context, checkout_script
 from pipeline.verification.model import Outcome, Quantity
 
 SCRIPT = "calculix_spur_contact.py"
@@ -35,18 +33,8 @@ and the digits CalculiX prints."""
 def _reference_model(context: Context) -> ModuleType:
     """The reference script as a module (registered under a private name, as an import
     would, so that its dataclasses resolve their module)."""
-    path = Path(context.reference_dir) / SCRIPT
-    if not path.is_file():
-        raise FileNotFoundError(f"the reference model {path} is missing (it is in a source "
-                                "checkout's workflows/reference/)")
-    name = "_gearpipe_calculix_reference"
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+    return checkout_script(Path(context.reference_dir) / SCRIPT, "_gearpipe_calculix_reference",
+                           "workflows/reference/")
 
 
 def case_calculix_rerun(context: Context, ccx: str = "ccx") -> Outcome:

@@ -14,9 +14,7 @@ above the limits, uniform against graded -0.09 / -0.06 / -0.10 % (TE p-p -0.05 %
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
 import tempfile
 from dataclasses import replace
 from pathlib import Path
@@ -24,7 +22,7 @@ from types import ModuleType
 
 import numpy as np
 
-from pipeline.verification.context import Context
+from pipeline.verification.context import Context, checkout_script
 from pipeline.verification.display import PERCENT
 from pipeline.verification.model import Convergence, Outcome, Plot, Quantity, Series
 
@@ -39,18 +37,8 @@ RATE_REASON = ("measured 2.1-2.7; P2 tetrahedra converge in the energy (the comp
 
 def _workflow(context: Context) -> ModuleType:
     """``workflows/fe3d_convergence.py`` as a module (beside the reference folder)."""
-    path = Path(context.reference_dir).parent / SCRIPT
-    if not path.is_file():
-        raise FileNotFoundError(f"the study {path} is missing (it is in a source checkout's "
-                                "workflows/)")
-    name = "_gearpipe_fe3d_convergence"
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+    return checkout_script(Path(context.reference_dir).parent / SCRIPT,
+                           "_gearpipe_fe3d_convergence", "workflows/")
 
 
 def case_fe3d_table_convergence(context: Context) -> Outcome:

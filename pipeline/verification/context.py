@@ -3,8 +3,11 @@ committed reference data lie."""
 
 from __future__ import annotations
 
+import importlib.util
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import ModuleType
 
 from pipeline.cache.folder import Cache
 
@@ -27,3 +30,18 @@ class Context:
 
     cache: Cache = field(default_factory=Cache.off)
     reference_dir: Path = REFERENCE_DIR
+
+
+def checkout_script(path: Path, name: str, where: str) -> ModuleType:
+    """The script at ``path`` as a module registered under the private ``name`` (as an
+    import would, so that its dataclasses resolve their module); a missing file is one
+    line saying it is in a source checkout's ``where``."""
+    if not path.is_file():
+        raise FileNotFoundError(f"{path} is missing (it is in a source checkout's {where})")
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
