@@ -21,12 +21,14 @@ from pipeline.verification import (
     cases_distribution,
     cases_dynamics,
     cases_elasticity,
+    cases_excitation,
     cases_fe3d_convergence,
     cases_fe_convergence,
     cases_fsh,
     cases_generation,
     cases_herringbone,
     cases_rating,
+    cases_relief,
     cases_revolution,
     cases_root_stress,
     cases_shaft,
@@ -111,6 +113,9 @@ CATALOGUE: tuple[Case, ...] = (
          cases_revolution.case_runout_revolution),
     Case("two_inertia_pair", "torsional spur pair natural frequency", "exact", "fast",
          cases_dynamics.case_two_inertia_pair),
+    Case("contact_excitation_zero_speed", "pair model at zero speed under the contact "
+         "excitation: the loaded contact's TE and load at every position", "exact", "fast",
+         cases_excitation.case_contact_excitation_zero_speed),
     Case("piecewise_stiffness_monodromy", "Floquet multipliers of a square-wave stiffness "
          "against the closed-form monodromy", "exact", "fast",
          cases_dynamics.case_piecewise_monodromy),
@@ -183,6 +188,12 @@ CATALOGUE: tuple[Case, ...] = (
     Case("fe2d_tooth_compliance_convergence_fine", "2D FE single-tooth compliance over five "
          "mesh refinements (refinement 16)", "convergence", "full",
          cases_fe_convergence.case_fe2d_tooth_compliance_convergence_fine),
+    Case("tip_relief_optimum", "FE 2D study's best long tip relief against F / (b "
+         "c_gamma_alpha) with ISO 6336-1's mesh stiffness", "published", "full",
+         cases_relief.case_tip_relief_optimum),
+    Case("harris_1958_map_minimum", "Harris map: the smallest TE peak-to-peak at the torque "
+         "whose single-pair deflection equals C_a (Harris 1958)", "published", "full",
+         cases_relief.case_harris_map_minimum),
     Case("whole3d_plane_strain", "3D whole gear with sliding end faces against the 2D "
          "plane-strain whole gear (its exact limit)", "exact", "full",
          cases_whole3d.case_whole3d_plane_strain),
