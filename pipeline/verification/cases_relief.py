@@ -1,7 +1,8 @@
 """Cases of linear tip relief on the assembly-error paper's spur pair
 (``workflows/configs/spur_pair_assembly_errors.toml``, 340 N m): a design study's optimum
-and a Harris map's minima, each point through the
-run's static stages (:func:`pipeline.run.chain.mesh_stages`), as a design study's point.
+and a Harris map's minima, each point through the run's static stages
+(:func:`pipeline.run.chain.mesh_stages`) as a study evaluates it (the verification layer
+sits beside the study layer, not above it).
 
 * The classic estimate of the best long linear relief is the combined tooth deflection at
   the operating load, F / (b c_gamma_alpha) with ISO 6336-1's mesh stiffness
