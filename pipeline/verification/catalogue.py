@@ -27,6 +27,7 @@ from pipeline.verification import (
     cases_fsh,
     cases_generation,
     cases_herringbone,
+    cases_planetary_rating,
     cases_rating,
     cases_relief,
     cases_revolution,
@@ -138,6 +139,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
          "S_F) against KISSsoft's report", "published", "fast",
          cases_rating.case_kisssoft_helical_rating),
+    Case("kisssoft_planetary_rating", "ISO 6336 rating of the NREL 5 MW planetary stage "
+         "(sun, planet, ring: K_v to S_F) against KISSsoft's report", "published", "fast",
+         cases_planetary_rating.case_kisssoft_planetary_rating),
     Case("iso_6336_6_annex_c", "Miner sum of a 42-bin load spectrum against ISO 6336-6 "
          "Annex C, Table C.2", "published", "fast", cases_spectrum.case_iso_6336_6_annex_c),
     Case("harris_1958_light_load_te", "light-load TE with tip relief against Harris (1958)",
