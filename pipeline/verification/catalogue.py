@@ -27,6 +27,7 @@ from pipeline.verification import (
     cases_fsh,
     cases_generation,
     cases_herringbone,
+    cases_modifications,
     cases_planetary_rating,
     cases_rating,
     cases_relief,
@@ -99,6 +100,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_1_fsh_beside_beam", "ISO 6336-1 method C f_sh (Eq. 57, Figure 13 "
          "arrangements a, b, c) beside the beam shaft's face tilt", "exact", "fast",
          cases_fsh.case_iso_6336_1_fsh_beside_beam),
+    Case("flank_modification_shapes", "tip and root reliefs (linear, parabolic, arc), "
+         "crowning, slopes, end reliefs and twist against their closed forms in each gear's "
+         "own coordinates", "exact", "fast", cases_modifications.case_flank_modification_shapes),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
