@@ -1,5 +1,5 @@
-"""Case of the flank modifications: each shape against its closed form written in the
-gear's own coordinates.
+"""Cases of the flank modifications: each shape against its closed form written in the
+gear's own coordinates, and a topography grid against the modifications it samples.
 
 A gear's modification is written in its roll length ``rho = sqrt(r^2 - r_b^2)`` and its
 face position (ISO 21771:2007, 4.3 and 7.3); the contact evaluates it on the path of
@@ -10,16 +10,25 @@ in that gear's coordinates, written independently of the code: the pinion's roll
 ``z + 2 mm``). The relief shapes themselves: linear ``C x / L``, parabolic ``C (x / L)^2``
 and the circular arc through (0, 0) tangent to the flank and through (L, C),
 ``x^2 + (R - w)^2 = R^2``.
+
+A topography grid is interpolated bilinearly on its cells, so a grid written from
+modifications that are bilinear on each cell (linear reliefs with grid lines at their
+starts, slopes, a twist, a linear end relief) reproduces them exactly: the same gap to
+round-off, and the same loaded contact.
 """
 
 from __future__ import annotations
 
 import math
+import tempfile
+import warnings
+from pathlib import Path
 
 import numpy as np
 
 from pipeline.geometry.gear import GearSpec, Material
 from pipeline.geometry.pair import GearPair
+from pipeline.validation import PhysicsWarning
 from pipeline.verification.context import Context
 from pipeline.verification.display import UM
 from pipeline.verification.model import Outcome, Quantity
@@ -159,3 +168,104 @@ def case_flank_modification_shapes(context: Context) -> Outcome:
     return Outcome("Exact: the modifications' definitions in roll length and face position "
                    "(ISO 21771:2007, 4.3 and 7.3), written independently of the code",
                    inputs, tuple(q))
+
+
+def _write_grid(path: Path, mod, frame, roll_lines, face_lines):
+    """A topography CSV of ``mod`` on a grid through roll_lines x face_lines (m), written in
+    mm and um with 17 significant digits, read back as a user's file is."""
+    from pipeline.config.modifications import read_topography
+
+    lo, hi = frame.active_roll
+    roll = np.unique(np.r_[np.linspace(lo - 0.2 * MM_, hi + 0.2 * MM_, 9), roll_lines])
+    face = np.unique(np.r_[np.linspace(0.0, frame.face_width, 5), face_lines])
+    rr, zz = np.meshgrid(roll, face)
+    s = np.array([frame.s_at_roll(r) for r in rr.ravel()])
+    w = mod.deviation(frame, s, zz.ravel() - frame.face_shift)
+    rows = ["face_position_mm,roll_length_mm,deviation_um"]
+    rows += [f"{a * 1e3:.17g},{b * 1e3:.17g},{c * 1e6:.17g}" for a, b, c in
+             zip(zz.ravel(), rr.ravel(), w, strict=True)]
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    return read_topography(path, "modifications.topography_csv")
+
+
+def case_topography_equals_analytical(context: Context) -> Outcome:
+    """A topography grid written from analytical modifications that are bilinear on its
+    cells (linear reliefs with grid lines at their starts, slopes, a twist, a linear end
+    relief) against those modifications: the gap, and the loaded contact's TE and loads."""
+    from pipeline.contact.analysis import analyse_contact
+    from pipeline.contact.compliance import compliance_source
+    from pipeline.contact.modifications import (
+        GearModification,
+        LeadModification,
+        ProfileModification,
+        flank_frames,
+        modification_gap,
+    )
+    from pipeline.contact.options import ContactOptions
+    from pipeline.contact.separations import FlankModifications
+    from pipeline.operation import OperatingPoint
+    from pipeline.stiffness.options import StiffnessOptions
+
+    pair = GearPair(_spur(50, "pinion"), _spur(50, "gear"))
+    fp, fg = flank_frames(pair)
+    pinion = GearModification(
+        profile=ProfileModification(tip_relief=12 * UM_, tip_relief_length=4 * MM_,
+                                    slope=3 * UM_),
+        lead=LeadModification(slope=-5 * UM_, end_relief_face2=6 * UM_,
+                              end_relief_face2_length=4 * MM_),
+        twist=4 * UM_)
+    d_start = 2 * math.hypot(fg.active_roll[1] - 5 * MM_, pair.gear.base_radius)
+    gear = GearModification(profile=ProfileModification(
+        tip_relief=10 * UM_, tip_relief_diameter=d_start, root_relief=5 * UM_,
+        root_relief_length=3 * MM_))
+    with tempfile.TemporaryDirectory() as tmp:
+        grid_p = _write_grid(Path(tmp) / "p.csv", pinion, fp, [fp.active_roll[1] - 4 * MM_],
+                             [pair.face_width - 4 * MM_])
+        grid_g = _write_grid(Path(tmp) / "g.csv", gear, fg,
+                             [fg.active_roll[1] - 5 * MM_, fg.active_roll[0] + 3 * MM_], [])
+    analytic = FlankModifications(pinion_flank=pinion, gear_flank=gear)
+    gridded = FlankModifications(pinion_flank=GearModification(topography=grid_p),
+                                 gear_flank=GearModification(topography=grid_g))
+    ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 97),
+                         np.linspace(0.0, pair.face_width, 13))
+    s, z = ss.ravel(), zz.ravel()
+    want = modification_gap(pair, s, z, analytic.flanks)
+    got = modification_gap(pair, s, z, gridded.flanks)
+    op = OperatingPoint(torque=340.0, speed=245.0)
+
+    def cycle(mods):
+        opts = ContactOptions(positions=12, slices=10, modifications=mods)
+        # the gear's tip corner touches beyond the path at two positions, alike in both
+        # runs: the comparison is between them, so its warning says nothing here
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", PhysicsWarning)
+            return analyse_contact(compliance_source(pair, op, opts, StiffnessOptions(),
+                                                     None), op, opts)
+
+    a, b = cycle(analytic), cycle(gridded)
+    te = np.abs(b.transmission_error / a.transmission_error - 1.0).max()
+    load_tol = 1e-8 * np.abs(a.point_load) + 1e-10 * a.point_load.max()
+    load = np.abs(b.point_load - a.point_load) / load_tol
+    q = (Quantity("gap of the grid: largest |grid - analytical|", "m", 0.0,
+                  float(np.abs(got - want).max()), "absolute", 1e-13 * np.abs(want).max(),
+                  "round-off of 17 printed digits and the mm / um scaling (the tests' "
+                  "1e-13 of the largest gap)", UM),
+         Quantity("gap span of the modifications (they act)", "m", 10 * UM_, float(np.ptp(want)),
+                  "lower_bound", 0.0, "the tests ask more than 10 um", UM),
+         Quantity("loaded TE, 12 positions: largest |grid / analytical - 1|", "-", 0.0,
+                  float(te), "absolute", 1e-11, "round-off through the contact solve (the "
+                                                "tests' rtol 1e-11)"),
+         Quantity("point loads: largest |grid - analytical| / (1e-8 |F| + 1e-10 F_max)", "-",
+                  0.0, float(load.max()), "upper_bound", 1.0,
+                  "the tests' rtol 1e-8 and atol 1e-10 of the largest point load: at most "
+                  "1 passes"))
+    inputs = (("pair", "z 50/50, m 3 mm, 20 deg, b 20 mm; 340 N m, 12 positions, 10 slices"),
+              ("pinion", "linear tip relief 12 um over 4 mm, profile slope 3 um, helix slope "
+                         "-5 um, linear end relief 6 um over 4 mm on face 2, twist 4 um"),
+              ("gear", "linear tip relief 10 um from 5 mm below the tip (by diameter), linear "
+                       "root relief 5 um over 3 mm"),
+              ("grids", "9 + start lines roll lengths x 5 + start lines face positions, "
+                        "CSV in mm and um"))
+    return Outcome("Exact: bilinear interpolation reproduces a function bilinear on each "
+                   "grid cell (the modifications above with grid lines at their starts)",
+                   inputs, q)

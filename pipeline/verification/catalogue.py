@@ -103,6 +103,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("flank_modification_shapes", "tip and root reliefs (linear, parabolic, arc), "
          "crowning, slopes, end reliefs and twist against their closed forms in each gear's "
          "own coordinates", "exact", "fast", cases_modifications.case_flank_modification_shapes),
+    Case("topography_equals_analytical", "a topography grid of bilinear modifications "
+         "against the modifications: the gap and the loaded TE and loads", "exact", "fast",
+         cases_modifications.case_topography_equals_analytical),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
