@@ -28,6 +28,7 @@ from pipeline.verification import (
     cases_generation,
     cases_herringbone,
     cases_modifications,
+    cases_planetary_modifications,
     cases_planetary_rating,
     cases_rating,
     cases_relief,
@@ -106,6 +107,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("topography_equals_analytical", "a topography grid of bilinear modifications "
          "against the modifications: the gap and the loaded TE and loads", "exact", "fast",
          cases_modifications.case_topography_equals_analytical),
+    Case("planetary_meshes_are_their_pairs", "a planetary set's meshes with per-gear "
+         "modifications against the pairs of their gears, bit for bit; gaps at the path ends",
+         "exact", "fast", cases_planetary_modifications.case_planetary_meshes_are_their_pairs),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
