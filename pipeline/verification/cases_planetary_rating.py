@@ -20,13 +20,14 @@ KISSSOFT_STAGE_2_RATING = {"K_v": (1.02, 1.06), "S_H_sun_planet": (1.21, 1.38),
 """KISSsoft Release 03/2017 A, "ISO 6336:2006 Method B", NREL 5 MW second stage
 (``stage_02.rtf``): K_V12, K_V23 (-); S_H of sun and planet (sun side), planet (ring side)
 and ring (-); sigma_F of sun and planet (sun side) and sigma_FP of the sun (N/mm^2); S_F of
-the planet on the sun and ring sides (-)."""
+the planet on the sun and ring sides (-). The load cycles N_L of sun, planet and ring are
+compared where they are computed (printed 7782.3e6, 1297.1e6, 1506.3e6)."""
 
 
 def case_kisssoft_planetary_rating(context: Context) -> Outcome:
     """The ISO 6336 rating of the NREL 5 MW planetary stage from its inputs: K_v of both
-    meshes, K_Halpha, S_H of sun, planet and ring, sigma_F and S_F of sun and planet against
-    KISSsoft's printed report."""
+    meshes, K_Halpha, S_H of sun, planet and ring, sigma_F and S_F of sun and planet, the
+    load cycles against KISSsoft's printed report."""
     from pipeline.rating.pair_rating import GearRatingInputs, RatingInputs, rate_pair
 
     ref = KISSSOFT_STAGE_2_RATING
@@ -81,6 +82,16 @@ def case_kisssoft_planetary_rating(context: Context) -> Outcome:
                    r_sp.bending[1].safety, "absolute", 5e-3, digits),
           Quantity("bending safety S_F, planet (planet-ring)", "-", ref["S_F_planet"][1],
                    r_pr.bending[0].safety, "absolute", 5e-3, digits)]
+    # the printed N_L imply the sun at 246.775 rpm relative to the carrier, the printed
+    # speeds (one decimal) 246.7: the reference takes the printed speeds
+    speeds = 246.7 / 246.775
+    q += [Quantity(f"load cycles N_L, {name}", "-", printed * 1e6 * speeds, n, "relative",
+                   tol, f"N_L printed to 5 digits: half a unit of the last is "
+                        f"{0.05 / printed:.1e}; the tests hold {tol:.0e}")
+          for name, printed, n, tol in (
+              ("sun (three planets per turn)", 7782.3, r_sp.cycles[0], 1e-5),
+              ("planet (sun side)", 1297.1, r_sp.cycles[1], 5e-5),
+              ("ring", 1506.3, r_pr.cycles[1], 5e-5))]
     inputs = (("meshes", "z 18/36 and 36/93 (ring internal), m_n 21 mm, spur, b 550 mm, "
                          "x 0.389 / 0.50387 / 0.11712"),
               ("load", "162 105.5 N m on the sun at 294.5 rpm, carrier 47.8 rpm, three "
