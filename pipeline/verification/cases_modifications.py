@@ -7,9 +7,10 @@ contact ``s`` and the pair's face coordinate ``z``. Here each term of the pinion
 gear's modification at 41 x 9 points of the path of contact is compared with its formula
 in that gear's coordinates, written independently of the code: the pinion's roll length is
 ``s``, the gear's ``T1T2 - s``; the gear, 4 mm wider, is centred (its face position is
-``z + 2 mm``). The relief shapes themselves: linear ``C x / L``, parabolic ``C (x / L)^2``
-and the circular arc through (0, 0) tangent to the flank and through (L, C),
-``x^2 + (R - w)^2 = R^2``.
+``z + 2 mm``); an internal ring's roll length is ``T1T2 + s``, its tip the small
+diameter at the path's start. The relief shapes themselves: linear ``C x / L``,
+parabolic ``C (x / L)^2`` and the circular arc through (0, 0) tangent to the flank and
+through (L, C), ``x^2 + (R - w)^2 = R^2``.
 
 A topography grid is interpolated bilinearly on its cells, so a grid written from
 modifications that are bilinear on each cell (linear reliefs with grid lines at their
@@ -153,10 +154,44 @@ def _terms_in_own_coordinates() -> list[Quantity]:
     return q
 
 
+def _internal_gear_terms() -> list[Quantity]:
+    """A ring (internal, 80 teeth) against a 30-tooth planet: its roll length is
+    ``T1T2 + s``, its tip the small diameter at the path's start; a linear tip relief from a
+    start diameter and a parabolic root relief by roll length."""
+    from pipeline.contact.modifications import (
+        GearModification,
+        ProfileModification,
+        flank_frames,
+    )
+
+    ring_spec = GearSpec(teeth=80, module=3e-3, pressure_angle=math.radians(20.0),
+                         face_width=0.02, bore_radius=0.13575, material=STEEL, name="gear",
+                         internal=True)
+    pair = GearPair(_spur(30, "pinion"), ring_spec)
+    g = pair.gear
+    ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 41),
+                         np.linspace(0.0, pair.face_width, 9))
+    s, z = ss.ravel(), zz.ravel()
+    rho2 = pair.t1t2 + s
+    rho_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
+    rho_a, rho_sap = rho_tip + 2.5 * MM_, pair.t1t2 + pair.s_end
+    ring = GearModification(profile=ProfileModification(
+        tip_relief=15 * UM_, tip_relief_diameter=2 * math.hypot(rho_a, g.base_radius),
+        root_relief=5 * UM_, root_relief_length=2 * MM_, root_relief_shape="parabolic"))
+    terms = ring.terms(flank_frames(pair)[1], s, z)
+    return [Quantity("ring: roll length of its tip against T1T2 + s_start", "m", rho_tip,
+                     pair.t1t2 + pair.s_start, "relative", ROUND_OFF, "round-off", UM),
+            _deviation("ring tip relief (linear, by diameter)", terms["tip_relief"],
+                       15 * UM_ * np.clip(rho_a - rho2, 0, None) / (rho_a - rho_tip)),
+            _deviation("ring root relief (parabolic, by roll length)", terms["root_relief"],
+                       5 * UM_ * (np.clip(rho2 - (rho_sap - 2 * MM_), 0, None) / (2 * MM_))
+                       ** 2)]
+
+
 def case_flank_modification_shapes(context: Context) -> Outcome:
     """Relief shapes and every modification term of both gears against their closed forms
     in each gear's own coordinates."""
-    q = _relief_shapes() + _terms_in_own_coordinates()
+    q = _relief_shapes() + _terms_in_own_coordinates() + _internal_gear_terms()
     inputs = (("pair", "z 50/50, m 3 mm, 20 deg, b 20 mm (pinion) / 24 mm (gear, centred)"),
               ("pinion", "arc tip relief 12 um from 4 mm below the tip (by diameter), "
                          "profile crowning 3 um, profile slope -2 um, lead crowning 5 um, "
@@ -164,6 +199,9 @@ def case_flank_modification_shapes(context: Context) -> Outcome:
               ("gear", "parabolic tip relief 9 um over 5 mm, linear root relief 6 um from "
                        "3 mm above the SAP (by diameter), parabolic end reliefs 7 um over "
                        "4 mm and 8 um over 5 mm, twist 5 um"),
+              ("ring", "internal z 80 against a z 30 planet: linear tip relief 15 um from "
+                       "2.5 mm of roll length beyond its tip (by diameter), parabolic root "
+                       "relief 5 um over 2 mm"),
               ("points", "41 x 9 over the path of contact and the face"))
     return Outcome("Exact: the modifications' definitions in roll length and face position "
                    "(ISO 21771:2007, 4.3 and 7.3), written independently of the code",

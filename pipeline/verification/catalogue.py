@@ -103,7 +103,8 @@ CATALOGUE: tuple[Case, ...] = (
          cases_fsh.case_iso_6336_1_fsh_beside_beam),
     Case("flank_modification_shapes", "tip and root reliefs (linear, parabolic, arc), "
          "crowning, slopes, end reliefs and twist against their closed forms in each gear's "
-         "own coordinates", "exact", "fast", cases_modifications.case_flank_modification_shapes),
+         "own coordinates, an internal ring's too", "exact", "fast",
+         cases_modifications.case_flank_modification_shapes),
     Case("topography_equals_analytical", "a topography grid of bilinear modifications "
          "against the modifications: the gap and the loaded TE and loads", "exact", "fast",
          cases_modifications.case_topography_equals_analytical),
