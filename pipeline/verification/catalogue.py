@@ -27,6 +27,9 @@ from pipeline.verification import (
     cases_fsh,
     cases_generation,
     cases_herringbone,
+    cases_modifications,
+    cases_planetary_modifications,
+    cases_planetary_rating,
     cases_rating,
     cases_relief,
     cases_revolution,
@@ -98,6 +101,16 @@ CATALOGUE: tuple[Case, ...] = (
     Case("iso_6336_1_fsh_beside_beam", "ISO 6336-1 method C f_sh (Eq. 57, Figure 13 "
          "arrangements a, b, c) beside the beam shaft's face tilt", "exact", "fast",
          cases_fsh.case_iso_6336_1_fsh_beside_beam),
+    Case("flank_modification_shapes", "tip and root reliefs (linear, parabolic, arc), "
+         "crowning, slopes, end reliefs and twist against their closed forms in each gear's "
+         "own coordinates, an internal ring's too", "exact", "fast",
+         cases_modifications.case_flank_modification_shapes),
+    Case("topography_equals_analytical", "a topography grid of bilinear modifications "
+         "against the modifications: the gap and the loaded TE and loads", "exact", "fast",
+         cases_modifications.case_topography_equals_analytical),
+    Case("planetary_meshes_are_their_pairs", "a planetary set's meshes with per-gear "
+         "modifications against the pairs of their gears, bit for bit; gaps at the path ends",
+         "exact", "fast", cases_planetary_modifications.case_planetary_meshes_are_their_pairs),
     Case("hertz_cylinders", "Hertz line contact of two steel cylinders against Shigley's "
          "formulas", "exact", "fast", cases_contact.case_hertz_cylinders),
     Case("tangency_hertz_limits", "line contact solver against Hertz (Johnson 1985); a "
@@ -138,6 +151,9 @@ CATALOGUE: tuple[Case, ...] = (
     Case("kisssoft_helical_rating", "ISO 6336 rating of the NREL 5 MW helical stage (K_v to "
          "S_F) against KISSsoft's report", "published", "fast",
          cases_rating.case_kisssoft_helical_rating),
+    Case("kisssoft_planetary_rating", "ISO 6336 rating of the NREL 5 MW planetary stage "
+         "(sun, planet, ring: K_v to S_F) against KISSsoft's report", "published", "fast",
+         cases_planetary_rating.case_kisssoft_planetary_rating),
     Case("iso_6336_6_annex_c", "Miner sum of a 42-bin load spectrum against ISO 6336-6 "
          "Annex C, Table C.2", "published", "fast", cases_spectrum.case_iso_6336_6_annex_c),
     Case("harris_1958_light_load_te", "light-load TE with tip relief against Harris (1958)",
