@@ -49,9 +49,10 @@ is symmetric but, like the 2D one, positive definite only up to that discretisat
 error (smallest eigenvalue ~ -2 % of the largest on coarse meshes).
 
 Solvers are passed in (:mod:`pipeline.fem.solvers`); the default,
-``solver_named("auto", dim)``, is the sparse Cholesky (scikit-sparse's CHOLMOD, else
-the cholespy wheel), without one SuperLU in 2D and the p-multigrid CG of
-:mod:`pipeline.fem.pmultigrid` in 3D (SuperLU took 36 s to factorise 42k DOF on 2 cores).
+``solver_named("auto", dim)``, is the sparse Cholesky (MKL PARDISO where its wheels
+exist, else scikit-sparse's CHOLMOD, else the cholespy wheel), without one SuperLU in 2D
+and the p-multigrid CG of :mod:`pipeline.fem.pmultigrid` in 3D (SuperLU took 36 s to
+factorise 42k DOF on 2 cores).
 """
 
 from __future__ import annotations

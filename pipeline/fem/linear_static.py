@@ -104,7 +104,7 @@ class StaticSolution:
     ----------
     displacements : (n_dof, n_cases) in m (zero on clamped DOFs).
     reactions : (n_dof, n_cases) K u - f in N, non-zero only on clamped DOFs.
-    method : solver used ("cholmod", "cholespy" or "splu").
+    method : solver used ("pardiso", "cholmod", "cholespy", "splu" or "pmg-cg").
     n_free : number of unknowns solved for.
     factor_seconds, solve_seconds : wall times, s.
     """

@@ -29,14 +29,13 @@ Whole gears. ``teeth = z`` meshes the whole gear body (all teeth, the body down 
 the bore, the full face width; no cut faces), as ``sector2d`` does in 2D; the
 geometry is built by :mod:`pipeline.fem.whole3d`, the groups are the same less the cuts.
 
-Mesh. Curved quadratic tetrahedra (Gmsh places mid-edge nodes on the CAD
-surfaces), graded from ``size_flank`` on the tooth sides of the ``loaded`` teeth
-(all teeth of a sector if None) to ``size_body`` a distance ``grading`` away; the
-sides of the other teeth get ``size_tooth``
-(:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are
-cached in ``meshes/`` by a hash of the gear and the settings
-(:mod:`pipeline.fem.mesh_cache`). Lengths in m.
-"""
+Mesh. Curved quadratic tetrahedra (a sector: Gmsh places the mid-edge nodes on the CAD
+surfaces; a whole gear: :mod:`pipeline.fem.curved_p2` on the exact helicoids), graded
+from ``size_flank`` on the tooth sides of the ``loaded`` teeth (all teeth of a sector if
+None) to ``size_body`` a distance ``grading`` away; the sides of the other teeth get
+``size_tooth`` (:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are cached in
+``meshes/`` by a hash of the gear and the settings (:mod:`pipeline.fem.mesh_cache`).
+Lengths in m. """
 
 from __future__ import annotations
 
