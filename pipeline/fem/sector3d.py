@@ -35,7 +35,8 @@ from ``size_flank`` on the tooth sides of the ``loaded`` teeth (all teeth of a s
 None) to ``size_body`` a distance ``grading`` away; the sides of the other teeth get
 ``size_tooth`` (:func:`pipeline.fem.grading3d.tooth_size_field`). Meshes are cached in
 ``meshes/`` by a hash of the gear and the settings (:mod:`pipeline.fem.mesh_cache`).
-Lengths in m. """
+Lengths in m.
+"""
 
 from __future__ import annotations
 
