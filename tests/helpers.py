@@ -1,21 +1,18 @@
 """Helpers shared by the tests (imported as a plain module: tests/ is on sys.path): a
-workflow script loader, a stiffness model with uniform slices, the small report and its
-readers."""
+workflow script loader, the stiffness model with uniform slices
+(:class:`pipeline.contact.source.UniformSlices`), the small report and its readers."""
 
 from __future__ import annotations
 
 import importlib.util
 import sys
-from dataclasses import dataclass
 from html.parser import HTMLParser
 from pathlib import Path
 
-import numpy as np
 from gearsets import SMALL
 
 from pipeline.cli import main as cli
-from pipeline.contact.source import ContactPoints
-from pipeline.geometry import GearPair
+from pipeline.contact.source import UniformSlices  # noqa: F401 (the tests' import)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -26,33 +23,6 @@ def load_workflow(name: str):
     sys.modules[name] = mod
     spec.loader.exec_module(mod)
     return mod
-
-
-@dataclass(frozen=True)
-class UniformSlices:
-    """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
-    width per tooth pair (N/m^2): uniform mesh stiffness across the face, on the nominal
-    path of contact only (``tip_contact`` False)."""
-
-    pair: GearPair
-    slices: int
-    c0: float
-    tip_contact: bool = False
-
-    def points(self, position: float) -> ContactPoints:
-        b = self.pair.face_width
-        dz = b / self.slices
-        z = (np.arange(self.slices) + 0.5) * dz
-        k = self.pair.pair_indices(beyond=False)
-        s = position + k * self.pair.base_pitch
-        kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
-        return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),
-                             z=np.tile(z, kk.size), pair=np.repeat(kk, z.size),
-                             width=np.full(kk.size * z.size, dz))
-
-    def matrix(self, position: float) -> np.ndarray:
-        pts = self.points(position)
-        return np.diag(1.0 / (self.c0 * pts.width))
 
 
 class Cells(HTMLParser):

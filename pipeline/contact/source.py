@@ -300,6 +300,33 @@ class SliceCompliance:
 
 
 @dataclass(frozen=True)
+class UniformSlices:
+    """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
+    width per tooth pair (N/m^2), on the nominal path of contact (``tip_contact`` False):
+    the uniform mesh stiffness of Harris's (1958) light-load analysis and of ISO 6336-1's
+    linear face load, a compliance source whose loaded contact has closed forms."""
+
+    pair: GearPair
+    slices: int
+    c0: float
+    tip_contact: bool = False
+
+    def points(self, position: float) -> ContactPoints:
+        dz = self.pair.face_width / self.slices
+        z = (np.arange(self.slices) + 0.5) * dz
+        k = self.pair.pair_indices(beyond=False)
+        s = position + k * self.pair.base_pitch
+        kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
+        return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),
+                             z=np.tile(z, kk.size), pair=np.repeat(kk, z.size),
+                             width=np.full(kk.size * z.size, dz))
+
+    def matrix(self, position: float) -> np.ndarray:
+        """Diagonal compliance 1 / (c0 w) of each slice (m/N)."""
+        return np.diag(1.0 / (self.c0 * self.points(position).width))
+
+
+@dataclass(frozen=True)
 class FrictionCorrected:
     """A normal-load compliance source (e.g. FE) with the slice model's friction effect added.
 

@@ -6,10 +6,10 @@ transmission error of tip-relieved spur gears.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.contact.source import UniformSlices
 from pipeline.geometry import GearPair, GearSpec, Material
 from pipeline.verification.context import Context
 from pipeline.verification.display import MM, N_PER_MM2, UM
@@ -112,33 +112,6 @@ def case_weber_half_plane(context: Context) -> Outcome:
                    "nu/(8(1-nu))) 2w(1-nu^2)/(pi E)", inputs, tuple(quantities), plots=(plot,))
 
 
-@dataclass(frozen=True)
-class _UniformSlices:
-    """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
-    width per tooth pair (N/m^2), on the nominal path of contact: the uniform mesh
-    stiffness of Harris's light-load analysis (a compliance source)."""
-
-    pair: GearPair
-    slices: int
-    c0: float
-    tip_contact: bool = False
-
-    def points(self, position: float):
-        from pipeline.contact.source import ContactPoints
-
-        dz = self.pair.face_width / self.slices
-        z = (np.arange(self.slices) + 0.5) * dz
-        k = self.pair.pair_indices(beyond=False)
-        s = position + k * self.pair.base_pitch
-        kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
-        return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),
-                             z=np.tile(z, kk.size), pair=np.repeat(kk, z.size),
-                             width=np.full(kk.size * z.size, dz))
-
-    def matrix(self, position: float) -> np.ndarray:
-        return np.diag(1.0 / (self.c0 * self.points(position).width))
-
-
 HARRIS = {"relief_m": 10e-6, "c0_N_per_m2": 1.4e10, "load_N": 1.0, "positions": 400,
           "length_shares": (0.55, 0.75, 1.0)}
 """Linear tip relief C on both gears over L = share x D (D = g_alpha - p_b, the
@@ -168,7 +141,7 @@ def case_harris_light_load(context: Context) -> Outcome:
         relief = GearModification(profile=ProfileModification(tip_relief=c,
                                                                tip_relief_length=length))
         mods = FlankModifications(pinion_flank=relief, gear_flank=relief)
-        cyc = loaded_mesh_cycle(_UniformSlices(pair, 1, c0), load, mods, "none", n)
+        cyc = loaded_mesh_cycle(UniformSlices(pair, 1, c0), load, mods, "none", n)
         harris = c * (1.0 - d / (2.0 * length))
         step = (c / length) * pair.base_pitch / n  # sampling: the peak is a tent of slope C/L
         quantities.append(Quantity(f"TE peak to peak, L = {share:g} D", "m", harris,

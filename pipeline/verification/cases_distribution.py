@@ -15,10 +15,10 @@ K_Hbeta against ISO 6336-1's closed form and the Hertz pressure against ISO 6336
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.contact.source import UniformSlices
 from pipeline.verification.context import Context
 from pipeline.verification.model import Outcome, Quantity
 
@@ -26,33 +26,6 @@ TORQUE_LINEAR, TORQUE_PARTIAL = 300.0, 200.0
 """Pinion torques, N m, of the linear and the partial-face cases."""
 C0 = 1.4e10
 """Mesh stiffness per unit face width and tooth pair, N/m^2 (14 N/(mm um))."""
-
-
-@dataclass(frozen=True)
-class _UniformSlices:
-    """A spur pair cut into ``slices`` independent slices of stiffness ``c0`` per unit face
-    width per tooth pair (N/m^2) on the nominal path of contact: a contact source of
-    uniform mesh stiffness across the face."""
-
-    pair: object
-    slices: int
-    c0: float
-    tip_contact: bool = False
-
-    def points(self, position: float):
-        from pipeline.contact.source import ContactPoints
-
-        dz = self.pair.face_width / self.slices
-        z = (np.arange(self.slices) + 0.5) * dz
-        k = self.pair.pair_indices(beyond=False)
-        s = position + k * self.pair.base_pitch
-        kk = k[(s >= self.pair.s_start) & (s <= self.pair.s_end)]
-        return ContactPoints(s=np.repeat(position + kk * self.pair.base_pitch, z.size),
-                             z=np.tile(z, kk.size), pair=np.repeat(kk, z.size),
-                             width=np.full(kk.size * z.size, dz))
-
-    def matrix(self, position: float) -> np.ndarray:
-        return np.diag(1.0 / (self.c0 * self.points(position).width))
 
 
 def _pair():
@@ -74,7 +47,7 @@ def _slope_case(pair, slices, torque, slope):
     from pipeline.operation import OperatingPoint
 
     op = OperatingPoint(torque=torque, speed=100.0)
-    cyc = loaded_mesh_cycle(_UniformSlices(pair, slices, C0), torque / pair.pinion.base_radius,
+    cyc = loaded_mesh_cycle(UniformSlices(pair, slices, C0), torque / pair.pinion.base_radius,
                             FlankModifications(slope_deviation=slope), "none", 24)
     n = pair.pair_positions(cyc.s0)[1].sum(axis=1)
     return load_distribution(cyc, pair, op), n, cyc.load / pair.face_width
