@@ -38,12 +38,12 @@ from pipeline.contact.tooth_errors import (
     centre_line_turn,
     pair_teeth,
     roll_shift,
-    runout_gaps,
 )
 from pipeline.geometry import GearPair
 from pipeline.geometry.assembly_errors import AssembledPair, AssemblyErrors
 from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError
+from pipeline.verification.cases_revolution import rebuilt_runout_cycles
 
 OPERATION = OperatingPoint(torque=340.0, speed=2340.0 * math.pi / 30.0)
 ROUND_OFF = 1e-14  # m: each solve meets its residual bound 1e-10 x an approach of ~1e-5 m
@@ -80,28 +80,6 @@ def test_without_errors_the_revolution_repeats_the_mesh_cycle():
     te = rev.transmission_error.reshape(50, 12)
     assert np.abs(te - cyc.transmission_error).max() < ROUND_OFF
     assert np.abs(rev.contact.pair_loads.reshape(50, 12, -1) - cyc.pair_loads).max() < 1e-6
-
-
-def _cycle_on_runout_pairs(src, load, errors, positions, cycles, mods=None, driver="pinion"):
-    """TE of mesh cycles ``cycles`` of a runout rebuilt independently: the mesh-cycle contact
-    on the pair at the centre distance of each cycle's middle, at the positions moved by the
-    roll shift, plus the common gap of the instant (pipeline.contact.revolution)."""
-    pair = src.pair
-    s0 = pair.mesh_cycle(positions)
-    out = []
-    for c in cycles:
-        middle = c * pair.base_pitch + np.mean(s0 - s0[0])
-        da = centre_distance_change(pair, errors, middle)
-        turn = float(centre_line_turn(pair, errors, middle))
-        moved = GearPair(pair.pinion, pair.gear,
-                         centre_distance=pair.operating_centre_distance + float(da))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            cyc = loaded_mesh_cycle(at_centre_distance(src, moved), load, mods, "weber",
-                                    s0 + roll_shift(pair, moved, turn), driver=driver)
-        g1, g2 = runout_gaps(pair, errors, c * pair.base_pitch + s0 - s0[0])
-        out.append(cyc.transmission_error + g1 + g2)
-    return np.array(out)
 
 
 def test_centre_distance_change_and_roll_shift_of_an_eccentricity():
@@ -158,7 +136,7 @@ def test_pinion_runout_is_the_mesh_cycle_at_each_centre_distance_plus_e_sin(load
     assert np.allclose(theta[12], 2 * math.pi / 50, rtol=1e-12)
     te = rev.transmission_error.reshape(50, 12)
     cycles = (0, 13, 37)
-    ref = _cycle_on_runout_pairs(src, load, errors, 12, cycles)
+    ref = rebuilt_runout_cycles(src, load, errors, 12, cycles)
     assert np.abs(te[list(cycles)] - ref).max() < ROUND_OFF
     cyc = _cycle(src, load, 12)
     rest = rev.transmission_error - np.tile(cyc.transmission_error, 50) - e * np.sin(phi + theta)
@@ -191,7 +169,7 @@ def test_gear_runout_turns_with_the_gear():
     errors = _errors("hunting", eccentricity_gear=e, eccentricity_phase_gear=phi)
     rev = loaded_revolution(src, load, errors, positions=6)
     assert rev.mesh_cycles == 60 and rev.pinion_revolutions == 3.0
-    ref = _cycle_on_runout_pairs(src, load, errors, 6, range(60))
+    ref = rebuilt_runout_cycles(src, load, errors, 6, range(60))
     assert np.abs(rev.transmission_error.reshape(60, 6) - ref).max() < ROUND_OFF
     # order 2/3: e of the common gap, plus the once-per-gear-revolution change of the mean of
     # the 6 samples of each cycle with its centre distance and turn (measured +2.1 %)
@@ -218,7 +196,7 @@ def test_helical_pair_repeats_its_mesh_cycle(driver):
         < ROUND_OFF
     errors = _errors(**{f"eccentricity_{driver}": 5e-6})
     rev = loaded_revolution(src, load, errors, positions=4, driver=driver)
-    ref = _cycle_on_runout_pairs(src, load, errors, 4, (0, 9), driver=driver)
+    ref = rebuilt_runout_cycles(src, load, errors, 4, (0, 9), driver=driver)
     assert np.abs(rev.transmission_error.reshape(19, 4)[[0, 9]] - ref).max() < ROUND_OFF
 
 

@@ -18,6 +18,7 @@ from pipeline.contact import (
 )
 from pipeline.geometry import Material
 from pipeline.validation import InputError
+from pipeline.verification.cases_contact import half_plane_approach
 
 STEEL = Material(youngs_modulus=2.07e11, poisson_ratio=0.3)
 
@@ -56,26 +57,6 @@ def test_semi_elliptic_pressure_carries_the_load():
     assert total == pytest.approx(w, rel=1e-9)
 
 
-def _half_plane_approach(w: float, a: float, h: float, E: float, nu: float) -> float:
-    """Approach of the surface to a point at depth h on the axis of a half-plane under
-    Hertz pressure: the Flamant line-load stresses (Johnson eq. 2.15) integrated over
-    the pressure give sigma_z, sigma_x on the axis; the plane-strain strain
-    eps_z = (1+nu)/E ((1-nu) sigma_z - nu sigma_x) is integrated from 0 to h."""
-    p0 = 2 * w / (math.pi * a)
-
-    def p(s):
-        return p0 * math.sqrt(max(0.0, 1 - (s / a) ** 2))
-
-    def strain(z):
-        sz = -2 / math.pi * integrate.quad(lambda s: p(s) * z**3 / (s * s + z * z) ** 2,
-                                           -a, a, limit=200, points=[0.0])[0]
-        sx = -2 / math.pi * integrate.quad(lambda s: p(s) * s * s * z / (s * s + z * z) ** 2,
-                                           -a, a, limit=200, points=[0.0])[0]
-        return (1 + nu) / E * ((1 - nu) * sz - nu * sx)
-
-    return -integrate.quad(strain, 0.0, h, limit=400, points=[a, 5 * a])[0]
-
-
 def test_weber_approach_is_the_half_plane_solution():
     """Weber-Banaschek per-body approach ``2w(1-nu^2)/(pi E) (ln(2h/a) - nu/(2(1-nu)))``
     against an independent quadrature of half-plane elasticity (Flamant kernel) for
@@ -92,7 +73,7 @@ def test_weber_approach_is_the_half_plane_solution():
         h = r * a
         # one body of a symmetric pair: the model's u_c for h1 = h2 = h is twice this
         model = HertzLineContact(1.0, 2 * R, 2 * R, h, h, STEEL, STEEL)
-        errs.append((float(model.approach(w)) / 2 - _half_plane_approach(w, a, h, E, nu)) / unit)
+        errs.append((float(model.approach(w)) / 2 - half_plane_approach(w, a, h, E, nu)) / unit)
     errs = np.array(errs)
     order = np.polyfit(np.log(1 / ratios), np.log(np.abs(errs)), 1)[0]
     assert order == pytest.approx(2.0, abs=0.01)

@@ -9,9 +9,10 @@ import pytest
 from gearsets import spur
 
 from pipeline.geometry.gear import GearSpec
-from pipeline.geometry.generation import generate, rack_flank, rack_tip
+from pipeline.geometry.generation import generate, rack_flank
 from pipeline.geometry.profile import INVOLUTE, gear_outline, tooth_profile
 from pipeline.validation import InputError
+from pipeline.verification.cases_generation import worst_heights
 
 D = math.radians
 
@@ -131,43 +132,17 @@ def test_fillet_meets_involute_tangentially(name):
     assert math.atan2(p.x[0], p.y[0]) == pytest.approx(math.pi / g.teeth, rel=1e-12)
 
 
-def _rack_height(g: GearSpec, u: np.ndarray) -> np.ndarray:
-    """Lower edge of the (periodic) transverse rack cutter at abscissa u (m): y of the profile."""
-    line, rnd = rack_tip(g, 50, 2000)
-    yn = np.linspace(rnd.y[-1], g.reference_radius + 3 * g.module, 400)
-    fl = rack_flank(g, yn - (g.reference_radius + g.profile_shift * g.module))
-    uu = np.r_[line.u, rnd.u[1:], fl.u[1:]]
-    yy = np.r_[line.y, rnd.y[1:], fl.y[1:]]
-    pt = math.pi * g.transverse_module
-    c = pt / 2.0
-    du = np.abs(((u - c) + pt / 2) % pt - pt / 2)  # distance from the nearest cutter tooth centre
-    return np.interp(c - du, uu[::-1], yy[::-1])
-
-
 @pytest.mark.parametrize("name", ["spur25", "spur12_undercut", "helical31"])
 def test_profile_is_the_envelope_of_the_swept_cutter(name):
-    """Independent check: roll the cutter past the profile; it never cuts in, touches every point.
+    """Independent check: roll the cutter past the profile; it never cuts in, touches every point
+    (the construction: pipeline.verification.cases_generation.worst_heights).
 
     For 30,000 rack positions the profile points are moved into the rack frame; the
     largest penetration above the rack edge must be ~0 (touching, within 1e-4 m_n
     sampling error) and never positive beyond it.
     """
     g = GEARS[name]()
-    p = tooth_profile(g, points=120)
-    r = g.reference_radius
-    fillet = p.kind != INVOLUTE
-    pts = np.column_stack([p.x, p.y])
-    # generation spans ~ -1.3..0.5 pitch
-    phi = np.linspace(-2.0, 1.0, 30000) * 2 * math.pi / g.teeth
-    worst = np.full(len(pts), -np.inf)
-    for chunk in np.array_split(phi, 20):
-        c, s = np.cos(chunk)[:, None], np.sin(chunk)[:, None]
-        # gear turned clockwise by phi, rack moved by r phi
-        xf = c * pts[:, 0] + s * pts[:, 1]
-        yf = -s * pts[:, 0] + c * pts[:, 1]
-        u = xf - r * chunk[:, None]
-        gap = yf - _rack_height(g, u)  # > 0: the point is inside the cutter
-        worst = np.maximum(worst, gap.max(axis=0))
+    worst, fillet = worst_heights(g)
     tol = 1e-4 * g.module
     assert worst.max() < tol
     np.testing.assert_array_less(-tol, worst[fillet])

@@ -32,39 +32,21 @@ from pipeline.contact.options import ContactOptions
 from pipeline.contact.root_stress import analyse_root_stress
 from pipeline.fem.fillet_stress import FilletStressSettings, build_fillet_stress, principal_stress
 from pipeline.geometry import GearPair
-from pipeline.geometry.profile import FILLET, tooth_profile
+from pipeline.geometry.profile import tooth_profile
 from pipeline.operation import OperatingPoint
 from pipeline.validation import InputError
+from pipeline.verification.cases_root_stress import (
+    FE_TIP_STRESS,
+    GEARS,
+    measured_root_geometry,
+)
 
 
-def _measured(gear, load_diameter):
-    """s_Fn, rho_F, h_Fe, alpha_Fen measured on the exact profile (tooth frame, +y)."""
-    prof = tooth_profile(gear, 2000)
-    x, y = prof.x, prof.y
-    ang = np.degrees(np.arctan2(np.abs(np.gradient(x)), np.abs(np.gradient(y))))
-    sel = np.flatnonzero(prof.kind == FILLET)
-    a = ang[sel]
-    i = np.flatnonzero((a[:-1] >= 30.0) & (a[1:] < 30.0))[-1]
-    j, w = sel[i], (a[i] - 30.0) / (a[i] - a[i + 1])
-    x30, y30 = x[j] + w * (x[j + 1] - x[j]), y[j] + w * (y[j + 1] - y[j])
-    p = np.array([[x[j - 5], y[j - 5]], [x[j], y[j]], [x[j + 5], y[j + 5]]])
-    centre = np.linalg.solve(2 * np.array([p[1] - p[0], p[2] - p[0]]),
-                             [p[1] @ p[1] - p[0] @ p[0], p[2] @ p[2] - p[0] @ p[0]])
-    rho = np.hypot(*(p[1] - centre))
-    r = load_diameter / 2
-    psi, psi2 = gear.half_tooth_angle(r), gear.half_tooth_angle(r * (1 + 1e-7))
-    px, py = r * math.sin(psi), r * math.cos(psi)
-    tx, ty = r * (1 + 1e-7) * math.sin(psi2) - px, r * (1 + 1e-7) * math.cos(psi2) - py
-    nx, ny = (ty, -tx) if ty > 0 else (-ty, tx)  # inward normal (towards the centre line)
-    y_load = py - px / nx * ny
-    return 2 * x30, rho, y_load - y30, math.atan(abs(ny / nx))
-
-
-@pytest.mark.parametrize("z, x", [(30, 0.0), (50, 0.0), (18, 0.3), (80, -0.2)])
+@pytest.mark.parametrize("z, x", GEARS)
 def test_iso_geometry_is_the_exact_profiles(z, x):
     gear = spur(z, "pinion", profile_shift=x)
     iso = iso_root_stress(gear, GearPair(gear, spur(60, "gear")), 1000.0)
-    s_fn, rho, h_fe, a_fen = _measured(gear, iso.load_diameter)
+    s_fn, rho, h_fe, a_fen = measured_root_geometry(gear, iso.load_diameter)
     assert iso.s_fn == pytest.approx(s_fn, rel=1e-7)
     assert iso.h_fe == pytest.approx(h_fe, rel=1e-6)
     assert iso.load_angle == pytest.approx(a_fen, abs=1e-6)
@@ -100,7 +82,7 @@ def test_fe_tip_load_converges_and_lies_below_iso():
     values = {ref: _tip_stress(gear, ref)[0] for ref in (1.0, 2.0, 4.0)}
     # measured to refinement 12 (module docstring): 1162.2 Pa per N/m
     for v in values.values():
-        assert v == pytest.approx(1162.2, rel=2e-3)
+        assert v == pytest.approx(FE_TIP_STRESS, rel=2e-3)
     table = _tip_stress(gear, 2.0)[1]
     pair = GearPair(gear, spur(45, "gear"))
     iso = iso_root_stress(gear, pair, 1.0, load_diameter=2 * table.load_radii[-1])
@@ -112,7 +94,7 @@ def test_fe_tip_load_converges_and_lies_below_iso():
 def test_fe_tip_load_convergence_ladder():
     gear = spur(30, "pinion")
     values = np.array([_tip_stress(gear, ref)[0] for ref in (0.5, 1.0, 2.0, 4.0, 8.0, 12.0)])
-    np.testing.assert_allclose(values, 1162.2, rtol=2e-3)
+    np.testing.assert_allclose(values, FE_TIP_STRESS, rtol=2e-3)
     assert abs(values[-1] / values[-2] - 1) < 5e-4  # the last step changes < 0.05 %
 
 

@@ -15,6 +15,14 @@ from pipeline.shaft.beam import BeamShaft
 from pipeline.shaft.layout import Bearing, ShaftLayout, ShaftSegment
 from pipeline.shaft.misalignment import HelicalMesh, seat_loads, shaft_gap, unit_loads
 from pipeline.validation import InputError
+from pipeline.verification.cases_shaft_loads import (  # the helical mesh of the statics case
+    BETA_B,
+    RB2,
+    ROLL,
+    T1T2,
+    W_SLOPED,
+    global_loads,
+)
 
 E, NU = 206e9, 0.3
 G = E / (2 * (1 + NU))
@@ -93,27 +101,8 @@ def test_helical_needs_its_mesh():
         shaft_gap([BeamShaft(lay)], [RB], Z, W, helix_angle=0.2)
 
 
-# a helical mesh: base helix angle 14 deg, the pinion's and the gear's base radii, T1T2
-BETA_B = math.radians(14.0)
-RB2 = 0.1410
-T1T2 = 0.0548
-ROLL = np.linspace(0.0262, 0.0285, 10)  # cycle-mean roll coordinate per slice, m
-W_SLOPED = np.linspace(2.0e5, 2.6e5, 10)  # N/m
-
-
 def _mesh(hand, beta_b=BETA_B, roll=ROLL):
     return HelicalMesh(beta_b, hand, T1T2, roll)
-
-
-def _global(loads, frame_sign, origin, start):
-    """Forces (n, 3) and moments about the global origin (n, 3) of ``loads`` in a mesh frame
-    whose x and y are the pinion frame's times ``frame_sign`` (the gear's: -1), its axis at
-    ``origin`` (x, y) and its face's first end at shaft position ``start``."""
-    rot = np.diag([frame_sign, frame_sign, 1.0])
-    f = np.array([ld.force for ld in loads]) @ rot
-    m = np.array([ld.moment for ld in loads]) @ rot
-    pos = np.array([[origin[0], origin[1], ld.z - start] for ld in loads])
-    return f, m + np.cross(pos, f)
 
 
 @pytest.mark.parametrize("hand", ["right", "left"])
@@ -131,8 +120,8 @@ def test_helical_loads_are_equal_and_opposite_and_give_the_torques(hand):
     h = 1.0 if hand == "right" else -1.0
     lp = seat_loads(Z, W_SLOPED, B, 0.15, RB, unit_loads(RB, 10, mesh, 0))
     lg = seat_loads(Z, W_SLOPED, B, 0.40, RB2, unit_loads(RB2, 10, mesh, 1))
-    fp, mp = _global(lp, 1.0, (0.0, 0.0), 0.15 - B / 2)
-    fg, mg = _global(lg, -1.0, (RB + RB2, -T1T2), 0.40 - B / 2)
+    fp, mp = global_loads(lp, 1.0, (0.0, 0.0), 0.15 - B / 2)
+    fg, mg = global_loads(lg, -1.0, (RB + RB2, -T1T2), 0.40 - B / 2)
     assert np.abs(fp.sum(0) + fg.sum(0)).max() <= 1e-12 * p_tot
     assert np.abs(mp.sum(0) + mg.sum(0)).max() <= 1e-12 * p_tot * RB2
     assert sum(ld.moment[2] for ld in lp) == pytest.approx(p_tot * RB, rel=1e-12)

@@ -7,7 +7,6 @@ import math
 import numpy as np
 import pytest
 from gearsets import spur
-from scipy.integrate import quad
 
 from pipeline.geometry import GearPair
 from pipeline.signals import PeriodicSignal
@@ -22,6 +21,7 @@ from pipeline.stiffness.iso6336 import contact_line_stiffness, iso_stiffness, q_
 from pipeline.stiffness.sections import ToothSections
 from pipeline.stiffness.tooth import classical_tooth_model, tooth_compliance
 from pipeline.validation import InputError
+from pipeline.verification.cases_compliance import closed_form_compliance
 
 # Published ranges of the Sainsot coefficients over their fitted data (Sainsot et al. 2004).
 PUBLISHED = {"L": (6.82, 6.94), "M": (1.08, 3.29), "P": (2.56, 13.47), "Q": (0.141, 0.62)}
@@ -65,7 +65,7 @@ def test_section_integrals_exact_for_uniform_beam():
 @pytest.mark.parametrize("mu_lam", [0.0, 0.1, -0.1])
 def test_classical_tooth_matches_closed_form(a1, mu_lam):
     """Base-circle-clamped involute tooth vs the closed-form integrals of Yang et al. (2026)
-    (eqs. 11-13, 21-23).
+    (eqs. 11-13, 21-23; by quadrature in pipeline.verification.cases_compliance).
 
     The contact point with load angle a1 has tan(alpha_R) = a1 + a2 (a2: half base angle);
     friction enters as F_b = F(cos a1 - mu lam sin a1), F_a = F(sin a1 + mu lam cos a1).
@@ -76,34 +76,14 @@ def test_classical_tooth_matches_closed_form(a1, mu_lam):
     """
     g = spur(50, "g")
     model = classical_tooth_model(g)
-    E, G = g.material.youngs_modulus, g.material.shear_modulus
     a2 = g.half_tooth_angle(g.base_radius)
-    fb = math.cos(a1) - mu_lam * math.sin(a1)
-    fa = math.sin(a1) + mu_lam * math.cos(a1)
-
-    def den(a):
-        return math.sin(a) + (a2 - a) * math.cos(a)
-
-    def bend(a):
-        arm = math.cos(a1) + (a1 + a2) * math.sin(a1) - math.cos(a) + (a2 - a) * math.sin(a)
-        m = fb * arm - fa * (
-            (a1 + a2) * math.cos(a1) - math.sin(a1))
-        # lengths in units of r_b: d - x = arm, h_c = (a1+a2) cos a1 - sin a1, h_x = den(a)
-        return 12 * m**2 * (a2 - a) * math.cos(a) / (8 * E * den(a) ** 3)
-
-    def shear(a):
-        return 1.2 * fb**2 * (a2 - a) * math.cos(a) / (2 * G * den(a))
-
-    def axial(a):
-        return fa**2 * (a2 - a) * math.cos(a) / (2 * E * den(a))
-
     r = g.base_radius / math.cos(math.atan(a1 + a2))
     c = tooth_compliance(model, r, mu=abs(mu_lam), lam=np.sign(mu_lam))
+    bending, shear, axial = closed_form_compliance(g, a1, mu_lam)
     rel_bending = 5e-5 if a1 < 0.1 else 2e-5
-    assert float(c.bending) == pytest.approx(quad(bend, -a1, a2, limit=200)[0],
-                                             rel=rel_bending, abs=0)
-    assert float(c.shear) == pytest.approx(quad(shear, -a1, a2, limit=200)[0], rel=2e-5, abs=0)
-    assert float(c.axial) == pytest.approx(quad(axial, -a1, a2, limit=200)[0], rel=2e-5, abs=0)
+    assert float(c.bending) == pytest.approx(bending, rel=rel_bending, abs=0)
+    assert float(c.shear) == pytest.approx(shear, rel=2e-5, abs=0)
+    assert float(c.axial) == pytest.approx(axial, rel=2e-5, abs=0)
 
 
 def test_section_table_convergence():

@@ -7,7 +7,8 @@ construction: each tooth's flank built from the textbook involute
 ``r_b (cos t + t sin t, sin t - t cos t)`` turned into place, the corner taken as its end
 on the tip circle, and the gap as the shortest distance from the corner to a dense
 polyline of the mate's flank; the lever factor against a small rigid rotation of the
-turning gear. External pair: the assembly-error paper's z 50/50 (m 3 mm, 20 deg); ring:
+turning gear (the construction lives in :mod:`pipeline.verification.cases_tip_contact`).
+External pair: the assembly-error paper's z 50/50 (m 3 mm, 20 deg); ring:
 planet 24 / ring 72, m 2 mm.
 """
 
@@ -21,63 +22,16 @@ from gearsets import spur
 
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import tip_contact
+from pipeline.verification.cases_tip_contact import (
+    distance_to_flank,
+    flank_centre,
+    involute_flank,
+    tip_corner,
+)
 
 EXTERNAL = GearPair(spur(50, "pinion"), spur(50, "gear"))
 RING = GearPair(spur(24, "planet", module=2e-3, bore_radius=0.01),
                 spur(72, "ring", module=2e-3, internal=True, bore_radius=0.09))
-
-
-def _turn(angle: float, xy: np.ndarray) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([c * xy[0] - s * xy[1], s * xy[0] + c * xy[1]])
-
-
-def _involute(rb: float, t: np.ndarray) -> np.ndarray:
-    return rb * np.array([np.cos(t) + t * np.sin(t), np.sin(t) - t * np.cos(t)])
-
-
-def _flank(pair: GearPair, who: str, s: float, t: np.ndarray, theta: float = 0.0):
-    """Points (2, n) of ``who``'s involute crossing the line of action at ``s`` (frame of
-    the module under test: T1 at the origin, line of action along +x), at involute
-    parameters ``t``, the gear turned by ``theta`` about its centre (anticlockwise)."""
-    g = pair.t1t2
-    if who == "pinion":
-        rb, centre, angle = pair.pinion.base_radius, np.array([0.0, -pair.pinion.base_radius]), \
-            math.pi / 2 - s / pair.pinion.base_radius
-    elif pair.gear.internal:
-        rb = pair.gear.base_radius
-        centre, angle = np.array([-g, -rb]), math.pi / 2 - (s + g) / rb
-    else:
-        rb = pair.gear.base_radius
-        centre, angle = np.array([g, rb]), -math.pi / 2 - (g - s) / rb
-    return centre[:, None] + _turn(angle + theta, _involute(rb, t)), centre
-
-
-def _corner(pair: GearPair, who: str, s: float, theta: float = 0.0) -> np.ndarray:
-    gear = pair.pinion if who == "pinion" else pair.gear
-    rb = gear.base_radius
-    t_tip = math.sqrt(gear.tip_radius_**2 - rb**2) / rb
-    return _flank(pair, who, s, np.array([t_tip]), theta)[0][:, 0]
-
-
-def _distance(point: np.ndarray, pair: GearPair, who: str, s: float) -> float:
-    """Shortest distance from ``point`` to the flank: the nearest of 20001 polyline
-    vertices, then a bounded scalar minimisation on the curve around it."""
-    from scipy.optimize import minimize_scalar
-
-    gear = pair.pinion if who == "pinion" else pair.gear
-    rb = gear.base_radius
-    t = np.linspace(0.0, math.sqrt((1.2 * gear.tip_radius_)**2 - rb**2) / rb, 20_001)
-
-    def dist(tt):
-        xy, _ = _flank(pair, who, s, np.atleast_1d(tt))
-        return np.hypot(xy[0] - point[0], xy[1] - point[1])
-
-    i = int(np.argmin(dist(t)))
-    lo, hi = t[max(i - 1, 0)], t[min(i + 1, t.size - 1)]
-    best = minimize_scalar(lambda tt: float(dist(tt)[0]), bounds=(lo, hi), method="bounded",
-                           options={"xatol": 1e-14})
-    return float(best.fun)
 
 
 @pytest.mark.parametrize("pair", [EXTERNAL, RING], ids=["external", "ring"])
@@ -90,12 +44,12 @@ def test_gap_is_the_distance_from_the_corner_to_the_mate_flank(pair, past):
                             (pair.s_start - past, "gear", "pinion")):
         tc = tip_contact(pair, [s])
         assert tc.corner[0] == corner
-        c = _corner(pair, corner, s)
-        assert tc.gap[0] == pytest.approx(_distance(c, pair, mate, s), abs=1e-12)
+        c = tip_corner(pair, corner, s)
+        assert tc.gap[0] == pytest.approx(distance_to_flank(c, pair, mate, s), abs=1e-12)
         assert tc.gap[0] > 0.0
         # the contact point lies on the mate's flank, at the gap from the corner
         assert np.hypot(*(tc.point[:, 0] - c)) == pytest.approx(tc.gap[0], abs=1e-12)
-        assert _distance(tc.point[:, 0], pair, mate, s) < 2e-10
+        assert distance_to_flank(tc.point[:, 0], pair, mate, s) < 2e-10
 
 
 def test_gap_grows_with_the_square_of_the_roll_past_the_path():
@@ -128,17 +82,18 @@ def test_lever_is_the_rate_at_which_a_rigid_turn_closes_the_gap(pair):
     after, before = pair.s_end + 1e-3, pair.s_start - 1e-3
     tc = tip_contact(pair, [after, before])
     gap_c, gap_d = tc.gap
-    c, dd = _corner(pair, "pinion", after), _corner(pair, "gear", before)
+    c, dd = tip_corner(pair, "pinion", after), tip_corner(pair, "gear", before)
     # pinion turned clockwise (its flank towards +x): the corner moves, the flank advances
-    closed = gap_c - _distance(_corner(pair, "pinion", after, theta=-d), pair, "gear", after)
+    turned = tip_corner(pair, "pinion", after, theta=-d)
+    closed = gap_c - distance_to_flank(turned, pair, "gear", after)
     assert closed / (rb1 * d) == pytest.approx(tc.lever_pinion[0], rel=1e-5)
-    closed = gap_d - _distance(dd, pair, "pinion", before + rb1 * d)
+    closed = gap_d - distance_to_flank(dd, pair, "pinion", before + rb1 * d)
     assert closed / (rb1 * d) == pytest.approx(1.0, rel=1e-5)
     # gear turned: its flank advances (crossing moves to -x), its corner moves
-    closed = gap_c - _distance(c, pair, "gear", after - rb2 * d)
+    closed = gap_c - distance_to_flank(c, pair, "gear", after - rb2 * d)
     assert closed / (rb2 * d) == pytest.approx(1.0, rel=1e-5)
-    closed = gap_d - _distance(_corner(pair, "gear", before, theta=gear_turn), pair, "pinion",
-                               before)
+    turned = tip_corner(pair, "gear", before, theta=gear_turn)
+    closed = gap_d - distance_to_flank(turned, pair, "pinion", before)
     assert closed / (rb2 * d) == pytest.approx(tc.lever_gear[1], rel=1e-5)
     assert 0.9 < tc.lever_pinion[0] < 1.0 and 0.9 < tc.lever_gear[1] < 1.0
     far = tip_contact(pair, [pair.s_end + 1e-3, pair.s_start - 1e-3])
@@ -198,7 +153,7 @@ def test_curvature_radii_at_a_corner_are_the_edge_and_the_mates_involute(pair):
     def circle_radius(who: str, s_cross: float, radius: float) -> float:
         gear = pair.pinion if who == "pinion" else pair.gear
         t0 = math.sqrt(radius**2 - gear.base_radius**2) / gear.base_radius
-        xy, _ = _flank(pair, who, s_cross, t0 + np.array([-1e-4, 0.0, 1e-4]))
+        xy = involute_flank(pair, who, s_cross, t0 + np.array([-1e-4, 0.0, 1e-4]))
         a, b, c = xy.T
         ab, bc, ca = (np.hypot(*(u - v)) for u, v in ((a, b), (b, c), (c, a)))
         area = 0.5 * abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
@@ -224,13 +179,13 @@ def _rounding_centre(pair: GearPair, who: str, s: float, rho: float) -> tuple[np
     sign = -1.0 if who == "pinion" else 1.0
 
     def centre(t: float) -> np.ndarray:
-        (p,), (dp,) = (_flank(pair, who, s, np.array([v]))[0].T for v in (t, t + 1e-7))
+        (p,), (dp,) = (involute_flank(pair, who, s, np.array([v])).T for v in (t, t + 1e-7))
         tangent = (dp - p) / np.hypot(*(dp - p))
         n = np.array([-tangent[1], tangent[0]])
         n = n if n[0] * sign > 0 else -n
         return p + rho * n
 
-    origin = _flank(pair, who, s, np.array([0.0]))[1]
+    origin = flank_centre(pair, who)
     t_tip = math.sqrt(ra**2 - rb**2) / rb
     t = brentq(lambda v: np.hypot(*(centre(v) - origin)) - (ra - rho), 0.5 * t_tip, t_tip,
                xtol=1e-15)
@@ -263,9 +218,9 @@ def test_rounded_tip_gap_against_an_independent_construction(past):
     for i, (who, mate, rho, s) in enumerate((("pinion", "gear", rounding[0], hi + past),
                                              ("gear", "pinion", rounding[1], lo - past))):
         q, _ = _rounding_centre(p, who, s, rho)
-        assert tc.gap[i] == pytest.approx(_distance(q, p, mate, s) - rho, abs=1e-12)
+        assert tc.gap[i] == pytest.approx(distance_to_flank(q, p, mate, s) - rho, abs=1e-12)
         assert tc.gap[i] > tip_contact(EXTERNAL, [s]).gap[0]
-        assert _distance(tc.point[:, i], p, mate, s) < 2e-10  # on the mate's flank
+        assert distance_to_flank(tc.point[:, i], p, mate, s) < 2e-10  # on the mate's flank
     assert np.all(tc.gap[2:] == 0.0)
     just = tip_contact(p, [hi + 1e-9, lo - 1e-9])
     assert np.all(just.gap < 1e-13)  # continuous at the rounded path's ends

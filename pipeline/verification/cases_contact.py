@@ -48,11 +48,13 @@ def case_hertz_cylinders(context: Context) -> Outcome:
                    "1/d2)), p_max = 2F/(pi b l)", inputs, quantities)
 
 
-def _half_plane_approach(w: float, a: float, h: float, E: float, nu: float) -> float:
-    """Approach of the surface to a point at depth h on the axis of a half-plane under a
-    Hertz pressure of half-width a and load w per length: the Flamant line-load stresses
-    (Johnson 1985, eq. 2.15) integrated over the pressure, the plane-strain strain
-    integrated from 0 to h (m)."""
+def half_plane_approach(w: float, a: float, h: float, E: float, nu: float) -> float:
+    """Approach (m) of the surface to a point at depth ``h`` (m) on the axis of a
+    half-plane (E in Pa, nu) under a Hertz pressure of half-width ``a`` (m) and load ``w``
+    per length (N/m): the Flamant line-load stresses (Johnson 1985, Contact Mechanics,
+    eq. 2.15) integrated over the pressure give sigma_z and sigma_x on the axis; the
+    plane-strain strain eps_z = (1 + nu) / E ((1 - nu) sigma_z - nu sigma_x) is
+    integrated from 0 to h by adaptive quadrature."""
     from scipy import integrate
 
     p0 = 2 * w / (math.pi * a)
@@ -88,7 +90,7 @@ def case_weber_half_plane(context: Context) -> Outcome:
         # one body of a symmetric pair: the model's approach for h1 = h2 = h is twice it
         hz = HertzLineContact(1.0, 2 * R, 2 * R, r * a, r * a, STEEL_207, STEEL_207)
         model.append(float(hz.approach(w)) / 2)
-        exact.append(_half_plane_approach(w, a, r * a, E, nu))
+        exact.append(half_plane_approach(w, a, r * a, E, nu))
     errs = (np.array(model) - np.array(exact)) / unit
     order = float(np.polyfit(np.log(1 / ratios), np.log(np.abs(errs)), 1)[0])
     coef = 0.25 + nu / (8 * (1 - nu))

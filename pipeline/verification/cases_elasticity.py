@@ -31,7 +31,9 @@ TIMOSHENKO_SOURCE = ("Timoshenko & Goodier (1970), Theory of Elasticity, sec. 21
                      "plane elasticity; Augarde & Deeks 2008, Finite Elem. Anal. Des. 44)")
 
 
-def _constants(kind: str) -> tuple[float, float]:
+def cantilever_constants(kind: str) -> tuple[float, float]:
+    """E (Pa) and nu of the exact solution for ``kind`` "plane_stress" or "plane_strain"
+    (E / (1 - nu^2), nu / (1 - nu); Timoshenko & Goodier 1970, sec. 21)."""
     E, nu = CANTILEVER_MATERIAL.youngs_modulus, CANTILEVER_MATERIAL.poisson_ratio
     if kind == "plane_strain":
         E, nu = E / (1 - nu**2), nu / (1 - nu)
@@ -41,7 +43,7 @@ def _constants(kind: str) -> tuple[float, float]:
 def cantilever_exact_u(x: np.ndarray, y: np.ndarray, kind: str) -> np.ndarray:
     """Exact displacement (2, ...) in m at the points (x, y) (m), module docstring."""
     L, D, P = CANTILEVER["length_m"], CANTILEVER["depth_m"], CANTILEVER["load_N"]
-    E, nu = _constants(kind)
+    E, nu = cantilever_constants(kind)
     inertia = D**3 / 12.0
     ux = -P * y / (6 * E * inertia) * ((6 * L - 3 * x) * x + (2 + nu) * (y**2 - D**2 / 4))
     uy = P / (6 * E * inertia) * (3 * nu * y**2 * (L - x) + (4 + 5 * nu) * D**2 * x / 4
@@ -52,15 +54,18 @@ def cantilever_exact_u(x: np.ndarray, y: np.ndarray, kind: str) -> np.ndarray:
 def cantilever_exact_tip(kind: str) -> float:
     """u_y(L, 0) = P L^3 / (3 E I) + (4 + 5 nu) P D^2 L / (24 E I), m."""
     L, D, P = CANTILEVER["length_m"], CANTILEVER["depth_m"], CANTILEVER["load_N"]
-    E, nu = _constants(kind)
+    E, nu = cantilever_constants(kind)
     inertia = D**3 / 12.0
     return P * L**3 / (3 * E * inertia) + (4 + 5 * nu) * P * D**2 * L / (24 * E * inertia)
 
 
-def solve_cantilever(nx: int, ny: int, kind: str, order: int = 2) -> tuple[float, float]:
+def cantilever_fe(nx: int, ny: int, kind: str, order: int = 2):
     """The FE cantilever on nx x ny rectangles (each cut into two triangles) of P``order``
-    elements: (tip deflection u_y(L, 0) in m, L2 norm of the displacement error in m^2)."""
-    from skfem import FacetBasis, Functional, LinearForm, MeshTri
+    elements, the exact displacement prescribed at x = 0 (lifted into the load) and the
+    exact parabolic shear traction at x = L: (its basis, the displacement (N,) in m at
+    the basis's DOFs, the :class:`~pipeline.fem.linear_static.StaticSolution` with the
+    clamp's reactions)."""
+    from skfem import FacetBasis, LinearForm, MeshTri
 
     from pipeline.fem.linear_static import build_model, solve_static
 
@@ -84,15 +89,31 @@ def solve_cantilever(nx: int, ny: int, kind: str, order: int = 2) -> tuple[float
     # the exact (non-zero) displacement on the clamp, lifted into the load
     u0[clamp] = cantilever_exact_u(xy[0], xy[1], kind)[comp, np.arange(clamp.size)]
     sol = solve_static(model, traction.assemble(fb) - model.stiffness @ u0, clamp)
-    u = sol.displacements[:, 0] + u0
-    tip = float((basis.probes(np.array([[L], [0.0]])) @ u)[1])
+    return basis, sol.displacements[:, 0] + u0, sol
+
+
+def cantilever_tip(basis, u: np.ndarray) -> float:
+    """Tip deflection u_y(L, 0) (m) of the displacement ``u`` (m) on ``basis``."""
+    return float((basis.probes(np.array([[CANTILEVER["length_m"]], [0.0]])) @ u)[1])
+
+
+def cantilever_l2_error(basis, u: np.ndarray, kind: str) -> float:
+    """L2 norm (m^2) of ``u`` (m, on ``basis``) less the exact displacement."""
+    from skfem import Functional
 
     @Functional
     def err(w):
         ue = cantilever_exact_u(w.x[0], w.x[1], kind)
         return (w["uh"][0] - ue[0]) ** 2 + (w["uh"][1] - ue[1]) ** 2
 
-    return tip, float(np.sqrt(err.assemble(basis, uh=basis.interpolate(u))))
+    return float(np.sqrt(err.assemble(basis, uh=basis.interpolate(u))))
+
+
+def solve_cantilever(nx: int, ny: int, kind: str, order: int = 2) -> tuple[float, float]:
+    """The FE cantilever (:func:`cantilever_fe`): (tip deflection u_y(L, 0) in m, L2 norm
+    of the displacement error in m^2)."""
+    basis, u, _ = cantilever_fe(nx, ny, kind, order)
+    return cantilever_tip(basis, u), cantilever_l2_error(basis, u, kind)
 
 
 def _cantilever_inputs(mesh: str) -> tuple[tuple[str, str], ...]:

@@ -39,9 +39,10 @@ def _gears():
                       profile_shift=0.278, addendum_coef=1.2, dedendum_coef=1.55)))
 
 
-def _rack_height(g, u: np.ndarray) -> np.ndarray:
-    """The lower edge of the periodic transverse rack cutter at abscissa ``u`` (m): its
-    height (m) in the gear's frame at zero rotation."""
+def rack_height(g, u: np.ndarray) -> np.ndarray:
+    """The lower edge of the periodic transverse rack cutter of gear ``g`` at abscissa ``u``
+    (m): its height (m) in the gear's frame at zero rotation (the transverse section of the
+    gear's generating rack, moved out by its profile shift, with its rounded tip)."""
     from pipeline.geometry.generation import rack_flank, rack_tip
 
     line, rnd = rack_tip(g, 50, 2000)
@@ -55,9 +56,12 @@ def _rack_height(g, u: np.ndarray) -> np.ndarray:
     return np.interp(c - du, uu[::-1], yy[::-1])
 
 
-def _worst_heights(g) -> tuple[np.ndarray, np.ndarray]:
-    """Each profile point's largest height above the cutter's edge (m) over the rack
-    positions, and the mask of the fillet's points."""
+def worst_heights(g) -> tuple[np.ndarray, np.ndarray]:
+    """The cutter rolled past the finished profile of gear ``g`` (120 points per flank):
+    each profile point's largest height above the cutter's edge (m) over
+    :data:`POSITIONS` rack positions from -2 to 1 angular pitches (the gear turned by phi,
+    the rack moved by r phi), and the mask of the fillet's points. By the law of gearing
+    (Litvin and Fuentes 2004, ch. 6) the heights are at most 0 and 0 on the fillet."""
     from pipeline.geometry.profile import INVOLUTE, tooth_profile
 
     p = tooth_profile(g, points=120)
@@ -69,7 +73,7 @@ def _worst_heights(g) -> tuple[np.ndarray, np.ndarray]:
         c, s = np.cos(chunk)[:, None], np.sin(chunk)[:, None]
         xf = c * pts[:, 0] + s * pts[:, 1]  # the gear turned clockwise by phi
         yf = -s * pts[:, 0] + c * pts[:, 1]
-        gap = yf - _rack_height(g, xf - r * chunk[:, None])  # > 0: inside the cutter
+        gap = yf - rack_height(g, xf - r * chunk[:, None])  # > 0: inside the cutter
         worst = np.maximum(worst, gap.max(axis=0))
     return worst, p.kind != INVOLUTE
 
@@ -81,7 +85,7 @@ def case_rack_generated_profile(context: Context) -> Outcome:
     reason = ("sampling of 30,000 rack positions and of the cutter's edge (the tests hold "
               "1e-4 m_n)")
     for label, g in _gears():
-        worst, fillet = _worst_heights(g)
+        worst, fillet = worst_heights(g)
         tol = 1e-4 * g.module
         q += [Quantity(f"{label}: largest height of a profile point above the cutter's edge "
                        "(cut-in)", "m", 0.0, float(worst.max()), "upper_bound", tol, reason,

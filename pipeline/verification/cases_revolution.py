@@ -38,9 +38,15 @@ def _spur(z: int, name: str) -> GearSpec:
                     material=Material(youngs_modulus=2.0e11, poisson_ratio=0.3))
 
 
-def _rebuilt_cycles(src, load, errors):
-    """TE (m) of :data:`CHECKED_CYCLES` rebuilt independently: the mesh cycle on the pair at
-    each cycle's centre distance, positions moved by the roll shift, plus the common gap."""
+def rebuilt_runout_cycles(src, load: float, errors, positions: int, cycles,
+                          modifications=None, driver: str = "pinion") -> np.ndarray:
+    """TE (m), shape (len(cycles), positions), of the mesh cycles ``cycles`` of a runout
+    rebuilt independently of :func:`pipeline.contact.revolution.loaded_revolution`: the
+    mesh-cycle contact on the pair at the centre distance of each cycle's middle, at the
+    positions moved by the roll shift, plus the common gap of the instant. Exact in the
+    contact problem (module docstring; Yang et al. 2026, eqs. 27-29): ``src`` the pair's
+    compliance source, ``load`` the line-of-action load (N), ``errors`` the
+    :class:`~pipeline.contact.tooth_errors.ToothErrors`."""
     from pipeline.contact.ltca import loaded_mesh_cycle
     from pipeline.contact.revolution import at_centre_distance
     from pipeline.contact.tooth_errors import (
@@ -51,9 +57,9 @@ def _rebuilt_cycles(src, load, errors):
     )
 
     pair = src.pair
-    s0 = pair.mesh_cycle(POSITIONS)
+    s0 = pair.mesh_cycle(positions)
     out = []
-    for c in CHECKED_CYCLES:
+    for c in cycles:
         middle = c * pair.base_pitch + np.mean(s0 - s0[0])
         da = centre_distance_change(pair, errors, middle)
         turn = float(centre_line_turn(pair, errors, middle))
@@ -61,8 +67,9 @@ def _rebuilt_cycles(src, load, errors):
                          centre_distance=pair.operating_centre_distance + float(da))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            cyc = loaded_mesh_cycle(at_centre_distance(src, moved), load, None, "weber",
-                                    s0 + roll_shift(pair, moved, turn))
+            cyc = loaded_mesh_cycle(at_centre_distance(src, moved), load, modifications,
+                                    "weber", s0 + roll_shift(pair, moved, turn),
+                                    driver=driver)
         g1, g2 = runout_gaps(pair, errors, c * pair.base_pitch + s0 - s0[0])
         out.append(cyc.transmission_error + g1 + g2)
     return np.array(out)
@@ -97,7 +104,7 @@ def case_runout_revolution(context: Context) -> Outcome:
     rev, errors = revolution(RUNOUT_M)
     theta = rev.contact.pinion_angle
     te = rev.transmission_error.reshape(-1, POSITIONS)
-    rebuilt = _rebuilt_cycles(src, load, errors)
+    rebuilt = rebuilt_runout_cycles(src, load, errors, POSITIONS, CHECKED_CYCLES)
     nominal = np.tile(cyc.transmission_error, te.shape[0])
     rest = rev.transmission_error - nominal - RUNOUT_M * np.sin(PHASE_RAD + theta)
     small, _ = revolution(RUNOUT_M / 10)

@@ -39,8 +39,11 @@ def spur(z: int, name: str, profile_shift: float = 0.0) -> GearSpec:
 
 def measured_root_geometry(gear: GearSpec, load_diameter: float
                            ) -> tuple[float, float, float, float]:
-    """s_Fn (m), rho_F (m), h_Fe (m), alpha_Fen (rad) measured on the exact profile (tooth
-    frame, tooth along +y), the load at ``load_diameter`` (m)."""
+    """ISO 6336-3:2019, 6.2 (method B)'s s_Fn (m), rho_F (m), h_Fe (m) and alpha_Fen (rad)
+    by their definitions, measured on the exact generated profile (2000 points, tooth frame,
+    tooth along +y): the 30 deg tangent chord, the fillet's radius there (circle through
+    three profile points), the bending arm and load angle of the load at ``load_diameter``
+    (m). The reference the ISO geometry is checked against, here and in the tests."""
     from pipeline.geometry.profile import FILLET, tooth_profile
 
     prof = tooth_profile(gear, 2000)

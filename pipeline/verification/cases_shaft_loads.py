@@ -38,10 +38,14 @@ W_SLOPED = np.linspace(2.0e5, 2.6e5, SLICES)
 ROUND_OFF = "round-off (the tests hold 1e-12 of the load P, or of P r_b2 for moments)"
 
 
-def _global(loads, frame_sign, origin, start):
-    """Forces (n, 3) and moments about the global origin (n, 3) of ``loads`` in a mesh frame
-    whose x and y are the pinion frame's times ``frame_sign`` (the gear's: -1), its axis at
-    ``origin`` (x, y) and its face's first end at shaft position ``start``."""
+def global_loads(loads, frame_sign: float, origin: tuple[float, float], start: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Forces (n, 3) in N and moments about the global origin (n, 3) in N m of the seat
+    ``loads`` (:class:`pipeline.shaft.model.PointLoad`) given in a mesh frame whose x
+    and y are the pinion frame's times ``frame_sign`` (the gear's: -1, turned 180 deg about
+    z), its axis at ``origin`` (x, y) in m and its face's first end at shaft position
+    ``start`` (m): the rigid-body statics that Newton's third law is checked in (module
+    docstring)."""
     rot = np.diag([frame_sign, frame_sign, 1.0])
     f = np.array([ld.force for ld in loads]) @ rot
     m = np.array([ld.moment for ld in loads]) @ rot
@@ -58,8 +62,8 @@ def _helical_statics(hand: str) -> list[Quantity]:
     h = 1.0 if hand == "right" else -1.0
     lp = seat_loads(z, W_SLOPED, FACE, 0.15, RB1, unit_loads(RB1, SLICES, mesh, 0))
     lg = seat_loads(z, W_SLOPED, FACE, 0.40, RB2, unit_loads(RB2, SLICES, mesh, 1))
-    fp, mp = _global(lp, 1.0, (0.0, 0.0), 0.15 - FACE / 2)
-    fg, mg = _global(lg, -1.0, (RB1 + RB2, -T1T2), 0.40 - FACE / 2)
+    fp, mp = global_loads(lp, 1.0, (0.0, 0.0), 0.15 - FACE / 2)
+    fg, mg = global_loads(lg, -1.0, (RB1 + RB2, -T1T2), 0.40 - FACE / 2)
     rel = "round-off; the tests hold 1e-12"
     return [
         Quantity(f"{hand} hand: largest component of pinion + gear force", "N", 0.0,

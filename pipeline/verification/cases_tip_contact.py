@@ -46,34 +46,49 @@ def _turn(angle: float, xy: np.ndarray) -> np.ndarray:
     return np.array([c * xy[0] - s * xy[1], s * xy[0] + c * xy[1]])
 
 
-def _flank(pair: GearPair, who: str, s: float, t: np.ndarray, theta: float = 0.0
-           ) -> np.ndarray:
-    """Points (2, n) of ``who``'s textbook involute crossing the line of action at ``s``
-    (T1 at the origin, line of action along +x), at involute parameters ``t``, the gear
-    turned by ``theta`` (rad, anticlockwise) about its centre."""
+def flank_centre(pair: GearPair, who: str) -> np.ndarray:
+    """Centre (x, y) in m of ``who``'s gear ("pinion" or "gear") in the frame of
+    :mod:`pipeline.geometry.tip_contact`: T1 at the origin, the line of action along +x."""
+    if who == "pinion":
+        return np.array([0.0, -pair.pinion.base_radius])
+    if pair.gear.internal:
+        return np.array([-pair.t1t2, -pair.gear.base_radius])
+    return np.array([pair.t1t2, pair.gear.base_radius])
+
+
+def involute_flank(pair: GearPair, who: str, s: float, t: np.ndarray, theta: float = 0.0
+                   ) -> np.ndarray:
+    """Points (2, n) in m of ``who``'s textbook involute r_b (cos t + t sin t, sin t - t
+    cos t) (Litvin & Fuentes 2004, Gear Geometry and Applied Theory) crossing the
+    line of action at ``s`` (m), at involute parameters ``t`` (rad), the gear turned by
+    ``theta`` (rad, anticlockwise) about its centre (:func:`flank_centre`'s frame)."""
     g = pair.t1t2
     if who == "pinion":
         rb = pair.pinion.base_radius
-        centre, angle = np.array([0.0, -rb]), math.pi / 2 - s / rb
+        angle = math.pi / 2 - s / rb
     elif pair.gear.internal:
         rb = pair.gear.base_radius
-        centre, angle = np.array([-g, -rb]), math.pi / 2 - (s + g) / rb
+        angle = math.pi / 2 - (s + g) / rb
     else:
         rb = pair.gear.base_radius
-        centre, angle = np.array([g, rb]), -math.pi / 2 - (g - s) / rb
+        angle = -math.pi / 2 - (g - s) / rb
     inv = rb * np.array([np.cos(t) + t * np.sin(t), np.sin(t) - t * np.cos(t)])
-    return centre[:, None] + _turn(angle + theta, inv)
+    return flank_centre(pair, who)[:, None] + _turn(angle + theta, inv)
 
 
-def _corner(pair: GearPair, who: str, s: float, theta: float = 0.0) -> np.ndarray:
+def tip_corner(pair: GearPair, who: str, s: float, theta: float = 0.0) -> np.ndarray:
+    """The tip corner (x, y) in m of ``who``'s flank crossing the line of action at ``s``:
+    the end of its :func:`involute_flank` on the tip circle, the gear turned by ``theta``."""
     gear = pair.pinion if who == "pinion" else pair.gear
     rb = gear.base_radius
     t_tip = math.sqrt(gear.tip_radius_**2 - rb**2) / rb
-    return _flank(pair, who, s, np.array([t_tip]), theta)[:, 0]
+    return involute_flank(pair, who, s, np.array([t_tip]), theta)[:, 0]
 
 
-def _distance(point: np.ndarray, pair: GearPair, who: str, s: float) -> float:
-    """Shortest distance (m) from ``point`` to ``who``'s flank crossing at ``s``."""
+def distance_to_flank(point: np.ndarray, pair: GearPair, who: str, s: float) -> float:
+    """Shortest distance (m) from ``point`` (m) to ``who``'s :func:`involute_flank` crossing
+    at ``s``: the nearest of 20 001 vertices of the flank up to 1.2 tip radii, then a bounded
+    scalar minimisation on the curve around it (parameter tolerance 1e-14)."""
     from scipy.optimize import minimize_scalar
 
     gear = pair.pinion if who == "pinion" else pair.gear
@@ -81,7 +96,7 @@ def _distance(point: np.ndarray, pair: GearPair, who: str, s: float) -> float:
     t = np.linspace(0.0, math.sqrt((1.2 * gear.tip_radius_)**2 - rb**2) / rb, 20_001)
 
     def dist(tt):
-        xy = _flank(pair, who, s, np.atleast_1d(tt))
+        xy = involute_flank(pair, who, s, np.atleast_1d(tt))
         return np.hypot(xy[0] - point[0], xy[1] - point[1])
 
     i = int(np.argmin(dist(t)))
@@ -104,7 +119,7 @@ def case_tip_corner_gap_and_lever(context: Context) -> Outcome:
             for s, corner, mate in ((pair.s_end + past, "pinion", "gear"),
                                     (pair.s_start - past, "gear", "pinion")):
                 tc = tip_contact(pair, [s])
-                ref = _distance(_corner(pair, corner, s), pair, mate, s)
+                ref = distance_to_flank(tip_corner(pair, corner, s), pair, mate, s)
                 q.append(Quantity(f"gap of the {corner} corner {past * 1e3:g} mm off the path, "
                                   f"{name}", "m", ref, float(tc.gap[0]), "absolute", 1e-12,
                                   gap_why, UM))
@@ -112,14 +127,15 @@ def case_tip_corner_gap_and_lever(context: Context) -> Outcome:
         after, before = pair.s_end + 1e-3, pair.s_start - 1e-3
         tc = tip_contact(pair, [after, before])
         rb1, rb2 = pair.pinion.base_radius, pair.gear.base_radius
-        closed = tc.gap[0] - _distance(_corner(pair, "pinion", after, theta=-d), pair, "gear",
-                                       after)
+        closed = tc.gap[0] - distance_to_flank(tip_corner(pair, "pinion", after, theta=-d),
+                                               pair, "gear", after)
         q.append(Quantity(f"lever of the pinion corner 1 mm past the end, {name}", "-",
                           closed / (rb1 * d), float(tc.lever_pinion[0]), "relative", 1e-5,
                           lever_why))
         gear_turn = d if pair.gear.internal else -d
-        closed = tc.gap[1] - _distance(_corner(pair, "gear", before, theta=gear_turn), pair,
-                                       "pinion", before)
+        closed = tc.gap[1] - distance_to_flank(tip_corner(pair, "gear", before,
+                                                          theta=gear_turn), pair, "pinion",
+                                               before)
         q.append(Quantity(f"lever of the gear corner 1 mm before the start, {name}", "-",
                           closed / (rb2 * d), float(tc.lever_gear[1]), "relative", 1e-5,
                           lever_why))
