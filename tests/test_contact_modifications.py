@@ -2,7 +2,8 @@
 
 * every shape at sampled contact points against its formula written in the gear's own
   coordinates (roll length ``rho = sqrt(r^2 - r_b^2)`` and face position, ISO 21771:2007
-  4.3 / 7.3), independently of the code, to 1e-12 of the amount;
+  4.3 / 7.3), independently of the code, to 1e-12 of the amount (the formulas, and the
+  grids of the topography check, are :mod:`pipeline.verification.cases_modifications`'s);
 * symmetry: lead crowning about mid-face, the pinion's and the gear's tip relief mirror
   images on a pair of equal gears;
 * ``[contact]``'s short form and the same modifications given per gear: the same initial
@@ -47,6 +48,11 @@ from pipeline.geometry import GearPair
 from pipeline.operation import OperatingPoint
 from pipeline.stiffness.options import StiffnessOptions
 from pipeline.validation import InputError
+from pipeline.verification.cases_modifications import (
+    bilinear_topography,
+    internal_gear_terms,
+    terms_in_own_coordinates,
+)
 
 UM, MM = 1e-6, 1e-3
 
@@ -84,54 +90,15 @@ def test_each_term_against_its_formula_in_the_gears_own_coordinates():
     face position (frame docstring), to 1e-12 of the amount."""
     pair = GearPair(spur(50, "pinion"), spur(50, "gear", face_width=0.024))
     s, z = _flank_points(pair)
-    p, g = pair.pinion, pair.gear
-    rho1, rho2 = s, pair.t1t2 - s                       # roll lengths of each flank
+    p = pair.pinion
     rho1_tip = math.sqrt(p.active_tip_radius**2 - p.base_radius**2)
-    rho2_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
-    rho1_sap, rho2_sap = pair.s_start, pair.t1t2 - pair.s_end
-    z1, b1, z2, b2 = z, 0.020, z + 0.002, 0.024
-    la = rho1_tip - rho1_sap
-    assert la == pytest.approx(pair.path_length, rel=1e-12)
-    # pinion: arc tip relief from a start diameter, profile crowning, slope, lead crowning
-    rho_ca = rho1_tip - 4 * MM
-    d_ca = 2 * math.hypot(rho_ca, p.base_radius)
-    pinion = GearModification(
-        profile=ProfileModification(tip_relief=12 * UM, tip_relief_diameter=d_ca,
-                                    tip_relief_shape="arc", crowning=3 * UM, slope=-2 * UM),
-        lead=LeadModification(crowning=5 * UM, slope=4 * UM))
-    # gear: parabolic tip relief by roll length, linear root relief by diameter, end
-    # reliefs (parabolic), twist
-    rho_cf = rho2_sap + 3 * MM
-    gear = GearModification(
-        profile=ProfileModification(tip_relief=9 * UM, tip_relief_length=5 * MM,
-                                    tip_relief_shape="parabolic", root_relief=6 * UM,
-                                    root_relief_diameter=2 * math.hypot(rho_cf, g.base_radius)),
-        lead=LeadModification(end_relief_face1=7 * UM, end_relief_face1_length=4 * MM,
-                              end_relief_face2=8 * UM, end_relief_face2_length=5 * MM,
-                              end_relief_shape="parabolic"),
-        twist=5 * UM)
+    assert rho1_tip - pair.s_start == pytest.approx(pair.path_length, rel=1e-12)
+    flanks = terms_in_own_coordinates(pair, s, z)
+    pinion, gear = flanks.pinion, flanks.gear
+    expected_p, expected_g = flanks.pinion_terms, flanks.gear_terms
+    b2 = 0.024
     fp, fg = flank_frames(pair)
     terms_p, terms_g = pinion.terms(fp, s, z), gear.terms(fg, s, z)
-    # the circle R - sqrt(R^2 - x^2) loses digits to cancellation (R ~ 0.7 m, w ~ 10 um):
-    # evaluated in extended precision here
-    r = (np.longdouble(4 * MM) ** 2 + np.longdouble(12 * UM) ** 2) / (2 * np.longdouble(12 * UM))
-    x = np.clip(rho1.astype(np.longdouble) - np.longdouble(rho_ca), 0.0, None)
-    u1 = rho1 - rho1_sap
-    expected_p = {
-        "tip_relief": (r - np.sqrt(r * r - x * x)).astype(float),
-        "profile_crowning": 3 * UM * (2 * u1 / la - 1) ** 2,
-        "profile_slope": -2 * UM * (u1 / la - 0.5),
-        "lead_crowning": 5 * UM * (2 * z1 / b1 - 1) ** 2,
-        "helix_slope": 4 * UM * (z1 / b1 - 0.5),
-    }
-    u2 = rho2 - rho2_sap
-    expected_g = {
-        "tip_relief": 9 * UM * (np.clip(rho2 - (rho2_tip - 5 * MM), 0, None) / (5 * MM)) ** 2,
-        "root_relief": 6 * UM * np.clip(rho_cf - rho2, 0, None) / (rho_cf - rho2_sap),
-        "end_relief_face1": 7 * UM * (np.clip(4 * MM - z2, 0, None) / (4 * MM)) ** 2,
-        "end_relief_face2": 8 * UM * (np.clip(z2 - (b2 - 5 * MM), 0, None) / (5 * MM)) ** 2,
-        "twist": 5 * UM * (u2 / la - 0.5) * (z2 / b2 - 0.5),
-    }
     for got, want in ((terms_p, expected_p), (terms_g, expected_g)):
         assert set(got) == set(want)
         for name, value in want.items():
@@ -229,43 +196,11 @@ def test_short_form_is_the_per_gear_model_bit_for_bit(spur_pair_z50):
     assert np.ptp(a.transmission_error) > 1 * UM  # the modifications act
 
 
-def _write_grid(path, pair, mod, frame, roll_lines, face_lines):
-    """A topography CSV of ``mod`` on the grid roll_lines x face_lines (m), in mm and um."""
-    lo, hi = frame.active_roll
-    roll = np.unique(np.r_[np.linspace(lo - 0.2 * MM, hi + 0.2 * MM, 9), roll_lines])
-    face = np.unique(np.r_[np.linspace(0.0, frame.face_width, 5), face_lines])
-    rr, zz = np.meshgrid(roll, face)
-    s = np.array([frame.s_at_roll(r) for r in rr.ravel()])
-    w = mod.deviation(frame, s, zz.ravel() - frame.face_shift)
-    rows = ["face_position_mm,roll_length_mm,deviation_um"]
-    rows += [f"{a * 1e3:.17g},{b * 1e3:.17g},{c * 1e6:.17g}" for a, b, c in
-             zip(zz.ravel(), rr.ravel(), w, strict=True)]
-    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
-    return read_topography(path, "pinion.modifications.topography_csv")
-
-
 def test_topography_equals_the_analytical_modification(tmp_path, spur_pair_z50):
     """The issue's check: a CSV grid written from analytical modifications that are bilinear
     on its cells equals them through the loaded contact to round-off."""
     pair = spur_pair_z50
-    fp, fg = flank_frames(pair)
-    pinion = GearModification(
-        profile=ProfileModification(tip_relief=12 * UM, tip_relief_length=4 * MM,
-                                    slope=3 * UM),
-        lead=LeadModification(slope=-5 * UM, end_relief_face2=6 * UM,
-                              end_relief_face2_length=4 * MM),
-        twist=4 * UM)
-    d_start = 2 * math.hypot(fg.active_roll[1] - 5 * MM, pair.gear.base_radius)
-    gear = GearModification(profile=ProfileModification(
-        tip_relief=10 * UM, tip_relief_diameter=d_start, root_relief=5 * UM,
-        root_relief_length=3 * MM))
-    grid_p = _write_grid(tmp_path / "p.csv", pair, pinion, fp,
-                         [fp.active_roll[1] - 4 * MM], [pair.face_width - 4 * MM])
-    grid_g = _write_grid(tmp_path / "g.csv", pair, gear, fg,
-                         [fg.active_roll[1] - 5 * MM, fg.active_roll[0] + 3 * MM], [])
-    analytic = FlankModifications(pinion_flank=pinion, gear_flank=gear)
-    gridded = FlankModifications(pinion_flank=GearModification(topography=grid_p),
-                                 gear_flank=GearModification(topography=grid_g))
+    analytic, gridded = bilinear_topography(pair, tmp_path)
     s, z = _flank_points(pair, 97, 13)
     want = modification_gap(pair, s, z, analytic.flanks)
     assert np.ptp(want) > 10 * UM
@@ -368,17 +303,11 @@ def test_internal_gear_in_its_own_coordinates():
     pair = GearPair(spur(30, "pinion"), spur(80, "gear", internal=True, bore_radius=0.13575))
     g = pair.gear
     s, z = _flank_points(pair)
-    rho2 = pair.t1t2 + s
     rho_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
     assert rho_tip == pytest.approx(pair.t1t2 + pair.s_start, rel=1e-12)
-    rho_a = rho_tip + 2.5 * MM
-    rho_sap = pair.t1t2 + pair.s_end
-    ring = GearModification(profile=ProfileModification(
-        tip_relief=15 * UM, tip_relief_diameter=2 * math.hypot(rho_a, g.base_radius),
-        root_relief=5 * UM, root_relief_length=2 * MM, root_relief_shape="parabolic"))
+    ring, want = internal_gear_terms(pair, s, z)
     terms = ring.terms(flank_frames(pair)[1], s, z)
-    tip = 15 * UM * np.clip(rho_a - rho2, 0, None) / (rho_a - rho_tip)
-    root = 5 * UM * (np.clip(rho2 - (rho_sap - 2 * MM), 0, None) / (2 * MM)) ** 2
+    tip, root = want["tip_relief"], want["root_relief"]
     np.testing.assert_allclose(terms["tip_relief"], tip, rtol=0, atol=1e-12 * 15 * UM)
     np.testing.assert_allclose(terms["root_relief"], root, rtol=0, atol=1e-12 * 5 * UM)
     assert tip.max() == pytest.approx(15 * UM, rel=1e-9)

@@ -28,30 +28,18 @@ from pipeline.progress import Steps
 from pipeline.run.chain import RunOptions, mesh_stages
 from pipeline.run.rating_inputs import gear_inputs
 from pipeline.validation import InputError
+from pipeline.verification.cases_planetary_modifications import GEARS, MESHES, mesh_pair_doc
 
 CONFIGS = Path(__file__).resolve().parents[1] / "workflows" / "configs"
 EXAMPLE = tomllib.loads((CONFIGS / "planetary_modifications.toml").read_text(encoding="utf-8"))
 SHAFTS = tomllib.loads((CONFIGS / "shaft_planetary.toml").read_text(encoding="utf-8"))
-GEARS = ("sun", "planet", "ring")
-MESHES = {"sun_planet": ("sun", "planet"), "planet_ring": ("planet", "ring")}
 OPTIONS = RunOptions(show_progress=False, cache=Cache.off())
-
-
-def _pair_doc(doc: dict, mesh: str) -> dict:
-    """The two gears of ``mesh`` as a pair file: the first as [pinion], the second as [gear],
-    each with its own [<gear>.modifications] table."""
-    pinion, gear = MESHES[mesh]
-    out = {k: copy.deepcopy(v) for k, v in doc.items()
-           if k not in GEARS + ("carrier", "planetary")}
-    out["pinion"], out["gear"] = copy.deepcopy(doc[pinion]), copy.deepcopy(doc[gear])
-    out["name"] = f"{doc['name']}_{mesh}"
-    return out
 
 
 def _equivalent_pair(doc: dict, planetary, mesh: str, stages):
     """The pair of the two gears of ``mesh`` at the set's centre distance, loaded like the
     planetary mesh (its pinion's torque and speed relative to the carrier)."""
-    box = gearbox_from_dict(_pair_doc(doc, mesh))
+    box = gearbox_from_dict(mesh_pair_doc(doc, mesh))
     pair = GearPair(box.gears["pinion"], box.gears["gear"],
                     planetary.planetary.carrier_radius)
     return dataclasses.replace(box, pair=pair, operation=stages[mesh].case.operation)
@@ -244,7 +232,7 @@ def test_herringbone_stage_takes_the_sun_planet_flanks(tmp_path):
     options = RunOptions(show_progress=False, cache=Cache(tmp_path))
     case = mesh_cases(box)[0]
     hb = static_stages(box, case, options, Steps("", enabled=False)).herringbone
-    pair_doc = _pair_doc({k: v for k, v in doc.items() if k not in ("groove", "herringbone")},
+    pair_doc = mesh_pair_doc({k: v for k, v in doc.items() if k not in ("groove", "herringbone")},
                          "sun_planet")
     contact = gearbox_from_dict(pair_doc).mesh_contact("mesh")
     assert contact == box.mesh_contact("sun_planet") != box.contact

@@ -17,6 +17,7 @@ import pytest
 from pipeline.geometry.pair import GearPair
 from pipeline.rating.pair_rating import GearRatingInputs, RatingInputs, rate_pair
 from pipeline.validation import InputError
+from pipeline.verification.cases_planetary_rating import rate_stage_2, stage_2_gear_inputs
 
 MPA = 1e6
 
@@ -50,14 +51,6 @@ def test_kisssoft_helical_stage_from_its_inputs(stage_3):
     assert r.safety_bending_min == min(b.safety for b in r.bending)
 
 
-def _stage_2(mesh, pair, torque, speed, k_hbeta, gears, dynamic=None):
-    inputs = RatingInputs(application_factor=1.25, life_hours=175_200.0, accuracy_grade=6,
-                          viscosity_40=220e-6, k_hbeta=k_hbeta, load_sharing=1.10,
-                          blank_factor=0.862, minimum_safety_pitting=1.25,
-                          minimum_safety_bending=1.56)
-    return rate_pair(pair, torque, speed, inputs, gears, mesh, planets=3, dynamic=dynamic)
-
-
 def test_kisssoft_planetary_stage_from_its_inputs():
     """Both meshes of the NREL 5 MW gearbox's second (spur planetary) stage, as KISSsoft
     03/2017 A rates them (``@NREL_5MW/stage_02.rtf``, gfsReboucas/Drivetrain 4a88df34):
@@ -65,7 +58,8 @@ def test_kisssoft_planetary_stage_from_its_inputs():
     K_gamma 1.10, K_Hbeta 2.06 / 1.15 (the report's own inputs), grade 6, ISO VG 220,
     175 200 h, C_R 0.862; sun and planet case-carburized (1500 / 430 N/mm^2, R_z 4.8 / 20
     um), the ring through-hardened 34CrNiMo6 240 HBW (700 / 290 N/mm^2, R_z 8.0 um), the
-    planet an idler (Y_M 0.7), S_Hmin 1.25, S_Fmin 1.56. Printed: K_V12, K_V23 1.02, 1.06
+    planet an idler (Y_M 0.7), S_Hmin 1.25, S_Fmin 1.56 (as entered in
+    pipeline.verification.cases_planetary_rating). Printed: K_V12, K_V23 1.02, 1.06
     and K_V = max = 1.06 for both meshes; K_Halpha 1.00 / 1.00; S_H sun 1.21, planet 1.38
     (sun side) / 3.43 (ring side), ring 1.81; S_F sun 2.82, planet 2.04 (sun side) / 4.18
     (ring side); sigma_F sun 209.38, planet 210.14 N/mm^2. Here from the inputs alone: K_v
@@ -75,21 +69,16 @@ def test_kisssoft_planetary_stage_from_its_inputs():
     1.9412 (printed 1.94) is above the report's product; the fourth digit of neither is
     printed. The ring's bending needs the standard's internal-gear form factors, not built:
     None."""
-    case = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
-    planet = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA,
-                              mean_stress_factor=0.7)
-    ring = GearRatingInputs(sigma_hlim=700 * MPA, sigma_flim=290 * MPA,
-                            hardening="through_hardened", hardness_hb=240.0,
-                            flank_roughness=8.0e-6)
+    sun, planet, ring = stage_2_gear_inputs()
     rel = 294.5 - 47.8  # the sun relative to the carrier, rpm
     sp, pr = nrel.stage_2_sun_planet(), nrel.stage_2_planet_ring()
     t_planet = 162105.5 / 3 * 36 / 18  # the planet's torque on the ring side, N m
-    first = (_stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (case, planet)),
-             _stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring)))
+    first = (rate_stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (sun, planet)),
+             rate_stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring)))
     assert [r.dynamic.factor for r in first] == pytest.approx([1.02, 1.06], abs=5e-3)
     kv = max((r.dynamic for r in first), key=lambda d: d.factor)
-    r_sp = _stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (case, planet), kv)
-    r_pr = _stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring), kv)
+    r_sp = rate_stage_2("sun_planet", sp, 162105.5 / 3, rel, 2.06, (sun, planet), kv)
+    r_pr = rate_stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring), kv)
     assert r_sp.transverse.k_halpha == r_pr.transverse.k_halpha == 1.0
     assert [p.safety for p in r_sp.pitting] == pytest.approx([1.21, 1.38], abs=5e-3)
     assert [p.safety for p in r_pr.pitting] == pytest.approx([3.43, 1.81], abs=5e-3)

@@ -23,7 +23,9 @@ from __future__ import annotations
 import math
 import tempfile
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +35,10 @@ from pipeline.validation import PhysicsWarning
 from pipeline.verification.context import Context
 from pipeline.verification.display import UM
 from pipeline.verification.model import Outcome, Quantity
+
+if TYPE_CHECKING:
+    from pipeline.contact.modifications import GearModification
+    from pipeline.contact.separations import FlankModifications
 
 UM_ = 1e-6
 MM_ = 1e-3
@@ -74,19 +80,44 @@ def _relief_shapes() -> list[Quantity]:
     return q
 
 
-def _terms_in_own_coordinates() -> list[Quantity]:
+@dataclass(frozen=True)
+class ModifiedFlanks:
+    """Both gears' modifications and each term's closed form at sampled points.
+
+    Attributes
+    ----------
+    pinion, gear : GearModification
+        The modifications of the pinion's and the gear's flank.
+    pinion_terms, gear_terms : dict of str to ndarray
+        Each term's formula (m) at the points, by the name ``GearModification.terms`` gives
+        it.
+    """
+
+    pinion: GearModification
+    gear: GearModification
+    pinion_terms: dict[str, np.ndarray]
+    gear_terms: dict[str, np.ndarray]
+
+
+def terms_in_own_coordinates(pair: GearPair, s: np.ndarray, z: np.ndarray) -> ModifiedFlanks:
+    """Every profile and lead modification term on a pair of 20 mm (pinion) and 24 mm (gear,
+    centred) wide gears, and each term's closed form at the points ``s`` (m, on the path of
+    contact), ``z`` (m, from the pair's first face end) written in that gear's own roll
+    length and face position (ISO 21771:2007, 4.3 and 7.3), independently of the code.
+
+    The pinion: arc tip relief 12 um from 4 mm of roll length below its tip (by diameter),
+    profile crowning 3 um, profile slope -2 um, lead crowning 5 um, helix slope 4 um. The
+    gear: parabolic tip relief 9 um over 5 mm, linear root relief 6 um from 3 mm above its
+    SAP (by diameter), parabolic end reliefs 7 um over 4 mm and 8 um over 5 mm, twist 5 um.
+    The pinion's roll length is ``s``, the gear's ``T1T2 - s``; the gear's face position
+    ``z + 2 mm``.
+    """
     from pipeline.contact.modifications import (
         GearModification,
         LeadModification,
         ProfileModification,
-        flank_frames,
-        modification_gap,
     )
 
-    pair = GearPair(_spur(50, "pinion"), _spur(50, "gear", face_width=0.024))
-    ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 41),
-                         np.linspace(0.0, pair.face_width, 9))
-    s, z = ss.ravel(), zz.ravel()
     p, g = pair.pinion, pair.gear
     rho1, rho2 = s, pair.t1t2 - s
     rho1_tip = math.sqrt(p.active_tip_radius**2 - p.base_radius**2)
@@ -111,8 +142,6 @@ def _terms_in_own_coordinates() -> list[Quantity]:
                               end_relief_face2=8 * UM_, end_relief_face2_length=5 * MM_,
                               end_relief_shape="parabolic"),
         twist=5 * UM_)
-    fp, fg = flank_frames(pair)
-    got_p, got_g = pinion.terms(fp, s, z), gear.terms(fg, s, z)
     # the circle R - sqrt(R^2 - x^2) loses digits to cancellation (R ~ 0.7 m, w ~ 10 um):
     # evaluated in extended precision
     r = ((np.longdouble(4 * MM_) ** 2 + np.longdouble(12 * UM_) ** 2)
@@ -135,6 +164,22 @@ def _terms_in_own_coordinates() -> list[Quantity]:
         ** 2,
         "twist": 5 * UM_ * (u2 / la - 0.5) * (z2 / b2 - 0.5),
     }
+    return ModifiedFlanks(pinion, gear, want_p, want_g)
+
+
+def _terms_in_own_coordinates() -> list[Quantity]:
+    from pipeline.contact.modifications import flank_frames, modification_gap
+
+    pair = GearPair(_spur(50, "pinion"), _spur(50, "gear", face_width=0.024))
+    ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 41),
+                         np.linspace(0.0, pair.face_width, 9))
+    s, z = ss.ravel(), zz.ravel()
+    flanks = terms_in_own_coordinates(pair, s, z)
+    pinion, gear = flanks.pinion, flanks.gear
+    want_p, want_g = flanks.pinion_terms, flanks.gear_terms
+    b2 = 0.024
+    fp, fg = flank_frames(pair)
+    got_p, got_g = pinion.terms(fp, s, z), gear.terms(fg, s, z)
     q = []
     for gear_name, got, want in (("pinion", got_p, want_p), ("gear", got_g, want_g)):
         missing = set(want) ^ set(got)
@@ -154,15 +199,30 @@ def _terms_in_own_coordinates() -> list[Quantity]:
     return q
 
 
+def internal_gear_terms(pair: GearPair, s: np.ndarray, z: np.ndarray
+                        ) -> tuple[GearModification, dict[str, np.ndarray]]:
+    """A ring's (the internal gear of ``pair``) linear tip relief 15 um from 2.5 mm of roll
+    length beyond its tip (by diameter) and parabolic root relief 5 um over 2 mm, and each
+    term's closed form (m) at the points ``s``, ``z`` (m) in the ring's own roll length
+    ``T1T2 + s`` (its tip the small diameter at the path's start; ISO 21771:2007, 4.3)."""
+    from pipeline.contact.modifications import GearModification, ProfileModification
+
+    g = pair.gear
+    rho2 = pair.t1t2 + s
+    rho_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
+    rho_a, rho_sap = rho_tip + 2.5 * MM_, pair.t1t2 + pair.s_end
+    ring = GearModification(profile=ProfileModification(
+        tip_relief=15 * UM_, tip_relief_diameter=2 * math.hypot(rho_a, g.base_radius),
+        root_relief=5 * UM_, root_relief_length=2 * MM_, root_relief_shape="parabolic"))
+    return ring, {
+        "tip_relief": 15 * UM_ * np.clip(rho_a - rho2, 0, None) / (rho_a - rho_tip),
+        "root_relief": 5 * UM_ * (np.clip(rho2 - (rho_sap - 2 * MM_), 0, None) / (2 * MM_))
+        ** 2}
+
+
 def _internal_gear_terms() -> list[Quantity]:
-    """A ring (internal, 80 teeth) against a 30-tooth planet: its roll length is
-    ``T1T2 + s``, its tip the small diameter at the path's start; a linear tip relief from a
-    start diameter and a parabolic root relief by roll length."""
-    from pipeline.contact.modifications import (
-        GearModification,
-        ProfileModification,
-        flank_frames,
-    )
+    """A ring (internal, 80 teeth) against a 30-tooth planet (:func:`internal_gear_terms`)."""
+    from pipeline.contact.modifications import flank_frames
 
     ring_spec = GearSpec(teeth=80, module=3e-3, pressure_angle=math.radians(20.0),
                          face_width=0.02, bore_radius=0.13575, material=STEEL, name="gear",
@@ -172,20 +232,15 @@ def _internal_gear_terms() -> list[Quantity]:
     ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 41),
                          np.linspace(0.0, pair.face_width, 9))
     s, z = ss.ravel(), zz.ravel()
-    rho2 = pair.t1t2 + s
     rho_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
-    rho_a, rho_sap = rho_tip + 2.5 * MM_, pair.t1t2 + pair.s_end
-    ring = GearModification(profile=ProfileModification(
-        tip_relief=15 * UM_, tip_relief_diameter=2 * math.hypot(rho_a, g.base_radius),
-        root_relief=5 * UM_, root_relief_length=2 * MM_, root_relief_shape="parabolic"))
+    ring, want = internal_gear_terms(pair, s, z)
     terms = ring.terms(flank_frames(pair)[1], s, z)
     return [Quantity("ring: roll length of its tip against T1T2 + s_start", "m", rho_tip,
                      pair.t1t2 + pair.s_start, "relative", ROUND_OFF, "round-off", UM),
             _deviation("ring tip relief (linear, by diameter)", terms["tip_relief"],
-                       15 * UM_ * np.clip(rho_a - rho2, 0, None) / (rho_a - rho_tip)),
+                       want["tip_relief"]),
             _deviation("ring root relief (parabolic, by roll length)", terms["root_relief"],
-                       5 * UM_ * (np.clip(rho2 - (rho_sap - 2 * MM_), 0, None) / (2 * MM_))
-                       ** 2)]
+                       want["root_relief"])]
 
 
 def case_flank_modification_shapes(context: Context) -> Outcome:
@@ -226,25 +281,25 @@ def _write_grid(path: Path, mod, frame, roll_lines, face_lines):
     return read_topography(path, "modifications.topography_csv")
 
 
-def case_topography_equals_analytical(context: Context) -> Outcome:
-    """A topography grid written from analytical modifications that are bilinear on its
-    cells (linear reliefs with grid lines at their starts, slopes, a twist, a linear end
-    relief) against those modifications: the gap, and the loaded contact's TE and loads."""
-    from pipeline.contact.analysis import analyse_contact
-    from pipeline.contact.compliance import compliance_source
+def bilinear_topography(pair: GearPair, folder: Path
+                        ) -> tuple[FlankModifications, FlankModifications]:
+    """Analytical modifications of ``pair`` that are bilinear on the cells of a topography
+    grid, and the grids written from them (CSV files in ``folder``, in mm and um with 17
+    significant digits, read back as a user's are): (analytical, gridded).
+
+    The pinion: linear tip relief 12 um over 4 mm, profile slope 3 um, helix slope -5 um,
+    linear end relief 6 um over 4 mm on face 2, twist 4 um; the gear: linear tip relief
+    10 um from 5 mm below its tip (by diameter), linear root relief 5 um over 3 mm; grid
+    lines at the reliefs' starts. Bilinear interpolation reproduces them exactly.
+    """
     from pipeline.contact.modifications import (
         GearModification,
         LeadModification,
         ProfileModification,
         flank_frames,
-        modification_gap,
     )
-    from pipeline.contact.options import ContactOptions
     from pipeline.contact.separations import FlankModifications
-    from pipeline.operation import OperatingPoint
-    from pipeline.stiffness.options import StiffnessOptions
 
-    pair = GearPair(_spur(50, "pinion"), _spur(50, "gear"))
     fp, fg = flank_frames(pair)
     pinion = GearModification(
         profile=ProfileModification(tip_relief=12 * UM_, tip_relief_length=4 * MM_,
@@ -256,14 +311,29 @@ def case_topography_equals_analytical(context: Context) -> Outcome:
     gear = GearModification(profile=ProfileModification(
         tip_relief=10 * UM_, tip_relief_diameter=d_start, root_relief=5 * UM_,
         root_relief_length=3 * MM_))
+    grid_p = _write_grid(folder / "p.csv", pinion, fp, [fp.active_roll[1] - 4 * MM_],
+                         [pair.face_width - 4 * MM_])
+    grid_g = _write_grid(folder / "g.csv", gear, fg,
+                         [fg.active_roll[1] - 5 * MM_, fg.active_roll[0] + 3 * MM_], [])
+    return (FlankModifications(pinion_flank=pinion, gear_flank=gear),
+            FlankModifications(pinion_flank=GearModification(topography=grid_p),
+                               gear_flank=GearModification(topography=grid_g)))
+
+
+def case_topography_equals_analytical(context: Context) -> Outcome:
+    """A topography grid written from analytical modifications that are bilinear on its
+    cells (linear reliefs with grid lines at their starts, slopes, a twist, a linear end
+    relief) against those modifications: the gap, and the loaded contact's TE and loads."""
+    from pipeline.contact.analysis import analyse_contact
+    from pipeline.contact.compliance import compliance_source
+    from pipeline.contact.modifications import modification_gap
+    from pipeline.contact.options import ContactOptions
+    from pipeline.operation import OperatingPoint
+    from pipeline.stiffness.options import StiffnessOptions
+
+    pair = GearPair(_spur(50, "pinion"), _spur(50, "gear"))
     with tempfile.TemporaryDirectory() as tmp:
-        grid_p = _write_grid(Path(tmp) / "p.csv", pinion, fp, [fp.active_roll[1] - 4 * MM_],
-                             [pair.face_width - 4 * MM_])
-        grid_g = _write_grid(Path(tmp) / "g.csv", gear, fg,
-                             [fg.active_roll[1] - 5 * MM_, fg.active_roll[0] + 3 * MM_], [])
-    analytic = FlankModifications(pinion_flank=pinion, gear_flank=gear)
-    gridded = FlankModifications(pinion_flank=GearModification(topography=grid_p),
-                                 gear_flank=GearModification(topography=grid_g))
+        analytic, gridded = bilinear_topography(pair, Path(tmp))
     ss, zz = np.meshgrid(np.linspace(pair.s_start, pair.s_end, 97),
                          np.linspace(0.0, pair.face_width, 13))
     s, z = ss.ravel(), zz.ravel()

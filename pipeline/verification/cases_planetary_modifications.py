@@ -45,9 +45,12 @@ def _example(context: Context) -> dict:
     return tomllib.loads(path.read_text(encoding="utf-8"))
 
 
-def _pair_doc(doc: dict, mesh: str) -> dict:
-    """The two gears of ``mesh`` as a pair file: the first as [pinion], the second as
-    [gear], each with its own [<gear>.modifications] table."""
+def mesh_pair_doc(doc: dict, mesh: str) -> dict:
+    """The two gears of ``mesh`` ("sun_planet" or "planet_ring") of the planetary gearbox
+    file ``doc`` (a parsed TOML) as a pair file: the first as [pinion], the second as
+    [gear], each with its own [<gear>.modifications] table; the set's other tables as
+    they are, its carrier and planetary tables left out. The equivalent pair the mesh is
+    checked against (module docstring)."""
     pinion, gear = MESHES[mesh]
     out = {k: copy.deepcopy(v) for k, v in doc.items()
            if k not in GEARS + ("carrier", "planetary")}
@@ -103,7 +106,7 @@ def case_planetary_meshes_are_their_pairs(context: Context) -> Outcome:
     bit = "bit for bit: the same computation"
     q = []
     for mesh in MESHES:
-        pair_box = gearbox_from_dict(_pair_doc(doc, mesh))
+        pair_box = gearbox_from_dict(mesh_pair_doc(doc, mesh))
         pair = GearPair(pair_box.gears["pinion"], pair_box.gears["gear"],
                         box.planetary.carrier_radius)
         pair_box = dataclasses.replace(pair_box, pair=pair,

@@ -24,37 +24,53 @@ the planet on the sun and ring sides (-). The load cycles N_L of sun, planet and
 compared where they are computed (printed 7782.3e6, 1297.1e6, 1506.3e6)."""
 
 
-def case_kisssoft_planetary_rating(context: Context) -> Outcome:
-    """The ISO 6336 rating of the NREL 5 MW planetary stage from its inputs: K_v of both
-    meshes, K_Halpha, S_H of sun, planet and ring, sigma_F and S_F of sun and planet, the
-    load cycles against KISSsoft's printed report."""
-    from pipeline.rating.pair_rating import GearRatingInputs, RatingInputs, rate_pair
+def stage_2_gear_inputs():
+    """The report's per-gear rating inputs (KISSsoft Release 03/2017 A, ``stage_02.rtf``):
+    sun and planet case-carburized, sigma_Hlim 1500, sigma_Flim 430 N/mm^2, the planet an
+    idler (Y_M 0.7); the ring through-hardened 34CrNiMo6 240 HBW, sigma_Hlim 700,
+    sigma_Flim 290 N/mm^2, R_z 8.0 um. Returns (sun, planet, ring)
+    :class:`~pipeline.rating.pair_rating.GearRatingInputs`."""
+    from pipeline.rating.pair_rating import GearRatingInputs
 
-    ref = KISSSOFT_STAGE_2_RATING
-    case = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
+    sun = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA)
     planet = GearRatingInputs(sigma_hlim=1500 * MPA, sigma_flim=430 * MPA,
                               mean_stress_factor=0.7)
     ring = GearRatingInputs(sigma_hlim=700 * MPA, sigma_flim=290 * MPA,
                             hardening="through_hardened", hardness_hb=240.0,
                             flank_roughness=8.0e-6)
+    return sun, planet, ring
+
+
+def rate_stage_2(mesh: str, pair, torque: float, speed: float, k_hbeta: float, gears,
+                 dynamic=None):
+    """:func:`pipeline.rating.pair_rating.rate_pair` of one mesh of the second stage with the
+    report's common inputs: K_A 1.25, 175 200 h, grade 6, ISO VG 220, K_gamma 1.10, C_R
+    0.862, S_Hmin 1.25, S_Fmin 1.56, three planets; ``torque`` (N m) and ``speed`` (rpm)
+    of the pair's first gear, ``k_hbeta`` the report's input, ``dynamic`` a K_v to use."""
+    from pipeline.rating.pair_rating import RatingInputs, rate_pair
+
+    inputs = RatingInputs(application_factor=1.25, life_hours=175_200.0, accuracy_grade=6,
+                          viscosity_40=220e-6, k_hbeta=k_hbeta, load_sharing=1.10,
+                          blank_factor=0.862, minimum_safety_pitting=1.25,
+                          minimum_safety_bending=1.56)
+    return rate_pair(pair, torque, speed, inputs, gears, mesh, planets=3, dynamic=dynamic)
+
+
+def case_kisssoft_planetary_rating(context: Context) -> Outcome:
+    """The ISO 6336 rating of the NREL 5 MW planetary stage from its inputs: K_v of both
+    meshes, K_Halpha, S_H of sun, planet and ring, sigma_F and S_F of sun and planet, the
+    load cycles against KISSsoft's printed report."""
+    ref = KISSSOFT_STAGE_2_RATING
+    sun, planet, ring = stage_2_gear_inputs()
     rel = 294.5 - 47.8  # the sun relative to the carrier, rpm
     t_sun = 162105.5 / 3  # per planet, N m
     t_planet = t_sun * 36 / 18  # the planet's torque on the ring side, N m
     sp, pr = nrel_stage_2()
-
-    def rate(mesh, pair, torque, speed, k_hbeta, gears, dynamic=None):
-        inputs = RatingInputs(application_factor=1.25, life_hours=175_200.0,
-                              accuracy_grade=6, viscosity_40=220e-6, k_hbeta=k_hbeta,
-                              load_sharing=1.10, blank_factor=0.862,
-                              minimum_safety_pitting=1.25, minimum_safety_bending=1.56)
-        return rate_pair(pair, torque, speed, inputs, gears, mesh, planets=3,
-                         dynamic=dynamic)
-
-    first = (rate("sun_planet", sp, t_sun, rel, 2.06, (case, planet)),
-             rate("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring)))
+    first = (rate_stage_2("sun_planet", sp, t_sun, rel, 2.06, (sun, planet)),
+             rate_stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring)))
     kv = max((r.dynamic for r in first), key=lambda d: d.factor)
-    r_sp = rate("sun_planet", sp, t_sun, rel, 2.06, (case, planet), kv)
-    r_pr = rate("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring), kv)
+    r_sp = rate_stage_2("sun_planet", sp, t_sun, rel, 2.06, (sun, planet), kv)
+    r_pr = rate_stage_2("planet_ring", pr, t_planet, rel * 18 / 36, 1.15, (planet, ring), kv)
     digits = "printed to 2 decimals"
     q = [Quantity(f"dynamic factor K_v, {name}", "-", ref["K_v"][i], first[i].dynamic.factor,
                   "absolute", 5e-3, digits)
