@@ -119,6 +119,9 @@ def terms_in_own_coordinates(pair: GearPair, s: np.ndarray, z: np.ndarray) -> Mo
     )
 
     p, g = pair.pinion, pair.gear
+    if (p.face_width, g.face_width) != (0.020, 0.024):
+        raise ValueError(f"the formulas are written for face widths 20 mm / 24 mm, not "
+                         f"{p.face_width * 1e3:g} mm / {g.face_width * 1e3:g} mm")
     rho1, rho2 = s, pair.t1t2 - s
     rho1_tip = math.sqrt(p.active_tip_radius**2 - p.base_radius**2)
     rho2_tip = math.sqrt(g.active_tip_radius**2 - g.base_radius**2)
@@ -175,24 +178,22 @@ def _terms_in_own_coordinates() -> list[Quantity]:
                          np.linspace(0.0, pair.face_width, 9))
     s, z = ss.ravel(), zz.ravel()
     flanks = terms_in_own_coordinates(pair, s, z)
-    pinion, gear = flanks.pinion, flanks.gear
-    want_p, want_g = flanks.pinion_terms, flanks.gear_terms
-    b2 = 0.024
     fp, fg = flank_frames(pair)
-    got_p, got_g = pinion.terms(fp, s, z), gear.terms(fg, s, z)
     q = []
-    for gear_name, got, want in (("pinion", got_p, want_p), ("gear", got_g, want_g)):
+    for gear_name, mod, frame, want in (("pinion", flanks.pinion, fp, flanks.pinion_terms),
+                                        ("gear", flanks.gear, fg, flanks.gear_terms)):
+        got = mod.terms(frame, s, z)
         missing = set(want) ^ set(got)
         if missing:
             raise ValueError(f"{gear_name}: terms {sorted(missing)} differ from "
                              f"{sorted(want)}")
         q += [_deviation(f"{gear_name} {name.replace('_', ' ')}", got[name], want[name])
               for name in want]
-    total = sum(want_p.values()) + sum(want_g.values())
+    total = sum(flanks.pinion_terms.values()) + sum(flanks.gear_terms.values())
     q.append(_deviation("gap: the sum of both flanks' terms",
-                        modification_gap(pair, s, z, (pinion, gear)), total))
-    corners = gear.terms(fg, np.array([pair.s_start, pair.s_end]),  # the gear's tip, root
-                         np.array([b2, 0.0]) - 0.002)["twist"]  # on face 2, face 1
+                        modification_gap(pair, s, z, (flanks.pinion, flanks.gear)), total))
+    corners = flanks.gear.terms(fg, np.array([pair.s_start, pair.s_end]),  # its tip, root
+                                np.array([0.024, 0.0]) - 0.002)["twist"]  # face 2, face 1
     q += [Quantity(f"gear twist at its {where}", "m", 5 * UM_ / 4, float(v), "relative",
                    ROUND_OFF, "S / 4 at the corners: round-off", UM)
           for where, v in zip(("tip on face 2", "root on face 1"), corners, strict=True)]
