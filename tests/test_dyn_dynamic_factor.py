@@ -143,8 +143,9 @@ def test_dynamic_factor_converges_in_harmonics_and_contact_positions(monkeypatch
 @pytest.mark.slow
 def test_demo_dynamic_factor_is_the_same_at_60_and_360_contact_positions():
     """The demo as it runs (FE 2D compliance, 60 positions, the tip corners touching beyond
-    the path) against 360 positions and 160 harmonics: 1.33966 / 1.34291 / 1.33966, within
-    0.25 % (the corners close and open between the samples; the target is 0.5 %). On the
+    the path) against 360 positions and 160 harmonics: 1.34124 / 1.34462 / 1.34124, within
+    0.25 % (the corners close and open between the samples; the target is 0.5 %; 1.33966 /
+    1.34291 / 1.33966 with friction added on the FE diagonal, before its ratio). On the
     nominal path it was 1.73215 / 1.73209 / 1.73227 with the entry and exit jumps resolved
     (1.7204 at 60 positions before: 0.68 %)."""
     factors = {}
@@ -153,7 +154,7 @@ def test_demo_dynamic_factor_is_the_same_at_60_and_360_contact_positions():
         system = gearbox_dynamic_model(gearbox_from_text(text)).assembly().assemble()
         for h in ((40, 160) if p == 60 else (40,)):
             factors[p, h] = harmonic_balance(system, h).response.dynamic_factor()[0]
-    assert factors[60, 40] == pytest.approx(1.3397, rel=1e-3)
+    assert factors[60, 40] == pytest.approx(1.3412, rel=1e-3)
     assert factors[360, 40] == pytest.approx(factors[60, 40], rel=3e-3)
     assert factors[60, 160] == pytest.approx(factors[60, 40], rel=2e-4)
 

@@ -17,6 +17,7 @@ Ladder of checks:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -184,16 +185,39 @@ def test_sections_are_coupled_and_coupling_decays(helical):
 @pytest.mark.slow
 def test_friction_correction_wraps_the_3d_source(helical):
     """FrictionCorrected accepts the 3D source (same slice points as SliceCompliance) and
-    changes only the diagonal, by the slice model's friction effect."""
+    scales it congruently by the slice model's friction ratio: G' = D G D, D = sqrt(r)."""
     from pipeline.contact.source import FrictionCorrected
     from pipeline.stiffness.mesh import FrictionModel
 
     s0 = HELICAL_PAIR.mesh_cycle(4)[1]
     sl = SliceCompliance(PairModel.build(HELICAL_PAIR), COARSE.slices, FrictionModel(mu=0.05))
     src = FrictionCorrected(helical, sl)
-    d = src.matrix(s0) - helical.matrix(s0)
-    assert np.allclose(d - np.diag(np.diag(d)), 0.0)
-    assert np.allclose(np.diag(d), src.friction_change(s0)) and np.any(np.diag(d) != 0)
+    G0, r = helical.matrix(s0), src.friction_ratio(s0)
+    np.testing.assert_allclose(src.matrix(s0), np.sqrt(r)[:, None] * G0 * np.sqrt(r)[None, :],
+                               rtol=1e-14)
+    assert np.any(r != 1.0) and np.all(np.abs(r - 1.0) < 0.1)
+
+
+@pytest.mark.slow
+def test_friction_keeps_the_3d_source_semidefinite_on_fine_slices(helical):
+    """Read on 40 slices (finer than the table's face grid) the 3D G is semidefinite of
+    lower rank; the friction ratio keeps it so (the slice model's additive change made the
+    demo pair with compliance = "fe3d" indefinite in the shafts' fixed point)."""
+    from pipeline.contact.source import FrictionCorrected
+    from pipeline.stiffness.mesh import FrictionModel
+
+    fine = dataclasses.replace(helical, settings=dataclasses.replace(COARSE, slices=40))
+    sl = SliceCompliance(PairModel.build(HELICAL_PAIR), 40, FrictionModel(mu=0.05))
+    src = FrictionCorrected(fine, sl)
+    dry = dataclasses.replace(sl, friction=FrictionModel(mu=0.0))
+    for s0 in HELICAL_PAIR.mesh_cycle(4):
+        G0 = fine.matrix(s0)
+        ev0, ev = np.linalg.eigvalsh(G0), np.linalg.eigvalsh(src.matrix(s0))
+        assert ev0[0] > -1e-8 * ev0[-1] and ev[0] > -1e-8 * ev[-1]
+        # measured: the additive change was -154..-166 % of the smallest diagonal entry
+        # and its smallest eigenvalue -3.7..-5.3 % of the largest
+        additive = G0 + np.diag(sl.diagonal(s0) - dry.diagonal(s0))
+        assert np.linalg.eigvalsh(additive)[0] < -0.01 * ev0[-1]
 
 
 # ---- physics: spur, sliding ends = plane strain -----------------------------------------------

@@ -8,7 +8,7 @@
   coupling across the face.
 
 FE influence coefficients are for loads normal to the flank; with friction in
-``[stiffness]`` the slice model's friction change is added on their diagonal
+``[stiffness]`` the slice model's relative friction change scales them
 (:class:`pipeline.contact.source.FrictionCorrected`), so every source sees the same
 friction. The FE settings come from the ``[fe]`` table (:mod:`pipeline.config`), the
 slices across the face from ``[contact] slices`` for all three

@@ -328,14 +328,27 @@ class UniformSlices:
 
 @dataclass(frozen=True)
 class FrictionCorrected:
-    """A normal-load compliance source (e.g. FE) with the slice model's friction effect added.
+    """A normal-load compliance source (e.g. FE) with the slice model's friction effect.
 
     FE influence coefficients are computed for loads normal to the flank. Friction
     tilts the tooth load (Yang et al. 2026, eqs. 19-23) and so changes the bending and
-    compression of each tooth; that change is taken from the analytical slice
-    model - the slice compliance with friction minus the one without - and added
-    on the diagonal of ``base.matrix``. Both sources must use the same candidate
-    points (same slices), which is checked at every position.
+    compression of each tooth; that change is taken from the analytical slice model as
+    a ratio, the structural slice compliance with friction over the one without,
+    ``r_i = c_i(mu) / c_i(0)`` (Hertz excluded from both: the FE tables hold no Hertz
+    term either), and applied congruently: ``G' = D G D`` with ``D = diag(sqrt(r))``.
+
+    Why a ratio and not the difference ``c_i(mu) - c_i(0)`` on the diagonal. The slice
+    compliance is that of an independent slice, ``1 / width`` of the per-unit-width
+    compliance, so its friction change grows with the number of slices; a 3D source's
+    coupled points share their load across the face and their diagonal does not (the demo
+    pair's 3D G at 30 slices: diagonal 1.0-1.9e-8 m/N against the slices' 1.57e-7 m/N, so
+    the difference, -3.7e-9 m/N, was -46 % of a diagonal entry where the slices' own change
+    is -2.4 %, and it made the semidefinite G indefinite). The ratio is the same at any
+    slicing; the congruent form keeps ``G`` semidefinite whenever ``G`` and ``r`` are
+    (Sylvester's law of inertia) and scales each point's coupling with its own
+    compliance, so a dry coupled slice source corrected this way equals the slice source
+    with friction exactly (its off-diagonal is ``kappa sqrt(c_i c_j)``). Both sources must
+    use the same candidate points (same slices), which is checked at every position.
 
     Attributes
     ----------
@@ -357,17 +370,19 @@ class FrictionCorrected:
     def points(self, position: float) -> ContactPoints:
         return self.base.points(position)
 
-    def friction_change(self, position: float) -> np.ndarray:
-        """Diagonal compliance change due to friction, m/N, shape (n,)."""
+    def friction_ratio(self, position: float) -> np.ndarray:
+        """Structural compliance with friction over the one without, shape (n,): the
+        slice model's ``c_i(mu) / c_i(0)`` at each candidate point (1 where no friction
+        acts, < 1 in approach, > 1 in recess)."""
         dry = dataclasses.replace(self.slices, friction=FrictionModel(mu=0.0))
         a, b = self.base.points(position), self.slices.points(position)
         if a.s.shape != b.s.shape or not (np.allclose(a.s, b.s, rtol=0, atol=1e-12)
                                           and np.allclose(a.z, b.z, rtol=0, atol=1e-12)):
             raise ValueError("FrictionCorrected: base and slice sources use different "
                              "candidate points; give both the same number of slices")
-        return self.slices.diagonal(position) - dry.diagonal(position)
+        return self.slices.diagonal(position) / dry.diagonal(position)
 
     def matrix(self, position: float) -> np.ndarray:
         G = np.array(self.base.matrix(position), dtype=float)
-        G[np.diag_indices_from(G)] += self.friction_change(position)
-        return G
+        d = np.sqrt(self.friction_ratio(position))
+        return d[:, None] * G * d[None, :]
