@@ -10,11 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.dynamics import sweep
 from pipeline.dynamics.excitation import rectangular_mesh_stiffness
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.models.planetary import PlanetaryModel
 from pipeline.dynamics.models.spur_pair import SpurPairModel
-from pipeline.dynamics import sweep
 from pipeline.dynamics.sweep import load_sharing_factor, mesh_force_sweep
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.cache.entries import cached_file, unlabelled
+from pipeline.cache.entries import cached_file, entry_file, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
 from pipeline.fem.influence import InfluenceMatrix, influence_matrix
@@ -81,6 +82,29 @@ def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> Influen
                            dict(zip(_TIMING_KEYS, z["timings"].tolist(), strict=True)))
 
 
+def _table_inputs(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray
+                  ) -> tuple[dict, FlankPoints, SectorSettings]:
+    """The cache key data of a table (every input it depends on), its points and its mesh
+    settings."""
+    ss = sector_settings(gear, settings, teeth)
+    check_table_points(settings.points * teeth.size,
+                       f"fe.points x loaded teeth = {settings.points} x {teeth.size}",
+                       "lower fe.points")
+    pts = table_points(gear, settings, teeth)
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
+              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
+              "patch": settings.patch}
+    return inputs, pts, ss
+
+
+def table_entry(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
+                cache: Cache = DEFAULT_CACHE) -> Path | None:
+    """The cache file :func:`gear_table` reads or writes for these arguments (None: cache
+    off)."""
+    inputs, _, _ = _table_inputs(gear, settings, np.asarray(teeth, dtype=int))
+    return entry_file("fe2dtable", inputs, TABLE_CODE, cache)
+
+
 def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
                cache: Cache = DEFAULT_CACHE
                ) -> tuple[InfluenceMatrix, dict]:
@@ -93,14 +117,7 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     """
     t0 = time.perf_counter()
     teeth = np.asarray(teeth, dtype=int)
-    ss = sector_settings(gear, settings, teeth)
-    check_table_points(settings.points * teeth.size,
-                       f"fe.points x loaded teeth = {settings.points} x {teeth.size}",
-                       "lower fe.points")
-    pts = table_points(gear, settings, teeth)
-    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
-              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
-              "patch": settings.patch}
+    inputs, pts, ss = _table_inputs(gear, settings, teeth)
 
     def build() -> InfluenceMatrix:
         t = time.perf_counter()

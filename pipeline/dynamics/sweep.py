@@ -36,7 +36,6 @@ from pipeline.parallel import one_blas_thread, process_pool
 from pipeline.progress import progress
 from pipeline.validation import InputError, check_choice, check_int_range
 
-
 POOL_WORTH_S = 0.5
 """Serial seconds of work below which a local sweep stays in this process: a forked pool
 of 2 workers costs 0.1-0.25 s to start and feed (the demo's two 120-point sweeps, 0.1 s

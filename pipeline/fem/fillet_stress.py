@@ -27,10 +27,11 @@ import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from functools import partial
+from pathlib import Path
 
 import numpy as np
 
-from pipeline.cache.entries import cached_file, same_arrays, unlabelled
+from pipeline.cache.entries import cached_file, entry_file, same_arrays, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import table_radii
 from pipeline.fem.mesh_cache import MESH_CODE
@@ -188,18 +189,35 @@ def _profile_arc(gear: GearSpec, xy: np.ndarray) -> np.ndarray:
     return cum[np.argmin(d, axis=1)]
 
 
+def _table_inputs(gear: GearSpec, settings: FilletStressSettings
+                  ) -> tuple[dict, np.ndarray, np.ndarray, SectorSettings]:
+    """The cache key data of a table (every input it depends on), the tooth offsets, the
+    flank radii (m) and the mesh settings."""
+    z = gear.teeth
+    offsets = np.arange(-settings.offsets, settings.offsets + 1)
+    ss = SectorSettings.graded(gear, z, tuple(int(t) for t in z // 2 + offsets),
+                               settings.refinement)
+    r = table_radii(gear, settings.radii)
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
+              "radii": r.tolist()}
+    return inputs, offsets, r, ss
+
+
+def fillet_stress_entry(gear: GearSpec, settings: FilletStressSettings, *,
+                        cache: Cache = DEFAULT_CACHE) -> Path | None:
+    """The cache file :func:`build_fillet_stress` reads or writes for these arguments (None:
+    cache off)."""
+    return entry_file("filletstress", _table_inputs(gear, settings)[0], MESH_CODE, cache)
+
+
 def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
                         cache: Cache = DEFAULT_CACHE
                         ) -> FilletStressTable:
     """The fillet stress table of ``gear`` (module docstring), from the cache or solved."""
     z = gear.teeth
     mid = z // 2
-    offsets = np.arange(-settings.offsets, settings.offsets + 1)
+    inputs, offsets, r, ss = _table_inputs(gear, settings)
     teeth = mid + offsets
-    ss = SectorSettings.graded(gear, z, tuple(int(t) for t in teeth), settings.refinement)
-    r = table_radii(gear, settings.radii)
-    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
-              "radii": r.tolist()}
 
     def build() -> dict[str, np.ndarray]:
         # the solver side is imported on a cache miss only (a second of imports)

@@ -89,6 +89,7 @@ from pipeline.validation import InputError
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
     from pipeline.run.planetary_shafts import PlanetaryMeshShafts
+    from pipeline.run.prefetch import TablePrefetch
     from pipeline.run.revolution import RevolutionStage
     from pipeline.run.shafts import ShaftStage
 
@@ -218,17 +219,22 @@ def mesh_cases(box: Gearbox) -> list[MeshCase]:
 
 
 def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
-                   options: RunOptions, prebuilt: Any = None) -> tuple[LoadedMeshCycle, bool]:
+                   options: RunOptions, prebuilt: Any = None, tables: TablePrefetch | None = None
+                   ) -> tuple[LoadedMeshCycle, bool]:
     """The loaded contact cycle of one mesh, from the cache when its inputs are unchanged.
 
     ``prebuilt`` is an FE source of the same gears and FE settings built earlier (a design
     study builds one per geometry): its tables are used instead of building or reading them.
+    ``tables``: FE tables being built side by side (:mod:`pipeline.run.prefetch`), waited
+    for before the source reads them from the cache.
     Returns (cycle, True if read from the cache).
     """
     actual, contact = stiffness.actual, box.mesh_contact(case.name)
     inputs = cycle_cache_inputs(actual, case.operation, contact, box.stiffness, box.fe_source)
 
     def build() -> LoadedMeshCycle:
+        if tables is not None:
+            tables.wait_contact(case.name)
         source = compliance_source(actual, case.operation, contact, box.stiffness,
                                    box.fe_source, cache=options.cache, model=stiffness.model,
                                    show_progress=options.show_progress, prebuilt=prebuilt)
@@ -243,9 +249,10 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
 
 def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
-                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
+                  contact: bool = True, prebuilt: Any = None,
+                  tables: TablePrefetch | None = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
-    (``prebuilt``: :func:`loaded_contact`)."""
+    (``prebuilt``, ``tables``: :func:`loaded_contact`)."""
     tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -256,7 +263,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
     cycle = None
     if contact:
         with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
-            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt)
+            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt, tables)
             note["cached"] = hit
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
                             f"{cycle.mesh_stiffness.mean():.4g} N/m")
@@ -282,13 +289,16 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
-                prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
+                prebuilt: Mapping[str, Any] | None = None,
+                tables: TablePrefetch | None = None) -> dict[str, MeshStages]:
     """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
-    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
+    ``prebuilt``: FE sources by mesh name, ``tables``: FE tables being built
+    (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
     out = {case.name: static_stages(box, case, options, log, contact,
-                                    None if prebuilt is None else prebuilt[case.name])
+                                    None if prebuilt is None else prebuilt[case.name],
+                                    tables)
            for case in mesh_cases(box)}
     if contact and box.kind == "planetary" and box.shafts:
         from pipeline.run.planetary_shafts import planetary_shaft_stage

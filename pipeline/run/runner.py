@@ -14,6 +14,7 @@ from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
 from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
+from pipeline.run.prefetch import prefetch_tables
 from pipeline.run.rating import RatingStage, rating_stage
 from pipeline.validation import InputError
 
@@ -58,8 +59,9 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    meshes = mesh_stages(box, options, log)
-    distributions = distribution_stages(box, meshes, options, log)
+    with prefetch_tables(box, options) as tables:  # FE tables side by side, into the cache
+        meshes = mesh_stages(box, options, log, tables=tables)
+        distributions = distribution_stages(box, meshes, options, log, tables)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
