@@ -95,15 +95,13 @@ import numpy as np
 
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact._interpolation import linear_weights
-from pipeline.contact.fe2d_table import gear_table, sector_teeth
+from pipeline.contact.fe2d_table import gear_table, sector_teeth, table_jobs
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.influence import InfluenceMatrix
 from pipeline.fem.settings import FE2DSettings
-from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.progress import progress
-from pipeline.validation import InputError
 
 
 def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarray,
@@ -116,23 +114,6 @@ def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarr
     oi, oj = ti * n_r + ki, tj * n_r + kj
     return ((1 - wi) * (1 - wj) * S[oi, oj] + wi * (1 - wj) * S[oi + 1, oj]
             + (1 - wi) * wj * S[oi, oj + 1] + wi * wj * S[oi + 1, oj + 1])
-
-
-def table_jobs(pair: GearPair, settings: FE2DSettings, tip_contact: bool = True
-               ) -> list[tuple[str, GearSpec, np.ndarray]]:
-    """The tables :meth:`FE2DCompliance.build` reads or builds: (role, gear, sector teeth)
-    of the pinion and the gear, the teeth of every tooth pair that can touch
-    (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``; module docstring: pinion
-    tooth ``mid - k``, gear tooth ``mid + k``)."""
-    if pair.pinion.herringbone:
-        raise InputError("fe source: analyse one helical half of a herringbone pair")
-    k = pair.pair_indices(tip_contact)
-    mid = min(sector_teeth(pair.pinion, settings), sector_teeth(pair.gear, settings)) // 2
-    if np.abs(k).max() > mid:
-        raise InputError(f"fe.teeth = {settings.teeth} does not cover tooth pairs "
-                         f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
-    return [("pinion", pair.pinion, np.sort(sector_teeth(pair.pinion, settings) // 2 - k)),
-            ("gear", pair.gear, np.sort(sector_teeth(pair.gear, settings) // 2 + k))]
 
 
 @dataclass(frozen=True)

@@ -27,14 +27,16 @@ import numpy as np
 from pipeline.cache.entries import cached_file, entry_file, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
-from pipeline.fem.influence import InfluenceMatrix, influence_matrix
 from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.sector2d import sector_mesh_2d
 from pipeline.fem.settings import check_table_points
 from pipeline.geometry.gear import GearSpec
+from pipeline.geometry.pair import GearPair
+from pipeline.validation import InputError
 
 if TYPE_CHECKING:
+    from pipeline.fem.influence import InfluenceMatrix
     from pipeline.fem.settings import FE2DSettings
 
 TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe2d_table")
@@ -66,6 +68,24 @@ def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> F
                         np.tile(r, teeth.size))
 
 
+def table_jobs(pair: GearPair, settings: FE2DSettings, tip_contact: bool = True
+               ) -> list[tuple[str, GearSpec, np.ndarray]]:
+    """The tables :meth:`~pipeline.contact.fe2d_source.FE2DCompliance.build` reads or
+    builds: (role, gear, sector teeth) of the pinion and the gear, the teeth of every tooth
+    pair that can touch (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``; the
+    tooth mapping of :mod:`pipeline.contact.fe2d_source`: pinion tooth ``mid - k``, gear
+    tooth ``mid + k``)."""
+    if pair.pinion.herringbone:
+        raise InputError("fe source: analyse one helical half of a herringbone pair")
+    k = pair.pair_indices(tip_contact)
+    mid = min(sector_teeth(pair.pinion, settings), sector_teeth(pair.gear, settings)) // 2
+    if np.abs(k).max() > mid:
+        raise InputError(f"fe.teeth = {settings.teeth} does not cover tooth pairs "
+                         f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
+    return [("pinion", pair.pinion, np.sort(sector_teeth(pair.pinion, settings) // 2 - k)),
+            ("gear", pair.gear, np.sort(sector_teeth(pair.gear, settings) // 2 + k))]
+
+
 def _table_arrays(G: InfluenceMatrix) -> dict[str, object]:
     return {"fe": G.fe, "local": G.local, "patch_half_width": G.patch_half_width,
             "kind": G.kind, "n_dof": G.n_dof, "n_free": G.n_free, "method": G.method,
@@ -73,6 +93,8 @@ def _table_arrays(G: InfluenceMatrix) -> dict[str, object]:
 
 
 def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> InfluenceMatrix:
+    from pipeline.fem.influence import InfluenceMatrix  # the FE side: on use only
+
     n = len(points)
     if z["fe"].shape != (n, n) or z["local"].shape != (n, n):
         raise ValueError(f"table of shape {z['fe'].shape}, expected {(n, n)}")
@@ -120,6 +142,8 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     inputs, pts, ss = _table_inputs(gear, settings, teeth)
 
     def build() -> InfluenceMatrix:
+        from pipeline.fem.influence import influence_matrix
+
         t = time.perf_counter()
         sec = sector_mesh_2d(gear, ss, cache=cache)
         t_mesh = time.perf_counter() - t

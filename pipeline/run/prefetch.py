@@ -7,7 +7,7 @@ build_fillet_stress`, for the root stress after it). Each is one Gmsh mesh and o
 factorisation, independent of the others and of the contact: built one after the other they
 were most of the computing time (the demo's pair: 1.0-1.2 s for each compliance table, 1.2
 s for the fillet table, of 4.3 s; CPU, 2 shared cores). :func:`prefetch_tables` lists them
-(the same functions the stages call: :func:`~pipeline.contact.fe2d_source.table_jobs`,
+(the same functions the stages call: :func:`~pipeline.contact.fe2d_table.table_jobs`,
 :func:`~pipeline.contact.root_stress.fillet_settings`), leaves out those in the cache and
 those two gears share, and builds the rest in a pool of forked processes
 (:func:`pipeline.parallel.process_pool`, one per core), each into the run's cache. The
@@ -95,8 +95,8 @@ def _with_threads(limits: list[dict], build: Callable[[], Any]) -> None:
 def table_jobs(box: Gearbox, options: RunOptions) -> list[TableJob]:
     """The FE 2D tables a run of ``box`` will read or build and are not in the cache (module
     docstring); two identical gears give two jobs with one ``entry``."""
-    from pipeline.contact.fe2d_source import table_jobs as gear_tables
     from pipeline.contact.fe2d_table import gear_table, table_entry
+    from pipeline.contact.fe2d_table import table_jobs as gear_tables
     from pipeline.contact.root_stress import fillet_settings
     from pipeline.fem.fillet_stress import build_fillet_stress, fillet_stress_entry
 
