@@ -4,25 +4,31 @@ A cold ``gearpipe run`` with ``[contact] compliance = "fe2d"`` needs, per mesh, 
 compliance tables of both gears (:func:`pipeline.contact.fe2d_table.gear_table`, before the
 loaded contact) and their fillet stress tables (:func:`pipeline.fem.fillet_stress.
 build_fillet_stress`, for the root stress after it). Each is one Gmsh mesh and one
-factorisation, independent of the others and of the contact: built one after the other they
-were most of the computing time (the demo's pair: 1.0-1.2 s for each compliance table, 1.2
-s for the fillet table, of 4.3 s; CPU, 2 shared cores). :func:`prefetch_tables` lists them
-(the same functions the stages call: :func:`~pipeline.contact.fe2d_table.table_jobs`,
-:func:`~pipeline.contact.root_stress.fillet_settings`), leaves out those in the cache and
-those two gears share, and builds the rest in a pool of forked processes
-(:func:`pipeline.parallel.process_pool`, one per core), each into the run's cache. The
-stages call the same functions as without it, after waiting for that mesh's tables
+factorisation, independent of the others and of the contact: built one after the other
+they were half the computing (the demo's pair: 0.48-0.55 s of CPU for each compliance
+table, 1.0-1.14 s for the fillet table, of 3.6-3.8 s for the whole run without the
+imports; 2 cores shared with other work). :func:`prefetch_tables` lists them (the same
+functions the stages call: :func:`~pipeline.contact.fe2d_table.table_jobs`,
+:func:`~pipeline.contact.root_stress.fillet_settings`), leaves out those in the cache, and
+builds the first (the first mesh's pinion) in this process, which would otherwise wait,
+and the others in a pool of forked processes (:func:`pipeline.parallel.process_pool`, one
+per core but one; a table two identical gears share is built once), each into the run's
+cache, the compliance tables first: the loaded contact waits for them, and the fillet
+tables are then built while the contact and the shafts are solved. The stages call the same
+functions as without it, after waiting for that mesh's tables
 (:meth:`TablePrefetch.wait_contact` before building its compliance source,
 :meth:`TablePrefetch.wait_root` before its root stress), which they then read from the
-cache. So the numbers cannot differ: the same function with
-the same inputs writes the same entry, and each process runs with this process's BLAS and
-OpenMP thread counts (MKL PARDISO's round-off depends on them: 7e-14 between one and two
-threads). A table that fails in its process is built again by its stage, which reports the
-error as without the prefetch.
+cache. So the numbers cannot differ: the same function with the same inputs writes the
+same entry, and each process runs with this process's BLAS and OpenMP thread counts (MKL
+PARDISO's round-off depends on them: 7e-14 between one and two threads); the run's
+summary and the entries are bit for bit those of a run that builds every table in its
+stages (``tests/test_run_prefetch.py``). A table that fails in its process is built again
+by its stage, which reports the error as without the prefetch.
 
-Nothing is prefetched with the cache off (``--no-cache``: the tables travel through it),
-without fork (:func:`pipeline.parallel.can_fork`), with one core, or when every table is in
-the cache already (a warm run forks nothing).
+Cost: a pool process's start (fork, Gmsh and MKL loaded in it) adds 0.1-0.2 s of CPU. Nothing is prefetched with the cache off (``--no-cache``: the tables
+travel through it), without fork (:func:`pipeline.parallel.can_fork`), with one core, or
+when every table is in the cache already (a warm run forks nothing and imports no FE
+solver to find that out).
 """
 
 from __future__ import annotations
@@ -63,14 +69,22 @@ class TablePrefetch:
 
     Attributes
     ----------
-    futures : (mesh, stage) -> the builds that stage needs.
-    pool : the process pool, or None when nothing is built.
+    futures : (mesh, stage) -> the builds in the pool that stage needs.
+    here : (mesh, stage) -> the builds this process makes when that stage first waits
+        (this process would otherwise only wait).
+    pool : the process pool, or None when nothing is built there.
     """
 
     futures: dict[tuple[str, str], list[Future]] = field(default_factory=dict)
+    here: dict[tuple[str, str], list[Callable[[], Any]]] = field(default_factory=dict)
     pool: ProcessPoolExecutor | None = None
 
     def _wait(self, mesh: str, stage: str) -> None:
+        for build in self.here.pop((mesh, stage), []):
+            try:
+                build()
+            except Exception:  # noqa: BLE001 - the stage builds it again and reports why
+                pass
         for f in self.futures.get((mesh, stage), []):
             f.exception()  # a failed build: the stage builds it again and reports why
 
@@ -137,12 +151,21 @@ def prefetch_tables(box: Gearbox, options: RunOptions) -> Iterator[TablePrefetch
         return
     from threadpoolctl import threadpool_info
 
+    # the first table (the first mesh's pinion) is built here, the others in the pool: one
+    # process fewer to start, and this one would only wait
+    first = jobs[0]
+    prefetch = TablePrefetch(here={first.needed_by: [first.build]})
+    rest = [j for j in jobs if j.entry != first.entry]  # an identical gear's: with it
+    entries = {j.entry for j in rest}
+    if not entries:
+        yield prefetch
+        return
     limits = [d for d in threadpool_info() if d.get("num_threads")]
-    pool = process_pool(min(len({j.entry for j in jobs}), os.cpu_count() or 1))
-    prefetch = TablePrefetch(pool=pool)
+    pool = process_pool(min(len(entries), max(1, (os.cpu_count() or 1) - 1)))
+    prefetch.pool = pool
     try:
         builds: dict[Any, Future] = {}
-        for job in jobs:  # each entry once (two identical gears share it)
+        for job in rest:  # each entry once (two identical gears share it)
             if job.entry not in builds:
                 builds[job.entry] = pool.submit(_with_threads, limits, job.build)
             prefetch.futures.setdefault(job.needed_by, []).append(builds[job.entry])
