@@ -177,10 +177,10 @@ def cached_file(
     (result, path of the cache file or None when nothing was stored, True if it was read
     from the cache)
     """
-    path = entry_file(kind, inputs, code, cache)
-    if path is None:
+    if not cache.enabled:
         return build(), None, False
-    key = path.stem[len(kind) + 1:]
+    key = entry_key(kind, inputs, code)
+    path = cache.root / f"{kind}-{key}.npz"  # entry_file
     if path.is_file():
         try:
             return from_arrays(_checked_arrays(path, key)), path, True

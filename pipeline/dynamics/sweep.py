@@ -2,7 +2,8 @@
 
 One map-style function, :func:`map_chunks`, runs independent work items locally
 (:func:`pipeline.parallel.process_pool`: forked workers with one BLAS thread each,
-ending with this process) or on any ``concurrent.futures.Executor`` (a Dask cluster's
+ending with this process; in this process when the work is too short to pay for them,
+:data:`POOL_WORTH_S`) or on any ``concurrent.futures.Executor`` (a Dask cluster's
 ``Client.get_executor()``).
 
 Sweep methods (all return the same :class:`SweepResult`):

@@ -5,7 +5,12 @@ the loaded teeth like the FE compliance tables), P2 triangles, plane strain or p
 stress, clamped on its bore (a ring: on its rim circle). Unit line loads (1 N/m, the cos^2
 pressure patches of :mod:`pipeline.fem.patch_loads`, half-width 0.1 m_n) act on the right
 flank of the middle tooth ``mid`` and its neighbours ``mid +- 1 .. mid +- offsets`` at
-``radii`` points of the involute. One factorisation solves all of them.
+``radii`` points of the involute. One factorisation solves all of them, for the free DOFs
+only (no full displacement or reaction arrays: the recovery reads a few hundred DOFs). The
+demo's gear (z 50, 7 loaded teeth, 44k unknowns, 140 load cases) takes 1.0-1.14 s of CPU:
+Gmsh 0.4 s, assembly 0.1 s, factorisation 0.2 s, solves 0.3-0.45 s (2 cores shared with
+other work, load average 6-9; 1.2-1.4 s through a full static solution, the same table bit
+for bit).
 
 Stress recovery: the stress tensor of each load case is evaluated at the P2 nodes of the
 boundary edges of the middle tooth's right root - from the middle of the tooth space to

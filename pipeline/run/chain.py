@@ -38,7 +38,11 @@ that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads
 stages compute (:mod:`pipeline.viz.figure_queue`); the report figures are drawn with them
 (:func:`pipeline.report.writer.prepare_reports`), and a matplotlib figure is drawn once and
 cut to its tight box (:mod:`pipeline.viz.saving`). The run imports matplotlib only to draw,
-and reading a gearbox file or cached FE tables imports no scikit-fem.
+and reading a gearbox file or cached FE tables imports no scikit-fem. With FE 2D contact the
+FE tables not in the cache (both gears' compliance and fillet stress tables of every mesh)
+are built side by side as the run starts (:mod:`pipeline.run.prefetch`): the loaded contact
+waits for the compliance tables, and the fillet stress tables are built while the contact
+and the shafts are solved.
 
 Measured (``workflows/benchmarks/bench_run.py``: the demo's pair with FE 2D contact and the
 load distribution report, separate processes, ``OMP_NUM_THREADS=2`` as ``dev.sh`` sets it,
