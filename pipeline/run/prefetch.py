@@ -25,10 +25,10 @@ summary and the entries are bit for bit those of a run that builds every table i
 stages (``tests/test_run_prefetch.py``). A table that fails in its process is built again
 by its stage, which reports the error as without the prefetch.
 
-Cost: a pool process's start (fork, Gmsh and MKL loaded in it) adds 0.1-0.2 s of CPU. Nothing is prefetched with the cache off (``--no-cache``: the tables
-travel through it), without fork (:func:`pipeline.parallel.can_fork`), with one core, or
-when every table is in the cache already (a warm run forks nothing and imports no FE
-solver to find that out).
+Cost: a pool process's start (fork, Gmsh and MKL loaded in it) adds 0.1-0.2 s of CPU.
+Nothing is prefetched with the cache off (``--no-cache``: the tables travel through it),
+without fork (:func:`pipeline.parallel.can_fork`), with one core, or when every table is in
+the cache already (a warm run forks nothing and imports no FE solver to find that out).
 """
 
 from __future__ import annotations
