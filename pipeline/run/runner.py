@@ -61,10 +61,12 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
     with prefetch_tables(box, options) as tables:  # FE tables side by side, into the cache
         meshes = mesh_stages(box, options, log, tables=tables)
+        dynamics = None
+        # the dynamics before the load distributions: their root stress waits for its FE
+        # tables, built meanwhile in another process (pipeline.run.prefetch)
+        if box.kind == "lumped" or box.dynamics is not None:
+            dynamics = dynamics_stages(box, meshes, options, log)
         distributions = distribution_stages(box, meshes, options, log, tables)
-    dynamics = None
-    if box.kind == "lumped" or box.dynamics is not None:
-        dynamics = dynamics_stages(box, meshes, options, log)
     rating = rating_stage(box, meshes, {k: d.distribution for k, d in distributions.items()},
                           {k: d.root_stress for k, d in distributions.items()}, dynamics, log)
     return RunResult(box, meshes, dynamics, log, distributions, rating)
