@@ -61,6 +61,19 @@ machine): the computing process 5-6 s (imports 0.8-1.0 s, loaded contact with bo
 1.5 s, shafts 0.6 s, FE root stress 1.4-1.7 s, dynamics 0.45 s), the drawing processes 7-9 s
 (matplotlib import 0.35 s, the 21 matplotlib figures 4-5.5 s, the pyvista load map 1.3-1.9 s
 of which 0.7-1.2 s imports, each new drawing process 0.5-1.5 s more for its first figures).
+
+The computing process (:func:`~pipeline.run.runner.run_pipeline` of the demo's pair, cold,
+one process per run, CPU of the process and the children it waited for, one BLAS thread;
+2 cores shared with other work at load average 6-9, two runs each): at 9419f53 4.5-4.6 s
+(imports 0.77-0.78 s, loaded contact with both compliance tables 1.34-1.35 s, shafts
+0.52-0.60 s, load distribution and root stress with its fillet table 1.39-1.46 s, two
+sweeps 0.38 s); with the tables built in its stages 4.1-4.3 s (imports 0.57 s, as scipy's
+interpolation and optimisation modules load where used; loaded contact 1.63-1.69 s with
+those imports; shafts 0.42-0.47 s, each position's compliance once; root stress 1.08-1.23
+s, the fillet table solved for the free DOFs only; sweeps 0.28-0.36 s in this process);
+with the tables side by side 4.5-4.8 s in all, of which this process's loaded contact
+(its pinion table and the contact) 1.12-1.15 s and its root stress 0.06-0.1 s (the table
+from the cache). Every number of the run's summary is the same bit for bit.
 """
 
 from __future__ import annotations
