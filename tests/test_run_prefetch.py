@@ -79,8 +79,12 @@ def test_prefetched_tables_give_the_same_run_bit_for_bit(tmp_path, monkeypatch):
     assert all(j.entry.is_file() for j in jobs)
     assert table_jobs(box, side) == []  # warm: nothing left to build
     monkeypatch.setattr(runner, "prefetch_tables", _no_prefetch)
-    serial = run_pipeline(box, RunOptions(show_progress=False,
-                                          cache=Cache(tmp_path / "serial")))
+    alone = RunOptions(show_progress=False, cache=Cache(tmp_path / "serial"))
+    serial = run_pipeline(box, alone)
+    # the stages alone wrote every entry the jobs name: the jobs are the tables they read
+    assert table_jobs(box, alone) == []
+    assert len(list((tmp_path / "serial").glob("fe2dtable-*.npz"))) == 2
+    assert len(list((tmp_path / "serial").glob("filletstress-*.npz"))) == 2
     assert _without_timing(fast.summary()) == _without_timing(serial.summary())
     for a, b in ((fast.distributions["mesh"].root_stress, serial.distributions["mesh"]
                   .root_stress),):
