@@ -25,7 +25,16 @@ summary and the entries are bit for bit those of a run that builds every table i
 stages (``tests/test_run_prefetch.py``). A table that fails in its process is built again
 by its stage, which reports the error as without the prefetch.
 
-Cost: a pool process's start (fork, Gmsh and MKL loaded in it) adds 0.1-0.2 s of CPU.
+What it gains is wall time, where cores are free; it costs CPU. On the demo's pair (one pool
+process; CPU per process, 2 cores at load average 8): this process's critical path is its
+imports 0.55 s, the pinion's table 0.65 s beside the pool's gear table 0.64 s, then the
+contact, the shafts and the dynamics 1.1 s beside the pool's fillet table 1.11 s, then the
+root stress 0.07 s: 2.4 s of CPU against 4.1-4.3 s one after the other, the wall time of
+the computing on 2 otherwise idle cores. The run took 0.1-0.4 s more CPU in all (the pool
+process's start, two processes' caches). On cores busy with other sessions it gained
+nothing: Linux shares the CPU between sessions (autogroups) before processes, so a second
+process of a run on a saturated machine only splits the run's share (the run's wall time
+9.0-10.1 s against 8.3-9.1 s one after the other at load average 8, four runs each).
 Nothing is prefetched with the cache off (``--no-cache``: the tables travel through it),
 without fork (:func:`pipeline.parallel.can_fork`), with one core, or when every table is in
 the cache already (a warm run forks nothing and imports no FE solver to find that out).
@@ -106,6 +115,18 @@ def _with_threads(limits: list[dict], build: Callable[[], Any]) -> None:
         build()
 
 
+def _import_fe_side() -> None:
+    """Import the FE side (scikit-fem, Gmsh, the assembly and solver layers) here, before
+    the pool forks: this process builds a table too, and each pool process then inherits it
+    instead of importing it first (0.3 s of CPU, scikit-fem most of it, that delayed its
+    first table)."""
+    import gmsh  # noqa: F401
+
+    import pipeline.fem.fillet_stress  # noqa: F401
+    import pipeline.fem.influence  # noqa: F401
+    import pipeline.fem.patch_loads  # noqa: F401
+
+
 def table_jobs(box: Gearbox, options: RunOptions) -> list[TableJob]:
     """The FE 2D tables a run of ``box`` will read or build and are not in the cache (module
     docstring); two identical gears give two jobs with one ``entry``."""
@@ -161,6 +182,7 @@ def prefetch_tables(box: Gearbox, options: RunOptions) -> Iterator[TablePrefetch
         yield prefetch
         return
     limits = [d for d in threadpool_info() if d.get("num_threads")]
+    _import_fe_side()
     pool = process_pool(min(len(entries), max(1, (os.cpu_count() or 1) - 1)))
     prefetch.pool = pool
     try:
