@@ -1,12 +1,16 @@
 """Frequency sweeps, executors, load-sharing factor, commands and the coarse workflows."""
 
 import json
+import os
 import sys
+import time
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from pipeline.dynamics import sweep
 from pipeline.dynamics.excitation import rectangular_mesh_stiffness
 from pipeline.dynamics.harmonic_balance import harmonic_balance
 from pipeline.dynamics.models.planetary import PlanetaryModel
@@ -33,11 +37,31 @@ def test_sweep_methods_agree(pair):
     np.testing.assert_allclose(ti.rms_force, fl.rms_force[:, 1:], rtol=1e-3)
 
 
-def test_local_process_pool_matches_serial(pair):
+def test_local_process_pool_matches_serial(pair, monkeypatch):
+    """The same numbers bit for bit in this process and in the pool (forced: POOL_WORTH_S
+    0), and from a local sweep too small for the pool."""
     f = np.linspace(100.0, 4000.0, 12)
     a = mesh_force_sweep(pair, f, n_harmonics=10, executor=None)
     b = mesh_force_sweep(pair, f, n_harmonics=10, executor="local")
+    monkeypatch.setattr(sweep, "POOL_WORTH_S", 0.0)
+    c = mesh_force_sweep(pair, f, n_harmonics=10, executor="local")
     np.testing.assert_array_equal(a.rms_force, b.rms_force)
+    np.testing.assert_array_equal(a.rms_force, c.rms_force)
+
+
+def _pid_after(seconds: float, item: int) -> int:
+    del item
+    time.sleep(seconds)
+    return os.getpid()
+
+
+@pytest.mark.parametrize("seconds, forked", [(0.0, False), (0.2, True)])
+def test_local_map_forks_only_for_work_worth_it(seconds, forked):
+    """A local map computes its first item here and forks the pool only when the rest would
+    take longer than POOL_WORTH_S here (4 x 0.2 s = 0.8 s > 0.5 s; 4 x 0 s < 0.5 s)."""
+    pids = sweep.map_chunks(partial(_pid_after, seconds), [0, 1, 2, 3, 4], "local")
+    assert pids[0] == os.getpid()
+    assert (set(pids[1:]) != {os.getpid()}) is forked
 
 
 def test_sweep_plan_equals_harmonic_balance():

@@ -275,3 +275,34 @@ def test_fixed_point_that_does_not_settle_is_one_line(tmp_path, monkeypatch):
                                          r"\(relative\) after iteration 1; the shafts and the "
                                          r"mesh do not settle$"):
         _run(_shaft(60.0, (20.0, 40.0)), tmp_path)
+
+
+def test_position_memo_gives_the_sources_points_and_matrix():
+    """The fixed point's memo of a source: the same points and compliance matrix as the
+    source at every position (bit for bit), the matrix computed once and handed out as a
+    copy that the caller may change."""
+    from pipeline.contact import analytical_compliance
+    from pipeline.contact.options import ContactOptions
+    from pipeline.run.shafts import PositionMemo
+
+    box = gearbox_from_text(DEMO_PAIR + FAST)
+    source = analytical_compliance(box.pair, box.operation, ContactOptions(slices=20))
+    calls = []
+
+    class Counted:
+        pair, tip_contact, points = source.pair, source.tip_contact, source.points
+
+        def matrix(self, position):
+            calls.append(position)
+            return source.matrix(position)
+
+    memo = PositionMemo(Counted())
+    for s0 in box.pair.mesh_cycle(5):
+        a, b = memo.matrix(s0), source.matrix(s0)
+        np.testing.assert_array_equal(a, b)
+        a[:] = 0.0
+        np.testing.assert_array_equal(memo.matrix(s0), b)
+        np.testing.assert_array_equal(memo.points(s0).s, source.points(s0).s)
+        assert memo.points(s0) is memo.points(s0)
+    assert len(calls) == 5
+    assert (memo.pair, memo.tip_contact) == (source.pair, source.tip_contact)

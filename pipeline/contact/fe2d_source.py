@@ -95,14 +95,13 @@ import numpy as np
 
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.contact._interpolation import linear_weights
-from pipeline.contact.fe2d_table import gear_table, sector_teeth
+from pipeline.contact.fe2d_table import gear_table, sector_teeth, table_jobs
 from pipeline.contact.source import ContactPoints, slice_points
 from pipeline.fem.influence import InfluenceMatrix
 from pipeline.fem.settings import FE2DSettings
 from pipeline.geometry.pair import GearPair
 from pipeline.geometry.tip_contact import contact_radii_at
 from pipeline.progress import progress
-from pipeline.validation import InputError
 
 
 def _interp_block(table: InfluenceMatrix, n_r: int, ti: np.ndarray, ai: np.ndarray,
@@ -150,17 +149,9 @@ class FE2DCompliance:
         touch (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``)."""
         t0 = time.perf_counter()
         settings = settings or FE2DSettings()
-        if pair.pinion.herringbone:
-            raise InputError("fe source: analyse one helical half of a herringbone pair")
-        k = pair.pair_indices(tip_contact)
-        mid = min(sector_teeth(pair.pinion, settings), sector_teeth(pair.gear, settings)) // 2
-        if np.abs(k).max() > mid:
-            raise InputError(f"fe.teeth = {settings.teeth} does not cover tooth pairs "
-                             f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
-        jobs = (("pinion", pair.pinion, np.sort(sector_teeth(pair.pinion, settings) // 2 - k)),
-                ("gear", pair.gear, np.sort(sector_teeth(pair.gear, settings) // 2 + k)))
         tables, info = {}, {}
-        for name, gear, teeth in progress(jobs, "2D FE tables", enabled=show_progress):
+        for name, gear, teeth in progress(table_jobs(pair, settings, tip_contact),
+                                          "2D FE tables", enabled=show_progress):
             tables[name], info[name] = gear_table(gear, settings, teeth, cache=cache)
             info[name]["timings"] = dict(tables[name].timings)
         info["seconds"] = time.perf_counter() - t0

@@ -19,21 +19,24 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.cache.entries import cached_file, unlabelled
+from pipeline.cache.entries import cached_file, entry_file, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
-from pipeline.fem.influence import InfluenceMatrix, influence_matrix
 from pipeline.fem.mesh_cache import MESH_CODE
 from pipeline.fem.mesh_settings import SectorSettings
 from pipeline.fem.sector2d import sector_mesh_2d
 from pipeline.fem.settings import check_table_points
 from pipeline.geometry.gear import GearSpec
+from pipeline.geometry.pair import GearPair
+from pipeline.validation import InputError
 
 if TYPE_CHECKING:
+    from pipeline.fem.influence import InfluenceMatrix
     from pipeline.fem.settings import FE2DSettings
 
 TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe2d_table")
@@ -65,6 +68,24 @@ def table_points(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray) -> F
                         np.tile(r, teeth.size))
 
 
+def table_jobs(pair: GearPair, settings: FE2DSettings, tip_contact: bool = True
+               ) -> list[tuple[str, GearSpec, np.ndarray]]:
+    """The tables :meth:`~pipeline.contact.fe2d_source.FE2DCompliance.build` reads or
+    builds: (role, gear, sector teeth) of the pinion and the gear, the teeth of every tooth
+    pair that can touch (:meth:`GearPair.pair_indices` with ``beyond = tip_contact``; the
+    tooth mapping of :mod:`pipeline.contact.fe2d_source`: pinion tooth ``mid - k``, gear
+    tooth ``mid + k``)."""
+    if pair.pinion.herringbone:
+        raise InputError("fe source: analyse one helical half of a herringbone pair")
+    k = pair.pair_indices(tip_contact)
+    mid = min(sector_teeth(pair.pinion, settings), sector_teeth(pair.gear, settings)) // 2
+    if np.abs(k).max() > mid:
+        raise InputError(f"fe.teeth = {settings.teeth} does not cover tooth pairs "
+                         f"{k.min()}..{k.max()}: use at least {2 * np.abs(k).max() + 1}")
+    return [("pinion", pair.pinion, np.sort(sector_teeth(pair.pinion, settings) // 2 - k)),
+            ("gear", pair.gear, np.sort(sector_teeth(pair.gear, settings) // 2 + k))]
+
+
 def _table_arrays(G: InfluenceMatrix) -> dict[str, object]:
     return {"fe": G.fe, "local": G.local, "patch_half_width": G.patch_half_width,
             "kind": G.kind, "n_dof": G.n_dof, "n_free": G.n_free, "method": G.method,
@@ -72,6 +93,8 @@ def _table_arrays(G: InfluenceMatrix) -> dict[str, object]:
 
 
 def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> InfluenceMatrix:
+    from pipeline.fem.influence import InfluenceMatrix  # the FE side: on use only
+
     n = len(points)
     if z["fe"].shape != (n, n) or z["local"].shape != (n, n):
         raise ValueError(f"table of shape {z['fe'].shape}, expected {(n, n)}")
@@ -79,6 +102,29 @@ def _table_from_arrays(z: dict[str, np.ndarray], points: FlankPoints) -> Influen
                            str(z["kind"]), int(z["n_dof"]), int(z["n_free"]),
                            str(z["method"]), 0,
                            dict(zip(_TIMING_KEYS, z["timings"].tolist(), strict=True)))
+
+
+def _table_inputs(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray
+                  ) -> tuple[dict, FlankPoints, SectorSettings]:
+    """The cache key data of a table (every input it depends on), its points and its mesh
+    settings."""
+    ss = sector_settings(gear, settings, teeth)
+    check_table_points(settings.points * teeth.size,
+                       f"fe.points x loaded teeth = {settings.points} x {teeth.size}",
+                       "lower fe.points")
+    pts = table_points(gear, settings, teeth)
+    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
+              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
+              "patch": settings.patch}
+    return inputs, pts, ss
+
+
+def table_entry(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
+                cache: Cache = DEFAULT_CACHE) -> Path | None:
+    """The cache file :func:`gear_table` reads or writes for these arguments (None: cache
+    off)."""
+    inputs, _, _ = _table_inputs(gear, settings, np.asarray(teeth, dtype=int))
+    return entry_file("fe2dtable", inputs, TABLE_CODE, cache)
 
 
 def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
@@ -93,16 +139,11 @@ def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
     """
     t0 = time.perf_counter()
     teeth = np.asarray(teeth, dtype=int)
-    ss = sector_settings(gear, settings, teeth)
-    check_table_points(settings.points * teeth.size,
-                       f"fe.points x loaded teeth = {settings.points} x {teeth.size}",
-                       "lower fe.points")
-    pts = table_points(gear, settings, teeth)
-    inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "radii": pts.radius.tolist(),
-              "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
-              "patch": settings.patch}
+    inputs, pts, ss = _table_inputs(gear, settings, teeth)
 
     def build() -> InfluenceMatrix:
+        from pipeline.fem.influence import influence_matrix
+
         t = time.perf_counter()
         sec = sector_mesh_2d(gear, ss, cache=cache)
         t_mesh = time.perf_counter() - t

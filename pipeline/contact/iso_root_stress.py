@@ -96,7 +96,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from pipeline.geometry.gear import GearSpec
 from pipeline.geometry.involute import inv, inv_inverse
@@ -413,6 +412,8 @@ def shaper_root_section(gear: GearSpec, cutter: ShaperCutter) -> RootSection:
     if tip is None or flank is None:
         raise InputError(f"{gear.name}: the tip rounding of {cutter.name} does not "
                          "generate a fillet (no cutting between its tip and flank)")
+    from scipy.optimize import brentq  # 0.5 s to import: internal gears only
+
     psi_tip = brentq(lambda p: beyond(p, sh.tip_normal), *tip, xtol=1e-15)
     psi_flank = brentq(lambda p: beyond(p, sh.flank_normal), *flank, xtol=1e-15)
     sine = math.sin(INTERNAL_TANGENT)  # |normal . centre line| at the 60 deg tangent

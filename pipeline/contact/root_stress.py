@@ -201,6 +201,20 @@ def _gear_result(name: str, cycle: LoadedMeshCycle, pair: GearPair, gear: GearSp
         label=name if gear.name in (name, "") else f"{name} ({gear.name})")
 
 
+def fillet_settings(pair_index: np.ndarray, fe: Any = None) -> Any:
+    """The :class:`~pipeline.fem.fillet_stress.FilletStressSettings` that
+    :func:`analyse_root_stress` takes by default for a cycle of the tooth pairs
+    ``pair_index`` (its ``pair_index``): refinement 2, 20 flank points per tooth, the
+    neighbours that a tooth's passage loads (``min(3, max(1, ptp(pair_index)))`` on each
+    side), and ``fe.kind`` (plane strain or stress; plane strain for other sources)."""
+    from pipeline.fem.fillet_stress import FilletStressSettings
+
+    kind = getattr(fe, "kind", "plane_strain")
+    kind = kind if kind in ("plane_strain", "plane_stress") else "plane_strain"
+    k_all = np.asarray(pair_index)
+    return FilletStressSettings(kind=kind, offsets=int(min(3, max(1, np.ptp(k_all)))))
+
+
 def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: OperatingPoint,
                         fe: Any = None, *, settings: Any = None, cache: Cache = DEFAULT_CACHE,
                         show_progress: bool = False
@@ -214,19 +228,16 @@ def analyse_root_stress(cycle: LoadedMeshCycle, pair: GearPair, operation: Opera
     operation : the operating point (the ISO comparison takes the cycle's load P).
     fe : the FE settings of the run's compliance source; their ``kind`` (plane strain or
         stress) is used when given.
-    settings : :class:`pipeline.fem.fillet_stress.FilletStressSettings` (default: refinement
-        2, 20 flank points per tooth, one neighbour on each side, ``fe.kind``).
+    settings : :class:`pipeline.fem.fillet_stress.FilletStressSettings` (default:
+        :func:`fillet_settings` of the cycle's tooth pairs).
     cache : the on-disk cache of the FE stress tables.
     show_progress : progress on stderr.
     """
-    from pipeline.fem.fillet_stress import FilletStressSettings, build_fillet_stress
+    from pipeline.fem.fillet_stress import build_fillet_stress
 
     del operation  # the load is the cycle's own (checked by load_distribution)
     if settings is None:
-        kind = getattr(fe, "kind", "plane_strain")
-        kind = kind if kind in ("plane_strain", "plane_stress") else "plane_strain"
-        k_all = np.asarray(cycle.pair_index)
-        settings = FilletStressSettings(kind=kind, offsets=int(min(3, max(1, np.ptp(k_all)))))
+        settings = fillet_settings(cycle.pair_index, fe)
     f_t = cycle.load * math.cos(pair.pinion.transverse_pressure_angle)
     out, dofs = [], []
     for name, gear, sign in progress((("pinion", pair.pinion, -1), ("gear", pair.gear, 1)),

@@ -45,7 +45,6 @@ from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.interpolate import CubicSpline
 
 from pipeline.validation import InputError
 
@@ -191,6 +190,8 @@ def phi_table() -> np.ndarray:
 def _splines() -> tuple[list, list]:
     """Per tabulated q: a cubic spline in xi (involute side) and one in t = sqrt(xi)
     (rounding side), both flat at the exact limits xi = -1 and xi = 1."""
+    from scipy.interpolate import CubicSpline  # imported where a tip rounding is met only
+
     values = phi_table()
     k = XI_INVOLUTE.size
     left = [CubicSpline(XI_INVOLUTE, v[:k], bc_type=((1, 0.0), "not-a-knot")) for v in values]

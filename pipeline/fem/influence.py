@@ -65,7 +65,6 @@ import numpy as np
 from pipeline.fem.flank import FlankPoints
 from pipeline.fem.linear_static import ElasticModel, build_model, load_compliance
 from pipeline.fem.nearfield_halfplane import nearfield_halfplane
-from pipeline.fem.nearfield_halfspace import nearfield_halfspace
 from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorMesh2D
 from pipeline.fem.sector3d import SectorMesh3D
@@ -231,8 +230,12 @@ def _near_field(points: FlankPoints, c: float, material, kind: str,
     """The analytical near field (n, n), or (n, m) at the loaded points ``cols``: computed
     on the flanks that carry them only (same-flank pairs; zero elsewhere)."""
     def near(pts: FlankPoints) -> np.ndarray:
-        return (nearfield_halfplane(pts, c, material, kind) if pts.dim == 2
-                else nearfield_halfspace(pts, c, material))
+        if pts.dim == 2:
+            return nearfield_halfplane(pts, c, material, kind)
+        # 3D only: its spline imports scipy.interpolate (0.7 s), which 2D runs do without
+        from pipeline.fem.nearfield_halfspace import nearfield_halfspace
+
+        return nearfield_halfspace(pts, c, material)
 
     if cols is None:
         return near(points)

@@ -29,7 +29,7 @@ other way its reflection (a helical mesh's hands reversed in the coupling).
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -204,6 +204,42 @@ def support_stiffness(box: Gearbox, cache: Any = None
     return (lateral[0], lateral[1]), (torsional[0], torsional[1])
 
 
+@dataclass(frozen=True)
+class PositionMemo:
+    """A compliance source that computes the candidate points and the compliance matrix of
+    each mesh position once: every iteration of the fixed point solves the same positions
+    on the same source (only the lead gap, outside the source, changes), and on the demo's
+    pair with FE 2D contact rebuilding them (interpolated FE tables, the slices' friction
+    change) took a third of an iteration. Returns copies, so a caller may change them.
+
+    Attributes
+    ----------
+    base : the source (:class:`~pipeline.contact.source.ComplianceSource`).
+    """
+
+    base: Any
+    _points: dict = field(default_factory=dict, repr=False, compare=False)
+    _matrices: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def pair(self) -> Any:
+        return self.base.pair
+
+    @property
+    def tip_contact(self) -> bool:
+        return self.base.tip_contact
+
+    def points(self, position: float) -> Any:
+        if position not in self._points:
+            self._points[position] = self.base.points(position)
+        return self._points[position]
+
+    def matrix(self, position: float) -> np.ndarray:
+        if position not in self._matrices:
+            self._matrices[position] = np.array(self.base.matrix(position), dtype=float)
+        return self._matrices[position].copy()
+
+
 def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftStage | None:
     """The :class:`ShaftStage` of a pair with shafts (module docstring), one timed step; None
     without shafts."""
@@ -236,8 +272,9 @@ def shaft_stage(box: Gearbox, stages: Any, options: Any, log: Steps) -> ShaftSta
                                                           strict=True)))
             opts = dataclasses.replace(contact, modifications=mods)
             if source is None:
-                source = compliance_source(pair, op, opts, box.stiffness, box.fe_source,
-                                           cache=options.cache, model=stages.stiffness.model)
+                source = PositionMemo(compliance_source(pair, op, opts, box.stiffness,
+                                                        box.fe_source, cache=options.cache,
+                                                        model=stages.stiffness.model))
             cycle = analyse_contact(source, op, opts, warn=False)
             dist = load_distribution(cycle, pair, op)
             w_new = np.interp(z, dist.z, dist.cycle_mean)
