@@ -57,6 +57,8 @@ def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = No
     handles, names = whole.get_legend_handles_labels()
     top.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
     _draw_roll_strip(strip.subplots(), lay)
+    handles, names = strip.axes[0].get_legend_handles_labels()
+    strip.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
     kind = "internal" if pair.gear.internal else "external"
     title = title or (f"{kind} pair: eps_alpha = {pair.transverse_contact_ratio:.3f}, "
                       f"eps_beta = {pair.overlap_ratio:.3f}, "
@@ -175,7 +177,6 @@ def _draw_roll_strip(ax: Axes, lay: TransverseLayout) -> None:
     ax.set_xlabel("roll coordinate s along the line of action, from T1 [mm]")
     ax.set_yticks([])
     ax.set_ylim(-1.0, 1.0)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=4, fontsize=8)
 
 
 def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None,
@@ -247,7 +248,7 @@ def profile_title(gear: GearSpec, prof: ToothProfile) -> str:
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
     """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
-    fig = new_figure((9, 4 * len(gears)))
+    fig = new_figure((9, 4 * len(gears)), "constrained")  # fits the legends beside the panels
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)

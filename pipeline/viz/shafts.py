@@ -112,7 +112,8 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
                 ax.axvline(x, color=colour, ls=ls, lw=0.8, alpha=0.6)
     ax.axvline(mesh_frequency, color="C2", lw=1.2, label="operating mesh frequency")
     ax.set_xlabel("mesh frequency [Hz]")
-    ax.set_ylabel("dynamic factor (largest elastic / mean mesh force) [-]")
+    # two lines: in one, the label is longer than the axes are high
+    ax.set_ylabel("dynamic factor [-]\n(largest elastic / mean mesh force)")
     ax.set_xlim(f[0], f[-1])
     ax.grid(alpha=0.3)
     ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
