@@ -18,7 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.pressure_envelope import pressure_envelope
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -36,7 +36,7 @@ def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
                               k_iso: float, compliance: str, title: str) -> Figure:
     """Analytical k(t), the LTCA tangent k(t) on ``compliance`` and ISO 6336-1's
     c_gamma_alpha b over one mesh cycle (N/m in, N/um drawn)."""
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     ax.plot(_cycle_fraction(pair, s0_analytical), np.asarray(k_analytical) * N_PER_UM,
             label="analytical (potential energy)")
@@ -58,7 +58,8 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
                             title: str) -> Figure:
     """Loaded static TE over the cycle (um), the amplitudes of mesh orders 1-10 (um) and the
     load share of every tooth pair."""
-    fig = new_figure((10.0, 3.4), "constrained")
+    # the legend beside the last panel: 1.25 in on the right
+    fig = new_figure((10.0, 3.4), Margins(top=0.5, right=1.25, wspace=0.8))
     a1, a2, a3 = fig.subplots(1, 3, width_ratios=(1.3, 1.0, 1.3))
     x = _cycle_fraction(pair, s0)
     a1.plot(x, dist.transmission_error * 1e6, "o-", ms=3)
@@ -88,7 +89,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
 def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     """Line load over the face width at every position (grey), its envelope and its mean over
     the cycle, with the mean P/b (N/mm against mm)."""
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     z, w, env, mean = dist.z * 1e3, dist.line_load, dist.envelope, dist.cycle_mean
     if z.size == 1:  # one slice stands for the whole face
@@ -170,7 +171,7 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ``curves`` : (name, arc length from the middle of the tooth space in mm, stress in MPa,
     ISO 6336-3 nominal stress in MPa or None) per gear.
     """
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     for i, (name, arc, sigma, iso) in enumerate(curves):
         ax.plot(arc, sigma, color=f"C{i}", label=f"{name}: FE 2D, envelope over the cycle")

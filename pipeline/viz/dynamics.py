@@ -16,7 +16,7 @@ import numpy as np
 from pipeline.dynamics.operating import OperatingFrequency
 from pipeline.dynamics.options import SWEEP_HARMONICS
 from pipeline.dynamics.results import HarmonicResponse, Response
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -30,15 +30,17 @@ def mesh_title(what: str, meshes: Sequence[str]) -> str:
     return f"{what}, mesh {', '.join(named)}" if named else what
 
 
-def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
-    """``rows x cols`` axes (always 2D) on ``fig`` or on a new constrained-layout figure."""
+def _panels(fig: Figure | None, rows: int, cols: int, size,
+            layout: str | Margins = "constrained") -> tuple[Figure, np.ndarray]:
+    """``rows x cols`` axes (always 2D) on ``fig`` or on a new figure laid out by
+    ``layout`` (:func:`~pipeline.viz.canvas.new_figure`)."""
     if fig is None:
-        fig = new_figure(size, "constrained")
+        fig = new_figure(size, layout)
     return fig, fig.subplots(rows, cols, squeeze=False)
 
 
 def _axes(ax: Axes | None, size=(8, 4.5)) -> Axes:
-    return new_figure(size, "constrained").subplots() if ax is None else ax
+    return new_figure(size, Margins()).subplots() if ax is None else ax
 
 
 def plot_time_history(
@@ -57,7 +59,7 @@ def plot_time_history(
     pulse one contact sample wide at each tooth entry, drawn by a truncated Fourier series
     as a ripple that belongs to the sampling, not to the gears (``time_history.csv`` keeps
     the total force)."""
-    fig, ax = _panels(fig, 2, 1, (8, 6))
+    fig, ax = _panels(fig, 2, 1, (8, 6), Margins(hspace=0.45))
     for r, lab in zip(responses, labels, strict=True):
         i = 0 if mesh is None else r.mesh(mesh)
         s = r.steady_from

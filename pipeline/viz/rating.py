@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -24,7 +24,7 @@ def plot_safety_factors(gears: Sequence[str], pitting: Sequence[float],
     """S_H and S_F of each gear (bars, NaN for a gear not rated) beside the required S_Hmin
     and S_Fmin (dashed lines, labelled at the left); a bar below its minimum is red, with
     its value on top."""
-    fig = new_figure((7.0, 3.4), "constrained")
+    fig = new_figure((7.0, 3.4), Margins(top=0.6))  # suptitle and panel titles
     panels = (("pitting: S_H", pitting, minimum_pitting, "S_Hmin"),
               ("tooth root: S_F", bending, minimum_bending, "S_Fmin"))
     top = max([v for _, vals, _, _ in panels for v in vals if not math.isnan(v)]
@@ -118,7 +118,7 @@ def plot_root_stress_along_face(local: LocalSafety, minimum: float, title: str) 
     root stress); the largest stress and the smallest S_F,loc marked."""
     if local.bending is None:
         raise ValueError("plot_root_stress_along_face: the local safety has no root stress")
-    fig = new_figure((10.0, 3.6), "constrained")
+    fig = new_figure((10.0, 3.6), Margins(top=0.65, wspace=0.95))  # two-line suptitle
     a1, a2 = fig.subplots(1, 2, sharex=True)
     zz = local.z * 1e3
     for i, b in enumerate(local.bending):

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -101,7 +101,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     """The dynamic factor (-) over mesh frequency (Hz) with the shafts and without them, with
     each model's natural frequencies (Hz) marked in its own colour and the operating mesh
     frequency."""
-    fig = new_figure((9.5, 3.6), "constrained")
+    fig = new_figure((9.5, 3.6), Margins(left=1.0, right=2.65))  # the legend beside
     ax = fig.add_subplot(1, 1, 1)
     f = np.asarray(frequencies)
     ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
