@@ -60,4 +60,19 @@ def new_figure(figsize: tuple[float, float], layout: str | Margins | None = None
     return Figure(figsize=figsize, layout=layout)
 
 
-__all__ = ["Margins", "new_figure"]
+def panels_with_colorbar(fig: Figure, n: int = 2, bar_width: float = 0.045
+                         ) -> tuple[list, object]:
+    """``n`` panels side by side sharing their y axis (its tick labels on the first only) and
+    a narrow axes on their right for one colour bar (``bar_width`` of a panel's width):
+    ``(panels, bar axes)``. A grid slot of its own keeps the bar inside fixed
+    :class:`Margins` (``fig.colorbar(ax=panels)`` would take the room from the panels'
+    frames, which the layout then puts back)."""
+    grid = fig.add_gridspec(1, n + 1, width_ratios=(*([1.0] * n), bar_width))
+    first = fig.add_subplot(grid[0])
+    panels = [first] + [fig.add_subplot(grid[i], sharey=first) for i in range(1, n)]
+    for ax in panels[1:]:
+        ax.tick_params(labelleft=False)
+    return panels, fig.add_subplot(grid[n])
+
+
+__all__ = ["Margins", "new_figure", "panels_with_colorbar"]

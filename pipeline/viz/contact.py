@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 if TYPE_CHECKING:
@@ -29,7 +29,8 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
     load sharing over the cycle, three panels; returns the figure."""
     if fig is None:
-        fig = new_figure((9, 8), "constrained")
+        # legends beside the panels, a two-line suptitle, a title over the last panel
+        fig = new_figure((9, 8), Margins(right=2.5, top=0.6, hspace=0.35))
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
     k = stiffness_in_plot_unit

@@ -18,7 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.pressure_envelope import pressure_envelope
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -138,8 +138,9 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
     grid = pressure_envelope(cycle, dist, pair, profile_points)
     s, z, env = grid.s, grid.z, grid.pressure
     r1, r2 = pair.contact_radii(s)
-    fig = new_figure((10.0, 3.8), "constrained")
-    axes = fig.subplots(1, 2, sharey=True)
+    # a two-line suptitle above the panels' titles, the colour bar's label on the right
+    fig = new_figure((10.0, 3.8), Margins(top=0.8, right=0.75, wspace=0.3))
+    axes, bar = panels_with_colorbar(fig)
     vmax = max(env.max() * 1e-6, 1e-9)
     zz = z * 1e3
     h = dist.hertz_max
@@ -156,7 +157,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
         ax.set_xlim(*_with_margin(d.min(), d.max()))
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
     axes[0].set_ylabel("face position b_z [mm]")
-    fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
+    fig.colorbar(m, cax=bar, label="Hertz pressure p_H, envelope over the cycle [MPa]")
     c = dist.tip_corner_max
     fig.suptitle(title if c is None else (
         f"{title}\ntip corners beyond the path of contact, not drawn: up to "

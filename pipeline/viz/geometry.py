@@ -23,7 +23,7 @@ from pipeline.geometry.profile import (
     gear_outline,
 )
 from pipeline.geometry.transverse import TransverseLayout
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -248,7 +248,7 @@ def profile_title(gear: GearSpec, prof: ToothProfile) -> str:
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
     """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
-    fig = new_figure((9, 4 * len(gears)), "constrained")  # fits the legends beside the panels
+    fig = new_figure((9, 4 * len(gears)), Margins(right=1.3, hspace=0.95))  # legends beside
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)

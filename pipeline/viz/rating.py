@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -76,8 +76,9 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
     no load. ``internal``: the second gear is a ring."""
     from pipeline.viz.distribution import flank_axis_label
 
-    fig = new_figure((10.0, 4.0), "constrained")
-    axes = fig.subplots(1, 2, sharey=True)
+    # two-line suptitle and panel titles, the colour bar's label on the right
+    fig = new_figure((10.0, 4.0), Margins(top=1.0, right=0.75, wspace=0.3))
+    axes, bar_axes = panels_with_colorbar(fig)
     zz = local.z * 1e3
     levels = _safety_levels([p.safety for p in local.pitting], minimum)
     cmap = "RdYlGn"
@@ -102,7 +103,7 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
     pad = 0.04 * (zz.max() - zz.min())
     axes[0].set_ylim(zz.min() - pad, zz.max() + pad)
     axes[0].set_ylabel("face position b_z [mm]")
-    bar = fig.colorbar(filled, ax=axes, label=f"local pitting safety S_H,loc [-]; black: "
+    bar = fig.colorbar(filled, cax=bar_axes, label=f"local pitting safety S_H,loc [-]; black: "
                        f"S_Hmin = {minimum:g}")
     bar.ax.axhline(minimum, color="k", lw=1.2)
     fig.suptitle(f"{title}\nS_H,loc = sigma_HG / (p_H sqrt(K_A K_gamma K_v)), K_A K_gamma K_v"

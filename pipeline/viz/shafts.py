@@ -23,7 +23,8 @@ def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
     with the shafts (N/mm), and the shafts' misalignment there (um, right axis), over the
     contact's face position; ``face_reversed``: it runs against the shafts' z (a right-hand
     helical pinion, :func:`pipeline.shaft.misalignment.seat_points`), which the label says."""
-    fig = new_figure((9.0, 3.6), "constrained")
+    # the twin axis's label on the right
+    fig = new_figure((9.0, 3.6), Margins(top=0.6, right=0.85, wspace=0.95))
     ax = fig.add_subplot(1, 2, 1)
     _shaft_panel(ax, [(*s, f"{s[0]}: bearings") for s in shafts],
                  "deflection along the line of action", "shafts (the gear's seat shaded)")
@@ -45,7 +46,7 @@ def plot_planetary_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.n
     C0 and a pin in C1 in every mesh's figure; then the line load panel of
     :func:`plot_shaft_deflection`."""
     n = len(shafts) + 1
-    fig = new_figure((4.2 * n, 3.6), "constrained")
+    fig = new_figure((4.2 * n, 3.6), Margins(top=0.6, right=0.85, wspace=0.95))
     for i, s in enumerate(shafts):
         ax = fig.add_subplot(1, n, i + 1)
         _shaft_panel(ax, [s], "retreat along the line of action",
