@@ -24,8 +24,10 @@ def _figure_texts(fig) -> list:
 def _decorations(ax, r) -> list[Bbox]:
     """Boxes (pixels) of the texts round a panel: titles, axis labels, the tick labels in
     view, its legend."""
-    texts = [ax.title, ax._left_title, ax._right_title, ax.xaxis.label, ax.yaxis.label]
-    for axis in (ax.xaxis, ax.yaxis):
+    texts = [ax.title, ax._left_title, ax._right_title]
+    axes = (ax.xaxis, ax.yaxis) if ax.axison else ()  # set_axis_off: none drawn
+    texts += [axis.label for axis in axes]
+    for axis in axes:
         lo, hi = sorted(axis.get_view_interval())
         for tick in axis.get_major_ticks():
             if lo - 1e-9 * abs(hi - lo) <= tick.get_loc() <= hi + 1e-9 * abs(hi - lo):
@@ -34,6 +36,15 @@ def _decorations(ax, r) -> list[Bbox]:
     if ax.get_legend() is not None and ax.get_legend().get_visible():
         boxes.append(ax.get_legend().get_window_extent(r))
     return boxes
+
+
+def _frame(ax, r) -> Bbox:
+    """The panel's frame, or for a panel without axes (``set_axis_off``: no frame drawn) the
+    box of what is drawn in it (its patches and lines)."""
+    if ax.axison:
+        return ax.bbox
+    drawn = [a.get_window_extent(r) for a in [*ax.patches, *ax.lines] if a.get_visible()]
+    return Bbox.union(drawn) if drawn else Bbox.null()
 
 
 def layout_problems(fig, dpi: int = 130, tol: float = 1.0) -> list[str]:
@@ -64,7 +75,7 @@ def layout_problems(fig, dpi: int = 130, tol: float = 1.0) -> list[str]:
             panels.setdefault(tuple(ax.bbox.extents.round(1)), []).append(ax)
     groups = list(panels.values())
     texts = [[b for ax in g for b in _decorations(ax, r)] for g in groups]
-    frames = [g[0].bbox for g in groups]
+    frames = [_frame(g[0], r) for g in groups]
     names = [g[0].get_label() or g[0].get_title() or f"axes {i}" for i, g in enumerate(groups)]
     for i in range(len(groups)):
         for j in range(len(groups)):
