@@ -32,6 +32,7 @@ def _decorations(ax, r) -> list[Bbox]:
         for tick in axis.get_major_ticks():
             if lo - 1e-9 * abs(hi - lo) <= tick.get_loc() <= hi + 1e-9 * abs(hi - lo):
                 texts += [tick.label1, tick.label2]
+    texts += [axis.offsetText for axis in axes]  # "1e6" at an axis's end
     boxes = [t.get_window_extent(r) for t in texts if t.get_visible() and t.get_text()]
     if ax.get_legend() is not None and ax.get_legend().get_visible():
         boxes.append(ax.get_legend().get_window_extent(r))
