@@ -1,6 +1,7 @@
 """Figures drawn side by side in a process pool once a run has queued them all.
 
-Rasterising a figure is single-threaded and costs 0.2-1 s; a run writes ten or more.
+Drawing a figure is single-threaded and costs 0.1-0.4 s of CPU (the pyvista load map about
+1 s; the demo run's 22 figures, 2-core machine); a run writes ten or more.
 A :class:`FigureQueue` collects the drawings a :class:`~pipeline.viz.figure_cache.FigureCache`
 defers (the cached ones are copied at once) and :meth:`FigureQueue.draw_all` submits
 each to a :func:`~pipeline.parallel.process_pool` (forked workers that end with the
