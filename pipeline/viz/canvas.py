@@ -29,6 +29,14 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
+TITLE_Y = 1.0
+"""Height of a panel's title, in units of the panel's height: on its frame, where matplotlib
+puts the title of a panel with nothing drawn above its frame. Given to ``set_title(y=...)``
+by the figures whose panels have no axis on top, it spares matplotlib's check of that (it
+measures every titled panel's y axis again when the figure is drawn): 0.15-0.25 s of the
+demo run's 21 figures (3.0-3.2 s of CPU in one process; the same pixels)."""
+
+
 @dataclass(frozen=True)
 class Margins:
     """A fixed layout: the space round and between a figure's grid of panels, in inches.
@@ -80,4 +88,4 @@ def panels_with_colorbar(fig: Figure, n: int = 2, bar_width: float = 0.045
     return panels, fig.add_subplot(grid[n])
 
 
-__all__ = ["Margins", "new_figure", "panels_with_colorbar"]
+__all__ = ["TITLE_Y", "Margins", "new_figure", "panels_with_colorbar"]

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 if TYPE_CHECKING:
@@ -54,7 +54,7 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     ax[2].set_ylabel("load share [-]")
     ax[2].set_title("tooth pairs numbered in the order they take load in the cycle"
                     + ("; circles: the pair touches at a tip corner beyond the path of "
-                       "contact" if marked else ""), fontsize=8)
+                       "contact" if marked else ""), fontsize=8, y=TITLE_Y)
     ax[2].set_xlabel("pinion angle [deg]")
     ax[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title

@@ -18,7 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.pressure_envelope import pressure_envelope
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
-from pipeline.viz.canvas import Margins, new_figure, panels_with_colorbar
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -50,7 +50,7 @@ def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
     ax.set_xlim(0.0, 1.0)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig
 
 
@@ -75,7 +75,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
     a2.grid(alpha=0.3, axis="y")
     for n, j in enumerate(pairs_in_order_of_entry(dist.load_share), start=1):
         a3.plot(x, dist.load_share[:, j], label=f"tooth pair {n}")
-    a3.set_title("pairs numbered as they take load", fontsize=8)
+    a3.set_title("pairs numbered as they take load", fontsize=8, y=TITLE_Y)
     a3.set_xlabel("mesh cycle [-]")
     a3.set_ylabel("load share [-]")
     a3.set_ylim(0.0, 1.05)
@@ -108,7 +108,7 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     ax.set_ylim(0.0, max(dist.envelope.max() * N_PER_MM * 1.15, 1e-9))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig
 
 
@@ -153,7 +153,7 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
                           cmap="inferno", vmin=0.0, vmax=vmax)
         ax.plot(2e3 * rmax, h.z * 1e3, "P", ms=11, mfc="w", mec="k", mew=1.0)
         ax.set_xlabel(flank_axis_label(name, internal))
-        ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9)
+        ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9, y=TITLE_Y)
         ax.set_xlim(*_with_margin(d.min(), d.max()))
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
     axes[0].set_ylabel("face position b_z [mm]")
@@ -187,5 +187,5 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ax.set_ylim(0.0, None)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig

@@ -16,7 +16,7 @@ import numpy as np
 from pipeline.dynamics.operating import OperatingFrequency
 from pipeline.dynamics.options import SWEEP_HARMONICS
 from pipeline.dynamics.results import HarmonicResponse, Response
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -71,7 +71,7 @@ def plot_time_history(
     ax[1, 0].set_xlabel("time [mesh periods]")
     ax[0, 0].legend(fontsize=8)
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
-    ax[0, 0].set_title(title or mesh_title("DTE and elastic mesh force", names))
+    ax[0, 0].set_title(title or mesh_title("DTE and elastic mesh force", names), y=TITLE_Y)
     for a in ax[:, 0]:
         a.grid(alpha=0.3)
     return fig
@@ -148,7 +148,7 @@ def plot_spectrum(
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
     ax.set_xlabel("frequency / mesh frequency (mesh order) [-]")
     ax.set_ylabel("DTE amplitude [um]")
-    ax.set_title(title or mesh_title("DTE spectrum", names))
+    ax.set_title(title or mesh_title("DTE spectrum", names), y=TITLE_Y)
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -186,7 +186,7 @@ def plot_harmonic_contributions(
     names = sorted({hr.response.mesh_names[mesh] for hr in results})
     ax.set_xlabel("harmonic order (multiple of the mesh frequency) [-]")
     ax.set_ylabel("contribution to DTE [-]")
-    ax.set_title(title or mesh_title("harmonic contributions to the DTE", names))
+    ax.set_title(title or mesh_title("harmonic contributions to the DTE", names), y=TITLE_Y)
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)

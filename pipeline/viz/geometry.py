@@ -23,7 +23,7 @@ from pipeline.geometry.profile import (
     gear_outline,
 )
 from pipeline.geometry.transverse import TransverseLayout
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -252,5 +252,5 @@ def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)
-        ax.set_title(profile_title(g, prof))
+        ax.set_title(profile_title(g, prof), y=TITLE_Y)
     return fig

@@ -25,7 +25,7 @@ from pipeline.contact.loadmap import (
 )
 from pipeline.geometry.pair import GearPair
 from pipeline.viz._offscreen import offscreen_plotter
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -212,5 +212,5 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("pinion contact radius [mm]")
     ax.set_title(title or "unit load over the pinion flank, envelope over the mesh cycle",
-                 fontsize=9)
+                 fontsize=9, y=TITLE_Y)
     return ax

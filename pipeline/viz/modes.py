@@ -29,7 +29,7 @@ import numpy as np
 
 from pipeline.dynamics.layout import BodyPlace, ModelLayout
 from pipeline.dynamics.results import ModalResult
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -166,7 +166,7 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
     ax.set_title(f"mode {k}: {result.frequencies[k]:.1f} Hz{kind} (x{result.multiplicity[k]})"
                  f"\nenergy: in-plane {100 * sh['in-plane']:.0f} %, rotation "
                  f"{100 * sh['rotation']:.0f} %, axial {100 * sh['axial']:.0f} %",
-                 fontsize=8)
+                 fontsize=8, y=TITLE_Y)
     return ax
 
 

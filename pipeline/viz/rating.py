@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import Margins, new_figure, panels_with_colorbar
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -46,7 +46,7 @@ def plot_safety_factors(gears: Sequence[str], pitting: Sequence[float],
         ax.set_xlim(-0.5, len(gears) - 0.5)
         ax.set_ylim(0.0, 1.15 * top)
         ax.set_ylabel(f"safety factor {name.split(': ')[1]} [-]")
-        ax.set_title(name, fontsize=9)
+        ax.set_title(name, fontsize=9, y=TITLE_Y)
         ax.grid(axis="y", alpha=0.3)
     fig.suptitle(title, fontsize=9)
     return fig
@@ -96,7 +96,7 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
         flag = f" < S_Hmin {minimum:g}" if p.minimum < minimum else ""
         ax.set_title(f"{p.gear} flank: smallest S_H,loc {p.minimum:.3f}{flag} at +\n"
                      f"(d = {p.minimum_diameter * 1e3:.1f} mm, b_z = {p.minimum_z * 1e3:.1f} "
-                     "mm)", fontsize=9)
+                     "mm)", fontsize=9, y=TITLE_Y)
         ax.set_xlabel(flank_axis_label(p.gear, internal and k == 1))
         pad = 0.04 * (d.max() - d.min())
         ax.set_xlim(d.min() - pad, d.max() + pad)

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import Margins, new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -69,7 +69,7 @@ def _shaft_panel(ax, shafts, ylabel: str, title: str, colour: int = 0) -> None:
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("position along the shaft z [mm]")
     ax.set_ylabel(f"{ylabel} [um]")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
 
@@ -92,7 +92,7 @@ def _line_load_panel(ax2, z_face, rigid, coupled, gap, face_reversed: bool) -> N
     lines = ax2.get_legend_handles_labels()
     more = tw.get_legend_handles_labels()
     ax2.legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="lower center")
-    ax2.set_title("line load across the face", fontsize=9)
+    ax2.set_title("line load across the face", fontsize=9, y=TITLE_Y)
 
 
 def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
@@ -121,5 +121,5 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, without the shafts")
     # beside the axes: the resonance lines run through the whole height of the plot
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig
