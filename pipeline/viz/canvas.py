@@ -15,8 +15,8 @@ labels outgrow them is not cut: ``save`` finds its drawing at the canvas's edge 
 it to ``savefig(bbox_inches="tight")``, which grows the canvas. Only the space between
 panels (``wspace``, ``hspace``) must be right for the figure's kind. With the cut to the
 drawn pixels and drawing processes without the cyclic garbage collector, the demo run's
-21 matplotlib figures took 2.9-3.2 s of CPU against 5.1-5.2 s with constrained layout and
-the second layout pass for the tight box (one process, two runs each alternating, 2-core
+21 matplotlib figures took 2.9-3.3 s of CPU against 5.1-5.8 s with constrained layout and
+the second layout pass for the tight box (one process, four runs each alternating, 2-core
 machine at load 6-9).
 """
 
@@ -33,8 +33,8 @@ TITLE_Y = 1.0
 """Height of a panel's title, in units of the panel's height: on its frame, where matplotlib
 puts the title of a panel with nothing drawn above its frame. Given to ``set_title(y=...)``
 by the figures whose panels have no axis on top, it spares matplotlib's check of that (it
-measures every titled panel's y axis again when the figure is drawn): 0.15-0.25 s of the
-demo run's 21 figures (3.0-3.2 s of CPU in one process; the same pixels)."""
+measures every titled panel's y axis again when the figure is drawn): 0.15-0.25 s of CPU
+on the demo run's 21 figures (one process), which came out the same byte for byte."""
 
 
 @dataclass(frozen=True)
