@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 if TYPE_CHECKING:
@@ -29,7 +29,8 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     """Mesh stiffness (against the slice method ``k_slice``, N/m), loaded static TE and
     load sharing over the cycle, three panels; returns the figure."""
     if fig is None:
-        fig = new_figure((9, 8), "constrained")
+        # legends beside the panels, a two-line suptitle, a title over the last panel
+        fig = new_figure((9, 8), Margins(right=2.5, top=0.6, hspace=0.35))
     ax = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(cyc.pinion_angle)
     k = stiffness_in_plot_unit
@@ -53,7 +54,7 @@ def plot_contact_cycle(cyc: LoadedMeshCycle, k_slice: np.ndarray, title: str,
     ax[2].set_ylabel("load share [-]")
     ax[2].set_title("tooth pairs numbered in the order they take load in the cycle"
                     + ("; circles: the pair touches at a tip corner beyond the path of "
-                       "contact" if marked else ""), fontsize=8)
+                       "contact" if marked else ""), fontsize=8, y=TITLE_Y)
     ax[2].set_xlabel("pinion angle [deg]")
     ax[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(title, fontsize=10)  # the figure is wider than one axes title

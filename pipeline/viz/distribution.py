@@ -18,7 +18,7 @@ from pipeline.contact.distribution import LoadDistribution
 from pipeline.contact.pressure_envelope import pressure_envelope
 from pipeline.contact.results import LoadedMeshCycle, pairs_in_order_of_entry
 from pipeline.geometry.pair import GearPair
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -36,7 +36,7 @@ def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
                               k_iso: float, compliance: str, title: str) -> Figure:
     """Analytical k(t), the LTCA tangent k(t) on ``compliance`` and ISO 6336-1's
     c_gamma_alpha b over one mesh cycle (N/m in, N/um drawn)."""
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     ax.plot(_cycle_fraction(pair, s0_analytical), np.asarray(k_analytical) * N_PER_UM,
             label="analytical (potential energy)")
@@ -50,7 +50,7 @@ def plot_stiffness_comparison(pair: GearPair, s0_analytical: np.ndarray,
     ax.set_xlim(0.0, 1.0)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig
 
 
@@ -58,7 +58,8 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
                             title: str) -> Figure:
     """Loaded static TE over the cycle (um), the amplitudes of mesh orders 1-10 (um) and the
     load share of every tooth pair."""
-    fig = new_figure((10.0, 3.4), "constrained")
+    # the legend beside the last panel: 1.25 in on the right
+    fig = new_figure((10.0, 3.4), Margins(top=0.5, right=1.25, wspace=0.8))
     a1, a2, a3 = fig.subplots(1, 3, width_ratios=(1.3, 1.0, 1.3))
     x = _cycle_fraction(pair, s0)
     a1.plot(x, dist.transmission_error * 1e6, "o-", ms=3)
@@ -74,7 +75,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
     a2.grid(alpha=0.3, axis="y")
     for n, j in enumerate(pairs_in_order_of_entry(dist.load_share), start=1):
         a3.plot(x, dist.load_share[:, j], label=f"tooth pair {n}")
-    a3.set_title("pairs numbered as they take load", fontsize=8)
+    a3.set_title("pairs numbered as they take load", fontsize=8, y=TITLE_Y)
     a3.set_xlabel("mesh cycle [-]")
     a3.set_ylabel("load share [-]")
     a3.set_ylim(0.0, 1.05)
@@ -88,7 +89,7 @@ def plot_transmission_error(pair: GearPair, dist: LoadDistribution, s0: np.ndarr
 def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     """Line load over the face width at every position (grey), its envelope and its mean over
     the cycle, with the mean P/b (N/mm against mm)."""
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     z, w, env, mean = dist.z * 1e3, dist.line_load, dist.envelope, dist.cycle_mean
     if z.size == 1:  # one slice stands for the whole face
@@ -107,7 +108,7 @@ def plot_line_load(dist: LoadDistribution, title: str) -> Figure:
     ax.set_ylim(0.0, max(dist.envelope.max() * N_PER_MM * 1.15, 1e-9))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig
 
 
@@ -137,8 +138,9 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
     grid = pressure_envelope(cycle, dist, pair, profile_points)
     s, z, env = grid.s, grid.z, grid.pressure
     r1, r2 = pair.contact_radii(s)
-    fig = new_figure((10.0, 3.8), "constrained")
-    axes = fig.subplots(1, 2, sharey=True)
+    # a two-line suptitle above the panels' titles, the colour bar's label on the right
+    fig = new_figure((10.0, 3.8), Margins(top=0.8, right=0.75, wspace=0.3))
+    axes, bar = panels_with_colorbar(fig)
     vmax = max(env.max() * 1e-6, 1e-9)
     zz = z * 1e3
     h = dist.hertz_max
@@ -151,11 +153,11 @@ def plot_contact_pressure(cycle: LoadedMeshCycle, dist: LoadDistribution, pair: 
                           cmap="inferno", vmin=0.0, vmax=vmax)
         ax.plot(2e3 * rmax, h.z * 1e3, "P", ms=11, mfc="w", mec="k", mew=1.0)
         ax.set_xlabel(flank_axis_label(name, internal))
-        ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9)
+        ax.set_title(f"{name} flank: max {h.value * 1e-6:.0f} MPa at +", fontsize=9, y=TITLE_Y)
         ax.set_xlim(*_with_margin(d.min(), d.max()))
     axes[0].set_ylim(*_with_margin(zz.min(), zz.max()))
     axes[0].set_ylabel("face position b_z [mm]")
-    fig.colorbar(m, ax=axes, label="Hertz pressure p_H, envelope over the cycle [MPa]")
+    fig.colorbar(m, cax=bar, label="Hertz pressure p_H, envelope over the cycle [MPa]")
     c = dist.tip_corner_max
     fig.suptitle(title if c is None else (
         f"{title}\ntip corners beyond the path of contact, not drawn: up to "
@@ -170,7 +172,7 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ``curves`` : (name, arc length from the middle of the tooth space in mm, stress in MPa,
     ISO 6336-3 nominal stress in MPa or None) per gear.
     """
-    fig = new_figure((7.0, 3.6), "constrained")
+    fig = new_figure((7.0, 3.6), Margins())
     ax = fig.add_subplot()
     for i, (name, arc, sigma, iso) in enumerate(curves):
         ax.plot(arc, sigma, color=f"C{i}", label=f"{name}: FE 2D, envelope over the cycle")
@@ -185,5 +187,5 @@ def plot_root_stress(curves: list[tuple[str, np.ndarray, np.ndarray, float | Non
     ax.set_ylim(0.0, None)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig

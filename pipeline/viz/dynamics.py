@@ -16,7 +16,7 @@ import numpy as np
 from pipeline.dynamics.operating import OperatingFrequency
 from pipeline.dynamics.options import SWEEP_HARMONICS
 from pipeline.dynamics.results import HarmonicResponse, Response
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -30,15 +30,17 @@ def mesh_title(what: str, meshes: Sequence[str]) -> str:
     return f"{what}, mesh {', '.join(named)}" if named else what
 
 
-def _panels(fig: Figure | None, rows: int, cols: int, size) -> tuple[Figure, np.ndarray]:
-    """``rows x cols`` axes (always 2D) on ``fig`` or on a new constrained-layout figure."""
+def _panels(fig: Figure | None, rows: int, cols: int, size,
+            layout: str | Margins = "constrained") -> tuple[Figure, np.ndarray]:
+    """``rows x cols`` axes (always 2D) on ``fig`` or on a new figure laid out by
+    ``layout`` (:func:`~pipeline.viz.canvas.new_figure`)."""
     if fig is None:
-        fig = new_figure(size, "constrained")
+        fig = new_figure(size, layout)
     return fig, fig.subplots(rows, cols, squeeze=False)
 
 
 def _axes(ax: Axes | None, size=(8, 4.5)) -> Axes:
-    return new_figure(size, "constrained").subplots() if ax is None else ax
+    return new_figure(size, Margins()).subplots() if ax is None else ax
 
 
 def plot_time_history(
@@ -57,7 +59,7 @@ def plot_time_history(
     pulse one contact sample wide at each tooth entry, drawn by a truncated Fourier series
     as a ripple that belongs to the sampling, not to the gears (``time_history.csv`` keeps
     the total force)."""
-    fig, ax = _panels(fig, 2, 1, (8, 6))
+    fig, ax = _panels(fig, 2, 1, (8, 6), Margins(hspace=0.45))
     for r, lab in zip(responses, labels, strict=True):
         i = 0 if mesh is None else r.mesh(mesh)
         s = r.steady_from
@@ -69,7 +71,7 @@ def plot_time_history(
     ax[1, 0].set_xlabel("time [mesh periods]")
     ax[0, 0].legend(fontsize=8)
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
-    ax[0, 0].set_title(title or mesh_title("DTE and elastic mesh force", names))
+    ax[0, 0].set_title(title or mesh_title("DTE and elastic mesh force", names), y=TITLE_Y)
     for a in ax[:, 0]:
         a.grid(alpha=0.3)
     return fig
@@ -146,7 +148,7 @@ def plot_spectrum(
     names = sorted({r.mesh_names[0] if mesh is None else mesh for r in responses})
     ax.set_xlabel("frequency / mesh frequency (mesh order) [-]")
     ax.set_ylabel("DTE amplitude [um]")
-    ax.set_title(title or mesh_title("DTE spectrum", names))
+    ax.set_title(title or mesh_title("DTE spectrum", names), y=TITLE_Y)
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -184,7 +186,7 @@ def plot_harmonic_contributions(
     names = sorted({hr.response.mesh_names[mesh] for hr in results})
     ax.set_xlabel("harmonic order (multiple of the mesh frequency) [-]")
     ax.set_ylabel("contribution to DTE [-]")
-    ax.set_title(title or mesh_title("harmonic contributions to the DTE", names))
+    ax.set_title(title or mesh_title("harmonic contributions to the DTE", names), y=TITLE_Y)
     _order_axis(ax, max_order)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)

@@ -23,7 +23,7 @@ from pipeline.geometry.profile import (
     gear_outline,
 )
 from pipeline.geometry.transverse import TransverseLayout
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -57,6 +57,8 @@ def plot_line_of_action(pair: GearPair, title: str = "", fig: Figure | None = No
     handles, names = whole.get_legend_handles_labels()
     top.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
     _draw_roll_strip(strip.subplots(), lay)
+    handles, names = strip.axes[0].get_legend_handles_labels()
+    strip.legend(handles, names, loc="outside lower center", ncol=4, fontsize=8)
     kind = "internal" if pair.gear.internal else "external"
     title = title or (f"{kind} pair: eps_alpha = {pair.transverse_contact_ratio:.3f}, "
                       f"eps_beta = {pair.overlap_ratio:.3f}, "
@@ -175,7 +177,6 @@ def _draw_roll_strip(ax: Axes, lay: TransverseLayout) -> None:
     ax.set_xlabel("roll coordinate s along the line of action, from T1 [mm]")
     ax.set_yticks([])
     ax.set_ylim(-1.0, 1.0)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=4, fontsize=8)
 
 
 def plot_contact_lines(pair: GearPair, n_positions: int = 4, ax: Axes | None = None,
@@ -247,9 +248,9 @@ def profile_title(gear: GearSpec, prof: ToothProfile) -> str:
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
     """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
-    fig = new_figure((9, 4 * len(gears)))
+    fig = new_figure((9, 4 * len(gears)), Margins(right=1.3, hspace=0.95))  # legends beside
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)
-        ax.set_title(profile_title(g, prof))
+        ax.set_title(profile_title(g, prof), y=TITLE_Y)
     return fig

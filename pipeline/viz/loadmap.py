@@ -25,7 +25,7 @@ from pipeline.contact.loadmap import (
 )
 from pipeline.geometry.pair import GearPair
 from pipeline.viz._offscreen import offscreen_plotter
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -182,7 +182,10 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     b_z (mm) to the right, pinion contact radius (mm) up, as :func:`render_load_map` shows the
     flank; returns the Axes."""
     if ax is None:
-        ax = new_figure((7.5, 4.8), "constrained").subplots()
+        # the colour bar takes its room from the panel, its label the right margin; the
+        # title 0.16 in a line (font size 9)
+        lines = (title or "x").count("\n") + 1
+        ax = new_figure((7.5, 4.8), Margins(right=0.8, top=0.2 + 0.16 * lines)).subplots()
     p = load_map.unit_load * 1e-3
     flank = load_map.s <= load_map.s_end  # past it the pinion touches with its tip corner
     vmax = float(p.max())
@@ -209,5 +212,5 @@ def plot_load_map_2d(load_map: FlankLoadMap, title: str = "", ax: Axes | None = 
     ax.set_xlabel("face position b_z [mm]")
     ax.set_ylabel("pinion contact radius [mm]")
     ax.set_title(title or "unit load over the pinion flank, envelope over the mesh cycle",
-                 fontsize=9)
+                 fontsize=9, y=TITLE_Y)
     return ax

@@ -29,7 +29,7 @@ import numpy as np
 
 from pipeline.dynamics.layout import BodyPlace, ModelLayout
 from pipeline.dynamics.results import ModalResult
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -166,7 +166,7 @@ def plot_mode_on_layout(result: ModalResult, layout: ModelLayout, k: int,
     ax.set_title(f"mode {k}: {result.frequencies[k]:.1f} Hz{kind} (x{result.multiplicity[k]})"
                  f"\nenergy: in-plane {100 * sh['in-plane']:.0f} %, rotation "
                  f"{100 * sh['rotation']:.0f} %, axial {100 * sh['axial']:.0f} %",
-                 fontsize=8)
+                 fontsize=8, y=TITLE_Y)
     return ax
 
 
@@ -183,14 +183,6 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     r = max(p.radius for p in layout.places)
     aspect = (max(xs) - min(xs) + 2 * r) / (max(ys) - min(ys) + 2 * r)
     w = 3.4 if aspect < 1.6 else 5.0
-    if fig is None:
-        fig = new_figure((w * cols, w / max(min(aspect, 3.0), 0.5) * rows + 0.9),
-                         "constrained")
-    axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
-    for a, k in zip(axes, modes, strict=False):
-        plot_mode_on_layout(result, layout, k, ax=a)
-    for a in axes[len(modes):]:
-        a.set_axis_off()
     sides = sorted({p.side for p in layout.places})
     prefix = {"": "", "L": "left half: ", "R": "right half: "}
     handles = [Line2D([], [], color=_TRANSLATION[s], lw=2.2,
@@ -211,10 +203,24 @@ def plot_mode_shapes(result: ModalResult, layout: ModelLayout, modes: Sequence[i
     if layout.line_of_action is not None:
         handles += [Line2D([], [], color="0.6", lw=1.0, ls="-.",
                            label="line of action T1 T2 (x)")]
-    fig.legend(handles=handles, loc="outside lower center",
-               ncol=min(len(handles), 2 if axial else 3),
-               fontsize=8)
-    if title or layout.schematic:
+    ncol = min(len(handles), 2 if axial else 3)
+    suptitle = bool(title or layout.schematic)
+    if fig is None:
+        # fixed margins (in): the legend's rows below (0.2 each, font size 8), the suptitle
+        # and each panel's two-line title above; panels without axes need no more
+        panel_h = w / max(min(aspect, 3.0), 0.5)
+        margins = Margins(left=0.1, right=0.1, wspace=0.25, hspace=0.45,
+                          bottom=0.2 + 0.2 * math.ceil(len(handles) / ncol),
+                          top=0.45 + (0.3 if suptitle else 0.0))
+        fig = new_figure((w * cols, panel_h * rows + margins.top + margins.bottom
+                          + margins.hspace * (rows - 1)), margins)
+    axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
+    for a, k in zip(axes, modes, strict=False):
+        plot_mode_on_layout(result, layout, k, ax=a)
+    for a in axes[len(modes):]:
+        a.set_axis_off()
+    fig.legend(handles=handles, loc="outside lower center", ncol=ncol, fontsize=8)
+    if suptitle:
         note = " (bodies placed on a grid: schematic layout)" if layout.schematic else ""
         fig.suptitle(f"{title}{note}", fontsize=10)
     return fig

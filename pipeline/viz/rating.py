@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure, panels_with_colorbar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -24,7 +24,7 @@ def plot_safety_factors(gears: Sequence[str], pitting: Sequence[float],
     """S_H and S_F of each gear (bars, NaN for a gear not rated) beside the required S_Hmin
     and S_Fmin (dashed lines, labelled at the left); a bar below its minimum is red, with
     its value on top."""
-    fig = new_figure((7.0, 3.4), "constrained")
+    fig = new_figure((7.0, 3.4), Margins(top=0.6))  # suptitle and panel titles
     panels = (("pitting: S_H", pitting, minimum_pitting, "S_Hmin"),
               ("tooth root: S_F", bending, minimum_bending, "S_Fmin"))
     top = max([v for _, vals, _, _ in panels for v in vals if not math.isnan(v)]
@@ -46,7 +46,7 @@ def plot_safety_factors(gears: Sequence[str], pitting: Sequence[float],
         ax.set_xlim(-0.5, len(gears) - 0.5)
         ax.set_ylim(0.0, 1.15 * top)
         ax.set_ylabel(f"safety factor {name.split(': ')[1]} [-]")
-        ax.set_title(name, fontsize=9)
+        ax.set_title(name, fontsize=9, y=TITLE_Y)
         ax.grid(axis="y", alpha=0.3)
     fig.suptitle(title, fontsize=9)
     return fig
@@ -76,8 +76,9 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
     no load. ``internal``: the second gear is a ring."""
     from pipeline.viz.distribution import flank_axis_label
 
-    fig = new_figure((10.0, 4.0), "constrained")
-    axes = fig.subplots(1, 2, sharey=True)
+    # two-line suptitle and panel titles, the colour bar's label on the right
+    fig = new_figure((10.0, 4.0), Margins(top=1.0, right=0.75, wspace=0.3))
+    axes, bar_axes = panels_with_colorbar(fig)
     zz = local.z * 1e3
     levels = _safety_levels([p.safety for p in local.pitting], minimum)
     cmap = "RdYlGn"
@@ -95,14 +96,14 @@ def plot_local_pitting_safety(local: LocalSafety, minimum: float, internal: bool
         flag = f" < S_Hmin {minimum:g}" if p.minimum < minimum else ""
         ax.set_title(f"{p.gear} flank: smallest S_H,loc {p.minimum:.3f}{flag} at +\n"
                      f"(d = {p.minimum_diameter * 1e3:.1f} mm, b_z = {p.minimum_z * 1e3:.1f} "
-                     "mm)", fontsize=9)
+                     "mm)", fontsize=9, y=TITLE_Y)
         ax.set_xlabel(flank_axis_label(p.gear, internal and k == 1))
         pad = 0.04 * (d.max() - d.min())
         ax.set_xlim(d.min() - pad, d.max() + pad)
     pad = 0.04 * (zz.max() - zz.min())
     axes[0].set_ylim(zz.min() - pad, zz.max() + pad)
     axes[0].set_ylabel("face position b_z [mm]")
-    bar = fig.colorbar(filled, ax=axes, label=f"local pitting safety S_H,loc [-]; black: "
+    bar = fig.colorbar(filled, cax=bar_axes, label=f"local pitting safety S_H,loc [-]; black: "
                        f"S_Hmin = {minimum:g}")
     bar.ax.axhline(minimum, color="k", lw=1.2)
     fig.suptitle(f"{title}\nS_H,loc = sigma_HG / (p_H sqrt(K_A K_gamma K_v)), K_A K_gamma K_v"
@@ -118,7 +119,7 @@ def plot_root_stress_along_face(local: LocalSafety, minimum: float, title: str) 
     root stress); the largest stress and the smallest S_F,loc marked."""
     if local.bending is None:
         raise ValueError("plot_root_stress_along_face: the local safety has no root stress")
-    fig = new_figure((10.0, 3.6), "constrained")
+    fig = new_figure((10.0, 3.6), Margins(top=0.65, wspace=0.95))  # two-line suptitle
     a1, a2 = fig.subplots(1, 2, sharex=True)
     zz = local.z * 1e3
     for i, b in enumerate(local.bending):

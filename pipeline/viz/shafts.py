@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import TITLE_Y, Margins, new_figure
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -23,7 +23,8 @@ def plot_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.ndarray,
     with the shafts (N/mm), and the shafts' misalignment there (um, right axis), over the
     contact's face position; ``face_reversed``: it runs against the shafts' z (a right-hand
     helical pinion, :func:`pipeline.shaft.misalignment.seat_points`), which the label says."""
-    fig = new_figure((9.0, 3.6), "constrained")
+    # the twin axis's label on the right
+    fig = new_figure((9.0, 3.6), Margins(top=0.6, right=0.85, wspace=0.95))
     ax = fig.add_subplot(1, 2, 1)
     _shaft_panel(ax, [(*s, f"{s[0]}: bearings") for s in shafts],
                  "deflection along the line of action", "shafts (the gear's seat shaded)")
@@ -45,7 +46,7 @@ def plot_planetary_shaft_deflection(shafts: Sequence[tuple[str, np.ndarray, np.n
     C0 and a pin in C1 in every mesh's figure; then the line load panel of
     :func:`plot_shaft_deflection`."""
     n = len(shafts) + 1
-    fig = new_figure((4.2 * n, 3.6), "constrained")
+    fig = new_figure((4.2 * n, 3.6), Margins(top=0.6, right=0.85, wspace=0.95))
     for i, s in enumerate(shafts):
         ax = fig.add_subplot(1, n, i + 1)
         _shaft_panel(ax, [s], "retreat along the line of action",
@@ -68,7 +69,7 @@ def _shaft_panel(ax, shafts, ylabel: str, title: str, colour: int = 0) -> None:
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("position along the shaft z [mm]")
     ax.set_ylabel(f"{ylabel} [um]")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
 
@@ -91,7 +92,7 @@ def _line_load_panel(ax2, z_face, rigid, coupled, gap, face_reversed: bool) -> N
     lines = ax2.get_legend_handles_labels()
     more = tw.get_legend_handles_labels()
     ax2.legend(lines[0] + more[0], lines[1] + more[1], fontsize=8, loc="lower center")
-    ax2.set_title("line load across the face", fontsize=9)
+    ax2.set_title("line load across the face", fontsize=9, y=TITLE_Y)
 
 
 def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
@@ -101,7 +102,7 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
     """The dynamic factor (-) over mesh frequency (Hz) with the shafts and without them, with
     each model's natural frequencies (Hz) marked in its own colour and the operating mesh
     frequency."""
-    fig = new_figure((9.5, 3.6), "constrained")
+    fig = new_figure((9.5, 3.6), Margins(left=1.0, right=2.65))  # the legend beside
     ax = fig.add_subplot(1, 1, 1)
     f = np.asarray(frequencies)
     ax.plot(f, with_shafts, "C3", lw=1.8, label="with the shafts")
@@ -112,12 +113,13 @@ def plot_shaft_dynamics(frequencies: np.ndarray, with_shafts: np.ndarray,
                 ax.axvline(x, color=colour, ls=ls, lw=0.8, alpha=0.6)
     ax.axvline(mesh_frequency, color="C2", lw=1.2, label="operating mesh frequency")
     ax.set_xlabel("mesh frequency [Hz]")
-    ax.set_ylabel("dynamic factor (largest elastic / mean mesh force) [-]")
+    # two lines: in one, the label is longer than the axes are high
+    ax.set_ylabel("dynamic factor [-]\n(largest elastic / mean mesh force)")
     ax.set_xlim(f[0], f[-1])
     ax.grid(alpha=0.3)
     ax.plot([], [], "C3:", lw=0.8, label="natural frequencies, with the shafts")
     ax.plot([], [], "k-.", lw=0.8, label="natural frequencies, without the shafts")
     # beside the axes: the resonance lines run through the whole height of the plot
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=9, y=TITLE_Y)
     return fig

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.viz.canvas import new_figure
+from pipeline.viz.canvas import Margins, new_figure
 from pipeline.viz.units import stiffness_in_plot_unit, stiffness_label
 
 _PER_M_TO_PER_UM = 1e-6  # N m/m (a torque per metre of mesh deflection) -> N m/um
@@ -54,7 +54,7 @@ def plot_friction_coefficients(x: np.ndarray, kf: np.ndarray, kt1: np.ndarray, k
     KT_f2 of the pinion and the gear (N m/m in, N m/um drawn: the friction torque on each
     gear per unit mesh deflection, :mod:`pipeline.stiffness.friction`) over a mesh cycle."""
     if fig is None:
-        fig = new_figure((10, 3.8), "constrained")
+        fig = new_figure((10, 3.8), Margins(top=0.5, wspace=1.15))  # a two-line y label
     a1, a2 = fig.subplots(1, 2)
     a1.plot(x, stiffness_in_plot_unit(kf))
     a1.set_ylabel(stiffness_label("friction stiffness K_f"))
