@@ -368,18 +368,3 @@ def test_one_cache_object_reaches_every_step(tmp_path):
     gearbox_dynamic_model(box, Cache(folder))
     assert sorted(folder.glob("contactcycle-*.npz")) == cycles
     assert cycles[0].stat().st_mtime_ns == stamp  # read back, not rewritten
-
-
-def test_entry_file_is_where_cached_file_writes(tmp_path):
-    """entry_file names the file cached_file writes for the same kind, inputs and code (the
-    run lists its FE tables by it), and None with the cache off."""
-    where = Cache(tmp_path)
-    inputs = {"a": 1.5, "b": [1, 2]}
-    expected = cache.entry_file("demo", inputs, ("pipeline.cache",), where)
-    assert not expected.exists()
-    _, path, hit = cache.cached_file("demo", inputs, lambda: {"x": np.arange(3.0)},
-                                     cache.same_arrays, cache.same_arrays,
-                                     code=("pipeline.cache",), cache=where)
-    assert (path, hit) == (expected, False) and expected.is_file()
-    assert cache.entry_file("demo", {**inputs, "a": 2.5}, ("pipeline.cache",), where) != path
-    assert cache.entry_file("demo", inputs, ("pipeline.cache",), Cache.off()) is None

@@ -145,15 +145,6 @@ def same_arrays(arrays: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     return dict(arrays)
 
 
-def entry_file(kind: str, inputs: Mapping[str, Any], code: tuple[str, ...],
-               cache: Cache = DEFAULT_CACHE) -> Path | None:
-    """Where :func:`cached_file` keeps the entry of ``kind`` for ``inputs`` and ``code`` (it
-    may not exist yet), or None when ``cache`` is off."""
-    if not cache.enabled:
-        return None
-    return cache.root / f"{kind}-{entry_key(kind, inputs, code)}.npz"
-
-
 def cached_file(
     kind: str, inputs: Mapping[str, Any], build: Callable[[], T],
     to_arrays: Callable[[T], Mapping[str, Any]], from_arrays: Callable[[dict], T], *,
@@ -180,7 +171,7 @@ def cached_file(
     if not cache.enabled:
         return build(), None, False
     key = entry_key(kind, inputs, code)
-    path = cache.root / f"{kind}-{key}.npz"  # entry_file
+    path = cache.root / f"{kind}-{key}.npz"
     if path.is_file():
         try:
             return from_arrays(_checked_arrays(path, key)), path, True

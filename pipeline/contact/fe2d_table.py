@@ -19,12 +19,11 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pipeline.cache.entries import cached_file, entry_file, unlabelled
+from pipeline.cache.entries import cached_file, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import FlankPoints, flank_points, table_radii
 from pipeline.fem.mesh_cache import MESH_CODE
@@ -117,14 +116,6 @@ def _table_inputs(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray
               "teeth": teeth.tolist(), "kind": settings.kind, "cuts": settings.cuts,
               "patch": settings.patch}
     return inputs, pts, ss
-
-
-def table_entry(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,
-                cache: Cache = DEFAULT_CACHE) -> Path | None:
-    """The cache file :func:`gear_table` reads or writes for these arguments (None: cache
-    off)."""
-    inputs, _, _ = _table_inputs(gear, settings, np.asarray(teeth, dtype=int))
-    return entry_file("fe2dtable", inputs, TABLE_CODE, cache)
 
 
 def gear_table(gear: GearSpec, settings: FE2DSettings, teeth: np.ndarray, *,

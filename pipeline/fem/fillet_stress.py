@@ -32,11 +32,10 @@ import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from functools import partial
-from pathlib import Path
 
 import numpy as np
 
-from pipeline.cache.entries import cached_file, entry_file, same_arrays, unlabelled
+from pipeline.cache.entries import cached_file, same_arrays, unlabelled
 from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.fem.flank import table_radii
 from pipeline.fem.mesh_cache import MESH_CODE
@@ -206,13 +205,6 @@ def _table_inputs(gear: GearSpec, settings: FilletStressSettings
     inputs = {"gear": unlabelled(gear), "sector": asdict(ss), "settings": asdict(settings),
               "radii": r.tolist()}
     return inputs, offsets, r, ss
-
-
-def fillet_stress_entry(gear: GearSpec, settings: FilletStressSettings, *,
-                        cache: Cache = DEFAULT_CACHE) -> Path | None:
-    """The cache file :func:`build_fillet_stress` reads or writes for these arguments (None:
-    cache off)."""
-    return entry_file("filletstress", _table_inputs(gear, settings)[0], MESH_CODE, cache)
 
 
 def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,

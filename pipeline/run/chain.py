@@ -38,11 +38,7 @@ that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads
 stages compute (:mod:`pipeline.viz.figure_queue`); the report figures are drawn with them
 (:func:`pipeline.report.writer.prepare_reports`), and a matplotlib figure is drawn once and
 cut to its tight box (:mod:`pipeline.viz.saving`). The run imports matplotlib only to draw,
-and reading a gearbox file or cached FE tables imports no scikit-fem. With FE 2D contact the
-FE tables not in the cache (both gears' compliance and fillet stress tables of every mesh)
-are built side by side as the run starts (:mod:`pipeline.run.prefetch`): the loaded contact
-waits for the compliance tables, and the fillet stress tables are built while the contact
-and the shafts are solved.
+and reading a gearbox file or cached FE tables imports no scikit-fem.
 
 Measured (``workflows/benchmarks/bench_run.py``: the demo's pair with FE 2D contact and the
 load distribution report, separate processes, ``OMP_NUM_THREADS=2`` as ``dev.sh`` sets it,
@@ -67,13 +63,14 @@ one process per run, CPU of the process and the children it waited for, one BLAS
 2 cores shared with other work at load average 6-9, two runs each): at 9419f53 4.5-4.6 s
 (imports 0.77-0.78 s, loaded contact with both compliance tables 1.34-1.35 s, shafts
 0.52-0.60 s, load distribution and root stress with its fillet table 1.39-1.46 s, two
-sweeps 0.38 s); with the tables built in its stages 4.1-4.3 s (imports 0.57 s, as scipy's
+sweeps 0.38 s); now 4.1-4.3 s (imports 0.57 s, as scipy's
 interpolation and optimisation modules load where used; loaded contact 1.63-1.69 s with
 those imports; shafts 0.42-0.47 s, each position's compliance once; root stress 1.08-1.23
-s, the fillet table solved for the free DOFs only; sweeps 0.28-0.36 s in this process);
-with the tables side by side 4.5-4.8 s in all, of which this process's loaded contact
-(its pinion table and the contact) 1.12-1.15 s and its root stress 0.06-0.1 s (the table
-from the cache). Every number of the run's summary is the same bit for bit.
+s, the fillet table solved for the free DOFs only; sweeps 0.28-0.36 s in this process).
+Building the tables side by side in forked processes was tried and left out: 0.1-0.4 s
+more CPU, on shared cores slower (wall 1.15 times, load average 4.4-4.8), and MKL
+PARDISO with two threads does not round alike in two processes. The run's summary is the
+same bit for bit as at 9419f53 (one BLAS thread).
 """
 
 from __future__ import annotations
@@ -106,7 +103,6 @@ from pipeline.validation import InputError
 if TYPE_CHECKING:
     from pipeline.run.herringbone import HerringboneStage
     from pipeline.run.planetary_shafts import PlanetaryMeshShafts
-    from pipeline.run.prefetch import TablePrefetch
     from pipeline.run.revolution import RevolutionStage
     from pipeline.run.shafts import ShaftStage
 
@@ -236,22 +232,17 @@ def mesh_cases(box: Gearbox) -> list[MeshCase]:
 
 
 def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
-                   options: RunOptions, prebuilt: Any = None, tables: TablePrefetch | None = None
-                   ) -> tuple[LoadedMeshCycle, bool]:
+                   options: RunOptions, prebuilt: Any = None) -> tuple[LoadedMeshCycle, bool]:
     """The loaded contact cycle of one mesh, from the cache when its inputs are unchanged.
 
     ``prebuilt`` is an FE source of the same gears and FE settings built earlier (a design
     study builds one per geometry): its tables are used instead of building or reading them.
-    ``tables``: FE tables being built side by side (:mod:`pipeline.run.prefetch`), waited
-    for before the source reads them from the cache.
     Returns (cycle, True if read from the cache).
     """
     actual, contact = stiffness.actual, box.mesh_contact(case.name)
     inputs = cycle_cache_inputs(actual, case.operation, contact, box.stiffness, box.fe_source)
 
     def build() -> LoadedMeshCycle:
-        if tables is not None:
-            tables.wait_contact(case.name)
         source = compliance_source(actual, case.operation, contact, box.stiffness,
                                    box.fe_source, cache=options.cache, model=stiffness.model,
                                    show_progress=options.show_progress, prebuilt=prebuilt)
@@ -266,10 +257,9 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
 
 
 def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
-                  contact: bool = True, prebuilt: Any = None,
-                  tables: TablePrefetch | None = None) -> MeshStages:
+                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
     """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
-    (``prebuilt``, ``tables``: :func:`loaded_contact`)."""
+    (``prebuilt``: :func:`loaded_contact`)."""
     tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -280,7 +270,7 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
     cycle = None
     if contact:
         with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
-            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt, tables)
+            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt)
             note["cached"] = hit
             note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
                             f"{cycle.mesh_stiffness.mean():.4g} N/m")
@@ -306,16 +296,13 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
-                prebuilt: Mapping[str, Any] | None = None,
-                tables: TablePrefetch | None = None) -> dict[str, MeshStages]:
+                prebuilt: Mapping[str, Any] | None = None) -> dict[str, MeshStages]:
     """The static stages of every mesh of a gearbox (none for a ``[lumped_model]``);
-    ``prebuilt``: FE sources by mesh name, ``tables``: FE tables being built
-    (:func:`loaded_contact`)."""
+    ``prebuilt``: FE sources by mesh name (:func:`loaded_contact`)."""
     if box.kind == "lumped":
         return {}
     out = {case.name: static_stages(box, case, options, log, contact,
-                                    None if prebuilt is None else prebuilt[case.name],
-                                    tables)
+                                    None if prebuilt is None else prebuilt[case.name])
            for case in mesh_cases(box)}
     if contact and box.kind == "planetary" and box.shafts:
         from pipeline.run.planetary_shafts import planetary_shaft_stage

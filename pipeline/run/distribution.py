@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from pipeline.config import Gearbox
 from pipeline.contact.distribution import LoadDistribution, load_distribution
@@ -25,9 +24,6 @@ from pipeline.contact.herringbone_distribution import (
 from pipeline.contact.root_stress import RootStress, analyse_root_stress
 from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, step_tag
-
-if TYPE_CHECKING:
-    from pipeline.run.prefetch import TablePrefetch
 
 
 @dataclass(frozen=True)
@@ -50,11 +46,9 @@ class DistributionStage:
 
 
 def distribution_stages(box: Gearbox, meshes: Mapping[str, MeshStages], options: RunOptions,
-                        log: Steps, tables: TablePrefetch | None = None
-                        ) -> dict[str, DistributionStage]:
+                        log: Steps) -> dict[str, DistributionStage]:
     """The :class:`DistributionStage` of every mesh with a contact cycle (module docstring),
-    one timed step per mesh; ``tables``: FE tables being built side by side
-    (:mod:`pipeline.run.prefetch`), waited for before the root stress reads them."""
+    one timed step per mesh."""
     def root(cycle, pair, operation):
         return analyse_root_stress(cycle, pair, operation, box.fe_source,
                                    cache=options.cache,
@@ -66,8 +60,6 @@ def distribution_stages(box: Gearbox, meshes: Mapping[str, MeshStages], options:
             continue
         with log.step(f"load distribution and root stress{step_tag(name)}"):
             actual, op = st.stiffness.actual, st.case.operation
-            if tables is not None:
-                tables.wait_root(name)
             rs = root(st.contact, actual, op)
             halves = half_roots = None
             if st.herringbone is not None:

@@ -14,7 +14,6 @@ from pipeline.progress import Steps
 from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
 from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
-from pipeline.run.prefetch import prefetch_tables
 from pipeline.run.rating import RatingStage, rating_stage
 from pipeline.validation import InputError
 
@@ -59,14 +58,11 @@ def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
     """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    with prefetch_tables(box, options) as tables:  # FE tables side by side, into the cache
-        meshes = mesh_stages(box, options, log, tables=tables)
-        dynamics = None
-        # the dynamics before the load distributions: their root stress waits for its FE
-        # tables, built meanwhile in another process (pipeline.run.prefetch)
-        if box.kind == "lumped" or box.dynamics is not None:
-            dynamics = dynamics_stages(box, meshes, options, log)
-        distributions = distribution_stages(box, meshes, options, log, tables)
+    meshes = mesh_stages(box, options, log)
+    distributions = distribution_stages(box, meshes, options, log)
+    dynamics = None
+    if box.kind == "lumped" or box.dynamics is not None:
+        dynamics = dynamics_stages(box, meshes, options, log)
     rating = rating_stage(box, meshes, {k: d.distribution for k, d in distributions.items()},
                           {k: d.root_stress for k, d in distributions.items()}, dynamics, log)
     return RunResult(box, meshes, dynamics, log, distributions, rating)
