@@ -32,6 +32,7 @@ plane-stress near field that neither half-space nor plane-strain half-plane is.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -63,7 +64,9 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def coarse(cache):
-    return sector_mesh_3d(SPUR, SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), cache=Cache(cache))
+    """Every tooth kept (``reach = None``): the geometry of the whole gear."""
+    s = replace(SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), reach=None)
+    return sector_mesh_3d(SPUR, s, cache=Cache(cache))
 
 
 def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
@@ -347,7 +350,7 @@ def test_a_single_loaded_tooth_is_the_only_fine_one():
     """Loaded set (15,): its sides get the flank size, its neighbours already the far teeth's
     (mean boundary edge of tooth 15 below 0.6 of tooth 14's and tooth 0's; measured 1.4 vs
     3.9 and 3.9 mm), and its boundary nodes are curved like those of a larger loaded set."""
-    s = SectorSettings3D.whole_gear(SPUR, (15,), 0.6)
+    s = replace(SectorSettings3D.whole_gear(SPUR, (15,), 0.6), reach=None)
     linear, boundary = linear_whole_gear_mesh_3d(SPUR, s)
     data = curve_p2(linear, boundary)
 
@@ -382,3 +385,47 @@ def test_an_inverted_straight_cell_is_refused():
                        np.arange(4)[:, None], {"face": np.array([[0], [1], [2]])})
     with pytest.raises(RuntimeError, match="fold even with straight edges"):
         curve_p2(cell, Flat())
+
+
+def test_far_teeth_are_left_out_and_the_rim_is_the_root_circle(cache):
+    """The default whole gear keeps the teeth within 2 rim depths of the loaded ones along
+    the root circle: SPUR (r_f = 41.25 mm, bore 15 mm: depth 26.25 mm, root pitch
+    2 pi 41.25 / 30 = 8.639 mm) keeps ceil(2 x 26.25 / 8.639) = ceil(6.08) = 7 teeth on each
+    side of 14..16, i.e. 7..23; teeth 0..6 and 24..29 are left out. The mesh has no groups
+    for them, a ``rim`` group whose nodes all lie on the root circle (1e-12 m), and its
+    volume is (area of the kept outline - bore disc) x b within 1e-3 (the kept outline:
+    the polyline of the kept teeth closed by the root arcs, 1e-5 from exact)."""
+    from pipeline.fem.mesh_settings import far_teeth, whole_reach
+    from pipeline.fem.outline2d import outline_pieces
+    from pipeline.fem.whole3d import kept_pieces
+
+    s = SectorSettings3D.whole_gear(SPUR, LOADED, 0.6)
+    assert SPUR.root_radius == pytest.approx(41.25e-3, rel=1e-12)
+    assert whole_reach(SPUR, s) == s.reach == 7
+    assert far_teeth(s, SPUR.teeth) == set(range(7)) | set(range(24, 30))
+    sec = sector_mesh_3d(SPUR, s, cache=Cache(cache))
+    names = set(sec.facets)
+    assert {f"right{k}" for k in range(7, 24)} <= names and "rim" in names
+    assert not {f"{side}{k}" for k in (*range(7), *range(24, 30)) for side in ("right", "left")
+                } & names
+    rim = np.unique(sec.tets.triangles["rim"])
+    assert np.abs(np.hypot(*sec.mesh.doflocs[:2, rim]) - SPUR.root_radius).max() < 1e-12
+    xy = np.vstack([seg[:-1] for _, seg in kept_pieces(SPUR, s, outline_pieces(SPUR, 30, 400))])
+    x, y = xy.T
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    exact = (area - math.pi * sec.inner_radius**2) * SPUR.face_width
+    assert sec.volume() == pytest.approx(exact, rel=1e-3)
+
+
+def test_reach_is_validated():
+    """A reach below 1 tooth, or on a sector, is refused; the distance is counted round the
+    gear (tooth 0 is 15 teeth from tooth 15 either way)."""
+    with pytest.raises(InputError, match="sector.reach"):
+        SectorSettings3D(teeth=30, reach=0)
+    with pytest.raises(InputError, match="sector.reach = 2 applies to whole gears only"):
+        sector_mesh_3d(SPUR, SectorSettings3D(teeth=3, reach=2), cache=Cache.off())
+    from pipeline.fem.mesh_settings import far_teeth
+
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=14), 30) == {0}
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=15), 30) == set()
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(1, 29), reach=13), 30) == {15}

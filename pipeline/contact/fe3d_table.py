@@ -156,7 +156,7 @@ def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings,
     if teeth == gear.teeth:
         s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement)
         if settings.mesh == "uniform":
-            s3 = replace(s3, loaded=None, size_tooth=None)
+            s3 = replace(s3, loaded=None, size_tooth=None, reach=None)
     else:
         s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
     if settings.hub_depth is not None:
@@ -257,6 +257,9 @@ def _tooth_columns(gear: GearSpec, span: int, settings: FE3DSettings, cache: Cac
     reads = t0 + np.arange(-span, span + 1)
     near = min(span, FINE_NEIGHBOURS)
     s3 = _sector_settings(gear, gear.teeth, settings, t0 + np.arange(-near, near + 1))
+    if s3.reach is not None and s3.reach < span - near + 1:
+        # the read teeth kept, each with a kept neighbour beyond it
+        s3 = replace(s3, reach=span - near + 1)
     r, z, c = _grid(gear, gear.face_width, settings)
     key = {"gear": unlabelled(gear), "sector": asdict(s3),
            "inner_radius": inner_radius(gear, s3), "load_tooth": t0, "read_teeth": reads,

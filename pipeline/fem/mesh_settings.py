@@ -28,6 +28,8 @@ from pipeline.validation import InputError, check_int_range, check_range
 # distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
 WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
 WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
+WHOLE_BACK = None  # left sides of the loaded teeth, in flank sizes (None: flank size)
+WHOLE_REACH = 2.0  # teeth kept beyond the loaded ones: this many rim depths along the root
 
 
 @dataclass(frozen=True)
@@ -119,6 +121,12 @@ class SectorSettings3D(SectorSettings):
         a spur sector needs 2).
     half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
         second (opposite hand); each is ``face_width / 2`` wide.
+    size_back : element size on the left sides of the loaded teeth, m (``size_flank`` ..
+        ``size_body``; None: ``size_flank``): the flank tables load and read right
+        flanks only (:mod:`pipeline.contact.fe3d_table`).
+    reach : whole gears only: the teeth more than ``reach`` teeth from every loaded tooth
+        are left out (the rim ends at the root circle there, :mod:`pipeline.fem.whole3d`);
+        None keeps every tooth.
     """
 
     size_flank: float = 1e-3
@@ -126,11 +134,18 @@ class SectorSettings3D(SectorSettings):
     profile_points: int = 40
     loft_sections: int = 7
     half: int = 0
+    size_back: float | None = None
+    reach: int | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
         check_int_range("sector.loft_sections", self.loft_sections, 2, 100)
         check_int_range("sector.half", self.half, 0, 1)
+        if self.size_back is not None:
+            check_range("sector.size_back", self.size_back, self.size_flank, self.size_body,
+                        unit="m")
+        if self.reach is not None:
+            check_int_range("sector.reach", self.reach, 1, 1000)
 
     @classmethod
     def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0, half: int = 0
@@ -171,9 +186,35 @@ class SectorSettings3D(SectorSettings):
         # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
         # cells spanning the face would be poorly shaped
         body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
+        back = None if WHOLE_BACK is None else min(WHOLE_BACK * s.size_flank, body)
         return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
                        size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
-                       size_body=body, grading=WHOLE_GRADING * body)
+                       size_body=body, grading=WHOLE_GRADING * body, size_back=back,
+                       reach=whole_reach(gear, s))
+
+
+def whole_reach(gear: GearSpec, settings: SectorSettings) -> int | None:
+    """Teeth a whole gear keeps on each side of its loaded teeth (``reach``): those within
+    :data:`WHOLE_REACH` rim depths (root radius minus inner radius) along the root circle,
+    at least 2; None (every tooth) when that is more than half the gear."""
+    from pipeline.fem.outline2d import inner_radius
+
+    if WHOLE_REACH is None:
+        return None
+    depth = gear.root_radius - inner_radius(gear, settings)
+    pitch = 2 * math.pi * gear.root_radius / gear.teeth
+    reach = max(2, math.ceil(WHOLE_REACH * depth / pitch))
+    return None if 2 * reach >= gear.teeth else reach
+
+
+def far_teeth(settings: SectorSettings3D, z: int) -> set[int]:
+    """The teeth a whole gear of ``z`` teeth leaves out: more than ``settings.reach``
+    teeth (counted round the gear) from every loaded tooth; none if ``reach`` or
+    ``loaded`` is None."""
+    if settings.reach is None or settings.loaded is None:
+        return set()
+    return {k for k in range(z)
+            if min(min(abs(k - j), z - abs(k - j)) for j in settings.loaded) > settings.reach}
 
 
 def meshed_width(gear: GearSpec) -> float:

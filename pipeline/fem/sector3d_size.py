@@ -1,7 +1,8 @@
 """Size of a 3D sector or whole-gear model before meshing (:mod:`pipeline.fem.size3d`).
 
 Mirrors :func:`pipeline.fem.grading3d.tooth_size_field`: the section (teeth above the
-root circle counted at half their annulus, the rim between root and inner radius) is
+root circle counted at half their annulus, less a whole gear's teeth left out by
+``reach``; the rim between root and inner radius) is
 swept over the meshed width at ``size_body``; the sides of the loaded teeth add a layer
 at ``size_flank`` (to a quarter of it from the surface) graded to ``size_body`` over
 ``grading``; the other teeth are meshed at ``size_tooth``, graded to ``size_body`` over
@@ -16,6 +17,7 @@ import math
 
 import numpy as np
 
+from pipeline.fem.mesh_settings import far_teeth
 from pipeline.fem.outline2d import inner_radius, outline_pieces
 from pipeline.fem.size3d import SizeEstimate, graded_layer_cells, uniform_cells
 from pipeline.geometry.gear import GearSpec
@@ -36,16 +38,18 @@ def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
                 if name in keep)
     rf, ra, r_in = gear.root_radius, gear.tip_radius_, inner_radius(gear, settings)
     share = n / z
+    far = len(far_teeth(settings, z))  # teeth a whole gear leaves out (the rim remains)
     rim = math.pi * abs(rf**2 - r_in**2) * share * width
     teeth = 0.5 * math.pi * abs(ra**2 - rf**2) * share * width
     h0 = settings.size_flank
     hb = max(min(settings.size_body, 0.5 * width), h0)
-    cells = uniform_cells(rim + teeth, hb)
+    cells = uniform_cells(rim + teeth * (n - far) / n, hb)
     cells += graded_layer_cells(flank * width, h0, hb, 0.25 * h0, settings.grading)
     others = (n - len(loaded)) / n
     if others > 0:
         ht = min(max(settings.size_tooth or h0, h0), hb)
-        cells += others * (uniform_cells(teeth, ht) - uniform_cells(teeth, hb))
+        kept = (n - len(loaded) - far) / n
+        cells += kept * (uniform_cells(teeth, ht) - uniform_cells(teeth, hb))
         cells += graded_layer_cells(2 * math.pi * rf * share * others * width, ht, hb, 0.0,
                                     settings.grading)
     return SizeEstimate(SURFACE_FACTOR * cells)

@@ -66,7 +66,7 @@ from pipeline.fem.curved_p2 import SweptOutline, curve_p2
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
 from pipeline.fem.loft3d import generate_linear_tets, loft_inputs
-from pipeline.fem.mesh_settings import SectorSettings3D
+from pipeline.fem.mesh_settings import SectorSettings3D, far_teeth
 from pipeline.fem.outline2d import outline_pieces
 from pipeline.geometry.gear import GearSpec
 
@@ -76,6 +76,12 @@ SPLINE_SPACING = 0.75
 of a z 30 gear, 0.05 s at this spacing). The mesh does not inherit the splines' error:
 its boundary nodes are put on the exact surface; Gmsh's vertices moved by at most 1.2 %
 of a flank cell getting there (z 30, refinement 1; 10 % at twice the spacing)."""
+
+RIM_SPACING = 8.0
+"""The splines of the rim arcs (:func:`kept_pieces`) pass through points this many times
+:data:`SPLINE_SPACING` apart: a circle needs few (a cubic spline through points 8 x 0.75
+flank cells apart strays from the root circle of the gear of Yang et al. (2026) by
+less than a nanometre), and the twist's cost grows with the points."""
 
 EXACT_POINTS = 4
 """The exact surfaces the nodes are put on are swept splines through this many times the
@@ -100,14 +106,58 @@ def linear_whole_gear_mesh_3d(gear: GearSpec, settings: SectorSettings3D
     named groups) and the exact surfaces of its curved groups (tooth sides, bore) that
     :func:`pipeline.fem.curved_p2.curve_p2` puts the nodes on."""
     r_in, b, rate, pieces = loft_inputs(gear, settings, gear.teeth)
+    pieces = kept_pieces(gear, settings, pieces)
     with gmsh_session() as gmsh:
         vol, groups = _swept_section(gmsh, pieces, r_in, b, rate, settings.size_flank)
         tooth_size_field(gmsh, settings, groups, gear.root_radius, extent=b)
         gmsh.option.setNumber("Mesh.LcIntegrationPrecision", SIZE_INTEGRATION_PRECISION)
         generate_linear_tets(gmsh)
         data = extract_tet_mesh(gmsh, 1, groups, {"gear": [vol]})
-    exact = outline_pieces(gear, gear.teeth, EXACT_POINTS * settings.profile_points)
+    exact = kept_pieces(gear, settings, outline_pieces(
+        gear, gear.teeth, EXACT_POINTS * settings.profile_points))
     return data, SweptOutline(exact, r_in, b, rate)
+
+
+def kept_pieces(gear: GearSpec, settings: SectorSettings3D,
+                pieces: list[tuple[str, np.ndarray]]) -> list[tuple[str, np.ndarray]]:
+    """The outline ``pieces`` of the whole gear with every run of left-out teeth
+    (:func:`far_teeth`) replaced by a ``"rim"`` piece: the arc from the root point before
+    the run to the one after it (their radii are the root radius; the arc's radius runs
+    linearly from one to the other, so the outline stays closed), sampled as densely
+    as the tooth outline (twice the pieces' points per flank, per angular pitch)."""
+    far = far_teeth(settings, gear.teeth)
+    if not far:
+        return pieces
+    per_pitch = 2 * max(seg.shape[0] for _, seg in pieces)
+    out, run = [], []
+
+    def close_run() -> None:
+        if run:
+            out.append(("rim", _root_arc(run[0][0], run[-1][-1], per_pitch, gear.teeth)))
+            run.clear()
+
+    for name, seg in pieces:
+        if int(name.lstrip("rightleft")) in far:
+            run.append(seg)
+        else:
+            close_run()
+            out.append((name, seg))
+    close_run()
+    return out
+
+
+def _root_arc(start: np.ndarray, end: np.ndarray, per_pitch: int, z: int) -> np.ndarray:
+    """(m, 2) points of the counter-clockwise arc from ``start`` to ``end`` (m)."""
+    a0, a1 = math.atan2(start[1], start[0]), math.atan2(end[1], end[0])
+    if a1 <= a0:
+        a1 += 2 * math.pi
+    n = max(2, math.ceil((a1 - a0) * z / (2 * math.pi) * per_pitch))
+    t = np.linspace(0.0, 1.0, n + 1)
+    r = np.hypot(*start) + (np.hypot(*end) - np.hypot(*start)) * t
+    a = a0 + (a1 - a0) * t
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a)])
+    pts[0], pts[-1] = start, end
+    return pts
 
 
 def _swept_section(gmsh, pieces, r_in: float, b: float, rate: float, size_flank: float
@@ -125,7 +175,8 @@ def _swept_section(gmsh, pieces, r_in: float, b: float, rate: float, size_flank:
     prev, curves, names = first, [], []
     for i, (name, seg) in enumerate(pieces):
         end = first if i == len(pieces) - 1 else point(seg[-1])
-        tags = [prev, *(point(seg[k]) for k in _spline_points(seg, spacing)[1:-1]), end]
+        step = RIM_SPACING * spacing if name == "rim" else spacing
+        tags = [prev, *(point(seg[k]) for k in _spline_points(seg, step)[1:-1]), end]
         curves.append(geo.addSpline(tags) if len(tags) > 2 else geo.addLine(*tags))
         names.append(name)
         prev = end
