@@ -27,17 +27,14 @@ def tooth_size_field(gmsh, settings: SectorSettings3D, groups: dict[str, list[in
     surface ``extent`` (m), at about two points per flank element (a coarse sampling
     leaves the fine zone ragged along a wide face)."""
     loaded = range(settings.teeth) if settings.loaded is None else settings.loaded
-    sides = {"right": settings.size_flank, "left": settings.size_back or settings.size_flank}
+    fine = [s for k in loaded for side in ("right", "left") for s in groups[f"{side}{k}"]]
     fld = gmsh.model.mesh.field
-    fields = []
-    for size in sorted(set(sides.values())):
-        dist = fld.add("Distance")
-        fld.setNumbers(dist, "SurfacesList", [s for k in loaded for side, h in sides.items()
-                                              if h == size for s in groups[f"{side}{k}"]])
-        if extent is not None:
-            n = int(min(400, max(20, math.ceil(2 * extent / size))))
-            fld.setNumber(dist, "Sampling", n)
-        fields.append((dist, size, 0.25 * settings.size_flank))
+    dist = fld.add("Distance")
+    fld.setNumbers(dist, "SurfacesList", fine)
+    if extent is not None:
+        n = int(min(400, max(20, math.ceil(2 * extent / settings.size_flank))))
+        fld.setNumber(dist, "Sampling", n)
+    fields = [(dist, settings.size_flank, 0.25 * settings.size_flank)]
     if len(loaded) < settings.teeth:
         depth = fld.add("MathEval")
         fld.setString(depth, "F", f"{root_radius!r} - Sqrt(x * x + y * y)")

@@ -26,10 +26,10 @@ from pipeline.validation import InputError, check_int_range, check_range
 
 # Whole-gear 3D element sizes in normal modules (over sqrt(refinement)), and the grading
 # distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
-WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
+WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 8.0, 1.5
 WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
-WHOLE_BACK = None  # left sides of the loaded teeth, in flank sizes (None: flank size)
 WHOLE_REACH = 2.0  # teeth kept beyond the loaded ones: this many rim depths along the root
+# circle (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d)
 
 
 @dataclass(frozen=True)
@@ -121,9 +121,6 @@ class SectorSettings3D(SectorSettings):
         a spur sector needs 2).
     half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
         second (opposite hand); each is ``face_width / 2`` wide.
-    size_back : element size on the left sides of the loaded teeth, m (``size_flank`` ..
-        ``size_body``; None: ``size_flank``): the flank tables load and read right
-        flanks only (:mod:`pipeline.contact.fe3d_table`).
     reach : whole gears only: the teeth more than ``reach`` teeth from every loaded tooth
         are left out (the rim ends at the root circle there, :mod:`pipeline.fem.whole3d`);
         None keeps every tooth.
@@ -134,16 +131,12 @@ class SectorSettings3D(SectorSettings):
     profile_points: int = 40
     loft_sections: int = 7
     half: int = 0
-    size_back: float | None = None
     reach: int | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
         check_int_range("sector.loft_sections", self.loft_sections, 2, 100)
         check_int_range("sector.half", self.half, 0, 1)
-        if self.size_back is not None:
-            check_range("sector.size_back", self.size_back, self.size_flank, self.size_body,
-                        unit="m")
         if self.reach is not None:
             check_int_range("sector.reach", self.reach, 1, 1000)
 
@@ -178,18 +171,19 @@ class SectorSettings3D(SectorSettings):
         The loaded teeth's sides get the sector's flank size ``m_n / (3 refinement)``;
         the other teeth ``WHOLE_TOOTH m_n / sqrt(refinement)``; the body grows to
         ``WHOLE_BODY m_n / sqrt(refinement)`` over ``WHOLE_GRADING`` times that distance
-        (a growth rate Gmsh meshes with well-shaped cells). See
-        :mod:`pipeline.fem.whole3d` for the measured DOF counts and convergence.
+        (a growth rate Gmsh meshes with well-shaped cells). The teeth farther than
+        ``WHOLE_REACH`` rim depths from the loaded ones along the root circle are left
+        out (``reach``, :func:`whole_reach`). See :mod:`pipeline.fem.whole3d` for the
+        measured DOF counts and their effect on the tables.
         """
         s = cls.for_gear(gear, 1, refinement, half)
         m, root = gear.module, math.sqrt(refinement)
         # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
         # cells spanning the face would be poorly shaped
         body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
-        back = None if WHOLE_BACK is None else min(WHOLE_BACK * s.size_flank, body)
         return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
                        size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
-                       size_body=body, grading=WHOLE_GRADING * body, size_back=back,
+                       size_body=body, grading=WHOLE_GRADING * body,
                        reach=whole_reach(gear, s))
 
 
@@ -199,8 +193,6 @@ def whole_reach(gear: GearSpec, settings: SectorSettings) -> int | None:
     at least 2; None (every tooth) when that is more than half the gear."""
     from pipeline.fem.outline2d import inner_radius
 
-    if WHOLE_REACH is None:
-        return None
     depth = gear.root_radius - inner_radius(gear, settings)
     pitch = 2 * math.pi * gear.root_radius / gear.teeth
     reach = max(2, math.ceil(WHOLE_REACH * depth / pitch))
