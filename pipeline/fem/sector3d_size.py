@@ -7,7 +7,8 @@ swept over the meshed width at ``size_body``; the sides of the loaded teeth add 
 at ``size_flank`` (to a quarter of it from the surface) graded to ``size_body`` over
 ``grading``; the other teeth are meshed at ``size_tooth``, graded to ``size_body`` over
 ``grading`` below the root circle. Cells are never larger than half the meshed width
-(Gmsh puts at least two across the face). The sum is scaled by :data:`SURFACE_FACTOR`
+(Gmsh puts at least two across the face; the grading then stops at that size, over its
+share of ``grading``). The sum is scaled by :data:`SURFACE_FACTOR`
 for the finer cells Gmsh makes along the curved flank and fillet surfaces.
 """
 
@@ -44,12 +45,20 @@ def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
     h0 = settings.size_flank
     hb = max(min(settings.size_body, 0.5 * width), h0)
     cells = uniform_cells(rim + teeth * (n - far) / n, hb)
-    cells += graded_layer_cells(flank * width, h0, hb, 0.25 * h0, settings.grading)
+    cells += graded_layer_cells(flank * width, h0, hb, 0.25 * h0, _grown(settings, h0, hb))
     others = (n - len(loaded)) / n
     if others > 0:
         ht = min(max(settings.size_tooth or h0, h0), hb)
         kept = (n - len(loaded) - far) / n
         cells += kept * (uniform_cells(teeth, ht) - uniform_cells(teeth, hb))
         cells += graded_layer_cells(2 * math.pi * rf * share * others * width, ht, hb, 0.0,
-                                    settings.grading)
+                                    _grown(settings, ht, hb))
     return SizeEstimate(SURFACE_FACTOR * cells)
+
+
+def _grown(settings, h: float, hb: float) -> float:
+    """Distance (m) over which the size grows from ``h`` to ``hb``: the size fields grow
+    linearly from ``h`` to ``size_body`` over ``grading``, so to a cap ``hb`` below
+    ``size_body`` (half the meshed width) over that share of it."""
+    top = settings.size_body
+    return settings.grading if top <= h else settings.grading * (hb - h) / (top - h)
