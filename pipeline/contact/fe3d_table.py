@@ -15,7 +15,9 @@ clamped bore, all teeth alike), so the approach at tooth ``a`` per unit load at 
 ``t0 = z // 2`` and read on the teeth ``t0 - s .. t0 + s`` (``s`` the span of the
 tabulated teeth): one solve per grid point of one flank instead of one per point of
 every tabulated flank, and a mesh fine on ``t0`` and :data:`FINE_NEIGHBOURS` teeth on
-each side only (the far teeth and the body coarse, as before). The tabulated block
+each side only (the other teeth and the body coarse; the teeth beyond two rim depths
+along the root circle left out, the read teeth always kept: :mod:`pipeline.fem.whole3d`,
+where the unknowns of each region are counted). The tabulated block
 ``(a, b)`` is the columns read at offset ``a - b``; the two halves of the table read
 Maxwell-Betti's pairs on differently meshed teeth (``info["reciprocity_error"]``,
 0.1-0.2 % at the defaults) and are averaged. Against the former model (every tabulated
