@@ -88,9 +88,10 @@ from pipeline.validation import InputError
 TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe3d_table")
 """The code the 3D tables depend on (part of their cache key)."""
 FINE_NEIGHBOURS = 1
-"""Teeth on each side of a whole gear's loaded tooth meshed as finely as it is (module
-docstring: the responses read on a coarse neighbour made the mesh stiffness 0.5 % stiffer
-than with every tooth fine, one fine neighbour 0.13 %, all read teeth fine 0.004 %)."""
+"""Teeth on each side of a whole gear's loaded tooth meshed nearly as finely as it is
+(``near``, 1.5 flank sizes: :mod:`pipeline.fem.whole3d`; module docstring: the
+responses read on a coarse neighbour made the mesh stiffness 0.5 % stiffer than with
+every tooth fine, one fine neighbour 0.13 %, all read teeth fine 0.004 %)."""
 _STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
            "timing_values", "symmetry_error")  # arrays in the cache file
 @dataclass(frozen=True, eq=False)
@@ -152,13 +153,15 @@ class FlankTable3D:
 
 
 def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings,
-                     loaded: np.ndarray | None = None) -> SectorSettings3D:
+                     loaded: np.ndarray | None = None, near=()) -> SectorSettings3D:
     """Mesh settings: a sector of ``teeth`` teeth, or the whole gear (``teeth = z``)
-    graded from the ``loaded`` teeth (every tooth fine for ``settings.mesh = "uniform"``)."""
+    graded from the ``loaded`` and ``near`` teeth (every tooth kept and fine for
+    ``settings.mesh = "uniform"``)."""
     if teeth == gear.teeth:
-        s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement)
+        s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement, near=near)
         if settings.mesh == "uniform":
-            s3 = replace(s3, loaded=None, size_tooth=None, reach=None)
+            s3 = replace(s3, loaded=None, near=(), size_near=None, size_tooth=None,
+                         reach=None)
     else:
         s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
     if settings.hub_depth is not None:
@@ -258,7 +261,8 @@ def _tooth_columns(gear: GearSpec, span: int, settings: FE3DSettings, cache: Cac
     t0 = gear.teeth // 2
     reads = t0 + np.arange(-span, span + 1)
     near = min(span, FINE_NEIGHBOURS)
-    s3 = _sector_settings(gear, gear.teeth, settings, t0 + np.arange(-near, near + 1))
+    s3 = _sector_settings(gear, gear.teeth, settings, [t0],
+                          near=[t0 + k for k in range(-near, near + 1) if k])
     if s3.reach is not None and s3.reach < span - near + 1:
         # the read teeth kept, each with a kept neighbour beyond it
         s3 = replace(s3, reach=span - near + 1)

@@ -5,7 +5,8 @@ root circle counted at half their annulus, less a whole gear's teeth left out by
 ``reach``; the rim between root and inner radius) is
 swept over the meshed width at ``size_body``; the sides of the loaded teeth add a layer
 at ``size_flank`` (to a quarter of it from the surface) graded to ``size_body`` over
-``grading``; the other teeth are meshed at ``size_tooth``, graded to ``size_body`` over
+``grading`` (those of the ``near`` teeth at ``size_near``); the other teeth are meshed
+at ``size_tooth``, graded to ``size_body`` over
 ``grading`` below the root circle. Cells are never larger than half the meshed width
 (Gmsh puts at least two across the face; the grading then stops at that size, over its
 share of ``grading``). The sum is scaled by :data:`SURFACE_FACTOR`
@@ -33,10 +34,14 @@ def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
     (a :class:`~pipeline.fem.mesh_settings.SectorSettings3D`) over the meshed ``width`` (m)."""
     n, z = settings.teeth, gear.teeth
     loaded = range(n) if settings.loaded is None else settings.loaded
-    keep = {f"{side}{k}" for k in loaded for side in ("right", "left")}
-    flank = sum(float(np.hypot(*np.diff(seg, axis=0).T).sum())
-                for name, seg in outline_pieces(gear, n, settings.profile_points)
-                if name in keep)
+    pieces = outline_pieces(gear, n, settings.profile_points)
+
+    def sides(teeth) -> float:  # m, the outline length of both sides of ``teeth``
+        keep = {f"{side}{k}" for k in teeth for side in ("right", "left")}
+        return sum(float(np.hypot(*np.diff(seg, axis=0).T).sum())
+                   for name, seg in pieces if name in keep)
+
+    flank = sides(loaded)
     rf, ra, r_in = gear.root_radius, gear.tip_radius_, inner_radius(gear, settings)
     share = n / z
     far = len(far_teeth(settings, z))  # teeth a whole gear leaves out (the rim remains)
@@ -46,10 +51,14 @@ def estimated_size_3d(gear: GearSpec, settings, width: float) -> SizeEstimate:
     hb = max(min(settings.size_body, 0.5 * width), h0)
     cells = uniform_cells(rim + teeth * (n - far) / n, hb)
     cells += graded_layer_cells(flank * width, h0, hb, 0.25 * h0, _grown(settings, h0, hb))
-    others = (n - len(loaded)) / n
+    if settings.near:
+        hn = min(max(settings.size_near or h0, h0), hb)
+        cells += graded_layer_cells(sides(settings.near) * width, hn, hb, 0.25 * h0,
+                                    _grown(settings, hn, hb))
+    others = (n - len(loaded) - len(settings.near)) / n
     if others > 0:
         ht = min(max(settings.size_tooth or h0, h0), hb)
-        kept = (n - len(loaded) - far) / n
+        kept = (n - len(loaded) - len(settings.near) - far) / n
         cells += kept * (uniform_cells(teeth, ht) - uniform_cells(teeth, hb))
         cells += graded_layer_cells(2 * math.pi * rf * share * others * width, ht, hb, 0.0,
                                     _grown(settings, ht, hb))
