@@ -430,3 +430,35 @@ def test_reach_is_validated():
     assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=14), 30) == {0}
     assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=15), 30) == set()
     assert far_teeth(SectorSettings3D(teeth=30, loaded=(1, 29), reach=13), 30) == {15}
+
+
+def test_near_teeth_are_between_the_loaded_and_the_other_teeth():
+    """Loaded (15,), near (14, 16) at 1.5 flank sizes (WHOLE_NEAR; refinement 0.6: flank
+    1.67 mm, near 2.5 mm, other teeth 7.7 mm): the mean boundary edge of the near teeth lies
+    between the loaded tooth's and a far tooth's (measured 1.34, 1.61 and 4.03 mm: the near
+    tooth's sides are partly within the loaded tooth's grading, a far tooth's edges are
+    bounded by its own 6 mm face, not by size_tooth), and the teeth left out
+    are counted from the near teeth too (reach 7: teeth 7..23 kept, as for loaded 14..16)."""
+    s = SectorSettings3D.whole_gear(SPUR, (15,), 0.6, near=(14, 16))
+    assert s.size_near == pytest.approx(1.5 * s.size_flank, rel=1e-12)
+    linear, boundary = linear_whole_gear_mesh_3d(SPUR, s)
+    data = curve_p2(linear, boundary)
+
+    def mean_edge(name: str) -> float:
+        p = data.points[:, data.surfaces[name][:3]]
+        return float(np.mean(np.linalg.norm(p[:, 0] - p[:, 1], axis=0)))
+
+    edges = [mean_edge(f"right{k}") for k in (15, 14, 10)]
+    print("mean edges (m):", edges)
+    assert 1.1 * edges[0] < edges[1] < 0.6 * edges[2]
+    assert {f"right{k}" for k in range(7, 24)} <= set(data.surfaces)
+    assert "right6" not in data.surfaces and "right24" not in data.surfaces
+
+
+def test_near_teeth_are_validated():
+    with pytest.raises(InputError, match="sector.near: tooth 15 is loaded"):
+        SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(15, 16))
+    with pytest.raises(InputError, match="sector.size_near"):
+        replace(SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(16,)), size_near=1e-5)
+    with pytest.raises(InputError, match="sector.near"):
+        SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(30,))
