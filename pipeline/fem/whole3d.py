@@ -18,37 +18,45 @@ Boundary conditions are those of the 2D whole gear
 
 Mesh. One P2 tetrahedral mesh graded by :func:`pipeline.fem.grading3d.tooth_size_field`:
 ``size_flank`` on both sides of the *loaded* teeth (those whose flanks carry grid
-points), ``size_tooth`` on the other teeth, growing to ``size_body`` in the rim
-and web (:meth:`~pipeline.fem.mesh_settings.SectorSettings3D.whole_gear`; defaults:
-flank cells m_n / (3 refinement), 2 m_n on the other teeth, 8 m_n in the body, at most
-two face widths).
+points), ``size_near`` on the *near* teeth (read but not loaded: the flank tables'
+neighbours of their loaded tooth), ``size_tooth`` on the other teeth, growing to
+``size_body`` in the rim and web
+(:meth:`~pipeline.fem.mesh_settings.SectorSettings3D.whole_gear`; defaults: flank cells
+m_n / (3 refinement), 1.5 times that on the near teeth, 2 m_n on the other teeth, 8 m_n
+in the body, at most two face widths).
 
 Far teeth left out. A tooth far from the loaded ones carries no load; it only thickens
 the rim, where the body's deformation under a tooth load has died out over a few rim
 depths. The default whole gear keeps the teeth within ``WHOLE_REACH`` = 2 rim depths
-(root radius minus inner radius) of the loaded teeth along the root circle, at least 2
-on each side (``reach``, :func:`pipeline.fem.mesh_settings.whole_reach`); elsewhere the
-rim ends at the root circle (:func:`kept_pieces`: the root arc, group ``rim``). Where the
-unknowns were (refinement 1, one loaded tooth and a fine neighbour on each side, P2
-nodes x 3, the teeth above the root circle, the rim the 2 m_n below it): the traction
-pair of Yang et al. (2026), pinion z 31 (bore 45 mm) 164.7k = loaded tooth 33k + fine
-neighbours 65k + 28 far teeth 35k + rim 25k + body 6k; gear z 104 (bore 150 mm) 284.0k
-= 31k + 60k + 101 far teeth 115k + 41k + 37k. Keeping 6 (pinion) and 20 (gear) teeth on
-each side of the fine ones, with 8 m_n instead of 5 m_n body cells: 149.5k (34k + 67k +
-12 other teeth 17k + 27k + 6k) and 214.0k (31k + 62k + 40 other teeth 59k + 37k + 25k)
-unknowns, 28.1k and 39.4k cells (were 30.7k and 51.5k); the pair's loaded contact at its rated 6031 N m (60 positions) moved by
--0.02 / -0.02 / -0.03 % (mesh stiffness mean / min / max) and -0.11 % (TE p-p). Apart:
-the teeth left out -0.07 % and TE +0.11 % (151.8k / 229.0k unknowns; 3 rim depths
--0.01 %, 1.5 rim depths -0.10 %; a fixed 4 or 2 teeth on each side -0.25 or -0.46 %: the
-thick rims deform over more teeth than that), the body cells +0.04 %, TE -0.07 %. Measured
-and not taken: the unloaded, unread left sides of the fine teeth at twice the flank size
-(pinion 165k -> 127k) made the traction pair 0.23 % stiffer and its TE p-p 0.70 % smaller,
-the z 30/30 pair 0.35 % stiffer; the fine zone graded over 1 instead of 1.5 body sizes
-+0.23 % (z 30/30: +0.41 %); the far teeth at 3 m_n left the load patches of the read
-teeth three teeth away without a flank facet to act on; a structured sweep (prisms
-split into tetrahedra, layers three flank cells thick) would need as many layers through
-the coarse body as through the loaded teeth: 3 x 596 section triangles x 18 layers =
-32k cells for the pinion, 101k for the gear, against 28k and 39k graded tetrahedra.
+(root radius minus inner radius) of the loaded and near teeth along the root circle, at
+least 2 on each side (``reach``, :func:`pipeline.fem.mesh_settings.whole_reach`);
+elsewhere the rim ends at the root circle (:func:`kept_pieces`: the root arc, group
+``rim``).
+
+Where the unknowns are, and what each saving costs. Refinement 1, the flank tables' model
+(one loaded tooth, a read neighbour on each side), P2 nodes x 3, teeth counted above the
+root circle, the rim the 2 m_n below it. The traction pair of Yang et al. (2026): pinion
+z 31 (bore 45 mm) had 164.7k unknowns = loaded tooth 33k + neighbours 65k + 28 other
+teeth 35k + rim 25k + body 6k (30.7k cells); gear z 104 (bore 150 mm) 284.0k = 31k + 60k
++ 101 other teeth 115k + 41k + 37k (51.5k cells). Now (neighbours at 1.5 flank sizes, 6
+and 20 teeth kept on each side of them, 8 m_n body cells): pinion 103.0k = 33k + 27k +
+12 other teeth 15k + 22k + 6k (19.1k cells), gear 175.8k = 31k + 31k + 40 other teeth
+58k + 31k + 25k (31.9k cells). The pair's loaded contact at its rated 6031 N m (60
+positions) moved by +0.04 / +0.05 / +0.04 % (mesh stiffness mean / min / max) and
+-0.22 % (TE p-p); the z 30/30 pair of ``bench_fe3d`` (46.5k -> 26.5k unknowns) by +0.05 %
+and -0.04 %. One change at a time (traction pair; z 30/30): the teeth left out -0.07 %,
+TE +0.11 % (3 rim depths -0.01 %, 1.5 rim depths -0.10 %; a fixed 4 or 2 teeth on each
+side -0.25 or -0.46 %: these thick rims deform over more teeth than that; z 30/30, 3
+teeth on each side, -0.02 %); the body cells +0.04 %, TE -0.07 %; the neighbours at 1.5
+flank sizes +0.06 % (z 30/30 +0.10 %, at 2 flank sizes +0.25 %, coarse +0.5 %,
+:mod:`pipeline.contact.fe3d_table`). Measured and not taken: the unloaded, unread left
+sides of the fine teeth at twice the flank size made the traction pair 0.23 % stiffer
+and its TE p-p 0.70 % smaller (z 30/30: +0.35 %, -0.41 %); the fine zone graded over 1
+instead of 1.5 body sizes +0.23 % (z 30/30: +0.41 %); the far teeth at 3 m_n left the
+load patches of the read teeth three teeth away without a flank facet to act on; a
+structured sweep (prisms split into tetrahedra, layers three flank cells thick) needs as
+many layers through the coarse body as through the loaded teeth: 3 x 596 section
+triangles x 18 layers = 32k cells for the pinion, 101k for the gear (1869 triangles).
 
 How it is meshed, and why. Gmsh's built-in kernel twists the plane section (splines
 through outline points :data:`SPLINE_SPACING` flank cells apart, the bore circle as a hole)
