@@ -14,20 +14,22 @@ clamped bore, all teeth alike), so the approach at tooth ``a`` per unit load at 
 ``b`` depends on ``a - b`` only. The table is therefore solved for one loaded tooth
 ``t0 = z // 2`` and read on the teeth ``t0 - s .. t0 + s`` (``s`` the span of the
 tabulated teeth): one solve per grid point of one flank instead of one per point of
-every tabulated flank, and a mesh fine on ``t0`` and :data:`FINE_NEIGHBOURS` teeth on
-each side only (the other teeth and the body coarse; the teeth beyond two rim depths
-along the root circle left out, the read teeth always kept: :mod:`pipeline.fem.whole3d`,
-where the unknowns of each region are counted). The tabulated block
-``(a, b)`` is the columns read at offset ``a - b``; the two halves of the table read
-Maxwell-Betti's pairs on differently meshed teeth (``info["reciprocity_error"]``,
-0.1-0.2 % at the defaults) and are averaged. Against the former model (every tabulated
-tooth loaded and fine) on the z 30/30 helical pair of ``bench_fe3d``: mesh stiffness
-mean, min and max within 0.05 %, TE p-p 0.16 %, from one 46k-unknown model for both gears
-(mirror images, below) and 56 instead of 2 x 168 load cases; against every tooth fine
-(269k unknowns) 0.06-0.10 %, TE p-p 0.05 % (``workflows/fe3d_convergence.py``); on the
-traction pair of Yang et al. (2026) (``gearpipe contact``) within 0.07 %, TE p-p 0.01 %.
-Responses read on a coarse neighbour made the z 30/30 pair 0.5 % stiffer than with every
-tooth fine (hence the fine neighbours), coarser far teeth changed it by 0.05 %.
+every tabulated flank, and a mesh fine on ``t0`` and nearly as fine (1.5 flank sizes) on
+:data:`FINE_NEIGHBOURS` teeth on each side only (the other teeth and the body coarse;
+the teeth beyond two rim depths along the root circle left out, the read teeth always
+kept: :mod:`pipeline.fem.whole3d`, where the unknowns of each region are counted). The
+tabulated block ``(a, b)`` is the columns read at offset ``a - b``; the two halves of the
+table read Maxwell-Betti's pairs on differently meshed teeth
+(``info["reciprocity_error"]``, 0.1-0.2 % at the defaults) and are averaged. Against the
+former model (every tabulated tooth loaded and fine) on the z 30/30 helical pair of
+``bench_fe3d``: mesh stiffness mean, min and max 0.08-0.12 % stiffer, TE p-p 0.12 %
+smaller, from one 26k-unknown model for both gears (mirror images, below) and 56 instead
+of 2 x 168 load cases; against every tooth kept and fine (268k unknowns) +0.15-0.16 %,
+TE p-p -0.06 % (``workflows/fe3d_convergence.py``); on the traction pair of Yang et al.
+(2026) (``gearpipe contact``, with fine neighbours and every tooth kept) within 0.07 %,
+TE p-p 0.01 %. Responses read on a coarse neighbour made the z 30/30 pair 0.5 % stiffer
+than with every tooth fine (hence the near neighbours: +0.10 % at 1.5 flank sizes,
++0.25 % at 2), coarser far teeth changed it by 0.05 %.
 A sector (``body = "sector"``) is clamped at its cuts, not alike from every tooth: its
 tabulated teeth are all loaded.
 
