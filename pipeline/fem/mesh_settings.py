@@ -29,8 +29,8 @@ from pipeline.validation import InputError, check_int_range, check_range
 WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 8.0, 1.5
 WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
 WHOLE_NEAR = 1.5  # read, unloaded neighbours of a loaded tooth, in flank sizes
-WHOLE_REACH = 2.0  # teeth kept beyond the loaded ones: this many rim depths along the root
-# circle (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d)
+WHOLE_REACH = 2.0  # teeth kept beyond the loaded and near ones: this many rim depths along the
+# root circle (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d)
 
 
 @dataclass(frozen=True)
