@@ -175,7 +175,7 @@ def kept_pieces(gear: GearSpec, settings: SectorSettings3D,
             run.clear()
 
     for name, seg in pieces:
-        if int(name.lstrip("rightleft")) in far:
+        if int(name.removeprefix("right").removeprefix("left")) in far:
             run.append(seg)
         else:
             close_run()
