@@ -46,7 +46,11 @@ and 0.18 / 0.25 at its minimum / 1st percentile, were 0.12 / 0.28 and 0.20 / 0.2
 pair's loaded contact at its rated 6031 N m (60
 positions) moved by +0.04 / +0.05 / +0.04 % (mesh stiffness mean / min / max) and
 -0.22 % (TE p-p); the z 30/30 pair of ``bench_fe3d`` (46.5k -> 26.5k unknowns) by +0.05 %
-and -0.04 %. One change at a time (traction pair; z 30/30): the teeth left out -0.07 %,
+and -0.04 %. Time (``workflows/benchmarks/bench_fe3d.py --full`` side by side with the
+former meshes, OMP_NUM_THREADS=2, load 3-4): the traction pair's tables 33 s against 84 s
+cold (pinion mesh 1.2 s, assembly 2.0, factorisation 4.1, solves 3.6; gear 2.2, 1.9, 6.7,
+6.1), peak memory 1.65 against 2.34 GiB; the z 30/30 pair's 2.3 s against 3.1 s. One
+change at a time (traction pair; z 30/30): the teeth left out -0.07 %,
 TE +0.11 % (3 rim depths -0.01 %, 1.5 rim depths -0.10 %; a fixed 4 or 2 teeth on each
 side -0.25 or -0.46 %: these thick rims deform over more teeth than that; z 30/30, 3
 teeth on each side, -0.02 %); the body cells +0.04 %, TE -0.07 %; the neighbours at 1.5
