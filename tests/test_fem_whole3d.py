@@ -32,6 +32,7 @@ plane-stress near field that neither half-space nor plane-strain half-plane is.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -63,7 +64,9 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def coarse(cache):
-    return sector_mesh_3d(SPUR, SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), cache=Cache(cache))
+    """Every tooth kept (``reach = None``): the geometry of the whole gear."""
+    s = replace(SectorSettings3D.whole_gear(SPUR, LOADED, 0.6), reach=None)
+    return sector_mesh_3d(SPUR, s, cache=Cache(cache))
 
 
 def _line_load_rows(gear: GearSpec, refinement: float, ends: str, cache,
@@ -191,8 +194,9 @@ def test_plane_strain_limit_converges(strain_2d, cache):
 def test_thin_whole_gear_is_plane_stress(cache):
     """b = 1.5 mm (m_n / 2, the thinnest face a gear accepts) spur gear, free end faces, one
     patch of half-width c = 2 mm at mid-face (cut to the face, so spread over its whole width)
-    on tooth 15, refinement 2 (flank cells m_n / 6 = b / 3; ~62k DOF): approach x b vs the 2D
-    plane-stress whole gear. Measured 0.996 for the loaded tooth and both neighbours (0.996-
+    on tooth 15, refinement 2 (flank cells m_n / 6 = b / 3; 52k DOF, teeth 7..23 kept): approach
+    x b vs the 2D plane-stress whole gear. Measured 0.996-0.997 for the loaded tooth and both
+    neighbours (0.996-
     0.997 at b = 1 mm, before face widths under m_n / 2 were refused; plane strain would be
     0.94 for the tooth and 1.01 for the neighbours). Band [0.98, 1.005]: mesh stiffening
     plus O((b / tooth thickness)^2) ~ 1 % of three-dimensional correction. At
@@ -326,7 +330,7 @@ def test_flank_compliance_equals_the_lofted_models():
     from pipeline.fem.whole3d_loft import build_lofted_whole_gear_3d
 
     gear = HELICAL
-    s = SectorSettings3D.whole_gear(gear, LOADED, 1.0)
+    s = replace(SectorSettings3D.whole_gear(gear, LOADED, 1.0), reach=None)  # the loft's
     swept = sector_mesh_3d(gear, s, cache=Cache.off())
     tets = to_skfem(build_lofted_whole_gear_3d(gear, s))
     _check_cells(tets.mesh)
@@ -347,7 +351,7 @@ def test_a_single_loaded_tooth_is_the_only_fine_one():
     """Loaded set (15,): its sides get the flank size, its neighbours already the far teeth's
     (mean boundary edge of tooth 15 below 0.6 of tooth 14's and tooth 0's; measured 1.4 vs
     3.9 and 3.9 mm), and its boundary nodes are curved like those of a larger loaded set."""
-    s = SectorSettings3D.whole_gear(SPUR, (15,), 0.6)
+    s = replace(SectorSettings3D.whole_gear(SPUR, (15,), 0.6), reach=None)
     linear, boundary = linear_whole_gear_mesh_3d(SPUR, s)
     data = curve_p2(linear, boundary)
 
@@ -382,3 +386,79 @@ def test_an_inverted_straight_cell_is_refused():
                        np.arange(4)[:, None], {"face": np.array([[0], [1], [2]])})
     with pytest.raises(RuntimeError, match="fold even with straight edges"):
         curve_p2(cell, Flat())
+
+
+def test_far_teeth_are_left_out_and_the_rim_is_the_root_circle(cache):
+    """The default whole gear keeps the teeth within 2 rim depths of the loaded ones along
+    the root circle: SPUR (r_f = 41.25 mm, bore 15 mm: depth 26.25 mm, root pitch
+    2 pi 41.25 / 30 = 8.639 mm) keeps ceil(2 x 26.25 / 8.639) = ceil(6.08) = 7 teeth on each
+    side of 14..16, i.e. 7..23; teeth 0..6 and 24..29 are left out. The mesh has no groups
+    for them, a ``rim`` group whose nodes all lie on the root circle (1e-12 m), and its
+    volume is (area of the kept outline - bore disc) x b within 1e-3 (the kept outline:
+    the polyline of the kept teeth closed by the root arcs, 1e-5 from exact)."""
+    from pipeline.fem.mesh_settings import far_teeth, whole_reach
+    from pipeline.fem.outline2d import outline_pieces
+    from pipeline.fem.whole3d import kept_pieces
+
+    s = SectorSettings3D.whole_gear(SPUR, LOADED, 0.6)
+    assert SPUR.root_radius == pytest.approx(41.25e-3, rel=1e-12)
+    assert whole_reach(SPUR, s) == s.reach == 7
+    assert far_teeth(s, SPUR.teeth) == set(range(7)) | set(range(24, 30))
+    sec = sector_mesh_3d(SPUR, s, cache=Cache(cache))
+    names = set(sec.facets)
+    assert {f"right{k}" for k in range(7, 24)} <= names and "rim" in names
+    assert not {f"{side}{k}" for k in (*range(7), *range(24, 30)) for side in ("right", "left")
+                } & names
+    rim = np.unique(sec.tets.triangles["rim"])
+    assert np.abs(np.hypot(*sec.mesh.doflocs[:2, rim]) - SPUR.root_radius).max() < 1e-12
+    xy = np.vstack([seg[:-1] for _, seg in kept_pieces(SPUR, s, outline_pieces(SPUR, 30, 400))])
+    x, y = xy.T
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    exact = (area - math.pi * sec.inner_radius**2) * SPUR.face_width
+    assert sec.volume() == pytest.approx(exact, rel=1e-3)
+
+
+def test_reach_is_validated():
+    """A reach below 1 tooth, or on a sector, is refused; the distance is counted round the
+    gear (tooth 0 is 15 teeth from tooth 15 either way)."""
+    with pytest.raises(InputError, match="sector.reach"):
+        SectorSettings3D(teeth=30, reach=0)
+    with pytest.raises(InputError, match="sector.reach = 2 applies to whole gears only"):
+        sector_mesh_3d(SPUR, SectorSettings3D(teeth=3, reach=2), cache=Cache.off())
+    from pipeline.fem.mesh_settings import far_teeth
+
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=14), 30) == {0}
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(15,), reach=15), 30) == set()
+    assert far_teeth(SectorSettings3D(teeth=30, loaded=(1, 29), reach=13), 30) == {15}
+
+
+def test_near_teeth_are_between_the_loaded_and_the_other_teeth():
+    """Loaded (15,), near (14, 16) at 1.5 flank sizes (WHOLE_NEAR; refinement 0.6: flank
+    1.67 mm, near 2.5 mm, other teeth 7.7 mm): the mean boundary edge of the near teeth lies
+    between the loaded tooth's and a far tooth's (measured 1.34, 1.61 and 4.03 mm: the near
+    tooth's sides are partly within the loaded tooth's grading, a far tooth's edges are
+    bounded by its own 6 mm face, not by size_tooth), and the teeth left out
+    are counted from the near teeth too (reach 7: teeth 7..23 kept, as for loaded 14..16)."""
+    s = SectorSettings3D.whole_gear(SPUR, (15,), 0.6, near=(14, 16))
+    assert s.size_near == pytest.approx(1.5 * s.size_flank, rel=1e-12)
+    linear, boundary = linear_whole_gear_mesh_3d(SPUR, s)
+    data = curve_p2(linear, boundary)
+
+    def mean_edge(name: str) -> float:
+        p = data.points[:, data.surfaces[name][:3]]
+        return float(np.mean(np.linalg.norm(p[:, 0] - p[:, 1], axis=0)))
+
+    edges = [mean_edge(f"right{k}") for k in (15, 14, 10)]
+    print("mean edges (m):", edges)
+    assert 1.1 * edges[0] < edges[1] < 0.6 * edges[2]
+    assert {f"right{k}" for k in range(7, 24)} <= set(data.surfaces)
+    assert "right6" not in data.surfaces and "right24" not in data.surfaces
+
+
+def test_near_teeth_are_validated():
+    with pytest.raises(InputError, match="sector.near: tooth 15 is loaded"):
+        SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(15, 16))
+    with pytest.raises(InputError, match="sector.size_near"):
+        replace(SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(16,)), size_near=1e-5)
+    with pytest.raises(InputError, match="sector.near"):
+        SectorSettings3D.whole_gear(SPUR, (15,), 1.0, near=(30,))

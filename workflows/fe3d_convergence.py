@@ -16,17 +16,24 @@ For each of the tangent mesh stiffness's mean, minimum and maximum and the TE p-
 size) and reports the rate ``p``, the extrapolated ``q_inf`` and each case's deviation from
 it (no fit, said so, when the changes do not shrink steadily).
 
-Measured (``--full``, 2 shared cores, load ~3): the graded models of 23k, 32k, 46k, 73k and
-128k unknowns (one model for both gears: mirror images) built in 1.8-12.3 s; the mesh
-stiffness converges at rate 2.1-2.7 to 244.2 (mean), 206.1 (min), 264.6 (max) N/um: the
-default refinement 1 is +0.95 / +1.13 / +0.90 % above the limit, refinement 2 +0.16 /
-+0.26 / +0.14 %; every tooth fine (269k unknowns) at refinement 1 lies 0.09 / 0.06 / 0.10 %
-below the graded model, the former model (every tabulated tooth loaded) 0.02-0.05 % above.
-The TE p-p grows with refinement without a steady rate (5.52, 5.64, 5.68, 5.70, 5.72 um):
-refinement 1 is 0.78 % below refinement 2; every tooth fine -0.05 %, the former model
-+0.16 %. Writes ``convergence.csv`` / ``.json`` / ``.png`` and ``run.json`` to
+Measured (``--full``, 2 shared cores, load ~5; the defaults of
+:mod:`pipeline.fem.whole3d`: the read neighbours at 1.5 flank sizes, the teeth beyond
+two rim depths left out): the graded models of 13k, 19k, 26k, 43k and 79k unknowns (one
+model for both gears: mirror images) built in 2-16 s; the mesh stiffness converges at
+rate 1.9 / 1.5 / 1.7 to 244.0 (mean), 205.8 (min), 264.1 (max) N/um: the default
+refinement 1 is +1.12 / +1.34 / +1.11 % above the limit, refinement 2 +0.31 / +0.47 /
++0.34 %; every tooth kept and fine (268k unknowns) at refinement 1 lies 0.16 / 0.15 /
+0.16 % below the graded model, the former model (every tabulated tooth loaded and fine)
+0.08-0.12 % below. The TE p-p grows with refinement without a steady rate (5.57, 5.63, 5.68,
+5.70, 5.72 um): refinement 1 is 0.75 % below refinement 2; every tooth fine +0.06 %, the
+former model +0.12 %. (Every tooth kept, the neighbours fine, 5 m_n body cells: 23k ..
+128k unknowns, rate 2.1-2.7, limits 244.2 / 206.1 / 264.6 N/um, refinement 1 +0.95 /
++1.13 / +0.90 %, every tooth fine 0.09 / 0.06 / 0.10 % below, TE p-p 5.52 .. 5.72 um.)
+The default levels 0.6 .. 1 are too coarse for the fit (rates 0.06-1.4, limits off by
+up to 50 %): use ``--full``
+for the limit. Writes ``convergence.csv`` / ``.json`` / ``.png`` and ``run.json`` to
 ``results/fe3d_convergence/workflow/`` (or ``--out``). Several minutes on 2 cores
-(``--full``: refinement 2 is a 120k-unknown model; the uniform reference 250k).
+(``--full``: refinement 2 is a 79k-unknown model; the uniform reference 268k).
 
     python workflows/fe3d_convergence.py [--full] [--out DIR]
 """

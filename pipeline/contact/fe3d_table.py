@@ -14,18 +14,22 @@ clamped bore, all teeth alike), so the approach at tooth ``a`` per unit load at 
 ``b`` depends on ``a - b`` only. The table is therefore solved for one loaded tooth
 ``t0 = z // 2`` and read on the teeth ``t0 - s .. t0 + s`` (``s`` the span of the
 tabulated teeth): one solve per grid point of one flank instead of one per point of
-every tabulated flank, and a mesh fine on ``t0`` and :data:`FINE_NEIGHBOURS` teeth on
-each side only (the far teeth and the body coarse, as before). The tabulated block
-``(a, b)`` is the columns read at offset ``a - b``; the two halves of the table read
-Maxwell-Betti's pairs on differently meshed teeth (``info["reciprocity_error"]``,
-0.1-0.2 % at the defaults) and are averaged. Against the former model (every tabulated
-tooth loaded and fine) on the z 30/30 helical pair of ``bench_fe3d``: mesh stiffness
-mean, min and max within 0.05 %, TE p-p 0.16 %, from one 46k-unknown model for both gears
-(mirror images, below) and 56 instead of 2 x 168 load cases; against every tooth fine
-(269k unknowns) 0.06-0.10 %, TE p-p 0.05 % (``workflows/fe3d_convergence.py``); on the
-traction pair of Yang et al. (2026) (``gearpipe contact``) within 0.07 %, TE p-p 0.01 %.
-Responses read on a coarse neighbour made the z 30/30 pair 0.5 % stiffer than with every
-tooth fine (hence the fine neighbours), coarser far teeth changed it by 0.05 %.
+every tabulated flank, and a mesh fine on ``t0`` and nearly as fine (1.5 flank sizes) on
+:data:`FINE_NEIGHBOURS` teeth on each side only (the other teeth and the body coarse;
+the teeth beyond two rim depths along the root circle left out, the read teeth always
+kept: :mod:`pipeline.fem.whole3d`, where the unknowns of each region are counted). The
+tabulated block ``(a, b)`` is the columns read at offset ``a - b``; the two halves of the
+table read Maxwell-Betti's pairs on differently meshed teeth
+(``info["reciprocity_error"]``, 0.1-0.2 % at the defaults) and are averaged. Against the
+former model (every tabulated tooth loaded and fine) on the z 30/30 helical pair of
+``bench_fe3d``: mesh stiffness mean, min and max 0.08-0.12 % stiffer, TE p-p 0.12 %
+smaller, from one 26k-unknown model for both gears (mirror images, below) and 56 instead
+of 2 x 168 load cases; against every tooth kept and fine (268k unknowns) +0.15-0.16 %,
+TE p-p -0.06 % (``workflows/fe3d_convergence.py``); on the traction pair of Yang et al.
+(2026) (``gearpipe contact``, with fine neighbours and every tooth kept) within 0.07 %,
+TE p-p 0.01 %. Responses read on a coarse neighbour made the z 30/30 pair 0.5 % stiffer
+than with every tooth fine (hence the near neighbours: +0.10 % at 1.5 flank sizes,
++0.25 % at 2), coarser far teeth changed it by 0.05 %.
 A sector (``body = "sector"``) is clamped at its cuts, not alike from every tooth: its
 tabulated teeth are all loaded.
 
@@ -86,9 +90,10 @@ from pipeline.validation import InputError
 TABLE_CODE = (*MESH_CODE, "pipeline.contact.fe3d_table")
 """The code the 3D tables depend on (part of their cache key)."""
 FINE_NEIGHBOURS = 1
-"""Teeth on each side of a whole gear's loaded tooth meshed as finely as it is (module
-docstring: the responses read on a coarse neighbour made the mesh stiffness 0.5 % stiffer
-than with every tooth fine, one fine neighbour 0.13 %, all read teeth fine 0.004 %)."""
+"""Teeth on each side of a whole gear's loaded tooth meshed nearly as finely as it is
+(``near``, 1.5 flank sizes: :mod:`pipeline.fem.whole3d`; module docstring: the
+responses read on a coarse neighbour made the mesh stiffness 0.5 % stiffer than with
+every tooth fine, one fine neighbour 0.13 %, all read teeth fine 0.004 %)."""
 _STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
            "timing_values", "symmetry_error")  # arrays in the cache file
 @dataclass(frozen=True, eq=False)
@@ -150,13 +155,15 @@ class FlankTable3D:
 
 
 def _sector_settings(gear: GearSpec, teeth: int, settings: FE3DSettings,
-                     loaded: np.ndarray | None = None) -> SectorSettings3D:
+                     loaded: np.ndarray | None = None, near=()) -> SectorSettings3D:
     """Mesh settings: a sector of ``teeth`` teeth, or the whole gear (``teeth = z``)
-    graded from the ``loaded`` teeth (every tooth fine for ``settings.mesh = "uniform"``)."""
+    graded from the ``loaded`` and ``near`` teeth (every tooth kept and fine for
+    ``settings.mesh = "uniform"``)."""
     if teeth == gear.teeth:
-        s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement)
+        s3 = SectorSettings3D.whole_gear(gear, loaded, settings.refinement, near=near)
         if settings.mesh == "uniform":
-            s3 = replace(s3, loaded=None, size_tooth=None)
+            s3 = replace(s3, loaded=None, near=(), size_near=None, size_tooth=None,
+                         reach=None)
     else:
         s3 = SectorSettings3D.for_gear(gear, teeth, settings.refinement)
     if settings.hub_depth is not None:
@@ -256,7 +263,11 @@ def _tooth_columns(gear: GearSpec, span: int, settings: FE3DSettings, cache: Cac
     t0 = gear.teeth // 2
     reads = t0 + np.arange(-span, span + 1)
     near = min(span, FINE_NEIGHBOURS)
-    s3 = _sector_settings(gear, gear.teeth, settings, t0 + np.arange(-near, near + 1))
+    s3 = _sector_settings(gear, gear.teeth, settings, [t0],
+                          near=[t0 + k for k in range(-near, near + 1) if k])
+    if s3.reach is not None and s3.reach < span - near + 1:
+        # the read teeth kept, each with a kept neighbour beyond it
+        s3 = replace(s3, reach=span - near + 1)
     r, z, c = _grid(gear, gear.face_width, settings)
     key = {"gear": unlabelled(gear), "sector": asdict(s3),
            "inner_radius": inner_radius(gear, s3), "load_tooth": t0, "read_teeth": reads,

@@ -51,6 +51,9 @@ def check_sector_teeth(gear: GearSpec, settings: SectorSettings3D) -> None:
     if 2 * settings.teeth >= gear.teeth and settings.teeth != gear.teeth:
         raise InputError(f"sector.teeth = {settings.teeth} must be < z/2 = {gear.teeth / 2:g} "
                          f"or = z (whole gear)")
+    if settings.reach is not None and settings.teeth != gear.teeth:
+        raise InputError(f"sector.reach = {settings.reach} applies to whole gears only "
+                         f"(sector.teeth = {settings.teeth}, z = {gear.teeth})")
 
 
 def loft_inputs(gear: GearSpec, settings: SectorSettings3D, teeth: int

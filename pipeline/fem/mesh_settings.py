@@ -26,8 +26,11 @@ from pipeline.validation import InputError, check_int_range, check_range
 
 # Whole-gear 3D element sizes in normal modules (over sqrt(refinement)), and the grading
 # distance in body sizes (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d).
-WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 5.0, 1.5
+WHOLE_TOOTH, WHOLE_BODY, WHOLE_GRADING = 2.0, 8.0, 1.5
 WHOLE_THIN = 2.0  # largest cell of a whole gear in face widths
+WHOLE_NEAR = 1.5  # read, unloaded neighbours of a loaded tooth, in flank sizes
+WHOLE_REACH = 2.0  # teeth kept beyond the loaded and near ones: this many rim depths along the
+# root circle (SectorSettings3D.whole_gear; measured in pipeline.fem.whole3d)
 
 
 @dataclass(frozen=True)
@@ -119,6 +122,13 @@ class SectorSettings3D(SectorSettings):
         a spur sector needs 2).
     half : herringbone gears only: 0 the first helical half (the gear's hand), 1 the
         second (opposite hand); each is ``face_width / 2`` wide.
+    near : teeth (not loaded) whose sides are meshed at ``size_near``: whole-gear
+        neighbours of a loaded tooth that are read but not loaded.
+    size_near : element size on the sides of the ``near`` teeth, m (``size_flank`` ..
+        ``size_body``; None: ``size_flank``).
+    reach : whole gears only: the teeth more than ``reach`` teeth from every loaded or
+        near tooth are left out (the rim ends at the root circle there,
+        :mod:`pipeline.fem.whole3d`); None keeps every tooth.
     """
 
     size_flank: float = 1e-3
@@ -126,11 +136,26 @@ class SectorSettings3D(SectorSettings):
     profile_points: int = 40
     loft_sections: int = 7
     half: int = 0
+    near: tuple[int, ...] = ()
+    size_near: float | None = None
+    reach: int | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
         check_int_range("sector.loft_sections", self.loft_sections, 2, 100)
         check_int_range("sector.half", self.half, 0, 1)
+        near = tuple(sorted({int(k) for k in self.near}))
+        for k in near:
+            check_int_range("sector.near", k, 0, self.teeth - 1)
+            if self.loaded is None or k in self.loaded:
+                raise InputError(f"sector.near: tooth {k} is loaded (near teeth are the "
+                                 "other read teeth)")
+        object.__setattr__(self, "near", near)
+        if self.size_near is not None:
+            check_range("sector.size_near", self.size_near, self.size_flank, self.size_body,
+                        unit="m")
+        if self.reach is not None:
+            check_int_range("sector.reach", self.reach, 1, 1000)
 
     @classmethod
     def for_gear(cls, gear: GearSpec, teeth: int = 3, refinement: float = 1.0, half: int = 0
@@ -156,24 +181,53 @@ class SectorSettings3D(SectorSettings):
                    half=half)
 
     @classmethod
-    def whole_gear(cls, gear: GearSpec, loaded, refinement: float = 1.0, half: int = 0
-                   ) -> SectorSettings3D:
+    def whole_gear(cls, gear: GearSpec, loaded, refinement: float = 1.0, half: int = 0,
+                   near=()) -> SectorSettings3D:
         """Whole-gear settings (``teeth = z``) graded from the ``loaded`` teeth.
 
         The loaded teeth's sides get the sector's flank size ``m_n / (3 refinement)``;
         the other teeth ``WHOLE_TOOTH m_n / sqrt(refinement)``; the body grows to
         ``WHOLE_BODY m_n / sqrt(refinement)`` over ``WHOLE_GRADING`` times that distance
-        (a growth rate Gmsh meshes with well-shaped cells). See
-        :mod:`pipeline.fem.whole3d` for the measured DOF counts and convergence.
+        (a growth rate Gmsh meshes with well-shaped cells). The teeth farther than
+        ``WHOLE_REACH`` rim depths from the loaded ones along the root circle are left
+        out (``reach``, :func:`whole_reach`). The ``near`` teeth (read, not loaded)
+        get ``WHOLE_NEAR`` flank sizes. See :mod:`pipeline.fem.whole3d` for the
+        measured DOF counts and their effect on the tables.
         """
         s = cls.for_gear(gear, 1, refinement, half)
         m, root = gear.module, math.sqrt(refinement)
         # a thin gear (face < 1.5 body sizes) keeps its cells <= 2 face widths: flat
         # cells spanning the face would be poorly shaped
         body = max(min(WHOLE_BODY * m / root, WHOLE_THIN * meshed_width(gear)), s.size_flank)
-        return replace(s, teeth=gear.teeth, loaded=tuple(loaded),
+        near = tuple(near)
+        return replace(s, teeth=gear.teeth, loaded=tuple(loaded), near=near,
+                       size_near=min(WHOLE_NEAR * s.size_flank, body) if near else None,
                        size_tooth=min(max(WHOLE_TOOTH * m / root, s.size_flank), body),
-                       size_body=body, grading=WHOLE_GRADING * body)
+                       size_body=body, grading=WHOLE_GRADING * body,
+                       reach=whole_reach(gear, s))
+
+
+def whole_reach(gear: GearSpec, settings: SectorSettings) -> int | None:
+    """Teeth a whole gear keeps on each side of its loaded teeth (``reach``): those within
+    :data:`WHOLE_REACH` rim depths (root radius minus inner radius) along the root circle,
+    at least 2; None (every tooth) when that is more than half the gear."""
+    from pipeline.fem.outline2d import inner_radius
+
+    depth = gear.root_radius - inner_radius(gear, settings)
+    pitch = 2 * math.pi * gear.root_radius / gear.teeth
+    reach = max(2, math.ceil(WHOLE_REACH * depth / pitch))
+    return None if 2 * reach >= gear.teeth else reach
+
+
+def far_teeth(settings: SectorSettings3D, z: int) -> set[int]:
+    """The teeth a whole gear of ``z`` teeth leaves out: more than ``settings.reach``
+    teeth (counted round the gear) from every loaded or near tooth; none if ``reach`` or
+    ``loaded`` is None."""
+    if settings.reach is None or settings.loaded is None:
+        return set()
+    kept = (*settings.loaded, *settings.near)
+    return {k for k in range(z)
+            if min(min(abs(k - j), z - abs(k - j)) for j in kept) > settings.reach}
 
 
 def meshed_width(gear: GearSpec) -> float:

@@ -22,12 +22,17 @@ import numpy as np
 from pipeline.fem.gmsh_session import TetMeshData, extract_tet_mesh, gmsh_session
 from pipeline.fem.grading3d import tooth_size_field
 from pipeline.fem.loft3d import generate_curved_tets, loft_inputs
-from pipeline.fem.mesh_settings import SectorSettings3D
+from pipeline.fem.mesh_settings import SectorSettings3D, far_teeth
 from pipeline.geometry.gear import GearSpec
+from pipeline.validation import InputError
 
 
 def build_lofted_whole_gear_3d(gear: GearSpec, settings: SectorSettings3D) -> TetMeshData:
-    """Loft, cut the bore and mesh the whole gear in Gmsh (module docstring)."""
+    """Loft, cut the bore and mesh the whole gear in Gmsh (module docstring); every tooth
+    (``settings.reach`` must leave none out)."""
+    if far_teeth(settings, gear.teeth):
+        raise InputError(f"sector.reach = {settings.reach}: the lofted whole gear keeps "
+                         "every tooth (reach = None)")
     r_in, b, rate, pieces = loft_inputs(gear, settings, gear.teeth)
     with gmsh_session() as gmsh:
         occ = gmsh.model.occ
