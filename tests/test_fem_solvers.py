@@ -11,7 +11,7 @@ import pytest
 import scipy.sparse as sp
 from skfem import MeshTet
 
-from pipeline.fem.linear_static import build_model, solve_static
+from pipeline.fem.linear_static import build_model, free_block, solve_static
 from pipeline.fem.solvers import (
     DirectSolver,
     cholespy_available,
@@ -158,6 +158,51 @@ def test_pardiso_refuses_a_matrix_that_is_not_positive_definite(bar):
     model, _, _ = bar
     with pytest.raises(RuntimeError, match="not positive definite"):
         factorize_spd(model.stiffness, "pardiso")
+
+
+def test_free_block_is_the_indexed_block_and_its_upper_triangle():
+    """free_block(K, free) equals K[free][:, free] entry by entry (both are copies of K's
+    entries: exact), with the same sparsity; upper=True equals its triu; several passes
+    over the rows give the same matrix as one."""
+    rng = np.random.default_rng(3)
+    K = sp.random(300, 300, density=0.05, random_state=4, format="csr")
+    K = (K + K.T + sp.eye(300)).tocsr()
+    free = np.sort(rng.choice(300, 230, replace=False))
+    ref = K[free][:, free].tocsr()
+    ref.sort_indices()
+    for passes in (7, 300):
+        B = free_block(K, free, rows_per_pass=passes)
+        assert B.shape == ref.shape and B.nnz == ref.nnz
+        np.testing.assert_array_equal(B.indptr, ref.indptr)
+        np.testing.assert_array_equal(B.indices, ref.indices)
+        np.testing.assert_array_equal(B.data, ref.data)
+        U = free_block(K, free, upper=True, rows_per_pass=passes)
+        assert abs(U - sp.triu(ref)).max() == 0.0 and U.nnz == sp.triu(ref).nnz
+    with pytest.raises(InputError, match="ascending"):
+        free_block(K, free[::-1])
+
+
+def test_upper_triangle_factors_equal_the_full_matrix_ones(bar):
+    """factorize_spd(triu(A), upper=True) solves with A itself: PARDISO takes the triangle
+    as it is (the same numbers as its factor of the full block: identical solutions), the
+    other methods rebuild A from it. The assembled A is symmetric to round-off (1e-15 of its
+    largest entry), so each method's solution of the clamped bar's three load cases equals
+    its solution with the full block to 1e-10 (relative, Frobenius; the bar is
+    ill-conditioned: two factorisations of it differ by up to 3e-11)."""
+    model, clamp, F = bar
+    fixed = np.zeros(model.n_dof, dtype=bool)
+    fixed[clamp] = True
+    free = np.flatnonzero(~fixed)
+    A = model.stiffness[free][:, free]
+    assert abs(A - A.T).max() < 1e-15 * abs(A).max()
+    U = free_block(model.stiffness, free, upper=True)
+    methods = ["splu", "cholespy"] + (["pardiso"] if pardiso_available() else [])
+    for method in methods:
+        x = factorize_spd(U, method, upper=True).solve(F[free])
+        full = factorize_spd(A, method).solve(F[free])
+        if method == "pardiso":
+            np.testing.assert_array_equal(x, full)
+        assert _relative(x, full) < 1e-10, method
 
 
 def test_bad_inputs(bar):

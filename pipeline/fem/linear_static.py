@@ -124,7 +124,56 @@ def _set_up(model: ElasticModel, clamped_dofs: np.ndarray, solver: Solver | None
     fixed[np.asarray(clamped_dofs, dtype=np.int64)] = True
     free = np.flatnonzero(~fixed)
     solver = DirectSolver() if solver is None else solver
-    return free, solver(model.stiffness[free][:, free], model.dofs, free)
+    if isinstance(solver, DirectSolver) and solver.upper:
+        return free, solver.factorize_upper(free_block(model.stiffness, free, upper=True))
+    return free, solver(free_block(model.stiffness, free), model.dofs, free)
+
+
+def free_block(K: sp.spmatrix, free: np.ndarray, upper: bool = False,
+               rows_per_pass: int = 20_000) -> sp.csr_matrix:
+    """``K[free][:, free]`` (or its upper triangle, diagonal included, if ``upper``) as a
+    CSR matrix with sorted indices, built in one pass over ``K``'s rows without the
+    intermediate copies of fancy indexing.
+
+    Parameters
+    ----------
+    K : (n, n) sparse matrix.
+    free : (m,) ascending DOF indices kept.
+    upper : keep only the entries on and above the diagonal of the block.
+    rows_per_pass : rows filtered together (bounds the temporary index arrays).
+    """
+    K = sp.csr_matrix(K)
+    if not K.has_sorted_indices:
+        K = K.copy()
+        K.sort_indices()
+    free = np.asarray(free, dtype=np.int64)
+    n = K.shape[0]
+    if free.size and (np.any(np.diff(free) <= 0) or free[0] < 0 or free[-1] >= n):
+        raise InputError("free DOFs must be ascending, distinct and inside the matrix")
+    new = np.full(n, -1, dtype=np.int64)
+    new[free] = np.arange(free.size)
+    index = np.int32 if K.nnz < 2**31 else np.int64
+    counts = np.zeros(free.size, dtype=np.int64)
+    data, indices = [], []
+    for a in range(0, free.size, rows_per_pass):
+        rows = free[a:a + rows_per_pass]
+        lo, hi = K.indptr[rows], K.indptr[rows + 1]
+        # the entries of these rows, in order (each row's slice of K.indices)
+        take = np.repeat(lo - np.cumsum(np.r_[0, (hi - lo)[:-1]]), hi - lo) + np.arange(
+            int((hi - lo).sum()))
+        row = np.repeat(np.arange(a, a + rows.size), hi - lo)
+        col = new[K.indices[take]]
+        keep = col >= (row if upper else 0)
+        counts[a:a + rows.size] = np.bincount(row[keep] - a, minlength=rows.size)
+        data.append(K.data[take[keep]])
+        indices.append(col[keep].astype(index))
+    indptr = np.zeros(free.size + 1, dtype=index)
+    np.cumsum(counts, out=indptr[1:])
+    out = sp.csr_matrix((np.concatenate(data) if data else np.zeros(0),
+                         np.concatenate(indices) if indices else np.zeros(0, index), indptr),
+                        shape=(free.size, free.size))
+    out.has_sorted_indices = True  # K's rows were sorted and the relabelling is monotone
+    return out
 
 
 def solve_static(

@@ -57,6 +57,7 @@ iterates. :func:`solver_named` turns a configuration string into one of them.
 
 from __future__ import annotations
 
+import ctypes
 import os
 import sys
 import time
@@ -118,41 +119,79 @@ def _point_pypardiso_at_mkl() -> None:
             os.environ["PYPARDISO_MKL_RT"] = str(found[0])
 
 
-def _pardiso_factor(A: sp.spmatrix):
-    _point_pypardiso_at_mkl()
-    from pypardiso import PyPardisoSolver
-    from pypardiso.pardiso_wrapper import PyPardisoError
+class _Pardiso:
+    """One MKL PARDISO Cholesky (``mtype = 2``) of an upper triangle, called directly.
 
-    U = sp.triu(A, format="csr")  # PARDISO's symmetric storage: the upper triangle by rows
+    pypardiso only loads the library (and its handle ``pt``): its own calls copy the
+    matrix's index arrays (1-based) on every solve and keep a copy of the matrix to
+    compare each right-hand side's with. Here the zero-based CSR arrays are passed as
+    they are (``iparm 35``), once factorised only solves (phase 33) follow.
+    """
+
+    def __init__(self, U: sp.csr_matrix):
+        _point_pypardiso_at_mkl()
+        from pypardiso import PyPardisoSolver
+
+        self._lib = PyPardisoSolver(mtype=2)  # the library and the handle pt only
+        self.n = U.shape[0]
+        self.data = np.ascontiguousarray(U.data, dtype=np.float64)
+        self.indptr = np.ascontiguousarray(U.indptr, dtype=np.int32)
+        self.indices = np.ascontiguousarray(U.indices, dtype=np.int32)
+        self.iparm = np.zeros(64, dtype=np.int32)
+        self.iparm[0] = 1  # use the parameters set here, not PARDISO's defaults
+        self.iparm[1] = 2  # METIS nested dissection (bench_sparse_solvers: beats min. degree)
+        self.iparm[9] = 8  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
+        self.iparm[34] = 1  # zero-based indices
+        self.error = 0
+
+    def call(self, phase: int, b: np.ndarray) -> np.ndarray:
+        """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x."""
+        b = np.asfortranarray(b, dtype=np.float64)
+        x = np.zeros_like(b)
+        err = ctypes.c_int32(0)
+        i32 = ctypes.POINTER(ctypes.c_int32)
+        f64 = ctypes.POINTER(ctypes.c_double)
+        lib = self._lib
+        lib._mkl_pardiso(
+            lib.pt.ctypes.data_as(ctypes.POINTER(lib._pt_type[0])),
+            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),  # maxfct, mnum
+            ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(self.n)), self.data.ctypes.data_as(f64),
+            self.indptr.ctypes.data_as(i32), self.indices.ctypes.data_as(i32),
+            ctypes.POINTER(ctypes.c_int32)(),  # perm: not used
+            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+            self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),  # msglvl
+            b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+        self.error = err.value
+        return x
+
+    def release(self) -> None:
+        """Free PARDISO's memory (phase -1)."""
+        self.call(-1, np.zeros(1))
+
+
+def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
+    U = A.tocsr() if upper else sp.triu(A, format="csr")  # PARDISO's storage: upper by rows
     U.sort_indices()
-    U.data = U.data.astype(np.float64, copy=False)
-    solver = PyPardisoSolver(mtype=2)  # real symmetric positive definite: Cholesky L L^T
-    solver.set_iparm(1, 1)  # use the parameters set here, not PARDISO's defaults
-    solver.set_iparm(2, 2)  # METIS nested dissection (bench_sparse_solvers: beats min. degree)
-    solver.set_iparm(10, 8)  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
-    try:
-        solver.factorize(U)
-    except PyPardisoError as err:
-        solver.free_memory(everything=True)
-        if err.value == PARDISO_NOT_SPD:
+    solver = _Pardiso(U)
+    del A, U  # the factor needs only its own arrays (solver.data, .indptr, .indices)
+    solver.call(12, np.zeros(solver.n))  # analysis and numerical factorisation
+    if solver.error:
+        err = solver.error
+        solver.release()
+        if err == PARDISO_NOT_SPD:
             raise RuntimeError("PARDISO's Cholesky met a zero or negative pivot: the matrix "
-                               "is not positive definite (a body without enough supports?)"
-                               ) from err
-        raise RuntimeError(f"PARDISO failed with error {err.value}") from err
-
-    # pypardiso's own solve keeps a copy of U (or its hash, above 5e7 non-zeros) and
-    # compares every right-hand side's matrix with it; the factor is ours alone, so drop
-    # the copy and ask PARDISO for its solve phase (33) directly, as pypardiso's
-    # remove_stored_factorization documents
-    solver.remove_stored_factorization()
-    solver.set_iparm(12, 0)  # U is CSR: no transposed solve
+                               "is not positive definite (a body without enough supports?)")
+        raise RuntimeError(f"PARDISO failed with error {err}")
 
     def solve(b: np.ndarray) -> np.ndarray:
-        solver.set_phase(33)
-        return solver._call_pardiso(U, np.asfortranarray(b, dtype=np.float64))
+        x = solver.call(33, b)
+        if solver.error:
+            raise RuntimeError(f"PARDISO's solve failed with error {solver.error}")
+        return np.ascontiguousarray(x)
 
     # PARDISO keeps its factor outside Python: free it with the last reference to solve
-    weakref.finalize(solve, solver.free_memory, True)
+    weakref.finalize(solve, solver.release)
     return solve
 
 
@@ -232,6 +271,17 @@ class DirectSolver:
                  free: np.ndarray | None = None) -> SPDFactor:
         return factorize_spd(A, self.method)
 
+    @property
+    def upper(self) -> bool:
+        """True when the method takes the upper triangle only (PARDISO): then the caller
+        can hand it that alone (:meth:`factorize_upper`) and never build the full block."""
+        method = sparse_cholesky() or "splu" if self.method == "auto" else self.method
+        return method == "pardiso"
+
+    def factorize_upper(self, U: sp.spmatrix) -> SPDFactor:
+        """Factorise the SPD matrix whose upper triangle (diagonal included) is ``U``."""
+        return factorize_spd(U, self.method, upper=True)
+
 
 def solver_named(name: str = "auto", dim: int = 3) -> Solver:
     """The solver a configuration string names (:data:`SOLVERS`).
@@ -245,15 +295,18 @@ def solver_named(name: str = "auto", dim: int = 3) -> Solver:
     return DirectSolver(name)
 
 
-def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
+def factorize_spd(A: sp.spmatrix, method: str = "auto", upper: bool = False) -> SPDFactor:
     """Factorise a sparse SPD matrix once for many solves.
 
     Parameters
     ----------
-    A : (n, n) sparse symmetric positive definite matrix.
+    A : (n, n) sparse symmetric positive definite matrix, or its upper triangle
+        (diagonal included) if ``upper``.
     method : "auto" (MKL PARDISO's Cholesky if pypardiso is installed, else
         scikit-sparse's CHOLMOD, else cholespy's, else SuperLU), "pardiso", "cholmod",
         "cholespy" or "splu".
+    upper : ``A`` holds the upper triangle only (PARDISO takes it as it is; the other
+        methods get the full matrix rebuilt from it).
     """
     check_choice("solver.method", method, FACTOR_METHODS)
     if method == "auto":
@@ -266,8 +319,11 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
         raise InputError("solver.method = 'cholespy' but cholespy is not installed")
     n = A.shape[0]
     t0 = time.perf_counter()
+    if upper and method != "pardiso":
+        A = sp.triu(A, format="csr")
+        A = A + sp.triu(A, k=1, format="csr").T
     if method == "pardiso":
-        solve = _pardiso_factor(A)
+        solve = _pardiso_factor(A, upper)
     elif method == "cholmod":
         from sksparse.cholmod import cholesky
 
