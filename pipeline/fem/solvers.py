@@ -17,7 +17,24 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   shaft 20-70 % slower (the pinion 20 % faster, but solves it at half the speed); 2
   threads were no faster on the shared machine (MKL takes ``OMP_NUM_THREADS``). PARDISO
   takes 25-30 % more memory than cholespy on the smaller matrices (shaft 405-411 against
-  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk.
+  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk. PARDISO is called
+  directly (:class:`_Pardiso`, through the library pypardiso loads) on the upper
+  triangle it needs, which the callers can build alone
+  (:func:`pipeline.fem.linear_static.free_block`, :meth:`DirectSolver.factorize_upper`);
+  MKL runs on as many threads as ``OMP_NUM_THREADS`` (or ``MKL_NUM_THREADS``) allows, by
+  default every core. On the whole-gear 3D tables of the traction pair of Yang et al.
+  (2026) (``bench_fe3d --full``; 164k and 282k unknowns, 272 right-hand sides read at
+  1904 points) the factor holds 113M non-zeros (0.95 GB) for the larger gear, and the
+  time is the factorisation and the block solves in about equal parts (9.5 and 11.4 s
+  on one thread at 164k). Tried there and not kept: PARDISO's sparse right-hand side and
+  partial solution (``iparm 31`` with the 21k loaded and read unknowns marked; answers
+  equal to 1e-11) factorised in 294 s instead of 9.5 s; its single-precision factor
+  (``iparm 28``) stops at a negative pivot (error -4: the stiffness is too
+  ill-conditioned for a single-precision Cholesky); parallel METIS (``iparm 2 = 3``)
+  gives the same factor; METIS with ``iparm 2 = 12`` or ``22`` 3 % more non-zeros and
+  minimum degree 23 % more; the two-level factorisation (``iparm 24 = 1``) and the
+  parallel solve (``iparm 25``) were no faster with 2 threads on the shared machine
+  (load 6-9).
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
   elasticity with 200k DOF factorises in about 20 s and each further right-hand side
@@ -185,10 +202,10 @@ def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
         raise RuntimeError(f"PARDISO failed with error {err}")
 
     def solve(b: np.ndarray) -> np.ndarray:
-        x = solver.call(33, b)
+        x = solver.call(33, b)  # column-major, as PARDISO writes it (no copy)
         if solver.error:
             raise RuntimeError(f"PARDISO's solve failed with error {solver.error}")
-        return np.ascontiguousarray(x)
+        return x
 
     # PARDISO keeps its factor outside Python: free it with the last reference to solve
     weakref.finalize(solve, solver.release)
