@@ -149,6 +149,9 @@ class _Pardiso:
         _point_pypardiso_at_mkl()
         from pypardiso import PyPardisoSolver
 
+        if U.nnz >= 2**31:
+            raise InputError(f"PARDISO's 32-bit interface takes < 2^31 non-zeros, the "
+                             f"matrix has {U.nnz}")
         self._lib = PyPardisoSolver(mtype=2)  # the library and the handle pt only
         self.n = U.shape[0]
         self.data = np.ascontiguousarray(U.data, dtype=np.float64)
