@@ -158,6 +158,11 @@ def test_pardiso_refuses_a_matrix_that_is_not_positive_definite(bar):
     model, _, _ = bar
     with pytest.raises(RuntimeError, match="not positive definite"):
         factorize_spd(model.stiffness, "pardiso")
+    # a DOF in no element (an empty row) is refused before PARDISO sees it
+    A = sp.diags([1.0, 0.0, 2.0]).tocsr()
+    A.eliminate_zeros()
+    with pytest.raises(RuntimeError, match="empty row"):
+        factorize_spd(A, "pardiso")
 
 
 def test_free_block_is_the_indexed_block_and_its_upper_triangle():

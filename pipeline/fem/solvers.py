@@ -193,6 +193,9 @@ class _Pardiso:
 def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
     U = A.tocsr() if upper else sp.triu(A, format="csr")  # PARDISO's storage: upper by rows
     U.sort_indices()
+    if not np.diff(U.indptr).all():  # PARDISO would crash on an empty row
+        raise RuntimeError("PARDISO's Cholesky: the matrix has an empty row, so it is not "
+                           "positive definite (a DOF in no element?)")
     solver = _Pardiso(U)
     del A, U  # the factor needs only its own arrays (solver.data, .indptr, .indices)
     solver.call(12, np.zeros(solver.n))  # analysis and numerical factorisation
