@@ -11,7 +11,14 @@ import pytest
 import scipy.sparse as sp
 from skfem import MeshTet
 
-from pipeline.fem.linear_static import build_model, free_block, solve_static
+from pipeline.fem.linear_static import (
+    build_model,
+    compliance_blocks,
+    free_block,
+    load_compliance,
+    set_up,
+    solve_static,
+)
 from pipeline.fem.solvers import (
     DirectSolver,
     cholespy_available,
@@ -208,6 +215,34 @@ def test_upper_triangle_factors_equal_the_full_matrix_ones(bar):
         if method == "pardiso":
             np.testing.assert_array_equal(x, full)
         assert _relative(x, full) < 1e-10, method
+
+
+def test_compliance_blocks_read_a_dense_solve(bar):
+    """R^T K^-1 F by blocks of right-hand sides (column-major PARDISO blocks read column by
+    column) equals the product computed here from a dense solve of the free block
+    (numpy.linalg.solve) to 1e-10 (relative, max: the bar's conditioning), for blocks of 1
+    and of all cases, read at other DOFs than the loaded ones; load_compliance is set_up
+    then compliance_blocks, bit for bit."""
+    model, clamp, F = bar
+    rng = np.random.default_rng(7)
+    R = sp.csc_matrix(rng.standard_normal((model.n_dof, 5)) * (rng.random((model.n_dof, 1))
+                                                                < 0.05))
+    Fs = sp.csc_matrix(F)
+    fixed = np.zeros(model.n_dof, dtype=bool)
+    fixed[clamp] = True
+    free = np.flatnonzero(~fixed)
+    A = model.stiffness[free][:, free].toarray()
+    exact = R.toarray()[free].T @ np.linalg.solve(0.5 * (A + A.T), F[free])
+    free_set, factor = set_up(model, clamp)
+    np.testing.assert_array_equal(free_set, free)
+    for block in (1, 3):
+        C = compliance_blocks(factor, free_set, Fs, R, block=block).matrix
+        assert C.shape == (5, 3)
+        assert np.abs(C - exact).max() < 1e-10 * np.abs(exact).max()
+    whole = load_compliance(model, Fs, clamp, read=R, block=3).matrix
+    np.testing.assert_array_equal(whole, compliance_blocks(factor, free_set, Fs, R, 3).matrix)
+    with pytest.raises(InputError, match="rows"):
+        compliance_blocks(factor, free_set, Fs, R[:-1])
 
 
 def test_bad_inputs(bar):

@@ -237,8 +237,8 @@ def load_compliance(
     read: sp.spmatrix | None = None,
 ) -> LoadCompliance:
     """``R^T K^-1 F`` with u = 0 on ``clamped_dofs`` (``R = F`` unless ``read`` is given):
-    set up once, solve ``block`` columns at a time (only the block's displacements are
-    ever held in memory).
+    set up once (:func:`set_up`), solve ``block`` columns at a time
+    (:func:`compliance_blocks`; only the block's displacements are ever held in memory).
 
     Parameters
     ----------
@@ -246,12 +246,7 @@ def load_compliance(
     loads : (n_dof, n_cases) sparse nodal forces in N.
     clamped_dofs : (m,) DOF indices held at zero.
     solver : default ``DirectSolver()`` (:mod:`pipeline.fem.solvers`).
-    block : right-hand sides solved together. Default: as many as keep one block of
-        vectors under 96 MB for a factor, 24 MB for an iteration (at least 16, at most
-        256). Above glibc's largest mmap
-        threshold (32 MB) every temporary of an iterative loop is a fresh mmap that the
-        kernel must fault in: 150 columns at 50k DOF spent ~30 % of the time in the
-        kernel (68.7 s vs 50 s at 60 columns, 63 s at 8, measured with the p-multigrid CG).
+    block : right-hand sides solved together (default: :func:`compliance_blocks`).
     steps : progress of the set-up ("factorise") and of the blocks ("solve") on stderr
         (:class:`pipeline.progress.Steps`); default silent.
     read : (n_dof, n_read) sparse work-conjugate weights of the displacements read (e.g.
@@ -262,10 +257,46 @@ def load_compliance(
     for name, m in (("loads", loads), ("read", read)):
         if m.shape[0] != model.n_dof:
             raise InputError(f"{name} have {m.shape[0]} rows, the model has {model.n_dof} DOFs")
+    free, factor = set_up(model, clamped_dofs, solver, steps)
+    return compliance_blocks(factor, free, loads, read, block, steps)
+
+
+def set_up(model: ElasticModel, clamped_dofs: np.ndarray, solver: Solver | None = None,
+           steps: Steps | None = None) -> tuple[np.ndarray, Factorization]:
+    """The free DOFs (ascending) and ``solver`` set up on their block of the stiffness;
+    the model is not needed by the solves that follow (:func:`compliance_blocks`).
+
+    ``steps`` reports it as "factorise" (announced at once from 50k DOF: a sparse
+    Cholesky of a large 3D model holds the GIL for seconds).
+    """
     steps = Steps("", enabled=False) if steps is None else steps
-    # a sparse Cholesky of a large 3D model holds the GIL for seconds: announce it at once
     with steps.step("factorise", announce=model.n_dof >= 50_000):
-        free, factor = _set_up(model, clamped_dofs, solver)
+        return _set_up(model, clamped_dofs, solver)
+
+
+def compliance_blocks(
+    factor: Factorization, free: np.ndarray, loads: sp.spmatrix,
+    read: sp.spmatrix | None = None, block: int | None = None, steps: Steps | None = None,
+) -> LoadCompliance:
+    """``R^T K^-1 F`` from a set-up ``factor`` of the free block (:func:`set_up`).
+
+    Parameters
+    ----------
+    factor, free : from :func:`set_up`.
+    loads : (n_dof, n_cases) sparse nodal forces in N (all DOFs; clamped rows ignored).
+    read : (n_dof, n_read) sparse work-conjugate weights read (default ``loads``).
+    block : right-hand sides solved together. Default: as many as keep one block of
+        vectors under 96 MB for a factor, 24 MB for an iteration (at least 16, at most
+        256). Above glibc's largest mmap
+        threshold (32 MB) every temporary of an iterative loop is a fresh mmap that the
+        kernel must fault in: 150 columns at 50k DOF spent ~30 % of the time in the
+        kernel (68.7 s vs 50 s at 60 columns, 63 s at 8, measured with the p-multigrid CG).
+    steps : progress of the blocks ("solve") on stderr; default silent.
+    """
+    read = loads if read is None else read
+    if loads.shape[0] != read.shape[0]:
+        raise InputError(f"loads have {loads.shape[0]} rows, read {read.shape[0]}")
+    steps = Steps("", enabled=False) if steps is None else steps
     if block is None:
         # a factor's solves stream the whole factor once per block: larger blocks for it
         # (PARDISO, 211k unknowns, 272 cases: 8.5 s in blocks of 16, 7.5 s of 32-64, 15 s
