@@ -11,7 +11,14 @@ import pytest
 import scipy.sparse as sp
 from skfem import MeshTet
 
-from pipeline.fem.linear_static import build_model, solve_static
+from pipeline.fem.linear_static import (
+    build_model,
+    compliance_blocks,
+    free_block,
+    load_compliance,
+    set_up,
+    solve_static,
+)
 from pipeline.fem.solvers import (
     DirectSolver,
     cholespy_available,
@@ -158,6 +165,84 @@ def test_pardiso_refuses_a_matrix_that_is_not_positive_definite(bar):
     model, _, _ = bar
     with pytest.raises(RuntimeError, match="not positive definite"):
         factorize_spd(model.stiffness, "pardiso")
+    # a DOF in no element (an empty row) is refused before PARDISO sees it
+    A = sp.diags([1.0, 0.0, 2.0]).tocsr()
+    A.eliminate_zeros()
+    with pytest.raises(RuntimeError, match="empty row"):
+        factorize_spd(A, "pardiso")
+
+
+def test_free_block_is_the_indexed_block_and_its_upper_triangle():
+    """free_block(K, free) equals K[free][:, free] entry by entry (both are copies of K's
+    entries: exact), with the same sparsity; upper=True equals its triu; several passes
+    over the rows give the same matrix as one."""
+    rng = np.random.default_rng(3)
+    K = sp.random(300, 300, density=0.05, random_state=4, format="csr")
+    K = (K + K.T + sp.eye(300)).tocsr()
+    free = np.sort(rng.choice(300, 230, replace=False))
+    ref = K[free][:, free].tocsr()
+    ref.sort_indices()
+    for passes in (7, 300):
+        B = free_block(K, free, rows_per_pass=passes)
+        assert B.shape == ref.shape and B.nnz == ref.nnz
+        np.testing.assert_array_equal(B.indptr, ref.indptr)
+        np.testing.assert_array_equal(B.indices, ref.indices)
+        np.testing.assert_array_equal(B.data, ref.data)
+        U = free_block(K, free, upper=True, rows_per_pass=passes)
+        assert abs(U - sp.triu(ref)).max() == 0.0 and U.nnz == sp.triu(ref).nnz
+    with pytest.raises(InputError, match="ascending"):
+        free_block(K, free[::-1])
+
+
+def test_upper_triangle_factors_equal_the_full_matrix_ones(bar):
+    """factorize_spd(triu(A), upper=True) solves with A itself: PARDISO takes the triangle
+    as it is (the same numbers as its factor of the full block: identical solutions), the
+    other methods rebuild A from it. The assembled A is symmetric to round-off (1e-15 of its
+    largest entry), so each method's solution of the clamped bar's three load cases equals
+    its solution with the full block to 1e-10 (relative, Frobenius; the bar is
+    ill-conditioned: two factorisations of it differ by up to 3e-11)."""
+    model, clamp, F = bar
+    fixed = np.zeros(model.n_dof, dtype=bool)
+    fixed[clamp] = True
+    free = np.flatnonzero(~fixed)
+    A = model.stiffness[free][:, free]
+    assert abs(A - A.T).max() < 1e-15 * abs(A).max()
+    U = free_block(model.stiffness, free, upper=True)
+    methods = ["splu", "cholespy"] + (["pardiso"] if pardiso_available() else [])
+    for method in methods:
+        x = factorize_spd(U, method, upper=True).solve(F[free])
+        full = factorize_spd(A, method).solve(F[free])
+        if method == "pardiso":
+            np.testing.assert_array_equal(x, full)
+        assert _relative(x, full) < 1e-10, method
+
+
+def test_compliance_blocks_read_a_dense_solve(bar):
+    """R^T K^-1 F by blocks of right-hand sides (column-major PARDISO blocks read column by
+    column) equals the product computed here from a dense solve of the free block
+    (numpy.linalg.solve) to 1e-10 (relative, max: the bar's conditioning), for blocks of 1
+    and of all cases, read at other DOFs than the loaded ones; load_compliance is set_up
+    then compliance_blocks, bit for bit."""
+    model, clamp, F = bar
+    rng = np.random.default_rng(7)
+    R = sp.csc_matrix(rng.standard_normal((model.n_dof, 5)) * (rng.random((model.n_dof, 1))
+                                                                < 0.05))
+    Fs = sp.csc_matrix(F)
+    fixed = np.zeros(model.n_dof, dtype=bool)
+    fixed[clamp] = True
+    free = np.flatnonzero(~fixed)
+    A = model.stiffness[free][:, free].toarray()
+    exact = R.toarray()[free].T @ np.linalg.solve(0.5 * (A + A.T), F[free])
+    free_set, factor = set_up(model, clamp)
+    np.testing.assert_array_equal(free_set, free)
+    for block in (1, 3):
+        C = compliance_blocks(factor, free_set, Fs, R, block=block).matrix
+        assert C.shape == (5, 3)
+        assert np.abs(C - exact).max() < 1e-10 * np.abs(exact).max()
+    whole = load_compliance(model, Fs, clamp, read=R, block=3).matrix
+    np.testing.assert_array_equal(whole, compliance_blocks(factor, free_set, Fs, R, 3).matrix)
+    with pytest.raises(InputError, match="rows"):
+        compliance_blocks(factor, free_set, Fs, R[:-1])
 
 
 def test_bad_inputs(bar):

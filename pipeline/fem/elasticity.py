@@ -6,8 +6,8 @@ Two assemblies of the same bilinear form
 * :func:`assemble_generic` - scikit-fem's ``linear_elasticity`` form on a vector
   basis; the reference.
 * :func:`assemble_fast` - element matrices batched over all elements with BLAS
-  (one ``matmul`` over the quadrature points per chunk of elements) and scattered
-  with one COO -> CSR per chunk. Same DOF numbering as scikit-fem's
+  (one ``matmul`` over the quadrature points per chunk of elements) and summed into a
+  sparsity pattern built once from the cells' nodes. Same DOF numbering as scikit-fem's
   ``ElementVector`` basis; agrees with :func:`assemble_generic` to round-off
   (tests). For 3D P2 it is an order of magnitude faster (measured on 2 cores:
   56 s vs 2 s at 200k DOF), which is what makes 3D models usable on two cores.
@@ -21,7 +21,15 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementTetP1, ElementTetP2, ElementTriP1, ElementTriP2, ElementVector
+from skfem import (
+    Basis,
+    Dofs,
+    ElementTetP1,
+    ElementTetP2,
+    ElementTriP1,
+    ElementTriP2,
+    ElementVector,
+)
 from skfem.mesh import Mesh, MeshTet1, MeshTri1
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
@@ -77,6 +85,15 @@ def assemble_fast(
 ) -> sp.csr_matrix:
     """Same matrix as :func:`assemble_generic` on ``vector_basis(mesh, order, intorder)``.
 
+    The sparsity pattern is built once from the cells' nodes (:func:`_node_pattern`: the
+    node pairs that share a cell, each a dense ``dim x dim`` block), and every chunk's
+    element matrices are summed into the blocks' values by one ``np.add.at``; the blocks
+    become the CSR matrix at the end. Against a COO -> CSR conversion per chunk added up
+    as CSR matrices (the former way; same matrix to 4e-16 of its largest entry, plus the
+    pattern's exact zeros), on the traction gear of Yang et al. (2026) (51.5k curved P2
+    cells, 284k unknowns, 2 shared cores): 2.7-3.0 s of CPU against 3.1-3.3 s, peak
+    memory 0.69 against 0.84 GiB.
+
     Parameters
     ----------
     mesh : scikit-fem triangle or tetrahedron mesh (affine or quadratic).
@@ -84,31 +101,60 @@ def assemble_fast(
     order : Lagrange order of the displacement (1 or 2).
     intorder : quadrature order (default :func:`default_intorder`).
     chunk : elements per batch; bounds the temporary memory to about
-        ``chunk * (d n_loc)^2 * 24`` bytes (3D P2, 38k cells, 212k unknowns: peak 0.65 GB
-        with 6000, 1.25 GB with 20000, no faster; measured).
+        ``chunk * (d n_loc)^2 * 24`` bytes.
     quadrature : (points (dim, n_q), weights (n_q,)) on the reference cell,
         overriding ``intorder`` (used to match an existing basis).
 
     Returns
     -------
-    (n_dof, n_dof) CSR matrix, DOF ``d * node + component`` as in scikit-fem.
+    (n_dof, n_dof) CSR matrix with sorted indices, DOF ``d * node + component`` as in
+    scikit-fem.
     """
+    check_int_range("elasticity.chunk", chunk, 1, 10**7)
     if intorder is None:
         intorder = default_intorder(mesh, order)
     dim = mesh.dim()
-    out = None
-    nel = mesh.t.shape[1]
+    elem = scalar_element(mesh, order)
+    cell_dofs = Dofs(mesh, elem).element_dofs.T  # (cells, n_loc) scalar DOFs
+    n_nodes = int(cell_dofs.max()) + 1
+    indptr, indices, slot = _node_pattern(cell_dofs, n_nodes)
+    values = np.zeros(indices.size * dim * dim)
+    comp = np.arange(dim * dim)
+    nel = cell_dofs.shape[0]
     for start in range(0, nel, chunk):
         tind = np.arange(start, min(start + chunk, nel))
         # The scalar basis gives mapped gradients and |det J| w on each quadrature point.
-        sb = Basis(mesh, scalar_element(mesh, order), intorder=intorder, elements=tind,
-                   quadrature=quadrature)
-        part = _chunk_matrix(sb, lam, mu, dim)
-        out = part if out is None else out + part
-    return out
+        sb = Basis(mesh, elem, intorder=intorder, elements=tind, quadrature=quadrature)
+        Ke = _element_blocks(sb, lam, mu, dim)  # (e, a, b, i, j)
+        at = slot[tind][:, :, :, None] * (dim * dim) + comp
+        np.add.at(values, at.ravel(), Ke.ravel())
+    blocks = sp.bsr_matrix((values.reshape(-1, dim, dim), indices, indptr),
+                           shape=(dim * n_nodes, dim * n_nodes))
+    K = blocks.tocsr()
+    K.sort_indices()
+    return K
 
 
-def _chunk_matrix(sb: Basis, lam: float, mu: float, dim: int) -> sp.csr_matrix:
+def _node_pattern(cell_dofs: np.ndarray, n_nodes: int
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The node-to-node sparsity of a mesh: (indptr (n_nodes + 1,), sorted column indices
+    (n_pairs,)) of the pairs of nodes that share a cell, and ``slot`` (cells, n_loc,
+    n_loc): the position of the pair (node a, node b) of each cell among them."""
+    ne, nloc = cell_dofs.shape
+    d = cell_dofs.astype(np.int64)
+    keys = (d[:, :, None] * n_nodes + d[:, None, :]).ravel()
+    pairs, slot = np.unique(keys, return_inverse=True)
+    rows = pairs // n_nodes
+    indptr = np.zeros(n_nodes + 1, dtype=np.int64)
+    np.cumsum(np.bincount(rows, minlength=n_nodes), out=indptr[1:])
+    index = np.int32 if n_nodes < 2**31 else np.int64
+    return (indptr.astype(index), (pairs % n_nodes).astype(index),
+            slot.reshape(ne, nloc, nloc))
+
+
+def _element_blocks(sb: Basis, lam: float, mu: float, dim: int) -> np.ndarray:
+    """Element stiffness matrices (e, a, b, i, j) of a chunk: the coupling of component
+    ``i`` of scalar shape function ``a`` with component ``j`` of ``b``, N/m."""
     nloc = sb.Nbfun
     # G[e, q, a, i]: gradient of scalar shape function a, component i.
     G = np.stack([sb.basis[a][0].grad for a in range(nloc)], axis=0)  # (a, i, e, q)
@@ -119,15 +165,11 @@ def _chunk_matrix(sb: Basis, lam: float, mu: float, dim: int) -> sp.csr_matrix:
     M1 = np.matmul(Gw.transpose(0, 2, 1), G.reshape(ne, nq, nloc * dim))
     M1 = M1.reshape(ne, nloc, dim, nloc, dim)
     S = np.einsum("eaibi->eab", M1)  # sum_q w grad(a).grad(b)
+    # a(u, v) = lam div u div v + mu grad u : grad v + mu grad u : grad v^T
     K = lam * M1 + mu * M1.transpose(0, 1, 4, 3, 2)
     for i in range(dim):  # mu (grad a . grad b) delta_ij
         K[:, :, i, :, i] += mu * S
-    sdofs = sb.element_dofs.T  # (e, a)
-    vd = (dim * sdofs[:, :, None] + np.arange(dim)[None, None, :]).reshape(ne, nloc * dim)
-    ndof = dim * sb.N
-    rows = np.broadcast_to(vd[:, :, None], (ne, nloc * dim, nloc * dim)).ravel()
-    cols = np.broadcast_to(vd[:, None, :], (ne, nloc * dim, nloc * dim)).ravel()
-    return sp.coo_matrix((K.ravel(), (rows, cols)), shape=(ndof, ndof)).tocsr()
+    return K.transpose(0, 1, 3, 2, 4)
 
 
 def assemble_stiffness(basis: Basis, lam: float, mu: float, method: str = "fast") -> sp.csr_matrix:

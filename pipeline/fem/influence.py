@@ -13,7 +13,8 @@ the matrix. One routine serves both dimensions, as scikit-fem's bases do:
 3. hold the bore, the cut faces and (3D, optionally) the end faces
    (:func:`constrained_dofs`);
 4. set the solver up once and solve all patches in blocks of right-hand sides
-   (:func:`pipeline.fem.linear_static.load_compliance`);
+   (:func:`pipeline.fem.linear_static.set_up` and
+   :func:`~pipeline.fem.linear_static.compliance_blocks`);
 5. remove the local near field analytically, leaving the *structural* compliance to
    which the contact solver adds the local Hertzian approach (Yang et al. 2026, eq. 24):
    the half-plane in 2D (:func:`~pipeline.fem.nearfield_halfplane.nearfield_halfplane`),
@@ -63,7 +64,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pipeline.fem.flank import FlankPoints
-from pipeline.fem.linear_static import ElasticModel, build_model, load_compliance
+from pipeline.fem.linear_static import ElasticModel, build_model, compliance_blocks, set_up
 from pipeline.fem.nearfield_halfplane import nearfield_halfplane
 from pipeline.fem.patch_loads import patch_loads
 from pipeline.fem.sector2d import SectorMesh2D
@@ -186,7 +187,7 @@ def influence_matrix(
     cuts : "clamped" (default) or "free" cut faces.
     ends : 3D end faces, "free" (default) or "sliding".
     block : right-hand sides solved together (default:
-        :func:`pipeline.fem.linear_static.load_compliance`).
+        :func:`pipeline.fem.linear_static.compliance_blocks`).
     model : a prebuilt P2 model of ``sector`` (reuse across calls), else assembled here.
     steps : progress and wall time of each step (assembly, loads, factorise, solve, near
         field) on stderr (:class:`pipeline.progress.Steps`); default silent.
@@ -212,16 +213,21 @@ def influence_matrix(
         R = patch_loads(sector, points, c)
         F = R if cols is None else R[:, cols]
     t2 = time.perf_counter()
-    fe = load_compliance(model, F, constrained_dofs(sector, model, cuts, ends),
-                         solver_named("auto", dim) if solver is None else solver, block, steps,
-                         read=None if cols is None else R)
+    n_dof = model.n_dof
+    free, factor = set_up(model, constrained_dofs(sector, model, cuts, ends),
+                          solver_named("auto", dim) if solver is None else solver, steps)
+    # the solves need the factor only: a model built here is dropped before them (the
+    # full stiffness is 0.25 GB at 284k unknowns, while the factor holds its memory)
+    del model
+    fe = compliance_blocks(factor, free, F, None if cols is None else R, block, steps)
+    del factor
     t3 = time.perf_counter()
     with steps.step("near field"):
         local = _near_field(points, c, gear.material, kind, cols)
     t4 = time.perf_counter()
     timings = {"assembly": t1 - t0, "loads": t2 - t1, "factor": fe.factor_seconds,
                "solve": fe.solve_seconds, "nearfield": t4 - t3, "total": t4 - t0}
-    return InfluenceMatrix(points, fe.matrix, local, c, kind, model.n_dof, fe.n_free,
+    return InfluenceMatrix(points, fe.matrix, local, c, kind, n_dof, fe.n_free,
                            fe.method, fe.iterations, timings, cols)
 
 

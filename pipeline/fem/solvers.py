@@ -17,7 +17,30 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   shaft 20-70 % slower (the pinion 20 % faster, but solves it at half the speed); 2
   threads were no faster on the shared machine (MKL takes ``OMP_NUM_THREADS``). PARDISO
   takes 25-30 % more memory than cholespy on the smaller matrices (shaft 405-411 against
-  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk.
+  324-326 MiB; 2 % more at 112k) and MKL about 1 GB of disk. PARDISO is called
+  directly (:class:`_Pardiso`, through the library pypardiso loads) on the upper
+  triangle it needs, which the callers can build alone
+  (:func:`pipeline.fem.linear_static.free_block`, :meth:`DirectSolver.factorize_upper`);
+  MKL runs on as many threads as ``OMP_NUM_THREADS`` (or ``MKL_NUM_THREADS``) allows, by
+  default every core. On the whole-gear 3D tables of the traction pair of Yang et al.
+  (2026) (``bench_fe3d --full``; 164k and 282k unknowns, 272 right-hand sides read at
+  1904 points) the factor holds 113M non-zeros (0.95 GB) for the larger gear, and the
+  time is the factorisation and the block solves in about equal parts (9.5 and 11.4 s
+  on one thread at 164k). Tried there and not kept: PARDISO's sparse right-hand side and
+  partial solution (``iparm 31`` with the 21k loaded and read unknowns marked; answers
+  equal to 1e-11) factorised in 294 s instead of 9.5 s; its single-precision factor
+  (``iparm 28``) stops at a negative pivot (error -4: the stiffness is too
+  ill-conditioned for a single-precision Cholesky); parallel METIS (``iparm 2 = 3``)
+  gives the same factor; METIS with ``iparm 2 = 12`` or ``22`` 3 % more non-zeros and
+  minimum degree 23 % more; the two-level factorisation (``iparm 24 = 1``) and the
+  parallel solve (``iparm 25``) were no faster with 2 threads on the shared machine
+  (load 6-9). Against pypardiso's own calls, the full free block and row-major copies of
+  the blocks (``bench_fe3d --full``, 2 threads, load 0.5-1.5): both tables 30.3 s against
+  33.6 s (pinion factorise 3.5 / 3.7 s, solve 2.8 / 2.9 s; gear 6.1 / 8.1 s and
+  5.2 / 5.8 s), ``gearpipe contact`` 34.2 against 38.3 s, peak memory 2.0 against
+  2.35 GiB, mesh stiffness and TE p-p unchanged (tables equal to 5e-14). PARDISO's factor of the larger gear
+  alone takes 0.95 GB, its analysis 0.33 GB more, so tables under 1 GB need fewer
+  unknowns.
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
   elasticity with 200k DOF factorises in about 20 s and each further right-hand side
@@ -57,6 +80,7 @@ iterates. :func:`solver_named` turns a configuration string into one of them.
 
 from __future__ import annotations
 
+import ctypes
 import os
 import sys
 import time
@@ -118,41 +142,85 @@ def _point_pypardiso_at_mkl() -> None:
             os.environ["PYPARDISO_MKL_RT"] = str(found[0])
 
 
-def _pardiso_factor(A: sp.spmatrix):
-    _point_pypardiso_at_mkl()
-    from pypardiso import PyPardisoSolver
-    from pypardiso.pardiso_wrapper import PyPardisoError
+class _Pardiso:
+    """One MKL PARDISO Cholesky (``mtype = 2``) of an upper triangle, called directly.
 
-    U = sp.triu(A, format="csr")  # PARDISO's symmetric storage: the upper triangle by rows
+    pypardiso only loads the library (and its handle ``pt``): its own calls copy the
+    matrix's index arrays (1-based) on every solve and keep a copy of the matrix to
+    compare each right-hand side's with. Here the zero-based CSR arrays are passed as
+    they are (``iparm 35``), once factorised only solves (phase 33) follow.
+    """
+
+    def __init__(self, U: sp.csr_matrix):
+        _point_pypardiso_at_mkl()
+        from pypardiso import PyPardisoSolver
+
+        if U.nnz >= 2**31:
+            raise InputError(f"PARDISO's 32-bit interface takes < 2^31 non-zeros, the "
+                             f"matrix has {U.nnz}")
+        self._lib = PyPardisoSolver(mtype=2)  # the library and the handle pt only
+        self.n = U.shape[0]
+        self.data = np.ascontiguousarray(U.data, dtype=np.float64)
+        self.indptr = np.ascontiguousarray(U.indptr, dtype=np.int32)
+        self.indices = np.ascontiguousarray(U.indices, dtype=np.int32)
+        self.iparm = np.zeros(64, dtype=np.int32)
+        self.iparm[0] = 1  # use the parameters set here, not PARDISO's defaults
+        self.iparm[1] = 2  # METIS nested dissection (bench_sparse_solvers: beats min. degree)
+        self.iparm[9] = 8  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
+        self.iparm[34] = 1  # zero-based indices
+        self.error = 0
+
+    def call(self, phase: int, b: np.ndarray) -> np.ndarray:
+        """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x."""
+        b = np.asfortranarray(b, dtype=np.float64)
+        x = np.zeros_like(b)
+        err = ctypes.c_int32(0)
+        i32 = ctypes.POINTER(ctypes.c_int32)
+        f64 = ctypes.POINTER(ctypes.c_double)
+        lib = self._lib
+        lib._mkl_pardiso(
+            lib.pt.ctypes.data_as(ctypes.POINTER(lib._pt_type[0])),
+            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),  # maxfct, mnum
+            ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
+            ctypes.byref(ctypes.c_int32(self.n)), self.data.ctypes.data_as(f64),
+            self.indptr.ctypes.data_as(i32), self.indices.ctypes.data_as(i32),
+            ctypes.POINTER(ctypes.c_int32)(),  # perm: not used
+            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+            self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),  # msglvl
+            b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+        self.error = err.value
+        return x
+
+    def release(self) -> None:
+        """Free PARDISO's memory (phase -1)."""
+        self.call(-1, np.zeros(1))
+
+
+def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
+    U = A.tocsr() if upper else sp.triu(A, format="csr")  # PARDISO's storage: upper by rows
     U.sort_indices()
-    U.data = U.data.astype(np.float64, copy=False)
-    solver = PyPardisoSolver(mtype=2)  # real symmetric positive definite: Cholesky L L^T
-    solver.set_iparm(1, 1)  # use the parameters set here, not PARDISO's defaults
-    solver.set_iparm(2, 2)  # METIS nested dissection (bench_sparse_solvers: beats min. degree)
-    solver.set_iparm(10, 8)  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
-    try:
-        solver.factorize(U)
-    except PyPardisoError as err:
-        solver.free_memory(everything=True)
-        if err.value == PARDISO_NOT_SPD:
+    if not np.diff(U.indptr).all():  # PARDISO would crash on an empty row
+        raise RuntimeError("PARDISO's Cholesky: the matrix has an empty row, so it is not "
+                           "positive definite (a DOF in no element?)")
+    solver = _Pardiso(U)
+    del A, U  # the factor needs only its own arrays (solver.data, .indptr, .indices)
+    solver.call(12, np.zeros(solver.n))  # analysis and numerical factorisation
+    if solver.error:
+        err = solver.error
+        solver.release()
+        if err == PARDISO_NOT_SPD:
             raise RuntimeError("PARDISO's Cholesky met a zero or negative pivot: the matrix "
-                               "is not positive definite (a body without enough supports?)"
-                               ) from err
-        raise RuntimeError(f"PARDISO failed with error {err.value}") from err
-
-    # pypardiso's own solve keeps a copy of U (or its hash, above 5e7 non-zeros) and
-    # compares every right-hand side's matrix with it; the factor is ours alone, so drop
-    # the copy and ask PARDISO for its solve phase (33) directly, as pypardiso's
-    # remove_stored_factorization documents
-    solver.remove_stored_factorization()
-    solver.set_iparm(12, 0)  # U is CSR: no transposed solve
+                               "is not positive definite (a body without enough supports?)")
+        raise RuntimeError(f"PARDISO failed with error {err}")
 
     def solve(b: np.ndarray) -> np.ndarray:
-        solver.set_phase(33)
-        return solver._call_pardiso(U, np.asfortranarray(b, dtype=np.float64))
+        x = solver.call(33, b)  # column-major, as PARDISO writes it (no copy)
+        if solver.error:
+            raise RuntimeError(f"PARDISO's solve failed with error {solver.error}")
+        return x
 
     # PARDISO keeps its factor outside Python: free it with the last reference to solve
-    weakref.finalize(solve, solver.free_memory, True)
+    weakref.finalize(solve, solver.release)
     return solve
 
 
@@ -232,6 +300,17 @@ class DirectSolver:
                  free: np.ndarray | None = None) -> SPDFactor:
         return factorize_spd(A, self.method)
 
+    @property
+    def upper(self) -> bool:
+        """True when the method takes the upper triangle only (PARDISO): then the caller
+        can hand it that alone (:meth:`factorize_upper`) and never build the full block."""
+        method = sparse_cholesky() or "splu" if self.method == "auto" else self.method
+        return method == "pardiso"
+
+    def factorize_upper(self, U: sp.spmatrix) -> SPDFactor:
+        """Factorise the SPD matrix whose upper triangle (diagonal included) is ``U``."""
+        return factorize_spd(U, self.method, upper=True)
+
 
 def solver_named(name: str = "auto", dim: int = 3) -> Solver:
     """The solver a configuration string names (:data:`SOLVERS`).
@@ -245,15 +324,18 @@ def solver_named(name: str = "auto", dim: int = 3) -> Solver:
     return DirectSolver(name)
 
 
-def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
+def factorize_spd(A: sp.spmatrix, method: str = "auto", upper: bool = False) -> SPDFactor:
     """Factorise a sparse SPD matrix once for many solves.
 
     Parameters
     ----------
-    A : (n, n) sparse symmetric positive definite matrix.
+    A : (n, n) sparse symmetric positive definite matrix, or its upper triangle
+        (diagonal included) if ``upper``.
     method : "auto" (MKL PARDISO's Cholesky if pypardiso is installed, else
         scikit-sparse's CHOLMOD, else cholespy's, else SuperLU), "pardiso", "cholmod",
         "cholespy" or "splu".
+    upper : ``A`` holds the upper triangle only (PARDISO takes it as it is; the other
+        methods get the full matrix rebuilt from it).
     """
     check_choice("solver.method", method, FACTOR_METHODS)
     if method == "auto":
@@ -266,8 +348,11 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto") -> SPDFactor:
         raise InputError("solver.method = 'cholespy' but cholespy is not installed")
     n = A.shape[0]
     t0 = time.perf_counter()
+    if upper and method != "pardiso":
+        A = sp.triu(A, format="csr")
+        A = A + sp.triu(A, k=1, format="csr").T
     if method == "pardiso":
-        solve = _pardiso_factor(A)
+        solve = _pardiso_factor(A, upper)
     elif method == "cholmod":
         from sksparse.cholmod import cholesky
 

@@ -12,7 +12,10 @@ about one patch half-width apart):
   on it with ``compliance = "fe3d"`` cold, as a user runs it (its contact.json gives the
   figures compared).
 
-Every measurement is a fresh child process of the checkout timed (imports not counted for
+Every measurement is a fresh child process of the checkout, run with ``OMP_NUM_THREADS``
+set to ``--threads`` (default 2: what MKL takes on a 2-core machine when the variable is
+unset, as for a user; a parent's setting, such as one thread in a test runner, is not
+inherited), timed (imports not counted for
 the tables, counted for the command) with its own peak resident memory (``wait4``); the
 baseline revision (``--baseline``, default the main branch before the one-tooth tables,
 ``b847466``) is exported with ``git archive`` and run with the same interpreter, the two
@@ -26,7 +29,7 @@ and < 1 GB, ``gearpipe contact`` < 30 s; mesh stiffness and TE p-p within 0.5 % 
 baseline's. Run it alone: the machine's other jobs slow both sides, not the ratio.
 
     python workflows/benchmarks/bench_fe3d.py [--full] [--baseline REV | --no-baseline]
-        [--repeat N]
+        [--repeat N] [--threads N]
 """
 
 from __future__ import annotations
@@ -93,8 +96,10 @@ print(json.dumps(out, default=float))
 """
 
 
-def child(command: list[str], root: Path, logs: Path) -> tuple[float, float, str]:
-    """Run ``command`` from checkout ``root``: (wall s, its own peak RSS in GiB, stdout).
+def child(command: list[str], root: Path, logs: Path, threads: int
+          ) -> tuple[float, float, str]:
+    """Run ``command`` from checkout ``root`` with ``OMP_NUM_THREADS = threads``: (wall s,
+    its own peak RSS in GiB, stdout).
     stdout and stderr go to files in ``logs`` (no pipe to fill); ``wait4`` reaps the child
     and gives its resource use."""
     logs.mkdir(parents=True, exist_ok=True)
@@ -103,7 +108,8 @@ def child(command: list[str], root: Path, logs: Path) -> tuple[float, float, str
         t0 = time.perf_counter()
         proc = subprocess.Popen(command, cwd=root, stdout=out, stderr=err,
                                 env={**os.environ, "PYTHONPATH": str(root), "MPLBACKEND": "Agg",
-                                     "PYVISTA_OFF_SCREEN": "true"})
+                                     "PYVISTA_OFF_SCREEN": "true",
+                                     "OMP_NUM_THREADS": str(threads)})
         _, status, usage = os.wait4(proc.pid, 0)
         wall = time.perf_counter() - t0
     proc.returncode = os.waitstatus_to_exitcode(status)
@@ -113,14 +119,14 @@ def child(command: list[str], root: Path, logs: Path) -> tuple[float, float, str
     return wall, usage.ru_maxrss / 2**20, out_path.read_text()
 
 
-def tables_run(case: str, root: Path, tmp: Path) -> dict:
+def tables_run(case: str, root: Path, tmp: Path, threads: int) -> dict:
     """Both gears' tables of ``case`` ("z30" or "traction") cold and warm in one child."""
     wall, rss, out = child([sys.executable, "-c", TABLES, case, str(tmp / "cache"),
-                            str(TRACTION)], root, tmp / "logs")
+                            str(TRACTION)], root, tmp / "logs", threads)
     return {**json.loads(out), "process_s": wall, "process_peak_rss_GiB": rss}
 
 
-def contact_run(root: Path, tmp: Path) -> dict:
+def contact_run(root: Path, tmp: Path, threads: int) -> dict:
     """``gearpipe contact`` on the traction pair with ``compliance = "fe3d"``, cold."""
     tmp.mkdir(parents=True, exist_ok=True)
     config = tmp / "traction_fe3d.toml"
@@ -128,7 +134,7 @@ def contact_run(root: Path, tmp: Path) -> dict:
         "[stiffness]", '[contact]\ncompliance = "fe3d"\n\n[stiffness]', 1), encoding="utf-8")
     wall, rss, _ = child([sys.executable, "-m", "pipeline.cli", "contact", str(config),
                           "--out", str(tmp / "out"), "--cache-dir", str(tmp / "cache")],
-                         root, tmp / "logs")
+                         root, tmp / "logs", threads)
     figures = json.loads((tmp / "out" / "contact.json").read_text())
     return {"contact_s": wall, "peak_rss_GiB": rss, **{k: figures[k] for k in FIGURES}}
 
@@ -156,7 +162,11 @@ def main(argv: list[str] | None = None) -> dict:
     ap.add_argument("--repeat", type=int, default=2, help="rounds of cold runs (z 30/30)")
     ap.add_argument("--only-contact", action="store_true",
                     help="with --full: the traction pair's gearpipe contact only")
+    ap.add_argument("--threads", type=int, default=2,
+                    help="OMP_NUM_THREADS of the timed children (default 2)")
     args = ap.parse_args(argv)
+    if args.threads < 1:
+        ap.error(f"--threads = {args.threads}: must be >= 1")
     cases = [] if args.only_contact else [("z30", "tables", args.repeat)]
     if args.full:
         cases += [] if args.only_contact else [("traction", "tables", 1)]
@@ -173,8 +183,8 @@ def main(argv: list[str] | None = None) -> dict:
                 order = list(roots) if i % 2 == 0 else list(roots)[::-1]
                 for name in order:
                     work = tmp / f"{case}-{kind}-{i}-{name.split()[0]}"
-                    run = (tables_run(case, roots[name], work) if kind == "tables"
-                           else contact_run(roots[name], work))
+                    run = (tables_run(case, roots[name], work, args.threads)
+                           if kind == "tables" else contact_run(roots[name], work, args.threads))
                     run["load_average"] = os.getloadavg()
                     runs[name].append(run)
                     print(f"{case} {kind}, {name}, round {i + 1}: load "
@@ -187,7 +197,7 @@ def main(argv: list[str] | None = None) -> dict:
             results[f"{case} {kind}"] = runs
     summary = _summary(results)
     out = {"runs": results, "summary": summary, "baseline": None if args.no_baseline
-           else args.baseline, "versions": library_versions()}
+           else args.baseline, "threads": args.threads, "versions": library_versions()}
     name = "fe3d" + ("_contact" if args.only_contact else "_full" if args.full else "")
     write_json(HERE / "results" / "benchmarks" / f"{name}.json", out)
     return out
