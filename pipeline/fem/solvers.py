@@ -38,9 +38,9 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   the blocks (``bench_fe3d --full``, 2 threads, load 0.5-1.5): both tables 30.3 s against
   33.6 s (pinion factorise 3.5 / 3.7 s, solve 2.8 / 2.9 s; gear 6.1 / 8.1 s and
   5.2 / 5.8 s), ``gearpipe contact`` 34.2 against 38.3 s, peak memory 2.0 against
-  2.35 GiB, mesh stiffness and TE p-p unchanged (tables equal to 5e-14). PARDISO's factor of the larger gear
-  alone takes 0.95 GB, its analysis 0.33 GB more, so tables under 1 GB need fewer
-  unknowns.
+  2.35 GiB, mesh stiffness and TE p-p unchanged (tables equal to 5e-14). PARDISO's
+  factor of the larger gear alone takes 0.95 GB, its analysis 0.33 GB more, so tables
+  under 1 GB need fewer unknowns.
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
   elasticity with 200k DOF factorises in about 20 s and each further right-hand side
