@@ -14,7 +14,9 @@ from skfem import MeshTet
 from pipeline.fem.linear_static import (
     build_model,
     compliance_blocks,
+    factorized,
     free_block,
+    free_system,
     load_compliance,
     set_up,
     solve_static,
@@ -243,6 +245,29 @@ def test_compliance_blocks_read_a_dense_solve(bar):
     np.testing.assert_array_equal(whole, compliance_blocks(factor, free_set, Fs, R, 3).matrix)
     with pytest.raises(InputError, match="rows"):
         compliance_blocks(factor, free_set, Fs, R[:-1])
+
+
+def test_free_system_factorises_without_the_model():
+    """free_system's call holds the free block, not the model: a model dropped before the
+    call is freed (weak reference dead), and the factor then solves bit for bit as set_up's
+    (the 3D tables factorise without the full stiffness in memory)."""
+    import weakref
+
+    mesh = MeshTet.init_tensor(np.linspace(0, 1, 7), np.linspace(0, 0.1, 3),
+                               np.linspace(0, 0.1, 3))
+    model = build_model(mesh, Material(), order=2)
+    clamp = model.dofs.get_dofs(lambda x: x[0] < 1e-12).flatten()
+    F = np.zeros((model.n_dof, 1))
+    F[model.dofs.get_dofs(lambda x: x[0] > 1 - 1e-12).flatten()[0::3], 0] = 1.0
+    free, factor = set_up(model, clamp)
+    ref = factor.solve(F[free])
+    free2, factorize = free_system(model, clamp)
+    alive = weakref.ref(model)
+    del model
+    gc.collect()
+    assert alive() is None
+    np.testing.assert_array_equal(free2, free)
+    np.testing.assert_array_equal(factorized(factorize, free.size).solve(F[free]), ref)
 
 
 def test_bad_inputs(bar):
