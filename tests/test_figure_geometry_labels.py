@@ -293,6 +293,22 @@ def test_profile_titles_say_undercut_in_words():
     assert fig.axes[0].get_xlabel() == "x [mm]" and fig.axes[0].get_ylabel() == "y [mm]"
 
 
+def test_profile_panels_fill_their_slots():
+    """Equal-scale profile panels of a z 50/50 pair fill their slots (the figure's height
+    follows the drawing's aspect): the axes box shrunk to equal scale keeps >= 95 % of the
+    slot's height (68 % when every panel was 4 in high, an empty band between them);
+    with an undercut z 8 pinion the taller drawing sets the height (its panel >= 95 %)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    for gears, full in (((spur(50, "pinion"), spur(50, "gear")), (0, 1)),
+                        ((spur(8, "pinion", bore_radius=0.005), spur(50, "gear")), (0,))):
+        fig = plot_profiles(gears, tuple(tooth_profile(g) for g in gears))
+        FigureCanvasAgg(fig).draw()
+        for i in full:
+            ax = fig.axes[i]
+            assert ax.get_position().height >= 0.95 * ax.get_position(original=True).height
+
+
 def test_excitation_comparison_figures_have_their_own_titles(monkeypatch):
     """The sweep figure carried the excitation figure's title. Its dotted line is the mesh
     frequency at the operating speed: 50 teeth at 2340 rpm mesh at 50 x 2340 / 60 = 1950 Hz."""

@@ -247,10 +247,21 @@ def profile_title(gear: GearSpec, prof: ToothProfile) -> str:
 
 
 def plot_profiles(gears: tuple[GearSpec, ...], profiles: tuple[ToothProfile, ...]) -> Figure:
-    """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked."""
-    fig = new_figure((9, 4 * len(gears)), Margins(right=1.3, hspace=0.95))  # legends beside
+    """The tooth profiles of several gears (:func:`plot_profile`), one panel each, stacked.
+
+    Each panel is as tall as the tallest drawing needs at equal scale over the panel width
+    (1.5 to 6 in), so the panels are not separated by the empty bands an equal-scale
+    drawing leaves in a taller slot."""
+    margins = Margins(right=1.3, hspace=0.95)  # legends beside
+    width = 9.0
+    fig = new_figure((width, 4 * len(gears)), margins)
     axes = np.atleast_1d(fig.subplots(len(gears), 1))
     for ax, g, prof in zip(axes, gears, profiles, strict=True):
         plot_profile(prof, ax=ax)
         ax.set_title(profile_title(g, prof), y=TITLE_Y)
+    panel_w = width - margins.left - margins.right
+    ratio = max(ax.dataLim.height / ax.dataLim.width for ax in axes)
+    panel_h = float(np.clip(panel_w * ratio, 1.5, 6.0))
+    fig.set_size_inches(width, len(gears) * panel_h + margins.bottom + margins.top
+                        + (len(gears) - 1) * margins.hspace)
     return fig
