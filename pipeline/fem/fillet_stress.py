@@ -221,9 +221,8 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
         from pipeline.fem.elasticity import lame_constants
         from pipeline.fem.flank import flank_points
         from pipeline.fem.influence import constrained_dofs
-        from pipeline.fem.linear_static import build_model
+        from pipeline.fem.linear_static import build_model, free_system
         from pipeline.fem.patch_loads import patch_loads
-        from pipeline.fem.solvers import factorize_spd
 
         t0 = time.perf_counter()
         sec = sector_mesh_2d(gear, ss, cache=cache)
@@ -231,12 +230,12 @@ def build_fillet_stress(gear: GearSpec, settings: FilletStressSettings, *,
         model = build_model(sec.mesh, gear.material, order=2, kind=settings.kind)
         t2 = time.perf_counter()
         pts = flank_points(gear, z, np.repeat(teeth, r.size), np.tile(r, teeth.size))
-        free = np.setdiff1d(np.arange(model.n_dof), constrained_dofs(sec, model))
+        free, factorize = free_system(model, constrained_dofs(sec, model))
         # the free rows only, already in the column order the factor's solve takes
         F = patch_loads(sec, pts, 0.1 * gear.module)[free].toarray(order="F")
         t3 = time.perf_counter()
         # the displacements of the free DOFs only: the recovery reads a few hundred of them
-        U = factorize_spd(model.stiffness[free][:, free]).solve(F)
+        U = factorize().solve(F)
         t4 = time.perf_counter()
         lam, mu = lame_constants(gear.material, settings.kind)
         _, xy, s = _recover(sec, partial(_free_rows, U, free), lam, mu, mid)
