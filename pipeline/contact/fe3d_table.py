@@ -94,8 +94,8 @@ FINE_NEIGHBOURS = 1
 (``near``, 1.5 flank sizes: :mod:`pipeline.fem.whole3d`; module docstring: the
 responses read on a coarse neighbour made the mesh stiffness 0.5 % stiffer than with
 every tooth fine, one fine neighbour 0.13 %, all read teeth fine 0.004 %)."""
-_STORED = ("structural", "dof", "free_dof", "solver", "seconds", "timing_names",
-           "timing_values", "symmetry_error")  # arrays in the cache file
+_STORED = ("structural", "dof", "free_dof", "condensed_dof", "solver", "seconds",
+           "timing_names", "timing_values", "symmetry_error")  # arrays in the cache file
 @dataclass(frozen=True, eq=False)
 class FlankTable3D:
     """Structural compliance on the right-flank grid of some teeth of one gear's 3D model.
@@ -109,7 +109,9 @@ class FlankTable3D:
         docstring), N = n_t n_f n_p, points
         ordered by tooth (outer), face position, then profile (inner).
     width : meshed face width of the model, m.
-    info : "body", "model_teeth" (teeth of the mesh), "dof", "free_dof", "solver",
+    info : "body", "model_teeth" (teeth of the mesh), "dof", "free_dof",
+        "condensed_dof" (of the free DOFs, those eliminated before the factorisation:
+        :func:`pipeline.fem.influence.far_part`), "solver",
         "seconds" (wall time of the build that computed the table), "timings_s" (its
         breakdown: mesh, assembly, loads, factorise, solve, near field, s), "cached"
         (read from the cache), "wall_s" (this call), "symmetry_error", and the
@@ -297,7 +299,7 @@ def _solved(kind: str, key: dict, gear: GearSpec, s3: SectorSettings3D, teeth: n
         seconds = time.perf_counter() - t0
         timings = {**steps.timings, "total": seconds}
         return {"structural": res.structural, "dof": res.n_dof, "free_dof": res.n_free,
-                "solver": res.method, "seconds": seconds,
+                "condensed_dof": res.n_condensed, "solver": res.method, "seconds": seconds,
                 "timing_names": np.array(list(timings)),
                 "timing_values": np.array(list(timings.values())),
                 "symmetry_error": res.symmetry_error()}
@@ -314,7 +316,8 @@ def _info(v: dict, hit: bool, t_call: float) -> dict:
     """The build figures of a table (:class:`FlankTable3D` ``info``)."""
     timings = {str(n): float(t) for n, t in zip(v["timing_names"], v["timing_values"],
                                                strict=True)}
-    return {"dof": int(v["dof"]), "free_dof": int(v["free_dof"]), "solver": str(v["solver"]),
+    return {"dof": int(v["dof"]), "free_dof": int(v["free_dof"]),
+            "condensed_dof": int(v["condensed_dof"]), "solver": str(v["solver"]),
             "seconds": float(v["seconds"]), "timings_s": timings, "cached": hit,
             "wall_s": time.perf_counter() - t_call,
             "symmetry_error": float(v["symmetry_error"])}

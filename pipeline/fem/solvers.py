@@ -39,8 +39,11 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   33.6 s (pinion factorise 3.5 / 3.7 s, solve 2.8 / 2.9 s; gear 6.1 / 8.1 s and
   5.2 / 5.8 s), ``gearpipe contact`` 34.2 against 38.3 s, peak memory 2.0 against
   2.35 GiB, mesh stiffness and TE p-p unchanged (tables equal to 5e-14). PARDISO's
-  factor of the larger gear alone takes 0.95 GB, its analysis 0.33 GB more, so tables
-  under 1 GB need fewer unknowns.
+  factorisation of the larger gear (175k unknowns since) takes 770 MB (``iparm 15-17``);
+  its far body is now eliminated first (:mod:`pipeline.fem.condensation`, with
+  :func:`schur_complement`: PARDISO's partial factorisation, ``iparm 36 = 1``), so the
+  two parts take 320 and 506 MB in turn. Out-of-core PARDISO (``iparm 60 = 2``, 500 MB
+  in core) was no answer: 181 s instead of 38 s for both tables, peak 1.24 GiB.
 * ``"cholmod"`` - supernodal sparse Cholesky from SuiteSparse through
   scikit-sparse; taken by ``"auto"`` without PARDISO whenever it is installed. 3D P2
   elasticity with 200k DOF factorises in about 20 s and each further right-hand side
@@ -170,10 +173,13 @@ class _Pardiso:
         self.iparm[34] = 1  # zero-based indices
         self.error = 0
 
-    def call(self, phase: int, b: np.ndarray) -> np.ndarray:
-        """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x."""
+    def call(self, phase: int, b: np.ndarray, perm: np.ndarray | None = None,
+             x: np.ndarray | None = None) -> np.ndarray:
+        """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x
+        (``perm``: PARDISO's int32 ``perm`` array, e.g. the Schur rows of ``iparm 36``;
+        ``x``: the output array, default one shaped as ``b``)."""
         b = np.asfortranarray(b, dtype=np.float64)
-        x = np.zeros_like(b)
+        x = np.zeros_like(b) if x is None else x
         err = ctypes.c_int32(0)
         i32 = ctypes.POINTER(ctypes.c_int32)
         f64 = ctypes.POINTER(ctypes.c_double)
@@ -184,7 +190,7 @@ class _Pardiso:
             ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
             ctypes.byref(ctypes.c_int32(self.n)), self.data.ctypes.data_as(f64),
             self.indptr.ctypes.data_as(i32), self.indices.ctypes.data_as(i32),
-            ctypes.POINTER(ctypes.c_int32)(),  # perm: not used
+            ctypes.POINTER(ctypes.c_int32)() if perm is None else perm.ctypes.data_as(i32),
             ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
             self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),  # msglvl
             b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
@@ -196,15 +202,34 @@ class _Pardiso:
         self.call(-1, np.zeros(1))
 
 
-def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
+def _return_free_heap() -> None:
+    """Hand the C heap's free pages back to the system (glibc's ``malloc_trim``) before a
+    factorisation takes its peak memory.
+
+    Meshing and assembly leave hundreds of MB of freed but mapped small blocks: on the
+    traction gear of Yang et al. (2026) the resident memory before its factorisation went
+    from 0.55 to 0.28 GiB. A no-op where the C library has no ``malloc_trim``.
+    """
+    try:
+        trim = ctypes.CDLL(None).malloc_trim
+    except (AttributeError, OSError):
+        return
+    trim(0)
+
+
+def _pardiso_upper(A: sp.spmatrix, upper: bool) -> _Pardiso:
+    """A PARDISO instance on the upper triangle of ``A`` (``A`` is that triangle if
+    ``upper``), rows sorted and checked non-empty."""
     U = A.tocsr() if upper else sp.triu(A, format="csr")  # PARDISO's storage: upper by rows
     U.sort_indices()
     if not np.diff(U.indptr).all():  # PARDISO would crash on an empty row
         raise RuntimeError("PARDISO's Cholesky: the matrix has an empty row, so it is not "
                            "positive definite (a DOF in no element?)")
-    solver = _Pardiso(U)
-    del A, U  # the factor needs only its own arrays (solver.data, .indptr, .indices)
-    solver.call(12, np.zeros(solver.n))  # analysis and numerical factorisation
+    return _Pardiso(U)
+
+
+def _check_pardiso(solver: _Pardiso) -> None:
+    """Release ``solver`` and raise if its last call failed."""
     if solver.error:
         err = solver.error
         solver.release()
@@ -212,6 +237,14 @@ def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
             raise RuntimeError("PARDISO's Cholesky met a zero or negative pivot: the matrix "
                                "is not positive definite (a body without enough supports?)")
         raise RuntimeError(f"PARDISO failed with error {err}")
+
+
+def _pardiso_factor(A: sp.spmatrix, upper: bool = False):
+    solver = _pardiso_upper(A, upper)
+    del A  # the factor needs only its own arrays (solver.data, .indptr, .indices)
+    _return_free_heap()
+    solver.call(12, np.zeros(solver.n))  # analysis and numerical factorisation
+    _check_pardiso(solver)
 
     def solve(b: np.ndarray) -> np.ndarray:
         x = solver.call(33, b)  # column-major, as PARDISO writes it (no copy)
@@ -365,3 +398,46 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto", upper: bool = False) -> 
                        options={"SymmetricMode": True})
         solve = lu.solve
     return SPDFactor(method=method, n=n, factor_seconds=time.perf_counter() - t0, _solve=solve)
+
+
+def schur_complement(U: sp.spmatrix, interface: np.ndarray, method: str = "auto"
+                     ) -> np.ndarray:
+    """Dense Schur complement ``S = K_gg - K_gi K_ii^-1 K_ig`` of an SPD matrix K on the
+    unknowns ``interface`` (g; i the others), from K's upper triangle ``U``.
+
+    Parameters
+    ----------
+    U : (n, n) sparse upper triangle of K, diagonal included.
+    interface : (n,) boolean mask of the unknowns kept; S is ordered as they are.
+    method : as :func:`factorize_spd`. PARDISO computes S within one partial
+        factorisation (``iparm 36 = 1``: the interface eliminated last, S returned dense);
+        the others factorise K_ii and solve for K_ig's columns in blocks.
+
+    Returns
+    -------
+    (m, m) symmetric positive definite array, m = ``interface.sum()``.
+    """
+    check_choice("solver.method", method, FACTOR_METHODS)
+    g = np.asarray(interface, dtype=bool)
+    if g.shape != (U.shape[0],) or not g.any() or g.all():
+        raise InputError(f"interface: a mask of the matrix's {U.shape[0]} unknowns, with some "
+                         "but not all of them")
+    method = sparse_cholesky() or "splu" if method == "auto" else method
+    m = int(g.sum())
+    if method == "pardiso" and pardiso_available():
+        solver = _pardiso_upper(U, upper=True)
+        solver.iparm[35] = 1  # Schur complement, returned dense in x
+        _return_free_heap()
+        S = solver.call(12, np.zeros(m * m), perm=g.astype(np.int32))
+        _check_pardiso(solver)
+        solver.release()
+        return S.reshape(m, m)
+    K = sp.csr_matrix(U)
+    K = K + sp.triu(K, k=1, format="csr").T
+    inner = ~g
+    Kig = K[inner][:, g]
+    S = K[g][:, g].toarray()
+    factor = factorize_spd(K[inner][:, inner], method)
+    for a in range(0, m, 256):
+        S[:, a:a + 256] -= Kig.T @ factor.solve(Kig[:, a:a + 256].toarray())
+    return 0.5 * (S + S.T)

@@ -84,7 +84,8 @@ out = {"tables_cold_s": cold, "tables_warm_s": time.perf_counter() - t0,
        "peak_rss_GiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20}
 for g in ("pinion", "gear"):
     info = getattr(src, g + "_table").info
-    out[g] = {"dof": info["dof"], "cached": info["cached"], "timings_s": info["timings_s"],
+    out[g] = {"dof": info["dof"], "condensed": info.get("condensed_dof", 0),
+              "cached": info["cached"], "timings_s": info["timings_s"],
               "mirrored": info.get("mirrored", False)}
 if case == "z30":
     cyc = loaded_mesh_cycle(src, 4000.0, positions=30)
@@ -146,7 +147,9 @@ def _print_tables(name: str, r: dict) -> None:
         info = r[g]
         how = ("from the pinion's mirror image" if info["mirrored"] and info["cached"]
                else "read back" if info["cached"] else "solved")
-        print(f"      {g}: {info['dof']} unknowns, {how}: " + ", ".join(
+        far = (f" ({info['condensed']} of them condensed before the factorisation)"
+               if info.get("condensed") else "")
+        print(f"      {g}: {info['dof']} unknowns{far}, {how}: " + ", ".join(
             f"{k} {v:.2f} s" for k, v in info["timings_s"].items()))
 
 
