@@ -64,6 +64,12 @@ structured sweep (prisms split into tetrahedra, layers three flank cells thick) 
 many layers through the coarse body as through the loaded teeth: 3 x 596 section
 triangles x 18 layers = 32k cells for the pinion, 101k for the gear (1869 triangles).
 
+The solve eliminates the body more than a pitch beyond the loaded and read teeth
+exactly before the factorisation (:func:`pipeline.fem.influence.far_part`,
+:mod:`pipeline.fem.condensation`): on the gear above, 85.4k of its 175.8k unknowns. With
+the C heap handed back before each factorisation and solve blocks under 64 MB, that
+brought the traction pair's peak memory from 1.31 to 0.82 GiB, the tables unchanged.
+
 How it is meshed, and why. Gmsh's built-in kernel twists the plane section (splines
 through outline points :data:`SPLINE_SPACING` flank cells apart, the bore circle as a hole)
 about the gear axis while translating it over the face (``geo.twist``; a plain extrusion
