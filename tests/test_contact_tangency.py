@@ -178,3 +178,24 @@ def test_a_rounding_too_small_to_resolve_is_refused():
     with pytest.raises(InputError, match=r"^pinion\.tip_rounding = 0\.0001 mm is below the "
                                          r"0\.00\d+ mm the tangency contact model resolves"):
         loaded_mesh_cycle(src, 100.0 / pair.pinion.base_radius, None, "weber", 6)
+
+
+def test_table_grid_is_checked_to_round_off(tmp_path, monkeypatch):
+    """A table made on another grid is refused; one whose grid differs in the last bit
+    (another NumPy's ``logspace``) is the same table."""
+    tangency = T
+    with np.load(tangency.TABLE) as z:
+        arrays = dict(z)
+    for shift, ok in ((1e-15, True), (1e-6, False)):
+        path = tmp_path / f"table_{shift}.npz"
+        np.savez(path, **{**arrays, "q": arrays["q"] * (1 + shift)})
+        monkeypatch.setattr(tangency, "TABLE", path)
+        tangency.phi_table.cache_clear()
+        try:
+            if ok:
+                assert np.array_equal(tangency.phi_table(), arrays["phi"])
+            else:
+                with pytest.raises(RuntimeError, match="grid 'q' differs"):
+                    tangency.phi_table()
+        finally:
+            tangency.phi_table.cache_clear()
