@@ -165,9 +165,10 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
     options = RunOptions(full=args.full, cache=command_cache(args),
                          show_progress=not args.json, label=f"gearpipe {command}")
     # the drawer imports matplotlib while the stages compute, then draws the figures of
-    # each stage while the next computes (pipeline.viz.figure_queue)
-    with parallel_figures(figure_cache(options), prestart=True) as figures, \
-            staged_output(target) as out:
+    # each stage while the next computes (pipeline.viz.figure_queue); if the run fails,
+    # it is ended before the staging folder it draws into is removed
+    with staged_output(target) as out, \
+            parallel_figures(figure_cache(options), prestart=True) as figures:
         written: dict[str, dict[str, list[Path]]] = {}
         for stage, result in run_stages(box, options):
             if stage == "complete":

@@ -138,8 +138,9 @@ class FigureQueue:
             self._feed()
 
     def stop(self) -> None:
-        """End the drawer without drawing (idempotent): it has drawn nothing, so it is
-        killed rather than waited for (it may still be importing matplotlib)."""
+        """End the drawer without drawing the rest (idempotent): it is killed rather than
+        waited for (it may still be importing matplotlib, or drawing a figure of a run that
+        failed)."""
         with self._lock:
             drawer, self.drawer = self.drawer, None
             self.handed, self.sent = [], []
