@@ -24,6 +24,12 @@ to it as one job, which forks the drawing pool from the warmed-up drawer
 (:func:`draw_jobs`): every drawing process starts with matplotlib and the drawing modules
 the drawer imported (for the figures it drew) imported once. Why not one pool forked from
 this process at the start: each of its workers imports them itself.
+Measured (``workflows/benchmarks/bench_run.py``, the demo's cold ``gearpipe run`` beside
+0a4a91a, which drew every figure after the last stage; 2 cores shared with another job,
+three runs each, every file and number the same): wall median 14.5 s against 17.0 s (0.85)
+at load average 1.3-2.9, and 12.9 against 14.5 s (0.89) at 2.4-3.2, CPU 21.6 against 23.0
+s; at load average 3.1-3.6, when the run's processes share about one core, 23.3 against
+23.5 s (0.99): the drawer gains only where a core is free while the stages compute.
 Measured on 2 cores (warm ``gearpipe run`` of the demo with the damping ratio changed,
 runs interleaved), with one worker warmed up: 13 % slower than the drawer, 0.37 s more
 CPU; with every worker warmed up: 11 % slower, and the unchanged warm run 18 % slower
