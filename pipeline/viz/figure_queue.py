@@ -170,10 +170,11 @@ class FigureQueue:
         with self._lock:  # the drawer is given nothing more (_feed)
             jobs, sent = self.handed + self.jobs, self.sent
             self.jobs, self.handed, self.sent = [], [], []
-            if not jobs and not sent:  # every figure came from the cache: not waited for
-                self.stop()
-                return
             drawer, self.drawer = self.drawer, None
+        if not jobs and not sent:  # every figure came from the cache: not waited for
+            if drawer is not None:
+                kill_pool(drawer)
+            return
         paths = [path for path, _, _ in sent] + [path for path, _ in jobs]
         with _counting_files(paths, show_progress):
             failures = (_by_drawer(drawer, sent, jobs, workers) if drawer is not None
