@@ -5,7 +5,8 @@ for parallel drawing come out byte-identical to those drawn in turn, and one fig
 whose drawing fails is named in one error while the others are still written. The
 early-started drawer gives the same files, drawn by it or by the pool it forks, not by
 this process; drawings handed to it early (``send``) are drawn by the drawer itself, one
-given at a time, the rest by its pool; drawings that do not pickle, a drawer that died, or
+given at a time, the rest by its pool, and a preparation handed after them runs in the
+drawer once they are drawn; drawings that do not pickle, a drawer that died, or
 drawings a broken pool (a worker killed while drawing) did not finish are drawn by the
 process that holds them; a block that fails, or a run with every figure cached, kills the
 drawer without waiting for its warm-up.
@@ -16,6 +17,7 @@ from __future__ import annotations
 import os
 import signal
 import time
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -171,6 +173,23 @@ def test_sent_drawings_are_drawn_by_the_drawer_in_turn_and_the_rest_by_its_pool(
         assert (pid, parent) == (drawer, os.getpid()) if n in "ab" else parent == drawer, n
     for s, q in zip(serial, early + late, strict=True):
         assert q.read_bytes() == s.read_bytes(), q.name
+
+
+def note_pid_and_files(note: Path, folder: Path) -> None:
+    """A preparation: writes its process's id and the PNG files in ``folder`` to ``note``."""
+    note.write_text(f"{os.getpid()} " + " ".join(sorted(p.name for p in folder.glob("*.png"))))
+
+
+def test_a_preparation_runs_in_the_drawer_after_the_drawings_handed_before(tmp_path):
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = _children()[0].pid
+        early = _figures(figures.save, tmp_path, n=2)
+        figures.queue.send()
+        figures.queue.prepare(partial(note_pid_and_files, tmp_path / "note.txt", tmp_path))
+        _wait_for([tmp_path / "note.txt"])
+    pid, *seen = (tmp_path / "note.txt").read_text().split()
+    assert int(pid) == drawer and seen == [p.name for p in early]
+    assert all(p.is_file() for p in early)
 
 
 def test_a_failing_sent_drawing_is_named_and_one_that_does_not_pickle_drawn_here(tmp_path):

@@ -175,7 +175,15 @@ def run(args: argparse.Namespace, command: str = "run") -> int:
                 break
             with result.log.step(f"writing the {stage} files"):
                 written[stage] = write_stage(stage, result, out, figures)
+                drawing = bool(figures.queue.jobs)
                 figures.queue.send()
+            if stage == "analytical" and drawing and any(
+                    box.mesh_contact(name).render for name in result.meshes):
+                # figures not in the cache: the load maps will likely be drawn as well;
+                # the drawer imports their renderer while the FE contact computes
+                from pipeline.viz.loadmap import prepare_rendering
+
+                figures.queue.prepare(prepare_rendering)
         files = _in_order(written)
         with result.log.step("writing tables and figures", announce=True):
             reports = []

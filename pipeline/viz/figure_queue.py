@@ -19,7 +19,11 @@ stress) hands them over with :meth:`~FigureQueue.send`: the drawer draws them on
 time, itself, on the core this process leaves free while it computes; it is given the
 next one only when it has drawn the last (:meth:`~FigureQueue._feed`, from the pool's
 result thread), so that the end of the run finds at most one drawing begun. The drawings
-it has not been given then join the rest: :meth:`~FigureQueue.draw_all` submits them all
+it has not been given then join the rest (a run may also hand it a preparation for
+drawings to come, :meth:`~FigureQueue.prepare`: ``gearpipe run`` has it import pyvista
+after the geometry and stiffness figures, while the FE contact computes, when it drew
+some of those, so that the load map drawn after the contact does not wait for the
+import): :meth:`~FigureQueue.draw_all` submits them all
 to it as one job, which forks the drawing pool from the warmed-up drawer
 (:func:`draw_jobs`): every drawing process starts with matplotlib and the drawing modules
 the drawer imported (for the figures it drew) imported once. Why not one pool forked from
@@ -92,12 +96,16 @@ class FigureQueue:
     drawer : the early-started drawer, a pool of one warmed-up process (:meth:`start`).
     handed : the drawings :meth:`send` handed over that the drawer has not been given yet.
     sent : the drawings given to the drawer, with their futures.
+    preparing, prepared : the calls :meth:`prepare` handed over, not yet given to the drawer
+        and given (their futures).
     """
 
     jobs: list[Job] = field(default_factory=list)
     drawer: ProcessPoolExecutor | None = None
     handed: list[Job] = field(default_factory=list)
     sent: list[Sent] = field(default_factory=list)
+    preparing: list[Callable[[], object]] = field(default_factory=list)
+    prepared: list[Future] = field(default_factory=list)
     _lock: threading.RLock = field(default_factory=threading.RLock, repr=False,
                                    compare=False)
 
@@ -124,18 +132,38 @@ class FigureQueue:
             self.jobs = []
             self._feed()
 
+    def prepare(self, call: Callable[[], object]) -> None:
+        """Have the drawer run ``call`` (a module-level function: the imports of drawings to
+        come, say) once it has drawn the drawings handed over before, while this process
+        goes on (module docstring); nothing without a drawer. Its errors are ignored: a
+        drawing that needs what it prepares reports its own."""
+        with self._lock:
+            if self.drawer is None:
+                return
+            self.preparing.append(call)
+            self._feed()
+
     def _feed(self) -> None:
-        """Give the drawer the next handed drawing if it has none in hand (one at a time, so
-        that :meth:`draw_all` finds at most one begun; the lock held)."""
-        if self.drawer is None or not self.handed or any(not f.done() for *_, f in self.sent):
+        """Give the drawer the next handed drawing, or else the next preparation, if it has
+        none in hand (one at a time, so that :meth:`draw_all` finds at most one begun; the
+        lock held)."""
+        busy = [f for *_, f in self.sent] + self.prepared
+        if self.drawer is None or any(not f.done() for f in busy):
             return
-        path, job = self.handed[0]
         try:
-            future = self.drawer.submit(draw_one, path, job)
+            if self.handed:
+                path, job = self.handed[0]
+                future = self.drawer.submit(draw_one, path, job)
+                self.sent.append((path, job, future))
+                self.handed.pop(0)
+            elif self.preparing:
+                future = self.drawer.submit(self.preparing[0])
+                self.prepared.append(future)
+                self.preparing.pop(0)
+            else:
+                return
         except (BrokenProcessPool, RuntimeError):  # it died, or is shut down: draw_all draws
             return
-        self.handed.pop(0)
-        self.sent.append((path, job, future))
         future.add_done_callback(self._drawn)
 
     def _drawn(self, future: Future) -> None:
@@ -149,7 +177,7 @@ class FigureQueue:
         failed)."""
         with self._lock:
             drawer, self.drawer = self.drawer, None
-            self.handed, self.sent = [], []
+            self.handed, self.sent, self.preparing, self.prepared = [], [], [], []
         if drawer is not None:
             kill_pool(drawer)
 
@@ -169,7 +197,10 @@ class FigureQueue:
         """
         with self._lock:  # the drawer is given nothing more (_feed)
             jobs, sent = self.handed + self.jobs, self.sent
-            self.jobs, self.handed, self.sent = [], [], []
+            self.jobs, self.handed, self.sent, self.preparing = [], [], [], []
+            for future in self.prepared:  # one it has begun is waited for with its queue
+                future.cancel()
+            self.prepared = []
             drawer, self.drawer = self.drawer, None
         if not jobs and not sent:  # every figure came from the cache: not waited for
             if drawer is not None:
