@@ -71,9 +71,10 @@ of which 0.7-1.2 s imports, each new drawing process 0.5-1.5 s more for its firs
 
 Since the files of each stage are written as it ends and its figures drawn by the drawer
 while the next stages compute (the report figures and those the drawer has not reached
-still after the last), the demo's cold run took 0.85-0.89 of 0a4a91a's wall time at load
-average 1.3-3.2 and 0.99 at 3.1-3.6 (:mod:`pipeline.viz.figure_queue`; the stages and
-the drawer share the two cores, so each stage took longer).
+still after the last), the demo's cold run took 0.79-0.80 of 0a4a91a's wall time with no
+other job, 0.85-0.89 beside one at load average 1.3-3.2 and 0.99 at 3.1-3.6
+(:mod:`pipeline.viz.figure_queue`; the stages and the drawer share the two cores, so each
+stage took longer).
 
 The computing process (:func:`~pipeline.run.runner.run_pipeline` of the demo's pair, cold,
 one process per run, CPU of the process and the children it waited for, one BLAS thread;

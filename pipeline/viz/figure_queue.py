@@ -29,11 +29,14 @@ to it as one job, which forks the drawing pool from the warmed-up drawer
 the drawer imported (for the figures it drew) imported once. Why not one pool forked from
 this process at the start: each of its workers imports them itself.
 Measured (``workflows/benchmarks/bench_run.py``, the demo's cold ``gearpipe run`` beside
-0a4a91a, which drew every figure after the last stage; 2 cores shared with another job,
-three runs each, every file and number the same): wall median 14.5 s against 17.0 s (0.85)
-at load average 1.3-2.9, and 12.9 against 14.5 s (0.89) at 2.4-3.2, CPU 21.6 against 23.0
-s; at load average 3.1-3.6, when the run's processes share about one core, 23.3 against
-23.5 s (0.99): the drawer gains only where a core is free while the stages compute.
+0a4a91a, which drew every figure after the last stage; three runs each, every file and
+number the same): with pyvista prepared, wall median 11.5 s against 14.2 s (0.80) and
+10.9 against 13.8 s (0.79) with no other job (load average 0.6-2.3, the run's own), CPU
+19.3-20.3 against 20.7-20.8 s, the load map 1.5 s of CPU against 2.3-2.7 s; before
+that, beside another job using both cores, 14.5 against 17.0 s (0.85) at load average
+1.3-2.9 and 12.9 against 14.5 s (0.89) at 2.4-3.2; at 3.1-3.6, when the run's processes
+share about one core, 23.3 against 23.5 s (0.99): the drawer gains only where a core is
+free while the stages compute.
 Measured on 2 cores (warm ``gearpipe run`` of the demo with the damping ratio changed,
 runs interleaved), with one worker warmed up: 13 % slower than the drawer, 0.37 s more
 CPU; with every worker warmed up: 11 % slower, and the unchanged warm run 18 % slower
