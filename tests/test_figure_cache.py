@@ -4,10 +4,12 @@ A cached figure is copied, not redrawn; a changed argument redraws it. Figures q
 for parallel drawing come out byte-identical to those drawn in turn, and one figure
 whose drawing fails is named in one error while the others are still written. The
 early-started drawer gives the same files, drawn by it or by the pool it forks, not by
-this process; drawings that do not pickle, a drawer that died, or drawings a broken pool
-(a worker killed while drawing) did not finish are drawn by the process that holds them;
-a block that fails, or a run with every figure cached, kills the drawer without waiting
-for its warm-up.
+this process; drawings handed to it early (``send``) are drawn by the drawer itself, one
+given at a time, the rest by its pool, and a preparation handed after them runs in the
+drawer once they are drawn; drawings that do not pickle, a drawer that died, or
+drawings a broken pool (a worker killed while drawing) did not finish are drawn by the
+process that holds them; a block that fails, or a run with every figure cached, kills the
+drawer without waiting for its warm-up.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from __future__ import annotations
 import os
 import signal
 import time
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -141,6 +144,69 @@ def test_the_drawer_or_its_pool_draws_them_not_this_process(tmp_path, workers):
             assert (pid, parent) == (drawer, os.getpid())
         else:
             assert parent == drawer
+
+
+def _wait_for(paths: list[Path], seconds: float = 60.0) -> None:
+    deadline = time.monotonic() + seconds
+    while not all(p.is_file() for p in paths) and time.monotonic() < deadline:
+        time.sleep(0.01)
+
+
+def test_sent_drawings_are_drawn_by_the_drawer_in_turn_and_the_rest_by_its_pool(tmp_path):
+    """``send`` gives the drawer one drawing at a time (the others wait in ``handed``); it
+    draws them itself, and the drawings queued after them go to the pool it forks; the
+    files are the same as drawn in turn."""
+    serial = [FigureCache().save(tmp_path / "serial" / f"{n}.png", draw_line,
+                                 np.arange(3.0), n) for n in "abcd"]
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = _children()[0].pid
+        early = [figures.save(tmp_path / f"{n}.png", draw_and_note_pid, tmp_path / f"{n}.txt",
+                              n) for n in "ab"]
+        figures.queue.send()
+        assert len(figures.queue.sent) == 1 and len(figures.queue.handed) == 1
+        assert not figures.queue.jobs
+        _wait_for(early)  # both drawn before the others are queued
+        late = [figures.save(tmp_path / f"{n}.png", draw_and_note_pid, tmp_path / f"{n}.txt",
+                             n) for n in "cd"]
+    for n in "abcd":
+        pid, parent = map(int, (tmp_path / f"{n}.txt").read_text().split())
+        assert (pid, parent) == (drawer, os.getpid()) if n in "ab" else parent == drawer, n
+    for s, q in zip(serial, early + late, strict=True):
+        assert q.read_bytes() == s.read_bytes(), q.name
+
+
+def note_pid_and_files(note: Path, folder: Path) -> None:
+    """A preparation: writes its process's id and the PNG files in ``folder`` to ``note``."""
+    note.write_text(f"{os.getpid()} " + " ".join(sorted(p.name for p in folder.glob("*.png"))))
+
+
+def test_a_preparation_runs_in_the_drawer_after_the_drawings_handed_before(tmp_path):
+    with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+        drawer = _children()[0].pid
+        early = _figures(figures.save, tmp_path, n=2)
+        figures.queue.send()
+        figures.queue.prepare(partial(note_pid_and_files, tmp_path / "note.txt", tmp_path))
+        _wait_for([tmp_path / "note.txt"])
+    pid, *seen = (tmp_path / "note.txt").read_text().split()
+    assert int(pid) == drawer and seen == [p.name for p in early]
+    assert all(p.is_file() for p in early)
+
+
+def test_a_failing_sent_drawing_is_named_and_one_that_does_not_pickle_drawn_here(tmp_path):
+    def local(title):  # a local function does not pickle: drawn in this process
+        return draw_and_note_pid(tmp_path / "pid.txt", title)
+
+    with pytest.raises(RuntimeError, match=r"^figures not written: broken\.png: ValueError: "
+                                           r"cannot draw the broken one$"):
+        with parallel_figures(FigureCache(), 2, prestart=True) as figures:
+            figures.save(tmp_path / "broken.png", draw_broken, np.zeros(2), "the broken one")
+            here = figures.save(tmp_path / "local.png", local, "local")
+            good = _figures(figures.save, tmp_path, n=2)
+            figures.queue.send()
+            _wait_for([good[0]])
+    assert here.is_file() and all(p.is_file() for p in good)
+    assert int((tmp_path / "pid.txt").read_text().split()[0]) == os.getpid()
+    assert not (tmp_path / "broken.png").exists()
 
 
 def test_drawings_that_do_not_pickle_are_drawn_here(tmp_path):

@@ -92,7 +92,7 @@ BAD = [
                          ids=[b[0] for b in BAD])
 def test_refused_in_one_line_before_any_stage(tmp_path, capsys, monkeypatch, case, text, out,
                                               status, words):
-    monkeypatch.setattr(run_commands, "run_pipeline", _not_a_stage)
+    monkeypatch.setattr(run_commands, "run_stages", _not_a_stage)
     cfg = tmp_path / "in" / "case.toml"
     cfg.parent.mkdir()
     cfg.write_text(text if text is not None else SPUR.read_text(), encoding="utf-8")

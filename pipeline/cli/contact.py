@@ -57,19 +57,20 @@ def write_contact(cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions,
     from pipeline.viz.contact import plot_contact_cycle
     from pipeline.viz.loadmap import load_map_title, plot_load_map_2d, render_load_map
 
+    lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
+    map_title = load_map_title(title, opts.modifications.describe(gears))
+    # the longest drawing (1-3 s of CPU) queued first: a drawer that draws while the run goes
+    # on (pipeline.viz.figure_queue) begins with it
+    rendered = [figures.save(out / f"{prefix}load_map.png", render_load_map, pair, lm,
+                             map_title)] if opts.render else []
     files = [write_csv(out / f"{prefix}contact_cycle.csv", cyc.columns()),
              write_csv(out / f"{prefix}contact_points.csv", cyc.point_columns()),
              figures.save(out / f"{prefix}contact_cycle.png", plot_contact_cycle, cyc, k_slice,
                           title)]
-    lm = flank_load_map(cyc, pair, opts.load_map_profile_points)
-    map_title = load_map_title(title, opts.modifications.describe(gears))
     files.append(figures.save(out / f"{prefix}load_map_2d.png", plot_load_map_2d, lm,
                               map_title))
     files.append(write_load_map_vtu(pair, lm, out / f"{prefix}load_map.vtu"))
-    if opts.render:
-        files.append(figures.save(out / f"{prefix}load_map.png", render_load_map, pair, lm,
-                                  map_title))
-    return files
+    return files + rendered
 
 
 def contact_title(name: str, cyc: LoadedMeshCycle, pair: GearPair, opts: ContactOptions) -> str:

@@ -17,7 +17,16 @@ takes from the one before:
    source and solving the contact again;
 5. with a ``[dynamics]`` table (or a ``[lumped_model]``): the dynamic model
    (:func:`pipeline.run.dynamics.dynamic_model`), its modes, the steady response at
-   the operating speed and a speed sweep (dynamic mesh forces, dynamic factor).
+   the operating speed and a speed sweep (dynamic mesh forces, dynamic factor);
+6. the load distribution and FE root stress of every mesh
+   (:mod:`pipeline.run.distribution`) and, with ``[rating]``, the ISO 6336 rating
+   (:mod:`pipeline.run.rating`).
+
+Steps 1-2 of every mesh come before the contact of any (:func:`analytical_stages`, then
+:func:`contact_stages` and :func:`coupled_stages`), and the dynamics before the load
+distributions, which neither needs: :func:`pipeline.run.runner.run_stages` yields the
+result after each of these groups, and ``gearpipe run`` writes each group's files and
+hands its figures to the drawer while the next group computes.
 
 For a planetary set the two meshes are one sun-planet and one planet-ring mesh (for a
 herringbone set one helical half at half the load), ``[operation]`` giving the sun's torque
@@ -33,9 +42,11 @@ Cached by content hash (``meshes/`` of a checkout; ``--cache-dir`` moves it,
 loaded contact cycles (installed pair, operating point, contact options, friction, FE
 settings, formats) and figures (drawing code, every plotted array); a rerun that changes
 only a dynamics option reads the contact cycle back and redraws only the dynamics figures.
-Figures not in the cache are drawn side by side in a process pool forked from a drawer
-that ``gearpipe run`` starts as it starts, so matplotlib (0.5 s to import) loads while the
-stages compute (:mod:`pipeline.viz.figure_queue`); the report figures are drawn with them
+Figures not in the cache are drawn by a drawer that ``gearpipe run`` starts as it starts,
+so matplotlib (0.5 s to import) loads while the stages compute; it draws each group's
+figures while the next group computes, and those left at the end side by side in a
+process pool forked from it (:mod:`pipeline.viz.figure_queue`); the report figures are
+drawn with them
 (:func:`pipeline.report.writer.prepare_reports`), and a matplotlib figure is drawn once and
 cut to its tight box (:mod:`pipeline.viz.saving`). The run imports matplotlib only to draw,
 and reading a gearbox file or cached FE tables imports no scikit-fem.
@@ -57,6 +68,13 @@ machine): the computing process 5-6 s (imports 0.8-1.0 s, loaded contact with bo
 1.5 s, shafts 0.6 s, FE root stress 1.4-1.7 s, dynamics 0.45 s), the drawing processes 7-9 s
 (matplotlib import 0.35 s, the 21 matplotlib figures 4-5.5 s, the pyvista load map 1.3-1.9 s
 of which 0.7-1.2 s imports, each new drawing process 0.5-1.5 s more for its first figures).
+
+Since the files of each stage are written as it ends and its figures drawn by the drawer
+while the next stages compute (the report figures and those the drawer has not reached
+still after the last), the demo's cold run took 0.79-0.80 of 0a4a91a's wall time with no
+other job, 0.85-0.89 beside one at load average 1.3-3.2 and 0.99 at 3.1-3.6
+(:mod:`pipeline.viz.figure_queue`; the stages and the drawer share the two cores, so each
+stage took longer).
 
 The computing process (:func:`~pipeline.run.runner.run_pipeline` of the demo's pair, cold,
 one process per run, CPU of the process and the children it waited for, one BLAS thread;
@@ -256,10 +274,9 @@ def loaded_contact(box: Gearbox, case: MeshCase, stiffness: StiffnessResult,
     return cycle, hit
 
 
-def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
-                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
-    """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
-    (``prebuilt``: :func:`loaded_contact`)."""
+def analytical_stages(box: Gearbox, case: MeshCase, log: Steps) -> MeshStages:
+    """Geometry and analytical stiffness of one mesh: its stages without the contact
+    (``contact`` None; :func:`contact_stages` adds it)."""
     tag = step_tag(case.name)
     with log.step(f"geometry{tag}"):
         geometry = analyse_geometry(case.pair, case.assembly_errors)
@@ -267,32 +284,49 @@ def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
         stiffness = analyse_stiffness(case.pair, case.operation, box.stiffness,
                                       assembly_errors=case.assembly_errors)
         note["text"] = f"mean {stiffness.mesh.mean:.4g} N/m"
-    cycle = None
-    if contact:
-        with log.step(f"loaded contact ({box.contact.compliance}){tag}", announce=True) as note:
-            cycle, hit = loaded_contact(box, case, stiffness, options, prebuilt)
-            note["cached"] = hit
-            note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
-                            f"{cycle.mesh_stiffness.mean():.4g} N/m")
-    stages = MeshStages(case, geometry, stiffness, cycle, box.contact.compliance)
-    if contact and box.shafts:
+    return MeshStages(case, geometry, stiffness, None, box.contact.compliance)
+
+
+def contact_stages(box: Gearbox, stages: MeshStages, options: RunOptions, log: Steps,
+                   prebuilt: Any = None) -> MeshStages:
+    """``stages`` of :func:`analytical_stages` with the loaded contact of the mesh and what
+    builds on it: the shafts' deflection, the contact through the revolution, a herringbone
+    sun-planet mesh through its groove (``prebuilt``: :func:`loaded_contact`)."""
+    case = stages.case
+    with log.step(f"loaded contact ({box.contact.compliance}){step_tag(case.name)}",
+                  announce=True) as note:
+        cycle, hit = loaded_contact(box, case, stages.stiffness, options, prebuilt)
+        note["cached"] = hit
+        note["text"] = (f"{len(cycle)} positions, mean mesh stiffness "
+                        f"{cycle.mesh_stiffness.mean():.4g} N/m")
+    stages = dataclasses.replace(stages, contact=cycle)
+    if box.shafts:
         from pipeline.run.shafts import shaft_stage
 
         sh = shaft_stage(box, stages, options, log)
         if sh is not None:  # the contact downstream is the one with the shafts' deflection
             stages = dataclasses.replace(stages, contact=sh.cycle, shafts=sh)
-    if contact and box.errors is not None:
+    if box.errors is not None:
         from pipeline.run.revolution import revolution_stage
 
         stages = dataclasses.replace(stages, revolution=revolution_stage(box, stages, options,
                                                                          log))
-    if contact and case.name == "sun_planet":
+    if case.name == "sun_planet":
         from pipeline.run.herringbone import herringbone_stage
 
         hb = herringbone_stage(box, stages, options, log)
         if hb is not None:
             stages = dataclasses.replace(stages, herringbone=hb)
     return stages
+
+
+def static_stages(box: Gearbox, case: MeshCase, options: RunOptions, log: Steps,
+                  contact: bool = True, prebuilt: Any = None) -> MeshStages:
+    """Geometry, analytical stiffness and (with ``contact``) loaded contact of one mesh
+    (:func:`analytical_stages`, :func:`contact_stages`; ``prebuilt``:
+    :func:`loaded_contact`)."""
+    stages = analytical_stages(box, case, log)
+    return contact_stages(box, stages, options, log, prebuilt) if contact else stages
 
 
 def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = True,
@@ -304,11 +338,20 @@ def mesh_stages(box: Gearbox, options: RunOptions, log: Steps, contact: bool = T
     out = {case.name: static_stages(box, case, options, log, contact,
                                     None if prebuilt is None else prebuilt[case.name])
            for case in mesh_cases(box)}
-    if contact and box.kind == "planetary" and box.shafts:
+    return coupled_stages(box, out, options, log) if contact else out
+
+
+def coupled_stages(box: Gearbox, meshes: dict[str, MeshStages], options: RunOptions,
+                   log: Steps) -> dict[str, MeshStages]:
+    """``meshes`` (each with its contact) solved together where they interact: a planetary
+    set with a sun's shaft or planets' pins, both contacts with their deflection
+    (:mod:`pipeline.run.planetary_shafts`); else ``meshes`` as they are."""
+    if box.kind == "planetary" and box.shafts:
         from pipeline.run.planetary_shafts import planetary_shaft_stage
 
-        sh = planetary_shaft_stage(box, out, options, log)  # both meshes together
+        sh = planetary_shaft_stage(box, meshes, options, log)  # both meshes together
         if sh is not None:
-            out = {name: dataclasses.replace(st, contact=sh.cycles[name], shafts=sh.mesh(name))
-                   for name, st in out.items()}
-    return out
+            return {name: dataclasses.replace(st, contact=sh.cycles[name],
+                                              shafts=sh.mesh(name))
+                    for name, st in meshes.items()}
+    return meshes

@@ -1,9 +1,11 @@
-"""A whole run on one gearbox: :func:`run_pipeline` (the static stages of every mesh,
-their load distributions, the dynamics) and its :class:`RunResult`; and the dynamic model
-a gearbox file describes (:func:`gearbox_dynamic_model`) for the dynamics commands."""
+"""A whole run on one gearbox: :func:`run_pipeline` (the static stages of every mesh, the
+dynamics, the meshes' load distributions, the rating) and its :class:`RunResult`, or the
+same stage by stage (:func:`run_stages`); and the dynamic model a gearbox file describes
+(:func:`gearbox_dynamic_model`) for the dynamics commands."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -11,7 +13,15 @@ from pipeline.cache.folder import DEFAULT_CACHE, Cache
 from pipeline.config import Gearbox
 from pipeline.dynamics.assembly import DynamicModel
 from pipeline.progress import Steps
-from pipeline.run.chain import MeshStages, RunOptions, mesh_stages
+from pipeline.run.chain import (
+    MeshStages,
+    RunOptions,
+    analytical_stages,
+    contact_stages,
+    coupled_stages,
+    mesh_cases,
+    mesh_stages,
+)
 from pipeline.run.distribution import DistributionStage, distribution_stages
 from pipeline.run.dynamics import DynamicsStages, dynamic_model, dynamics_stages, needs_contact
 from pipeline.run.rating import RatingStage, rating_stage
@@ -54,18 +64,46 @@ class RunResult:
         return out
 
 
-def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
-    """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
+RUN_STAGES = ("analytical", "contact", "dynamics", "complete")
+"""What :func:`run_stages` yields, in this order."""
+
+
+def run_stages(box: Gearbox, options: RunOptions | None = None
+               ) -> Iterator[tuple[str, RunResult]]:
+    """:func:`run_pipeline` stage by stage: the result as it grows, so that a caller can
+    write what is ready while the rest computes; writes only the cache.
+
+    Yields (stage, result) for each stage of :data:`RUN_STAGES`: ``"analytical"``, the
+    meshes with their geometry and analytical stiffness (``contact`` None); ``"contact"``,
+    the meshes' static stages whole (loaded contact, shafts, revolution, herringbone);
+    ``"dynamics"``, with the dynamics (``None`` without a ``[dynamics]`` table);
+    ``"complete"``, with the load distributions and the rating: what :func:`run_pipeline`
+    returns. A ``[lumped_model]`` has no meshes: the first two stages are empty.
+    The dynamics come before the load distributions, which they do not need (nor the
+    distributions them), so that their figures can be drawn while the root stress computes.
+    """
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    meshes = mesh_stages(box, options, log)
-    distributions = distribution_stages(box, meshes, options, log)
+    cases = mesh_cases(box) if box.kind != "lumped" else []
+    meshes = {case.name: analytical_stages(box, case, log) for case in cases}
+    yield "analytical", RunResult(box, meshes, None, log)
+    meshes = coupled_stages(box, {name: contact_stages(box, st, options, log)
+                                  for name, st in meshes.items()}, options, log)
+    yield "contact", RunResult(box, meshes, None, log)
     dynamics = None
     if box.kind == "lumped" or box.dynamics is not None:
         dynamics = dynamics_stages(box, meshes, options, log)
+    yield "dynamics", RunResult(box, meshes, dynamics, log)
+    distributions = distribution_stages(box, meshes, options, log)
     rating = rating_stage(box, meshes, {k: d.distribution for k, d in distributions.items()},
                           {k: d.root_stress for k, d in distributions.items()}, dynamics, log)
-    return RunResult(box, meshes, dynamics, log, distributions, rating)
+    yield "complete", RunResult(box, meshes, dynamics, log, distributions, rating)
+
+
+def run_pipeline(box: Gearbox, options: RunOptions | None = None) -> RunResult:
+    """Run every stage the gearbox file asks for (module docstring); writes only the cache."""
+    *_, (_, result) = run_stages(box, options)
+    return result
 
 
 def gearbox_dynamic_model(box: Gearbox, cache: Cache = DEFAULT_CACHE) -> DynamicModel:

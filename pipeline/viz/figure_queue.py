@@ -12,11 +12,31 @@ with one worker, everything is drawn in turn.
 A *drawer* started early (:meth:`FigureQueue.start`, ``parallel_figures(prestart=True)``)
 is a pool of one process that imports matplotlib (about 0.5 s) and warms its font cache
 (:func:`warm_up`, its initializer) while this process is still computing what to draw,
-so a run whose figures are not all cached does not wait for that import.
-:meth:`~FigureQueue.draw_all` then submits all the drawings to it as one job, which
-forks the drawing pool from the warmed-up drawer (:func:`draw_jobs`): every drawing
-process starts with matplotlib and the drawing modules imported once. Why not one pool
-forked from this process at the start: each of its workers imports them itself.
+so a run whose figures are not all cached does not wait for that import. A run whose
+stages give the data of some figures before the last (``gearpipe run``: geometry and
+stiffness before the FE contact, the contact's figures before the dynamics and the root
+stress) hands them over with :meth:`~FigureQueue.send`: the drawer draws them one at a
+time, itself, on the core this process leaves free while it computes; it is given the
+next one only when it has drawn the last (:meth:`~FigureQueue._feed`, from the pool's
+result thread), so that the end of the run finds at most one drawing begun. The drawings
+it has not been given then join the rest (a run may also hand it a preparation for
+drawings to come, :meth:`~FigureQueue.prepare`: ``gearpipe run`` has it import pyvista
+after the geometry and stiffness figures, while the FE contact computes, when it drew
+some of those, so that the load map drawn after the contact does not wait for the
+import): :meth:`~FigureQueue.draw_all` submits them all
+to it as one job, which forks the drawing pool from the warmed-up drawer
+(:func:`draw_jobs`): every drawing process starts with matplotlib and the drawing modules
+the drawer imported (for the figures it drew) imported once. Why not one pool forked from
+this process at the start: each of its workers imports them itself.
+Measured (``workflows/benchmarks/bench_run.py``, the demo's cold ``gearpipe run`` beside
+0a4a91a, which drew every figure after the last stage; three runs each, every file and
+number the same): with pyvista prepared, wall median 11.5 s against 14.2 s (0.80) and
+10.9 against 13.8 s (0.79) with no other job (load average 0.6-2.3, the run's own), CPU
+19.3-20.3 against 20.7-20.8 s, the load map 1.5 s of CPU against 2.3-2.7 s; before
+that, beside another job using both cores, 14.5 against 17.0 s (0.85) at load average
+1.3-2.9 and 12.9 against 14.5 s (0.89) at 2.4-3.2; at 3.1-3.6, when the run's processes
+share about one core, 23.3 against 23.5 s (0.99): the drawer gains only where a core is
+free while the stages compute.
 Measured on 2 cores (warm ``gearpipe run`` of the demo with the damping ratio changed,
 runs interleaved), with one worker warmed up: 13 % slower than the drawer, 0.37 s more
 CPU; with every worker warmed up: 11 % slower, and the unchanged warm run 18 % slower
@@ -65,6 +85,10 @@ Job = tuple[Path, Callable[[], Path]]
 """A drawing: the PNG it writes and the call that draws and writes it."""
 
 
+Sent = tuple[Path, Callable[[], Path], Future]
+"""A drawing handed to the drawer by :meth:`FigureQueue.send`, with its future."""
+
+
 @dataclass
 class FigureQueue:
     """Drawings waiting for :meth:`draw_all`.
@@ -73,10 +97,20 @@ class FigureQueue:
     ----------
     jobs : (PNG path, drawing thunk) in the order they were queued.
     drawer : the early-started drawer, a pool of one warmed-up process (:meth:`start`).
+    handed : the drawings :meth:`send` handed over that the drawer has not been given yet.
+    sent : the drawings given to the drawer, with their futures.
+    preparing, prepared : the calls :meth:`prepare` handed over, not yet given to the drawer
+        and given (their futures).
     """
 
     jobs: list[Job] = field(default_factory=list)
     drawer: ProcessPoolExecutor | None = None
+    handed: list[Job] = field(default_factory=list)
+    sent: list[Sent] = field(default_factory=list)
+    preparing: list[Callable[[], object]] = field(default_factory=list)
+    prepared: list[Future] = field(default_factory=list)
+    _lock: threading.RLock = field(default_factory=threading.RLock, repr=False,
+                                   compare=False)
 
     def add(self, path: str | Path, job: Callable[[], Path]) -> Path:
         """Queue ``job`` (draws and writes ``path``); returns ``path``."""
@@ -90,16 +124,71 @@ class FigureQueue:
             self.drawer = process_pool(1, warm_up)
             start_workers(self.drawer)  # forked by this thread, the one that waits for it
 
+    def send(self) -> None:
+        """Hand the drawings queued so far to the drawer, which draws them one at a time, in
+        turn, while this process goes on (module docstring); without a drawer they stay
+        queued for :meth:`draw_all`."""
+        with self._lock:
+            if self.drawer is None:
+                return
+            self.handed += self.jobs
+            self.jobs = []
+            self._feed()
+
+    def prepare(self, call: Callable[[], object]) -> None:
+        """Have the drawer run ``call`` (a module-level function: the imports of drawings to
+        come, say) once it has drawn the drawings handed over before, while this process
+        goes on (module docstring); nothing without a drawer. Its errors are ignored: a
+        drawing that needs what it prepares reports its own."""
+        with self._lock:
+            if self.drawer is None:
+                return
+            self.preparing.append(call)
+            self._feed()
+
+    def _feed(self) -> None:
+        """Give the drawer the next handed drawing, or else the next preparation, if it has
+        none in hand (one at a time, so that :meth:`draw_all` finds at most one begun; the
+        lock held)."""
+        busy = [f for *_, f in self.sent] + self.prepared
+        if self.drawer is None or any(not f.done() for f in busy):
+            return
+        try:
+            if self.handed:
+                path, job = self.handed[0]
+                future = self.drawer.submit(draw_one, path, job)
+                self.sent.append((path, job, future))
+                self.handed.pop(0)
+            elif self.preparing:
+                future = self.drawer.submit(self.preparing[0])
+                self.prepared.append(future)
+                self.preparing.pop(0)
+            else:
+                return
+        except (BrokenProcessPool, RuntimeError):  # it died, or is shut down: draw_all draws
+            return
+        future.add_done_callback(self._drawn)
+
+    def _drawn(self, future: Future) -> None:
+        """A given drawing is done (called by the pool's thread): give the next."""
+        with self._lock:
+            self._feed()
+
     def stop(self) -> None:
-        """End the drawer without drawing (idempotent): it has drawn nothing, so it is
-        killed rather than waited for (it may still be importing matplotlib)."""
-        drawer, self.drawer = self.drawer, None
+        """End the drawer without drawing the rest (idempotent): it is killed rather than
+        waited for (it may still be importing matplotlib, or drawing a figure of a run that
+        failed)."""
+        with self._lock:
+            drawer, self.drawer = self.drawer, None
+            self.handed, self.sent, self.preparing, self.prepared = [], [], [], []
         if drawer is not None:
             kill_pool(drawer)
 
     def draw_all(self, workers: int | None = None, show_progress: bool = False) -> None:
         """Draw every queued figure in up to ``workers`` processes (default: CPU count):
-        by the drawer if :meth:`start` started it, else from here (:func:`draw_jobs`).
+        by the drawer if :meth:`start` started it, else from here (:func:`draw_jobs`);
+        wait for those :meth:`send` handed to the drawer (the ones it has not begun are
+        drawn with the rest).
 
         ``show_progress``: the figures written so far, on stderr once the drawing has taken a
         second (:func:`pipeline.progress.progress`; counted by their files appearing, as
@@ -109,15 +198,21 @@ class FigureQueue:
         ------
         RuntimeError : naming the figures whose drawing failed (their files not written).
         """
-        jobs, self.jobs = self.jobs, []
-        if not jobs:  # every figure came from the cache: the drawer is not waited for
-            self.stop()
+        with self._lock:  # the drawer is given nothing more (_feed)
+            jobs, sent = self.handed + self.jobs, self.sent
+            self.jobs, self.handed, self.sent, self.preparing = [], [], [], []
+            for future in self.prepared:  # one it has begun is waited for with its queue
+                future.cancel()
+            self.prepared = []
+            drawer, self.drawer = self.drawer, None
+        if not jobs and not sent:  # every figure came from the cache: not waited for
+            if drawer is not None:
+                kill_pool(drawer)
             return
-        drawer, self.drawer = self.drawer, None
-        with _counting_files([path for path, _ in jobs], show_progress):
-            failures = _by_drawer(drawer, jobs, workers) if drawer is not None else None
-            if failures is None:
-                failures = draw_jobs(jobs, workers)
+        paths = [path for path, _, _ in sent] + [path for path, _ in jobs]
+        with _counting_files(paths, show_progress):
+            failures = (_by_drawer(drawer, sent, jobs, workers) if drawer is not None
+                        else draw_jobs(jobs, workers))
         if failures:
             raise RuntimeError("figures not written: " + "; ".join(failures))
 
@@ -142,27 +237,37 @@ def draw_one(path: Path, job: Callable[[], Path]) -> str | None:
     return None
 
 
-def _by_drawer(drawer: ProcessPoolExecutor, jobs: list[Job], workers: int | None
-               ) -> list[str] | None:
-    """Have the drawer draw ``jobs`` (:func:`draw_jobs` there) and end it; its failures, or
-    ``None`` if it could not (the jobs do not pickle, or it died): then nothing it may
-    have written is trusted and the caller draws them all."""
+def _by_drawer(drawer: ProcessPoolExecutor, sent: list[Sent], jobs: list[Job],
+               workers: int | None) -> list[str]:
+    """Have the drawer draw ``jobs`` (:func:`draw_jobs` there, after the ``sent`` drawings
+    it has begun; those it has not are drawn with ``jobs``), wait for all and end it; the
+    failures. A sent drawing the drawer could not draw (it did not pickle, or the drawer
+    died) is drawn here; so are ``jobs`` if it could not take them (they do not pickle, or
+    it died: then nothing it may have written of them is trusted), by :func:`draw_jobs`."""
+    began = [(path, job, future) for path, job, future in sent if not future.cancel()]
+    jobs = [(path, job) for path, job, future in sent if future.cancelled()] + jobs
+    batch: Future | None = None
+    if jobs:
+        try:
+            batch = drawer.submit(draw_jobs, jobs, workers)
+        except BrokenProcessPool:  # it died before
+            pass
+    failures: list[str | None] = []
     try:
-        future = drawer.submit(draw_jobs, jobs, workers)
-    except BrokenProcessPool:  # it died before
-        kill_pool(drawer)
-        return None
-    try:
-        # an exception here is the drawer's, not a drawing's (draw_one catches those)
-        failures = future.result() if future.exception() is None else None
+        for path, job, future in began:
+            # an exception is the drawer's, not the drawing's (draw_one catches those)
+            failures.append(future.result() if future.exception() is None
+                            else draw_one(path, job))
+        drawn = None if batch is None or batch.exception() is not None else batch.result()
     except BaseException:  # interrupted: nothing more to wait for
         kill_pool(drawer)
         raise
-    if failures is None:
+    if jobs and drawn is None:
         kill_pool(drawer)
+        drawn = draw_jobs(jobs, workers)
     else:
         drawer.shutdown()
-    return failures
+    return [failure for failure in failures if failure] + (drawn or [])
 
 
 def _draw_in(pool: ProcessPoolExecutor, jobs: list[Job]) -> list[str]:

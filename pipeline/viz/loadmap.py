@@ -94,6 +94,13 @@ def _tip_corner_edge(plotter, pair: GearPair, load_map: FlankLoadMap, member: st
     return f"; its tip corner touches beyond the path (the tube): up to {load.max():.0f} N/mm"
 
 
+def prepare_rendering() -> None:
+    """Import pyvista's plotting (0.5-1 s of CPU; it imports matplotlib's pyplot too) ahead
+    of :func:`render_load_map`, for a drawing process with time on its hands
+    (:meth:`pipeline.viz.figure_queue.FigureQueue.prepare`)."""
+    import pyvista.plotting  # noqa: F401
+
+
 def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
                     window_width: int = 1400, clim: tuple[float, float] | None = None):
     """Off-screen pyvista Plotter of the unit load on the 3D pinion tooth and, for an
