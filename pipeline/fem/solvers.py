@@ -210,9 +210,9 @@ def _return_free_heap() -> None:
     traction gear of Yang et al. (2026) the resident memory before its factorisation went
     from 0.55 to 0.28 GiB. A no-op where the C library has no ``malloc_trim``.
     """
-    try:
+    try:  # the process's own symbols (Windows has no such handle: TypeError)
         trim = ctypes.CDLL(None).malloc_trim
-    except (AttributeError, OSError):
+    except (AttributeError, OSError, TypeError):
         return
     trim(0)
 
