@@ -10,6 +10,7 @@ order, the DOFs to clamp, a block of load vectors and a solver
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -341,11 +342,13 @@ def compliance_blocks(
         raise InputError(f"loads have {loads.shape[0]} rows, read {read.shape[0]}")
     steps = Steps("", enabled=False) if steps is None else steps
     if block is None:
-        # (PARDISO, 211k unknowns, 272 cases: 8.5 s in blocks of 16, 7.5 s of 32-64, 15 s
-        # in one block; measured)
+        # a factor's solves stream the whole factor once per block: few blocks, but each
+        # block and its solution add to the peak memory (PARDISO, 211k unknowns, 272
+        # cases: 8.5 s in blocks of 16, 7.5 s of 32-64, 15 s in one block; measured)
         size = 24e6 if factor.method == "pmg-cg" else 64e6
         most = int(np.clip(size / (8 * free.size), 16, 256))
-        block = -(-loads.shape[1] // -(-loads.shape[1] // most)) if loads.shape[1] else 1
+        n_blocks = max(1, math.ceil(loads.shape[1] / most))
+        block = max(1, math.ceil(loads.shape[1] / n_blocks))  # equal blocks
     check_int_range("solver.block", block, 1, 100000)
     t0 = time.perf_counter()
     Ff = sp.csc_matrix(loads)[free]

@@ -173,13 +173,11 @@ class _Pardiso:
         self.iparm[34] = 1  # zero-based indices
         self.error = 0
 
-    def call(self, phase: int, b: np.ndarray, perm: np.ndarray | None = None,
-             x: np.ndarray | None = None) -> np.ndarray:
+    def call(self, phase: int, b: np.ndarray, perm: np.ndarray | None = None) -> np.ndarray:
         """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x
-        (``perm``: PARDISO's int32 ``perm`` array, e.g. the Schur rows of ``iparm 36``;
-        ``x``: the output array, default one shaped as ``b``)."""
+        (``perm``: PARDISO's int32 ``perm`` array, e.g. the Schur rows of ``iparm 36``)."""
         b = np.asfortranarray(b, dtype=np.float64)
-        x = np.zeros_like(b) if x is None else x
+        x = np.zeros_like(b)
         err = ctypes.c_int32(0)
         i32 = ctypes.POINTER(ctypes.c_int32)
         f64 = ctypes.POINTER(ctypes.c_double)
@@ -357,6 +355,12 @@ def solver_named(name: str = "auto", dim: int = 3) -> Solver:
     return DirectSolver(name)
 
 
+def _symmetric(U: sp.spmatrix) -> sp.csr_matrix:
+    """The symmetric matrix whose upper triangle (diagonal included) is that of ``U``."""
+    U = sp.triu(U, format="csr")
+    return U + sp.triu(U, k=1, format="csr").T
+
+
 def factorize_spd(A: sp.spmatrix, method: str = "auto", upper: bool = False) -> SPDFactor:
     """Factorise a sparse SPD matrix once for many solves.
 
@@ -382,8 +386,7 @@ def factorize_spd(A: sp.spmatrix, method: str = "auto", upper: bool = False) -> 
     n = A.shape[0]
     t0 = time.perf_counter()
     if upper and method != "pardiso":
-        A = sp.triu(A, format="csr")
-        A = A + sp.triu(A, k=1, format="csr").T
+        A = _symmetric(A)
     if method == "pardiso":
         solve = _pardiso_factor(A, upper)
     elif method == "cholmod":
@@ -432,8 +435,7 @@ def schur_complement(U: sp.spmatrix, interface: np.ndarray, method: str = "auto"
         _check_pardiso(solver)
         solver.release()
         return S.reshape(m, m)
-    K = sp.csr_matrix(U)
-    K = K + sp.triu(K, k=1, format="csr").T
+    K = _symmetric(U)
     inner = ~g
     Kig = K[inner][:, g]
     S = K[g][:, g].toarray()

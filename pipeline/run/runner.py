@@ -16,10 +16,8 @@ from pipeline.progress import Steps
 from pipeline.run.chain import (
     MeshStages,
     RunOptions,
-    analytical_stages,
     contact_stages,
     coupled_stages,
-    mesh_cases,
     mesh_stages,
 )
 from pipeline.run.distribution import DistributionStage, distribution_stages
@@ -84,8 +82,7 @@ def run_stages(box: Gearbox, options: RunOptions | None = None
     """
     options = options or RunOptions()
     log = Steps(options.label, enabled=options.show_progress, every_step=True)
-    cases = mesh_cases(box) if box.kind != "lumped" else []
-    meshes = {case.name: analytical_stages(box, case, log) for case in cases}
+    meshes = mesh_stages(box, options, log, contact=False)  # none for a [lumped_model]
     yield "analytical", RunResult(box, meshes, None, log)
     meshes = coupled_stages(box, {name: contact_stages(box, st, options, log)
                                   for name, st in meshes.items()}, options, log)
