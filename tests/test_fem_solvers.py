@@ -162,6 +162,49 @@ def test_pardiso_factors_are_exact_and_independent():
 
 
 @needs_pardiso
+def test_pardiso_runs_small_systems_on_one_thread(monkeypatch):
+    """Below ``SERIAL_BELOW_NNZ`` non-zeros in the upper triangle PARDISO's analysis,
+    factorisation and solves run with MKL's thread-local setting at one thread, put back
+    after each call; at or above it on the threads MKL is given. The answer is the exact
+    inverse either way."""
+    import pipeline.fem.solvers as solvers
+
+    n = 50
+    A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
+    exact = np.arange(1, n + 1) * (n + 1 - n) / (n + 1)  # column n of the inverse (above)
+    seen = []
+    real = solvers._Pardiso.__init__
+
+    def spying_init(self, U):
+        real(self, U)
+        lib, pardiso = self._lib, self._lib._mkl_pardiso
+
+        def spy(*args):
+            seen.append(lib.libmkl.MKL_Get_Max_Threads())
+            return pardiso(*args)
+
+        lib._mkl_pardiso = spy
+
+    monkeypatch.setattr(solvers._Pardiso, "__init__", spying_init)
+    lib = solvers._Pardiso(sp.triu(A, format="csr"))._lib.libmkl
+    lib.MKL_Set_Num_Threads_Local(2)  # this thread's setting, to be kept
+    try:
+        f = factorize_spd(A, "pardiso")
+        np.testing.assert_allclose(f.solve(np.eye(n)[:, -1]), exact, rtol=1e-12)
+        assert seen == [1, 1]  # analysis and factorisation, solve
+        assert lib.MKL_Get_Max_Threads() == 2
+        del f  # its release (phase -1) is a call too
+        gc.collect()
+        seen.clear()
+        monkeypatch.setattr(solvers, "SERIAL_BELOW_NNZ", 10)
+        f = factorize_spd(A, "pardiso")
+        np.testing.assert_allclose(f.solve(np.eye(n)[:, -1]), exact, rtol=1e-12)
+        assert seen == [2, 2]
+    finally:
+        lib.MKL_Set_Num_Threads_Local(0)
+
+
+@needs_pardiso
 def test_pardiso_refuses_a_matrix_that_is_not_positive_definite(bar):
     """A free-free body (six rigid-body modes) has no Cholesky factor: a one-line error."""
     model, _, _ = bar

@@ -22,7 +22,8 @@ Methods (measured side by side on a 2-core machine when they were chosen):
   triangle it needs, which the callers can build alone
   (:func:`pipeline.fem.linear_static.free_block`, :meth:`DirectSolver.factorize_upper`);
   MKL runs on as many threads as ``OMP_NUM_THREADS`` (or ``MKL_NUM_THREADS``) allows, by
-  default every core. On the whole-gear 3D tables of the traction pair of Yang et al.
+  default every core, except for matrices below :data:`SERIAL_BELOW_NNZ` non-zeros (one
+  thread: :class:`_Pardiso`). On the whole-gear 3D tables of the traction pair of Yang et al.
   (2026) (``bench_fe3d --full``; 164k and 282k unknowns, 272 right-hand sides read at
   1904 points) the factor holds 113M non-zeros (0.95 GB) for the larger gear, and the
   time is the factorisation and the block solves in about equal parts (9.5 and 11.4 s
@@ -145,6 +146,11 @@ def _point_pypardiso_at_mkl() -> None:
             os.environ["PYPARDISO_MKL_RT"] = str(found[0])
 
 
+SERIAL_BELOW_NNZ = 700_000
+"""Upper triangles of fewer non-zeros are factorised and solved on one thread
+(:class:`_Pardiso`)."""
+
+
 class _Pardiso:
     """One MKL PARDISO Cholesky (``mtype = 2``) of an upper triangle, called directly.
 
@@ -152,6 +158,23 @@ class _Pardiso:
     matrix's index arrays (1-based) on every solve and keep a copy of the matrix to
     compare each right-hand side's with. Here the zero-based CSR arrays are passed as
     they are (``iparm 35``), once factorised only solves (phase 33) follow.
+
+    Threads. A matrix whose upper triangle has fewer than :data:`SERIAL_BELOW_NNZ`
+    non-zeros is analysed, factorised and solved on one thread (MKL's thread-local
+    setting, put back after each call; every phase on the same threads: a factorisation
+    on fewer threads than its analysis crashes MKL), larger ones on the threads MKL is
+    given. Measured (2-core machine): the demo's 2D gear models (22k and 44k unknowns,
+    0.25M and 0.50M non-zeros, 52 and 124 MFLOP by PARDISO's count) factorise in
+    0.02-0.06 s after a 0.1-0.25 s analysis; on two threads the 44k model's
+    factorisation and 60 block solves took 0.20-0.27 s and 0.39-0.50 s of CPU, and the
+    second thread then spun for MKL's OpenMP block time (200 ms, Intel's
+    ``KMP_BLOCKTIME``: 0.2 s of CPU after the last call), taken from the core that draws
+    ``gearpipe run``'s figures meanwhile; on one, 0.23-0.27 s and 0.27-0.32 s of CPU,
+    nothing after. The z 30 helical gear of ``bench_fe3d`` (26k unknowns in 3D, 0.91M
+    non-zeros, 3539 MFLOP) factorises in 0.28-0.30 s on two threads against 0.40-0.42 s
+    on one, and solves in 0.12-0.14 against 0.21-0.23 s: it keeps them. One thread also
+    makes the small tables bit-reproducible (MKL's parallel reductions round differently
+    from run to run).
     """
 
     def __init__(self, U: sp.csr_matrix):
@@ -172,6 +195,7 @@ class _Pardiso:
         self.iparm[9] = 8  # pivot perturbation 1e-8 (PARDISO's value for symmetric types)
         self.iparm[34] = 1  # zero-based indices
         self.error = 0
+        self.serial = U.nnz < SERIAL_BELOW_NNZ  # every call on one thread (docstring)
 
     def call(self, phase: int, b: np.ndarray, perm: np.ndarray | None = None) -> np.ndarray:
         """PARDISO's ``phase`` on the right-hand sides ``b`` (n,) or (n, k); returns x
@@ -182,16 +206,22 @@ class _Pardiso:
         i32 = ctypes.POINTER(ctypes.c_int32)
         f64 = ctypes.POINTER(ctypes.c_double)
         lib = self._lib
-        lib._mkl_pardiso(
-            lib.pt.ctypes.data_as(ctypes.POINTER(lib._pt_type[0])),
-            ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),  # maxfct, mnum
-            ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
-            ctypes.byref(ctypes.c_int32(self.n)), self.data.ctypes.data_as(f64),
-            self.indptr.ctypes.data_as(i32), self.indices.ctypes.data_as(i32),
-            ctypes.POINTER(ctypes.c_int32)() if perm is None else perm.ctypes.data_as(i32),
-            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
-            self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),  # msglvl
-            b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+        serial = self.serial
+        before = lib.libmkl.MKL_Set_Num_Threads_Local(1) if serial else 0
+        try:
+            lib._mkl_pardiso(
+                lib.pt.ctypes.data_as(ctypes.POINTER(lib._pt_type[0])),
+                ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),  # maxfct, mnum
+                ctypes.byref(ctypes.c_int32(2)), ctypes.byref(ctypes.c_int32(phase)),
+                ctypes.byref(ctypes.c_int32(self.n)), self.data.ctypes.data_as(f64),
+                self.indptr.ctypes.data_as(i32), self.indices.ctypes.data_as(i32),
+                ctypes.POINTER(ctypes.c_int32)() if perm is None else perm.ctypes.data_as(i32),
+                ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+                self.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),  # msglvl
+                b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+        finally:
+            if serial:  # back to the thread's setting before (0: the global one)
+                lib.libmkl.MKL_Set_Num_Threads_Local(before)
         self.error = err.value
         return x
 
