@@ -15,8 +15,9 @@ where they sit: it is solved on the teeth ``z // 2 - n // 2 ..`` (:func:`solved_
 the mesh graded from them) and read on the teeth asked for. The pinion's and the gear's
 tables of a pair of equal gears (their tooth-pair ranges ``mid - k`` and ``mid + k`` are
 shifted by a tooth or two when the pairs that can touch are not symmetric about ``k =
-0``) are then one model, solved once and read from the cache the second time. A sector
-(``fe.teeth`` set) is clamped at its cuts: its table is solved on the teeth asked for.
+0``) are then one model: solved once, then read from the cache (``--no-cache``: solved
+twice). A sector (``fe.teeth`` set) is clamped at its cuts: its table is solved on the
+teeth asked for.
 Measured on the demo pair (z 50/50, tabulated teeth 23-26 and 24-27): the gear's table
 solved on 23-26 instead of 24-27 (another mesh of the same model) moves the mesh stiffness
 mean, min and max by +0.004, -0.006 and +0.007 % and the TE p-p by +0.03 % (the
