@@ -74,7 +74,14 @@ while the next stages compute (the report figures and those the drawer has not r
 still after the last), the demo's cold run took 0.79-0.80 of 0a4a91a's wall time with no
 other job, 0.85-0.89 beside one at load average 1.3-3.2 and 0.99 at 3.1-3.6
 (:mod:`pipeline.viz.figure_queue`; the stages and the drawer share the two cores, so each
-stage took longer).
+stage took longer). The run is then bound by the CPU of both cores, and three cuts of it
+followed: the demo's equal gears share one 2D table (:mod:`pipeline.contact.fe2d_table`),
+PARDISO runs small systems on one thread (:class:`pipeline.fem.solvers._Pardiso`: the
+second thread spun after every call) and the spur load map renders without
+multisampling (:func:`pipeline.viz.loadmap.render_load_map`): cold 9.5 s against 20.6 s at
+b847466 (median of three, ratio 0.46, CPU 16.6 against 27.5 s; b847466 ran 7.75 s the day
+it was timed) and 9.9 against 13.3 s at 0a4a91a (0.74), the same files, on a day the
+machine ran b847466 2.7 times slower than that.
 
 The computing process (:func:`~pipeline.run.runner.run_pipeline` of the demo's pair, cold,
 one process per run, CPU of the process and the children it waited for, one BLAS thread;
