@@ -62,12 +62,14 @@ Tests:
 ``tests/test_fem_fe2d_source.py`` (graded vs uniform on a coarse case; slow: the default
 against the uniform refinement 2 on a z 24/36 pair, 1 %).
 
-Cost (same pair, 60 positions, one side-by-side run of ``bench_fe_enriched.py`` on the
-shared 2-core machine, best of 3): cold 4.0 s in the process (imports 1.7, meshing 1.0,
-assembly 0.3, factorisation 0.3, solves 0.4, near field 0.05, contact 0.2 s; 4.8 s with
-the interpreter's start), peak RSS 0.24 GiB, against 43.8 s and 0.89 GiB for the uniform
-model at refinement 1 (26-30 s when the machine is not shared); warm: tables read in
-0.03 s, contact cycle 0.2-0.4 s.
+Cost (same pair, 60 positions, ``bench_fe_enriched.py`` on the shared 2-core machine, best
+of 3, 2026-11-27; the pair's gears are equal, so one table is solved and the other read
+back, :mod:`.fe2d_table`): cold 2.25 s in the process (imports 0.64, meshing 0.52,
+assembly 0.10, factorisation 0.17, solves 0.20, near field 0.06, contact cycle 0.47 s;
+2.7 s with the interpreter's start), peak RSS 0.17 GiB, against 11.2 s and 0.53 GiB for
+the uniform model at refinement 1; warm: tables read in 0.03 s, contact cycle 0.54 s.
+(Before the equal gears shared their table: cold 4.0 s, 43.8 s for the uniform model, on
+a more loaded day.)
 
 Against the analytical mesh stiffness (``workflows/validate_stiffness.py``, whose docstring
 gives the numbers for the assembly-error paper's spur pair: single contact within 2 %,
