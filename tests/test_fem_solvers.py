@@ -171,7 +171,7 @@ def test_pardiso_runs_small_systems_on_one_thread(monkeypatch):
 
     n = 50
     A = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
-    exact = np.arange(1, n + 1) * (n + 1 - n) / (n + 1)  # column n of the inverse (above)
+    exact = np.arange(1, n + 1) / (n + 1)  # column n of the inverse: i / (n + 1) (above)
     seen = []
     real = solvers._Pardiso.__init__
 
