@@ -127,7 +127,7 @@ def render_load_map(pair: GearPair, load_map: FlankLoadMap, title: str = "",
     weights = [row_h + title_h + caption_h] + [row_h + caption_h] * (len(members) - 1)
     plotter = offscreen_plotter(shape=(len(members), 1), border=False, row_weights=weights,
                                 window_size=[window_width, sum(weights)])
-    if pair.pinion.helix_angle == 0.0:
+    if not pair.pinion.is_helical:
         # a spur tooth seen from the side has every edge parallel to the window's sides, so
         # no edge shows a staircase; multisampling (pyvista's 8 samples) only blended the
         # pixel row an edge crosses, for 0.7 s of the map's 1.5-1.7 s of CPU on the demo's
